@@ -1,0 +1,44 @@
+// Two error channels (STYLE.md §7): bad user input throws InvalidParameter naming the field and
+// the allowed range; broken invariants (programmer errors) go through FOGRADAR_CHECK.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace fogradar {
+
+// Bad input: a parameter outside its allowed range. `field()` names it ("Fog.lwc_g_per_m3",
+// "--frequency-ghz", "radar.carrier_frequency_hz"), `what()` is the full one-line message.
+class InvalidParameter : public std::invalid_argument {
+ public:
+  InvalidParameter(std::string field, const std::string& message);
+  const std::string& field() const noexcept { return field_; }
+
+ private:
+  std::string field_;
+};
+
+// Throws InvalidParameter "<field> = <value>: must be <constraint>" (e.g. "> 0", "in [0, 50]").
+[[noreturn]] void throw_invalid(std::string_view field, double value, std::string_view constraint);
+[[noreturn]] void throw_invalid(std::string_view field, std::string_view value,
+                                std::string_view constraint);
+
+// Validation helpers used by every parameter struct's validate(). NaN fails every check.
+void require_finite(std::string_view field, double value);
+void require_positive(std::string_view field, double value);
+void require_non_negative(std::string_view field, double value);
+void require_in_range(std::string_view field, double value, double low, double high);
+
+// Invariant violated inside fogradar itself: a bug, not bad input.
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+[[noreturn]] void check_failed(const char* condition, const char* file, int line);
+
+}  // namespace fogradar
+
+#define FOGRADAR_CHECK(condition) \
+  ((condition) ? static_cast<void>(0) : ::fogradar::check_failed(#condition, __FILE__, __LINE__))

@@ -1,0 +1,51 @@
+#include "fogradar/core/error.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace fogradar {
+
+InvalidParameter::InvalidParameter(std::string field, const std::string& message)
+    : std::invalid_argument(message), field_(std::move(field)) {}
+
+void throw_invalid(std::string_view field, double value, std::string_view constraint) {
+  std::ostringstream message;
+  message.precision(10);
+  message << field << " = " << value << ": must be " << constraint;
+  throw InvalidParameter(std::string(field), message.str());
+}
+
+void throw_invalid(std::string_view field, std::string_view value, std::string_view constraint) {
+  std::ostringstream message;
+  message << field << " = '" << value << "': must be " << constraint;
+  throw InvalidParameter(std::string(field), message.str());
+}
+
+void require_finite(std::string_view field, double value) {
+  if (!std::isfinite(value)) throw_invalid(field, value, "a finite number");
+}
+
+void require_positive(std::string_view field, double value) {
+  if (!(std::isfinite(value) && value > 0.0)) throw_invalid(field, value, "finite and > 0");
+}
+
+void require_non_negative(std::string_view field, double value) {
+  if (!(std::isfinite(value) && value >= 0.0)) throw_invalid(field, value, "finite and >= 0");
+}
+
+void require_in_range(std::string_view field, double value, double low, double high) {
+  if (!(value >= low && value <= high)) {
+    std::ostringstream range;
+    range.precision(10);
+    range << "in [" << low << ", " << high << "]";
+    throw_invalid(field, value, range.str());
+  }
+}
+
+void check_failed(const char* condition, const char* file, int line) {
+  std::ostringstream message;
+  message << "internal error: check '" << condition << "' failed at " << file << ':' << line;
+  throw InternalError(message.str());
+}
+
+}  // namespace fogradar

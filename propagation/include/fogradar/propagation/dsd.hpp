@@ -1,0 +1,70 @@
+// Drop size distributions of fog, normalised to a liquid water content (LWC).
+// Shapes are number densities over droplet diameter; the scale (number concentration N) follows
+// from LWC = rho_w N (pi/6) <D^3>.
+#pragma once
+
+#include <string_view>
+#include <variant>
+
+namespace fogradar::propagation {
+
+// Every droplet has the same diameter.
+struct Monodisperse {
+  double diameter_m = 1e-6;
+};
+
+// ln D ~ Normal(ln median, ln geometric_std^2).
+struct Lognormal {
+  double median_diameter_m = 1e-6;
+  double geometric_std = 1.5;  // sigma_g > 1
+};
+
+// Modified gamma distribution in radius r (Deirmendjian 1969):
+//   n(r) = a r^alpha exp(-b r^gamma),  r in micrometres, b in um^-gamma.
+// The scale a is not stored: the LWC normalisation sets it.
+struct ModifiedGamma {
+  double alpha = 3.0;
+  double gamma = 1.0;
+  double b_per_um_gamma = 0.3;
+};
+
+using DropSizeDistribution = std::variant<Monodisperse, Lognormal, ModifiedGamma>;
+
+// Advection fog: alpha = 3, gamma = 1, b = 0.3 um^-1 (mode radius 10 um, N = 20 cm^-3,
+// LWC about 0.37 g/m^3 with a = 0.027). Radiation fog: alpha = 6, gamma = 1, b = 1.5 um^-1
+// (mode radius 4 um, N = 100 cm^-3, LWC about 0.06 g/m^3 with a = 2.37305). Both as tabulated by
+// Al Naboulsi, Sizun & de Fornel, Opt. Eng. 43(2), 319-329 (2004), Table 1, after Shettle & Fenn 1979.
+ModifiedGamma advection_fog();
+ModifiedGamma radiation_fog();
+
+// The distribution fogradar uses when none is given: the study's ultrasonic fogger makes droplets of
+// "diameter about 1 um" (paper sec. III-B); lognormal, median 1 um, sigma_g = 1.5 (an assumption
+// typical of ultrasonic atomiser spectra; documented in docs/physics.md).
+DropSizeDistribution default_fog_droplets();
+
+// Short name of the distribution family: "monodisperse", "lognormal" or "modified_gamma".
+std::string_view distribution_name(const DropSizeDistribution& dsd);
+
+// Throws InvalidParameter naming the field (e.g. "Lognormal.geometric_std") if out of range.
+void validate(const DropSizeDistribution& dsd);
+
+// k-th raw moment <D^k> of the normalised distribution (m^k), closed form.
+double diameter_moment(const DropSizeDistribution& dsd, int k);
+
+// Number concentration N (1/m^3) that holds `lwc_g_per_m3` of liquid water:
+//   N = LWC / (rho_w (pi/6) <D^3>).
+double number_concentration_per_m3(const DropSizeDistribution& dsd, double lwc_g_per_m3);
+
+// Normalised probability density of diameter, p(D) (1/m), integrating to 1. Zero for monodisperse
+// (use the delta in integrate_over_distribution).
+double diameter_pdf(const DropSizeDistribution& dsd, double diameter_m);
+
+// Diameter interval that holds all but a negligible tail (< 1e-12 of the D^6 moment on each side),
+// used as the quadrature range. For monodisperse both ends equal the diameter.
+struct DiameterRange {
+  double min_m;
+  double max_m;
+};
+DiameterRange quadrature_range(const DropSizeDistribution& dsd);
+
+}  // namespace fogradar::propagation

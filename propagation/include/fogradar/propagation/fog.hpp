@@ -1,0 +1,73 @@
+// A fog: its density (LWC, optical extinction at 550 nm, or visibility), droplets and temperature,
+// resolved into bulk optical properties at any frequency by quadrature over the drop sizes.
+#pragma once
+
+#include <variant>
+
+#include "fogradar/propagation/dsd.hpp"
+#include "fogradar/propagation/water.hpp"
+
+namespace fogradar::propagation {
+
+// Wavelength at which fog density and visibility are defined (paper sec. I).
+inline constexpr double visibility_wavelength_m = 550e-9;
+
+struct LiquidWaterContent {
+  double g_per_m3 = 0.1;
+};
+// Optical (550 nm) extinction coefficient beta.
+struct OpticalExtinction {
+  double per_km = 900.0;
+};
+// Visual range, eq. 6 (2 % contrast at 550 nm).
+struct Visibility {
+  double m = 100.0;
+};
+using FogDensity = std::variant<LiquidWaterContent, OpticalExtinction, Visibility>;
+
+struct FogSpec {
+  FogDensity density = OpticalExtinction{};
+  DropSizeDistribution droplets = default_fog_droplets();
+  double temperature_c = 20.0;
+  WaterModel water_model = WaterModel::segelstein;  // at the radar frequency; optics always use the table
+  void validate() const;                            // throws InvalidParameter naming the field
+};
+
+// Bulk properties of a fog at one frequency (sums over the drop size distribution, Mie per droplet).
+struct FogOptics {
+  double frequency_hz = 0.0;
+  double wavelength_m = 0.0;
+  double extinction_per_m = 0.0;             // power extinction coefficient
+  double absorption_per_m = 0.0;
+  double scattering_per_m = 0.0;
+  double specific_attenuation_db_per_km = 0.0;  // 10 log10(e) * 1000 * extinction_per_m
+  double volume_backscatter_m2_per_m3 = 0.0;    // eta = N <sigma_b>
+};
+
+// A fog with its LWC resolved: for OpticalExtinction or Visibility the LWC follows from Mie at
+// 550 nm over the drop size distribution (Segelstein index).
+class Fog {
+ public:
+  Fog(const FogSpec& spec, const SegelsteinTable& table);
+
+  double lwc_g_per_m3() const { return lwc_g_per_m3_; }
+  double number_concentration_per_m3() const;
+  const FogSpec& spec() const { return spec_; }
+
+  // Bulk properties at a frequency, water index from the spec's water model and temperature.
+  FogOptics at_frequency(double frequency_hz) const;
+  // Bulk properties at an optical wavelength (always the Segelstein table).
+  FogOptics at_optical_wavelength(double wavelength_m) const;
+
+  double optical_extinction_per_km() const;  // beta at 550 nm
+  double visibility_m() const;               // eq. 6
+
+ private:
+  FogOptics bulk_optics(double wavelength_m, std::complex<double> index) const;
+
+  FogSpec spec_;
+  const SegelsteinTable* table_;
+  double lwc_g_per_m3_ = 0.0;
+};
+
+}  // namespace fogradar::propagation
