@@ -1,1 +1,37 @@
-int main() { return 0; }
+// fogradar: 77 GHz FMCW radar in fog. Exit status 0 ok, 2 bad usage or bad input, 1 internal fault.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "fogradar/core/error.hpp"
+
+int main(int argc, char** argv) {
+  constexpr int bad_input = 2;
+  CLI::App app{"fogradar: 77 GHz FMCW automotive radar in fog, simulated from physics"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(FOGRADAR_VERSION));
+  const fogradar::cli::Action fog = fogradar::cli::add_fog_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "fogradar: " << e.what() << "\n(run 'fogradar --help' for usage)\n";
+    return bad_input;
+  }
+  try {
+    if (app.got_subcommand("fog")) fog();
+  } catch (const fogradar::InvalidParameter& e) {
+    std::cerr << "fogradar: " << e.what() << '\n';
+    return bad_input;
+  } catch (const std::exception& e) {
+    std::cerr << "fogradar: internal error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

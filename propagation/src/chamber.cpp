@@ -1,0 +1,118 @@
+#include "fogradar/propagation/chamber.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/core/units.hpp"
+
+namespace fogradar::propagation {
+namespace {
+
+// A chamber of more layers than this is a typo, not a study (the study has 4; DESIGN §4 asks for
+// "many more" in the long-chamber example).
+constexpr std::size_t max_layers = 1000;
+constexpr double max_length_m = 1e4;
+
+// Length of [a, b] n [c, d].
+double overlap_m(double a, double b, double c, double d) {
+  return std::max(0.0, std::min(b, d) - std::max(a, c));
+}
+
+}  // namespace
+
+void ChamberSpec::validate() const {
+  require_in_range("chamber.sensor_gap_m", sensor_gap_m, 0.0, max_length_m);
+  require_in_range("chamber.target_gap_m", target_gap_m, 0.0, max_length_m);
+  if (layers.empty() || layers.size() > max_layers) {
+    throw_invalid("chamber.layers", static_cast<double>(layers.size()),
+                  "a layer count in [1, " + std::to_string(max_layers) + "]");
+  }
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const std::string field = "chamber.layers[" + std::to_string(i) + "].length_m";
+    if (!(layers[i].length_m > 0.0 && layers[i].length_m <= max_length_m)) {
+      throw_invalid(field, layers[i].length_m, "in (0, " + std::to_string(max_length_m) + "]");
+    }
+    layers[i].fog.validate();
+  }
+}
+
+double ChamberSpec::target_range_m() const {
+  double range_m = sensor_gap_m + target_gap_m;
+  for (const FogLayerSpec& layer : layers) range_m += layer.length_m;
+  return range_m;
+}
+
+ActiveLayers first_layers_active(std::size_t count, std::size_t layer_count) {
+  if (count > layer_count) {
+    throw_invalid("active_layers", static_cast<double>(count),
+                  "in [0, " + std::to_string(layer_count) + "] (the chamber's layer count)");
+  }
+  ActiveLayers active(layer_count, false);
+  std::fill_n(active.begin(), count, true);
+  return active;
+}
+
+Chamber::Chamber(const ChamberSpec& spec, double frequency_hz, const SegelsteinTable& table)
+    : target_range_m_(spec.target_range_m()), frequency_hz_(frequency_hz) {
+  spec.validate();
+  require_positive("frequency_hz", frequency_hz);
+  double start_m = spec.sensor_gap_m;
+  layers_.reserve(spec.layers.size());
+  for (const FogLayerSpec& layer_spec : spec.layers) {
+    const Fog fog(layer_spec.fog, table);
+    layers_.push_back({.start_m = start_m,
+                       .end_m = start_m + layer_spec.length_m,
+                       .lwc_g_per_m3 = fog.lwc_g_per_m3(),
+                       .optics = fog.at_frequency(frequency_hz)});
+    start_m += layer_spec.length_m;
+  }
+}
+
+void Chamber::check_active(const ActiveLayers& active) const {
+  if (active.size() != layers_.size()) {
+    throw_invalid("active_layers", static_cast<double>(active.size()),
+                  "one flag per layer (" + std::to_string(layers_.size()) + ")");
+  }
+}
+
+// A = 2 sum_i a_i |[start_i, end_i] n [0, R]|.
+double Chamber::two_way_attenuation_db(double range_m, const ActiveLayers& active) const {
+  check_active(active);
+  require_non_negative("range_m", range_m);
+  double one_way_db = 0.0;
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    if (!active[i]) continue;
+    const LayerOptics& layer = layers_[i];
+    one_way_db += layer.optics.specific_attenuation_db_per_km * 1e-3 *
+                  overlap_m(layer.start_m, layer.end_m, 0.0, range_m);
+  }
+  return 2.0 * one_way_db;
+}
+
+double Chamber::two_way_transmittance(double range_m, const ActiveLayers& active) const {
+  return db_to_power_ratio(-two_way_attenuation_db(range_m, active));
+}
+
+// sigma = sum_i eta_i omega integral_a^b r^2 dr = eta_i omega (b^3 - a^3) / 3.
+double Chamber::backscatter_cross_section_m2(double r0_m, double r1_m, double beam_solid_angle_sr,
+                                             const ActiveLayers& active) const {
+  check_active(active);
+  require_non_negative("range_m", r0_m);
+  if (!(r1_m >= r0_m)) throw_invalid("range_m", r1_m, ">= the interval's start");
+  require_positive("beam_solid_angle_sr", beam_solid_angle_sr);
+  double sigma_m2 = 0.0;
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    if (!active[i]) continue;
+    const LayerOptics& layer = layers_[i];
+    const double a = std::max(r0_m, layer.start_m);
+    const double b = std::min(r1_m, layer.end_m);
+    if (b <= a) continue;
+    sigma_m2 += layer.optics.volume_backscatter_m2_per_m3 * beam_solid_angle_sr *
+                (b * b * b - a * a * a) / 3.0;
+  }
+  return sigma_m2;
+}
+
+}  // namespace fogradar::propagation

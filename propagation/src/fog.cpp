@@ -1,0 +1,124 @@
+#include "fogradar/propagation/fog.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/core/units.hpp"
+#include "fogradar/propagation/droplet.hpp"
+#include "fogradar/propagation/visibility.hpp"
+
+namespace fogradar::propagation {
+namespace {
+
+// Densest fog accepted: 100 g/m^3 is far beyond natural fog (< 1 g/m^3) but lets users build the
+// "artificially lossy" fogs that stress a radar chain; optical extinction and visibility limits
+// are the matching optical orders of magnitude.
+constexpr double max_lwc_g_per_m3 = 100.0;
+constexpr double max_extinction_per_km = 1e6;
+constexpr double min_visibility_m = 1e-3;
+constexpr double max_visibility_m = 1e7;
+
+}  // namespace
+
+void FogSpec::validate() const {
+  struct CheckDensity {
+    void operator()(const LiquidWaterContent& d) const {
+      require_in_range("fog.lwc_g_per_m3", d.g_per_m3, 0.0, max_lwc_g_per_m3);
+    }
+    void operator()(const OpticalExtinction& d) const {
+      require_in_range("fog.extinction_per_km", d.per_km, 0.0, max_extinction_per_km);
+    }
+    void operator()(const Visibility& d) const {
+      require_in_range("fog.visibility_m", d.m, min_visibility_m, max_visibility_m);
+    }
+  };
+  std::visit(CheckDensity{}, density);
+  propagation::validate(droplets);
+  // The Liebe model's range (ITU-R P.840), applied to both models so that a temperature study can
+  // switch model without changing its range.
+  require_in_range("fog.temperature_c", temperature_c, -20.0, 50.0);
+}
+
+Fog::Fog(const FogSpec& spec, const SegelsteinTable& table) : spec_(spec), table_(&table) {
+  spec_.validate();
+  struct ResolveLwc {
+    const Fog& fog;
+    double operator()(const LiquidWaterContent& d) const { return d.g_per_m3; }
+    // Extinction is proportional to LWC at a fixed distribution: LWC = beta / beta(LWC = 1).
+    double operator()(const OpticalExtinction& d) const {
+      return per_km_to_per_m(d.per_km) / fog.unit_lwc_optical_extinction_per_m();
+    }
+    double operator()(const Visibility& d) const {
+      return extinction_per_m_from_visibility(d.m) / fog.unit_lwc_optical_extinction_per_m();
+    }
+  };
+  lwc_g_per_m3_ = std::visit(ResolveLwc{*this}, spec_.density);
+}
+
+double Fog::number_concentration_per_m3() const {
+  return propagation::number_concentration_per_m3(spec_.droplets, lwc_g_per_m3_);
+}
+
+double Fog::unit_lwc_optical_extinction_per_m() const {
+  return sum_cross_sections(visibility_wavelength_m,
+                            table_->refractive_index(visibility_wavelength_m), 1.0)
+      .extinction_m2;
+}
+
+FogOptics Fog::at_frequency(double frequency_hz) const {
+  require_positive("frequency_hz", frequency_hz);
+  const double wavelength_m = wavelength_from_frequency_m(frequency_hz);
+  const WaterOptics water(spec_.water_model, celsius_to_kelvin(spec_.temperature_c), *table_);
+  return bulk_optics(wavelength_m, water.refractive_index(wavelength_m));
+}
+
+FogOptics Fog::at_optical_wavelength(double wavelength_m) const {
+  return bulk_optics(wavelength_m, table_->refractive_index(wavelength_m));
+}
+
+double Fog::optical_extinction_per_km() const {
+  return per_m_to_per_km(at_optical_wavelength(visibility_wavelength_m).extinction_per_m);
+}
+
+double Fog::visibility_m() const {
+  const double extinction_per_m = at_optical_wavelength(visibility_wavelength_m).extinction_per_m;
+  if (extinction_per_m == 0.0) return std::numeric_limits<double>::infinity();
+  return visibility_m_from_extinction(extinction_per_m);
+}
+
+CrossSections Fog::sum_cross_sections(double wavelength_m, std::complex<double> index,
+                                      double lwc_g_per_m3) const {
+  // Bulk coefficient = N sum_j w_j sigma(D_j): the number-weighted mean cross section times N.
+  CrossSections total;
+  for (const QuadratureNode& node : quadrature_nodes(spec_.droplets)) {
+    const CrossSections one = mie_cross_sections(node.diameter_m, wavelength_m, index);
+    total.extinction_m2 += node.weight * one.extinction_m2;
+    total.scattering_m2 += node.weight * one.scattering_m2;
+    total.absorption_m2 += node.weight * one.absorption_m2;
+    total.backscatter_m2 += node.weight * one.backscatter_m2;
+  }
+  const double n = propagation::number_concentration_per_m3(spec_.droplets, lwc_g_per_m3);
+  total.extinction_m2 *= n;
+  total.scattering_m2 *= n;
+  total.absorption_m2 *= n;
+  total.backscatter_m2 *= n;
+  return total;
+}
+
+FogOptics Fog::bulk_optics(double wavelength_m, std::complex<double> index) const {
+  const CrossSections per_volume = sum_cross_sections(wavelength_m, index, lwc_g_per_m3_);
+  FogOptics optics;
+  optics.wavelength_m = wavelength_m;
+  optics.frequency_hz = frequency_from_wavelength_hz(wavelength_m);
+  optics.refractive_index = index;
+  optics.extinction_per_m = per_volume.extinction_m2;
+  optics.absorption_per_m = per_volume.absorption_m2;
+  optics.scattering_per_m = per_volume.scattering_m2;
+  // Eq. 5 per metre, reported per km.
+  optics.specific_attenuation_db_per_km = attenuation_db_per_km(per_m_to_per_km(optics.extinction_per_m));
+  optics.volume_backscatter_m2_per_m3 = per_volume.backscatter_m2;
+  return optics;
+}
+
+}  // namespace fogradar::propagation

@@ -1,0 +1,64 @@
+// The bad-input channel: every validator names the field and the allowed range, and NaN never passes.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "fogradar/core/error.hpp"
+
+namespace fogradar {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+template <class F>
+std::string message_of(F&& f, const std::string& expected_field) {
+  try {
+    f();
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), expected_field);
+    return e.what();
+  }
+  ADD_FAILURE() << "no InvalidParameter thrown";
+  return {};
+}
+
+TEST(Error, MessageNamesFieldValueAndRange) {
+  const std::string m = message_of([] { require_in_range("radar.noise_figure_db", 99.0, 0.0, 30.0); },
+                                   "radar.noise_figure_db");
+  EXPECT_NE(m.find("radar.noise_figure_db = 99"), std::string::npos) << m;
+  EXPECT_NE(m.find("in [0, 30]"), std::string::npos) << m;
+}
+
+TEST(Error, NonFiniteNeverPasses) {
+  for (double bad : {nan, inf, -inf}) {
+    EXPECT_THROW(require_finite("x", bad), InvalidParameter);
+    EXPECT_THROW(require_positive("x", bad), InvalidParameter);
+    EXPECT_THROW(require_non_negative("x", bad), InvalidParameter);
+    EXPECT_THROW(require_in_range("x", bad, -1e300, 1e300), InvalidParameter);
+  }
+}
+
+TEST(Error, Boundaries) {
+  EXPECT_THROW(require_positive("x", 0.0), InvalidParameter);
+  EXPECT_NO_THROW(require_non_negative("x", 0.0));
+  EXPECT_THROW(require_non_negative("x", -1e-300), InvalidParameter);
+  EXPECT_NO_THROW(require_in_range("x", 1.0, 1.0, 2.0));
+  EXPECT_NO_THROW(require_in_range("x", 2.0, 1.0, 2.0));
+  EXPECT_THROW(require_in_range("x", 2.0000001, 1.0, 2.0), InvalidParameter);
+}
+
+TEST(Error, StringValuesAreQuoted) {
+  const std::string m = message_of([] { throw_invalid("water_model", "mie", "one of: segelstein, liebe"); },
+                                   "water_model");
+  EXPECT_EQ(m, "water_model = 'mie': must be one of: segelstein, liebe");
+}
+
+TEST(Error, CheckIsAnInternalError) {
+  EXPECT_THROW(FOGRADAR_CHECK(1 + 1 == 3), InternalError);
+  EXPECT_NO_THROW(FOGRADAR_CHECK(1 + 1 == 2));
+}
+
+}  // namespace
+}  // namespace fogradar

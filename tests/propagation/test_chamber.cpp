@@ -1,0 +1,124 @@
+// The chamber channel. References: the path integral of a piecewise-constant attenuation written out
+// by hand for the study's geometry (l_s = 2 m, four 1 m layers, l_t = 4 m); the volume integral of
+// eta over a spherical shell sector; eq. 4 of the virtual layer model as a second method.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/layer_model.hpp"
+
+namespace fogradar::propagation {
+namespace {
+
+const SegelsteinTable& table() {
+  static const SegelsteinTable instance;
+  return instance;
+}
+
+ChamberSpec paper_chamber(double lwc_g_per_m3) {
+  ChamberSpec spec;
+  for (FogLayerSpec& layer : spec.layers) layer.fog.density = LiquidWaterContent{lwc_g_per_m3};
+  return spec;
+}
+
+TEST(Chamber, PaperGeometry) {
+  const ChamberSpec spec = paper_chamber(1.0);
+  EXPECT_DOUBLE_EQ(spec.target_range_m(), 10.0);
+  const Chamber chamber(spec, 77e9, table());
+  ASSERT_EQ(chamber.layer_count(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(chamber.layer(i).start_m, 2.0 + static_cast<double>(i));
+    EXPECT_DOUBLE_EQ(chamber.layer(i).end_m, 3.0 + static_cast<double>(i));
+  }
+}
+
+TEST(Chamber, TwoWayAttenuationIsThePathIntegral) {
+  const Chamber chamber(paper_chamber(2.0), 77e9, table());
+  const double a_db_per_m = chamber.layer(0).optics.specific_attenuation_db_per_km * 1e-3;
+  ASSERT_GT(a_db_per_m, 0.0);
+  for (std::size_t k = 0; k <= 4; ++k) {
+    const ActiveLayers active = first_layers_active(k, 4);
+    // To the target every active layer is crossed twice over its full metre.
+    EXPECT_NEAR(chamber.two_way_attenuation_db(10.0, active), 2.0 * static_cast<double>(k) * a_db_per_m, 1e-12);
+    // In front of the fog nothing is lost.
+    EXPECT_EQ(chamber.two_way_attenuation_db(1.5, active), 0.0);
+  }
+  // Half way into the third layer with three layers on: 2 * (1 + 1 + 0.5) m.
+  EXPECT_NEAR(chamber.two_way_attenuation_db(4.5, first_layers_active(3, 4)), 5.0 * a_db_per_m, 1e-12);
+  // Only the last layer switched on (not the study's order, but a valid chamber state).
+  EXPECT_NEAR(chamber.two_way_attenuation_db(10.0, {false, false, false, true}), 2.0 * a_db_per_m, 1e-12);
+  EXPECT_NEAR(chamber.two_way_transmittance(10.0, first_layers_active(4, 4)),
+              std::pow(10.0, -0.8 * a_db_per_m), 1e-12);
+}
+
+// Second method: a layer of thickness d is kappa virtual layers of d/kappa with tau = exp(-alpha d/kappa);
+// eq. 4 with rho_obj = 1 gives tau^(2 kappa) = the chamber's two-way transmittance.
+TEST(Chamber, AgreesWithVirtualLayerEq4) {
+  const Chamber chamber(paper_chamber(20.0), 77e9, table());
+  const double alpha_per_m = chamber.layer(0).optics.extinction_per_m;
+  const unsigned kappa = 4 * 20;  // 4 m of fog in 5 cm virtual layers
+  const VirtualLayer virtual_layer = virtual_layer_from_fog(alpha_per_m, 0.0, 0.05);
+  EXPECT_NEAR(object_intensity(kappa, virtual_layer.transmittance, 1.0) /
+                  chamber.two_way_transmittance(10.0, first_layers_active(4, 4)),
+              1.0, 1e-12);
+}
+
+// sigma = eta omega (b^3 - a^3)/3: checked against a midpoint sum of eta omega r^2 dr.
+TEST(Chamber, BackscatterIsTheVolumeIntegral) {
+  const Chamber chamber(paper_chamber(0.5), 77e9, table());
+  const double eta = chamber.layer(0).optics.volume_backscatter_m2_per_m3;
+  const double omega = 0.03;
+  const ActiveLayers active = first_layers_active(2, 4);
+  const double r0 = 2.5, r1 = 7.0;  // half of layer 1, all of layer 2, layers 3-4 off
+  double midpoint = 0.0;
+  const int steps = 200000;
+  for (int i = 0; i < steps; ++i) {
+    const double r = r0 + (r1 - r0) * (i + 0.5) / steps;
+    if (r < 4.0) midpoint += eta * omega * r * r * (r1 - r0) / steps;
+  }
+  EXPECT_NEAR(chamber.backscatter_cross_section_m2(r0, r1, omega, active) / midpoint, 1.0, 1e-8);
+  EXPECT_EQ(chamber.backscatter_cross_section_m2(0.0, 2.0, omega, active), 0.0);
+  EXPECT_EQ(chamber.backscatter_cross_section_m2(0.0, 10.0, omega, first_layers_active(0, 4)), 0.0);
+}
+
+TEST(Chamber, RejectsInvalidGeometryAndStates) {
+  const auto field_of = [](const ChamberSpec& spec) -> std::string {
+    try {
+      Chamber chamber(spec, 77e9, table());
+    } catch (const InvalidParameter& e) {
+      return e.field();
+    }
+    return "accepted";
+  };
+  ChamberSpec spec;
+  spec.layers[2].length_m = 0.0;
+  EXPECT_EQ(field_of(spec), "chamber.layers[2].length_m");
+  spec = ChamberSpec{};
+  spec.sensor_gap_m = -1.0;
+  EXPECT_EQ(field_of(spec), "chamber.sensor_gap_m");
+  spec = ChamberSpec{};
+  spec.target_gap_m = std::nan("");
+  EXPECT_EQ(field_of(spec), "chamber.target_gap_m");
+  spec = ChamberSpec{};
+  spec.layers.clear();
+  EXPECT_EQ(field_of(spec), "chamber.layers");
+  spec = ChamberSpec{};
+  spec.layers[1].fog.density = LiquidWaterContent{-1.0};
+  EXPECT_EQ(field_of(spec), "fog.lwc_g_per_m3");
+  spec = ChamberSpec{};
+  spec.sensor_gap_m = 0.0;  // the study's water-covered-sensor case is a valid chamber
+  spec.target_gap_m = 0.0;
+  EXPECT_EQ(field_of(spec), "accepted");
+
+  const Chamber chamber(ChamberSpec{}, 77e9, table());
+  EXPECT_THROW(first_layers_active(5, 4), InvalidParameter);
+  EXPECT_THROW(chamber.two_way_attenuation_db(10.0, ActiveLayers(3, true)), InvalidParameter);
+  EXPECT_THROW(chamber.two_way_attenuation_db(-1.0, first_layers_active(1, 4)), InvalidParameter);
+  EXPECT_THROW(chamber.backscatter_cross_section_m2(5.0, 4.0, 0.1, first_layers_active(1, 4)),
+               InvalidParameter);
+}
+
+}  // namespace
+}  // namespace fogradar::propagation

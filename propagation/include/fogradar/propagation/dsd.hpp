@@ -5,6 +5,7 @@
 
 #include <string_view>
 #include <variant>
+#include <vector>
 
 namespace fogradar::propagation {
 
@@ -56,15 +57,24 @@ double diameter_moment(const DropSizeDistribution& dsd, int k);
 double number_concentration_per_m3(const DropSizeDistribution& dsd, double lwc_g_per_m3);
 
 // Normalised probability density of diameter, p(D) (1/m), integrating to 1. Zero for monodisperse
-// (use the delta in integrate_over_distribution).
+// (a delta; quadrature_nodes handles it exactly).
 double diameter_pdf(const DropSizeDistribution& dsd, double diameter_m);
 
-// Diameter interval that holds all but a negligible tail (< 1e-12 of the D^6 moment on each side),
-// used as the quadrature range. For monodisperse both ends equal the diameter.
+// Diameter interval outside which each tail holds less than 1e-12 of the number (lower end) and of
+// the D^6 moment (upper end); the quadrature range. Both ends equal the diameter for monodisperse.
 struct DiameterRange {
   double min_m;
   double max_m;
 };
 DiameterRange quadrature_range(const DropSizeDistribution& dsd);
+
+// Nodes and weights with sum_j weight_j f(D_j) ~ integral f(D) p(D) dD: composite Gauss-Legendre in
+// ln D over quadrature_range (a single node of weight 1 for monodisperse). Bulk fog optics are sums
+// of per-droplet cross sections over these nodes.
+struct QuadratureNode {
+  double diameter_m;
+  double weight;
+};
+std::vector<QuadratureNode> quadrature_nodes(const DropSizeDistribution& dsd);
 
 }  // namespace fogradar::propagation

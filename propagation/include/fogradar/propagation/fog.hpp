@@ -2,8 +2,10 @@
 // resolved into bulk optical properties at any frequency by quadrature over the drop sizes.
 #pragma once
 
+#include <complex>
 #include <variant>
 
+#include "fogradar/propagation/droplet.hpp"
 #include "fogradar/propagation/dsd.hpp"
 #include "fogradar/propagation/water.hpp"
 
@@ -37,6 +39,7 @@ struct FogSpec {
 struct FogOptics {
   double frequency_hz = 0.0;
   double wavelength_m = 0.0;
+  std::complex<double> refractive_index;      // of water at this frequency
   double extinction_per_m = 0.0;             // power extinction coefficient
   double absorption_per_m = 0.0;
   double scattering_per_m = 0.0;
@@ -60,10 +63,14 @@ class Fog {
   FogOptics at_optical_wavelength(double wavelength_m) const;
 
   double optical_extinction_per_km() const;  // beta at 550 nm
-  double visibility_m() const;               // eq. 6
+  double visibility_m() const;               // eq. 6; infinite without water
 
  private:
   FogOptics bulk_optics(double wavelength_m, std::complex<double> index) const;
+  // Per-volume cross sections (1/m) of the distribution holding lwc_g_per_m3 of water.
+  CrossSections sum_cross_sections(double wavelength_m, std::complex<double> index,
+                                   double lwc_g_per_m3) const;
+  double unit_lwc_optical_extinction_per_m() const;
 
   FogSpec spec_;
   const SegelsteinTable* table_;
