@@ -1,0 +1,378 @@
+#include "fogradar/radar/cfar.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/roots.hpp>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "fogradar/core/error.hpp"
+
+namespace fogradar::radar {
+
+namespace {
+
+constexpr std::array<std::pair<CfarKind, std::string_view>, 4> kCfarNames{{
+    {CfarKind::ca, "ca"},
+    {CfarKind::go, "go"},
+    {CfarKind::so, "so"},
+    {CfarKind::os, "os"},
+}};
+
+// Accumulates sum(exp(log_term)) without overflow or underflow (running log-sum-exp).
+class LogSum {
+ public:
+  void add(double log_term) {
+    if (log_term == -std::numeric_limits<double>::infinity()) return;
+    if (log_term > max_) {
+      scaled_sum_ = scaled_sum_ * std::exp(max_ - log_term) + 1.0;
+      max_ = log_term;
+    } else {
+      scaled_sum_ += std::exp(log_term - max_);
+    }
+  }
+  double log() const { return max_ + std::log(scaled_sum_); }
+
+ private:
+  double max_ = -std::numeric_limits<double>::infinity();
+  double scaled_sum_ = 0.0;
+};
+
+// log Pfa of SO-CFAR, n cells per side, t = alpha / n (Gandhi & Kassam 1988):
+//   Pfa_SO = 2 sum_{k=0}^{n-1} C(n-1+k, k) (2+t)^-(n+k).
+double log_pfa_so(double n, double t) {
+  const double log_base = std::log(2.0 + t);
+  double log_term = -n * log_base;  // k = 0
+  LogSum sum;
+  for (double k = 0.0; k < n; k += 1.0) {
+    sum.add(log_term);
+    log_term += std::log((n + k) / (k + 1.0)) - log_base;
+  }
+  return std::log(2.0) + sum.log();
+}
+
+// log Pfa of GO-CFAR. The published form 2 (1+t)^-n - Pfa_SO cancels badly when Pfa is small
+// (both terms ~ t^-n, the difference ~ t^-2n). Equivalent positive series, from
+// Pfa_GO = E[exp(-t max(X, Y))] with X, Y ~ Gamma(n, 1) and P(max < m) = F(m)^2:
+//   Pfa_GO = 2 sum_{j>=n} C(n-1+j, j) (2+t)^-(n+j).
+// The term ratio r_j = (n+j) / ((j+1)(2+t)) is < 1 and decreasing for j >= n, so the tail after
+// term j is bounded by term_j r_j / (1 - r_j).
+double log_pfa_go(double n, double t) {
+  const double log_base = std::log(2.0 + t);
+  double log_term =
+      std::lgamma(2.0 * n) - std::lgamma(n) - std::lgamma(n + 1.0) - 2.0 * n * log_base;  // j = n
+  LogSum sum;
+  for (double j = n;; j += 1.0) {
+    sum.add(log_term);
+    const double ratio = (n + j) / ((j + 1.0) * (2.0 + t));
+    const double log_tail_bound = log_term + std::log(ratio / (1.0 - ratio));
+    if (log_tail_bound < sum.log() - 45.0) break;  // tail < 3e-20 of the sum
+    FOGRADAR_CHECK(j < n + 1e8);
+    log_term += std::log(ratio);
+  }
+  return std::log(2.0) + sum.log();
+}
+
+// log Pfa of OS-CFAR, rank k of N (Rohling 1983): sum_{i<k} log((N-i) / (N-i+alpha)).
+double log_pfa_os(double big_n, unsigned k, double alpha) {
+  double result = 0.0;
+  for (unsigned i = 0; i < k; ++i) result -= std::log1p(alpha / (big_n - i));
+  return result;
+}
+
+double log_false_alarm_probability(const CfarConfig& config, double alpha) {
+  const double n = config.training_cells;
+  const double big_n = 2.0 * n;
+  switch (config.kind) {
+    case CfarKind::ca:
+      return -big_n * std::log1p(alpha / big_n);
+    case CfarKind::go:
+      return log_pfa_go(n, alpha / n);
+    case CfarKind::so:
+      return log_pfa_so(n, alpha / n);
+    case CfarKind::os:
+      return log_pfa_os(big_n, config.effective_os_rank(), alpha);
+  }
+  FOGRADAR_CHECK(false && "unknown CfarKind");
+  return 0.0;
+}
+
+// Reference cells of cell i as two contiguous ranges [lb, le) and [rb, re) (edge policy in
+// cfar.hpp): the guard cells stay centred on i, the training window slides inward.
+struct ReferenceCells {
+  std::size_t lb, le, rb, re;
+};
+
+ReferenceCells reference_cells(std::size_t i, std::size_t length, std::size_t guard,
+                               std::size_t n) {
+  const std::size_t left_available = i >= guard ? std::min(n, i - guard) : 0;
+  const std::size_t right_available =
+      i + guard + 1 < length ? std::min(n, length - 1 - i - guard) : 0;
+  std::size_t a = n;  // cells taken on the left
+  std::size_t b = n;  // cells taken on the right
+  if (left_available < n) {
+    a = left_available;
+    b = 2 * n - a;
+  } else if (right_available < n) {
+    b = right_available;
+    a = 2 * n - b;
+  }
+  // Empty ranges stay inside [0, length]: a == 0 whenever i < guard (left range [0, 0)), and
+  // b == 0 whenever the guard cells reach the end (right range [length, length)).
+  const std::size_t left_end = i >= guard ? i - guard : 0;
+  const std::size_t right_begin = std::min(i + guard + 1, length);
+  return {left_end - a, left_end, right_begin, right_begin + b};
+}
+
+}  // namespace
+
+std::string_view to_string(CfarKind kind) noexcept {
+  for (const auto& [value, name] : kCfarNames) {
+    if (value == kind) return name;
+  }
+  return "unknown";
+}
+
+CfarKind parse_cfar_kind(std::string_view text, std::string_view field) {
+  for (const auto& [value, name] : kCfarNames) {
+    if (name == text) return value;
+  }
+  throw_invalid(field, text, "one of ca, go, so, os");
+}
+
+unsigned CfarConfig::effective_os_rank() const noexcept {
+  if (os_rank != 0) return os_rank;
+  // round(3N/4), N = 2 n: (3N + 2) / 4 in integers, at least 1.
+  const std::uint64_t big_n = 2ULL * training_cells;
+  return static_cast<unsigned>(std::max<std::uint64_t>(1, (3 * big_n + 2) / 4));
+}
+
+void CfarConfig::validate() const {
+  if (training_cells < 1) throw_invalid("cfar.training_cells", training_cells, ">= 1");
+  if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0)) {
+    throw_invalid("cfar.false_alarm_probability", false_alarm_probability,
+                  "finite and in (0, 1) (exclusive)");
+  }
+  const std::size_t big_n = reference_cells();
+  if (os_rank > big_n) {
+    throw_invalid("cfar.os_rank", os_rank,
+                  "0 (default round(3N/4)) or in [1, " + std::to_string(big_n) +
+                      "] (N = 2 * training_cells)");
+  }
+}
+
+void CfarConfig::validate_profile_length(std::size_t profile_length) const {
+  if (profile_length >= window_length()) return;
+  // Largest guard + n with 2 (guard + n) + 1 <= profile_length.
+  const std::size_t usable = profile_length >= 1 ? (profile_length - 1) / 2 : 0;
+  const std::string constraint =
+      usable > guard_cells
+          ? "in [1, " + std::to_string(usable - guard_cells) + "] for a profile of " +
+                std::to_string(profile_length) + " cells with " + std::to_string(guard_cells) +
+                " guard cells (2 (guard + training) + 1 <= profile length)"
+          : "impossible: a profile of " + std::to_string(profile_length) +
+                " cells cannot hold the guard cells (" + std::to_string(guard_cells) +
+                " per side) and any training cell";
+  throw_invalid("cfar.training_cells", training_cells, constraint);
+}
+
+double cfar_false_alarm_probability(const CfarConfig& config, double alpha) {
+  config.validate();
+  require_non_negative("cfar.threshold_factor", alpha);
+  return std::exp(log_false_alarm_probability(config, alpha));
+}
+
+double cfar_threshold_factor(const CfarConfig& config) {
+  config.validate();
+  const double log_pfa = std::log(config.false_alarm_probability);
+  const double big_n = static_cast<double>(config.reference_cells());
+  if (config.kind == CfarKind::ca) {
+    // Closed form: alpha = N (Pfa^(-1/N) - 1), written with expm1 for small -log(Pfa)/N.
+    return big_n * std::expm1(-log_pfa / big_n);
+  }
+
+  // GO, SO, OS: log Pfa(alpha) is continuous and strictly decreasing from 0 at alpha = 0, so
+  // bracket the root by doubling and refine with TOMS 748 (Alefeld, Potra & Shi 1995).
+  const auto residual = [&](double alpha) {
+    return log_false_alarm_probability(config, alpha) - log_pfa;
+  };
+  double low = 0.0;
+  double high = 1.0;
+  double f_low = residual(low);
+  double f_high = residual(high);
+  while (f_high > 0.0) {
+    low = high;
+    f_low = f_high;
+    high *= 2.0;
+    f_high = residual(high);
+    FOGRADAR_CHECK(std::isfinite(high));
+  }
+  if (f_high == 0.0) return high;
+  std::uintmax_t max_iterations = 200;
+  const auto [lower, upper] = boost::math::tools::toms748_solve(
+      residual, low, high, f_low, f_high, boost::math::tools::eps_tolerance<double>(50),
+      max_iterations);
+  FOGRADAR_CHECK(max_iterations < 200);
+  return 0.5 * (lower + upper);
+}
+
+CfarDetector::CfarDetector(const CfarConfig& config)
+    : config_(config), alpha_(cfar_threshold_factor(config)) {}
+
+void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspace) const {
+  config_.validate_profile_length(power.size());
+  const std::size_t length = power.size();
+  const std::size_t guard = config_.guard_cells;
+  const std::size_t n = config_.training_cells;
+  const std::size_t big_n = 2 * n;
+  const double alpha = alpha_;
+
+  workspace.threshold.resize(length);
+  workspace.detections.clear();
+  workspace.detections.reserve(length);
+
+  if (config_.kind == CfarKind::os) {
+    // OS: the N reference cells are kept sorted while the cell under test slides; each step
+    // replaces the cells that left the reference set by those that entered (two in the
+    // interior, one at the edges), O(N) instead of a selection per cell.
+    // Threshold = alpha * k-th smallest.
+    const std::size_t k = config_.effective_os_rank();
+    std::vector<double>& sorted = workspace.order_scratch;
+    sorted.resize(big_n);
+    ReferenceCells r = reference_cells(0, length, guard, n);
+    const auto first_right = std::copy(power.begin() + r.lb, power.begin() + r.le, sorted.begin());
+    std::copy(power.begin() + r.rb, power.begin() + r.re, first_right);
+    std::sort(sorted.begin(), sorted.end());
+    // Replace one value of the sorted buffer by another: locate both by a branch-free binary
+    // search (conditional moves, no mispredictions on noise data) and shift only the values
+    // between the two positions.
+    double* const data = sorted.data();
+    const auto count_below = [data, big_n](double value) {
+      const double* base = data;
+      std::size_t count = big_n;
+      while (count > 1) {
+        const std::size_t half = count / 2;
+        base = base[half] < value ? base + half : base;
+        count -= half;
+      }
+      return static_cast<std::size_t>(base - data) + (*base < value ? 1 : 0);
+    };
+    const auto replace = [data, big_n, &count_below](double leaving, double entering) {
+      const std::size_t out = count_below(leaving);
+      std::size_t in = count_below(entering);
+      FOGRADAR_CHECK(out < big_n && data[out] == leaving);  // power must not be NaN
+      if (in <= out) {
+        for (std::size_t j = out; j > in; --j) data[j] = data[j - 1];
+        data[in] = entering;
+      } else {
+        --in;  // `leaving` sat below the insertion point
+        for (std::size_t j = out; j < in; ++j) data[j] = data[j + 1];
+        data[in] = entering;
+      }
+    };
+    // Cells that left / entered the reference set between two consecutive cells under test: set
+    // differences of the left ranges and of the right ranges (a cell never moves between the
+    // two). At most one per range end, and as many leave as enter (the set keeps N cells).
+    std::array<std::size_t, 4> leaving{};
+    std::array<std::size_t, 4> entering{};
+    std::size_t leaving_count = 0;
+    std::size_t entering_count = 0;
+    const auto collect = [](std::array<std::size_t, 4>& into, std::size_t& count, std::size_t begin,
+                            std::size_t end) {
+      for (std::size_t j = begin; j < end; ++j) {
+        FOGRADAR_CHECK(count < into.size());
+        into[count++] = j;
+      }
+    };
+    workspace.threshold[0] = alpha * sorted[k - 1];
+    for (std::size_t i = 1; i < length; ++i) {
+      const ReferenceCells next = reference_cells(i, length, guard, n);
+      leaving_count = 0;
+      entering_count = 0;
+      collect(leaving, leaving_count, r.lb, std::min(r.le, next.lb));
+      collect(leaving, leaving_count, std::max(r.lb, next.le), r.le);
+      collect(leaving, leaving_count, r.rb, std::min(r.re, next.rb));
+      collect(leaving, leaving_count, std::max(r.rb, next.re), r.re);
+      collect(entering, entering_count, next.lb, std::min(next.le, r.lb));
+      collect(entering, entering_count, std::max(next.lb, r.le), next.le);
+      collect(entering, entering_count, next.rb, std::min(next.re, r.rb));
+      collect(entering, entering_count, std::max(next.rb, r.re), next.re);
+      FOGRADAR_CHECK(leaving_count == entering_count);
+      for (std::size_t m = 0; m < leaving_count; ++m) {
+        replace(power[leaving[m]], power[entering[m]]);
+      }
+      workspace.threshold[i] = alpha * sorted[k - 1];
+      r = next;
+    }
+  } else {
+    // CA/GO/SO: running (prefix) sums, O(1) per cell. long double (64-bit mantissa on x86-64)
+    // keeps the differences of large prefix sums accurate next to strong targets: the absolute
+    // error of a side sum is a few ulp of the running total, ~1e-19 of the profile energy.
+    std::vector<long double>& prefix = workspace.prefix_sums;
+    prefix.resize(length + 1);
+    prefix[0] = 0.0L;
+    for (std::size_t i = 0; i < length; ++i) prefix[i + 1] = prefix[i] + power[i];
+    const auto sum = [&prefix](std::size_t begin, std::size_t end) {
+      return prefix[end] - prefix[begin];
+    };
+    const long double n_ld = static_cast<long double>(n);
+    const long double big_n_ld = static_cast<long double>(big_n);
+    const CfarKind kind = config_.kind;
+    const auto estimate_from_halves = [&](long double first, long double second) {
+      switch (kind) {
+        case CfarKind::ca:
+          return (first + second) / big_n_ld;
+        case CfarKind::go:
+          return std::max(first, second) / n_ld;
+        case CfarKind::so:
+        case CfarKind::os:
+          break;
+      }
+      return std::min(first, second) / n_ld;
+    };
+    // Edge cells (nominal window leaves the profile): general reference ranges; the two halves
+    // are the first n and the last n reference cells in range order.
+    const auto edge_cell = [&](std::size_t i) {
+      const ReferenceCells r = reference_cells(i, length, guard, n);
+      const std::size_t a = r.le - r.lb;
+      long double first = 0.0L;
+      long double second = 0.0L;
+      if (a >= n) {
+        first = sum(r.lb, r.lb + n);
+        second = sum(r.lb + n, r.le) + sum(r.rb, r.re);
+      } else {
+        first = sum(r.lb, r.le) + sum(r.rb, r.rb + (n - a));
+        second = sum(r.rb + (n - a), r.re);
+      }
+      workspace.threshold[i] = alpha * static_cast<double>(estimate_from_halves(first, second));
+    };
+    const std::size_t interior_begin = guard + n;
+    const std::size_t interior_end = length - guard - n;  // > interior_begin (validated)
+    for (std::size_t i = 0; i < interior_begin; ++i) edge_cell(i);
+    for (std::size_t i = interior_begin; i < interior_end; ++i) {
+      const long double lead = prefix[i - guard] - prefix[i - guard - n];
+      const long double lag = prefix[i + guard + 1 + n] - prefix[i + guard + 1];
+      workspace.threshold[i] = alpha * static_cast<double>(estimate_from_halves(lead, lag));
+    }
+    for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
+  }
+
+  for (std::size_t i = 0; i < length; ++i) {
+    if (power[i] > workspace.threshold[i]) workspace.detections.push_back(i);
+  }
+}
+
+std::vector<std::size_t> cfar_detect(std::span<const double> power, const CfarConfig& config,
+                                     std::vector<double>* threshold_out) {
+  const CfarDetector detector(config);
+  CfarWorkspace workspace;
+  detector.detect(power, workspace);
+  if (threshold_out != nullptr) *threshold_out = std::move(workspace.threshold);
+  return std::move(workspace.detections);
+}
+
+}  // namespace fogradar::radar

@@ -71,22 +71,30 @@ TEST_F(FogTest, BackscatterMatchesRayleighClosedForm) {
 }
 
 // The node sum against an independent adaptive Gauss-Kronrod integral of Mie extinction at 550 nm,
-// where the Mie efficiency oscillates with size: agreement within 1e-4 relative.
+// where the Mie efficiency oscillates with size. Water's k ~ 2e-9 at 550 nm makes Mie resonances so
+// narrow that no smooth rule resolves them: for radiation fog (x up to ~300) they carry ~4e-4 of the
+// integral (a 2e4- and an 8e4-point trapezoid rule in ln D disagree by 7.5e-5 and sit 4.6e-4 and
+// 3.8e-4 from the node sum; doubling the node count moves it by 3e-5). Hence 1e-3 there; the default
+// 1 um fog (x < 60) has no such resonances in reach and must agree within 2e-5.
 TEST_F(FogTest, OpticalQuadratureMatchesAdaptiveIntegral) {
-  for (const DropSizeDistribution& dsd : {DropSizeDistribution{Lognormal{1e-6, 1.5}},
-                                          DropSizeDistribution{advection_fog()}}) {
+  struct Case {
+    DropSizeDistribution dsd;
+    double tolerance;
+  };
+  for (const Case& c : {Case{Lognormal{1e-6, 1.5}, 2e-5}, Case{radiation_fog(), 1e-3}}) {
     const double lwc = 0.2;
-    const Fog fog(lwc_fog(lwc, dsd), table());
+    const Fog fog(lwc_fog(lwc, c.dsd), table());
     const std::complex<double> m = table().refractive_index(visibility_wavelength_m);
-    const DiameterRange r = quadrature_range(dsd);
+    const DiameterRange r = quadrature_range(c.dsd);
     const auto integrand = [&](double log_d) {
       const double d = std::exp(log_d);
-      return mie_cross_sections(d, visibility_wavelength_m, m).extinction_m2 * diameter_pdf(dsd, d) * d;
+      return mie_cross_sections(d, visibility_wavelength_m, m).extinction_m2 * diameter_pdf(c.dsd, d) * d;
     };
     const double mean_sigma = boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
-        integrand, std::log(r.min_m), std::log(r.max_m), 25, 1e-9);
-    const double reference_per_km = 1e3 * number_concentration_per_m3(dsd, lwc) * mean_sigma;
-    EXPECT_NEAR(fog.optical_extinction_per_km() / reference_per_km, 1.0, 1e-4) << distribution_name(dsd);
+        integrand, std::log(r.min_m), std::log(r.max_m), 12, 1e-7);
+    const double reference_per_km = 1e3 * number_concentration_per_m3(c.dsd, lwc) * mean_sigma;
+    EXPECT_NEAR(fog.optical_extinction_per_km() / reference_per_km, 1.0, c.tolerance)
+        << distribution_name(c.dsd);
   }
 }
 

@@ -1,0 +1,308 @@
+// Virtual layer model (paper eq. 3, 4). References: OEIS A000108 (Catalan numbers) and A001263
+// (Narayana triangle, read by rows, n >= 1); a brute-force enumeration of every reflection path
+// (independent of the dynamic programming under test); eq. 4 for a stack without reflections.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/propagation/layer_model.hpp"
+
+namespace fogradar::propagation {
+namespace {
+
+constexpr double kRelTol = 1e-12;      // brute force and closed forms, kappa <= 15
+constexpr double kDeepRelTol = 1e-10;  // eq. 3 against the DP over hundreds of bins
+constexpr unsigned kMaxKappa = 15;
+
+// Expects `call` to throw InvalidParameter naming `field`.
+void expect_invalid(const std::function<void()>& call, const std::string& field) {
+  try {
+    call();
+    ADD_FAILURE() << "no InvalidParameter for field " << field;
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), field) << error.what();
+  }
+}
+
+// ---- Catalan and Narayana numbers ----------------------------------------------------------
+
+TEST(Catalan, MatchesOeisA000108) {
+  // OEIS A000108, n = 0..15, plus n = 30, 35 and 36 (the largest that fits in uint64).
+  const std::array<std::uint64_t, 16> oeis = {
+      1, 1, 2, 5, 14, 42, 132, 429, 1430, 4862, 16796, 58786, 208012, 742900, 2674440, 9694845};
+  for (unsigned n = 0; n < oeis.size(); ++n) EXPECT_EQ(catalan(n), oeis[n]) << "n = " << n;
+  EXPECT_EQ(catalan(30), 3814986502092304ULL);
+  EXPECT_EQ(catalan(35), 3116285494907301262ULL);
+  EXPECT_EQ(catalan(36), 11959798385860453492ULL);
+}
+
+TEST(Catalan, OverflowThrowsNamingN) {
+  expect_invalid([] { catalan(37); }, "n");  // C_37 = 45950804324621742364 > 2^64 - 1
+}
+
+TEST(Narayana, MatchesOeisA001263) {
+  // OEIS A001263, rows n = 1..8.
+  const std::vector<std::vector<std::uint64_t>> rows = {{1},
+                                                        {1, 1},
+                                                        {1, 3, 1},
+                                                        {1, 6, 6, 1},
+                                                        {1, 10, 20, 10, 1},
+                                                        {1, 15, 50, 50, 15, 1},
+                                                        {1, 21, 105, 175, 105, 21, 1},
+                                                        {1, 28, 196, 490, 490, 196, 28, 1}};
+  for (unsigned n = 1; n <= rows.size(); ++n) {
+    for (unsigned k = 1; k <= n; ++k)
+      EXPECT_EQ(narayana(n, k), rows[n - 1][k - 1]) << n << ", " << k;
+    EXPECT_EQ(narayana(n, 0), 0U);
+    EXPECT_EQ(narayana(n, n + 1), 0U);
+  }
+  // Python math.comb: N(37, 18), N(37, 19) (largest row that fits), N(100, 2).
+  EXPECT_EQ(narayana(37, 18), 7597019633665077000ULL);
+  EXPECT_EQ(narayana(37, 19), 8441132926294530000ULL);
+  EXPECT_EQ(narayana(100, 2), 4950U);
+  EXPECT_EQ(narayana(100, 100), 1U);
+}
+
+TEST(Narayana, RowSumsAreCatalanNumbers) {
+  for (unsigned n = 0; n <= 36; ++n) {
+    std::uint64_t sum = 0;
+    for (unsigned k = 0; k <= n; ++k) sum += narayana(n, k);
+    EXPECT_EQ(sum, catalan(n)) << "n = " << n;
+  }
+}
+
+TEST(Narayana, OverflowThrowsNamingN) {
+  expect_invalid([] { narayana(38, 18); }, "n");  // 25431927630793091100 > 2^64 - 1
+  expect_invalid([] { narayana(100, 50); }, "n");
+}
+
+// ---- Brute-force reference: every path, scored one by one ------------------------------------
+
+// Heights of a path given as steps (+1 up, -1 down), starting at the sensor (0).
+std::vector<int> heights_of(const std::vector<int>& steps) {
+  std::vector<int> heights = {0};
+  for (int step : steps) heights.push_back(heights.back() + step);
+  return heights;
+}
+
+// All step sequences of length 2n from 0 back to 0 that stay >= 1 in between and below `ceiling`.
+void walk(int height, unsigned steps_left, int ceiling, std::vector<int>& steps,
+          std::vector<std::vector<int>>& paths) {
+  if (steps_left == 0) {
+    if (height == 0) paths.push_back(steps);
+    return;
+  }
+  for (int step : {+1, -1}) {
+    const int next = height + step;
+    const bool returns_now = next == 0 && steps_left == 1;
+    if ((next >= 1 || returns_now) && next <= ceiling && next <= static_cast<int>(steps_left) - 1) {
+      steps.push_back(step);
+      walk(next, steps_left - 1, ceiling, steps, paths);
+      steps.pop_back();
+    }
+  }
+}
+
+std::vector<std::vector<int>> all_paths(unsigned n, int ceiling) {
+  std::vector<std::vector<int>> paths;
+  std::vector<int> steps;
+  walk(0, 2 * n, ceiling, steps, paths);
+  return paths;
+}
+
+// Number of turns (peaks and valleys) of a path: its reflections.
+unsigned reflections_of(const std::vector<int>& steps) {
+  unsigned turns = 0;
+  for (std::size_t s = 1; s < steps.size(); ++s) turns += steps[s] != steps[s - 1] ? 1U : 0U;
+  return turns;
+}
+
+// Weight of one path in a stack (object at height L+1): at each interior vertex of height h, tau_h
+// if the path goes on, rho_h if it turns (rho_object at L+1).
+double path_weight(const std::vector<int>& steps, const std::vector<VirtualLayer>& layers,
+                   double rho_object) {
+  const std::vector<int> heights = heights_of(steps);
+  double weight = 1.0;
+  for (std::size_t s = 1; s < steps.size(); ++s) {
+    const auto h = static_cast<std::size_t>(heights[s]);
+    const bool turns = steps[s] != steps[s - 1];
+    if (h > layers.size()) {
+      weight *= rho_object;
+    } else {
+      weight *= turns ? layers[h - 1].reflectance : layers[h - 1].transmittance;
+    }
+  }
+  return weight;
+}
+
+double brute_force_bin(unsigned n, const std::vector<VirtualLayer>& layers, double rho_object) {
+  double sum = 0.0;
+  for (const auto& steps : all_paths(n, static_cast<int>(layers.size()) + 1)) {
+    sum += path_weight(steps, layers, rho_object);
+  }
+  return sum;
+}
+
+std::vector<VirtualLayer> identical_stack(std::size_t count, double tau, double rho) {
+  return std::vector<VirtualLayer>(count, VirtualLayer{tau, rho});
+}
+
+TEST(LayerPathCount, EqualsBruteForceCountPerReflectionNumber) {
+  for (unsigned kappa = 1; kappa <= kMaxKappa; kappa += 2) {
+    const unsigned n = (kappa + 1) / 2;
+    std::vector<std::uint64_t> count_by_peaks(n + 1, 0);
+    for (const auto& steps : all_paths(n, static_cast<int>(n) + 1)) {
+      ++count_by_peaks[(reflections_of(steps) + 1) / 2];  // 2i - 1 reflections -> i peaks
+    }
+    std::uint64_t total = 0;
+    for (unsigned i = 1; i <= std::max(1U, n - 1); ++i) {
+      EXPECT_EQ(layer_path_count(kappa, i), count_by_peaks[i]) << "kappa " << kappa << " i " << i;
+      total += count_by_peaks[i];
+    }
+    EXPECT_EQ(total, n == 1 ? 1U : catalan(n - 1)) << "kappa " << kappa;
+  }
+}
+
+TEST(LayerModelIntensity, EqualsBruteForceSumForUnboundedIdenticalStack) {
+  for (const auto& [tau, rho] : {std::pair{0.9, 0.05}, std::pair{0.5, 0.5}, std::pair{0.3, 0.6}}) {
+    for (unsigned kappa = 1; kappa <= kMaxKappa; kappa += 2) {
+      const unsigned n = (kappa + 1) / 2;
+      const double expected = 2.5 * brute_force_bin(n, identical_stack(n, tau, rho), 0.0);
+      EXPECT_NEAR(layer_model_intensity(kappa, tau, rho, 2.5), expected, kRelTol * expected)
+          << "kappa " << kappa << " tau " << tau << " rho " << rho;
+    }
+  }
+}
+
+TEST(LayerStackResponse, EqualsBruteForceForFiniteMixedStacksWithObject) {
+  const std::vector<VirtualLayer> mixed = {{0.9, 0.05}, {0.6, 0.3},  {0.8, 0.15}, {0.95, 0.01},
+                                           {0.7, 0.2},  {0.85, 0.1}, {0.5, 0.4},  {0.99, 0.005}};
+  const unsigned max_bin = (kMaxKappa + 1) / 2;
+  for (std::size_t depth = 0; depth <= mixed.size(); ++depth) {
+    const std::vector<VirtualLayer> stack(mixed.begin(),
+                                          mixed.begin() + static_cast<std::ptrdiff_t>(depth));
+    for (double rho_object : {0.0, 0.35, 1.0}) {
+      const std::vector<double> response = layer_stack_response(stack, rho_object, max_bin, 0.7);
+      ASSERT_EQ(response.size(), max_bin);
+      for (unsigned n = 1; n <= max_bin; ++n) {
+        const double expected = 0.7 * brute_force_bin(n, stack, rho_object);
+        EXPECT_NEAR(response[n - 1], expected, kRelTol * expected)
+            << "depth " << depth << " rho_object " << rho_object << " bin " << n;
+      }
+    }
+  }
+}
+
+TEST(LayerStackResponse, DeepIdenticalStackEqualsEq3) {
+  // Up to kappa = 15 against eq. 3 directly, then hundreds of bins (p_i far beyond uint64).
+  for (unsigned max_bin : {(kMaxKappa + 1) / 2, 300U}) {
+    for (const auto& [tau, rho] :
+         {std::pair{0.9, 0.05}, std::pair{0.5, 0.5}, std::pair{0.98, 0.02}}) {
+      const auto stack = identical_stack(max_bin, tau, rho);
+      const std::vector<double> response = layer_stack_response(stack, 0.8, max_bin);
+      const double tol = max_bin <= 8 ? kRelTol : kDeepRelTol;
+      for (unsigned n = 1; n <= max_bin; ++n) {
+        const double expected = layer_model_intensity(2 * n - 1, tau, rho);
+        EXPECT_NEAR(response[n - 1], expected, tol * expected) << "bin " << n << " tau " << tau;
+      }
+    }
+  }
+}
+
+TEST(LayerStackResponse, LosslessHalfSplitStackIsTheRecurrentRandomWalk) {
+  // tau = rho = 1/2 weighs each path of 2n steps 2^(1-2n): the first-return law of the simple
+  // symmetric random walk, so sum_{n<=N} I_n = 1 - binom(2N, N) / 4^N (Feller, An Introduction to
+  // Probability Theory, vol. 1, 3rd ed., sec. III.3, lemma 1).
+  for (unsigned max_bin : {10U, 300U}) {
+    const std::vector<double> response =
+        layer_stack_response(identical_stack(max_bin, 0.5, 0.5), 0.0, max_bin);
+    double total = 0.0;
+    for (double intensity : response) total += intensity;
+    double no_return_yet = 1.0;  // binom(2N, N) / 4^N = prod_{k<=N} (2k-1)/(2k)
+    for (unsigned k = 1; k <= max_bin; ++k) no_return_yet *= (2.0 * k - 1.0) / (2.0 * k);
+    EXPECT_NEAR(total, 1.0 - no_return_yet, kRelTol) << max_bin << " bins";
+  }
+}
+
+TEST(LayerModelIntensity, FirstBinIsTheFirstLayerEcho) {
+  EXPECT_DOUBLE_EQ(layer_model_intensity(1, 0.7, 0.2, 3.0), 0.6);  // I_1 = I_0 rho
+  EXPECT_EQ(layer_model_intensity(7, 0.0, 0.9), 0.0);              // no crossing, no deeper echo
+  EXPECT_EQ(layer_model_intensity(7, 0.9, 0.0), 0.0);
+}
+
+// ---- rho = 0: only the object's direct echo, eq. 4 ------------------------------------------
+
+TEST(LayerStackResponse, WithoutReflectionsReducesToEq4) {
+  for (unsigned depth = 0; depth <= 10; ++depth) {
+    const std::vector<double> response =
+        layer_stack_response(identical_stack(depth, 0.83, 0.0), 0.4, 12, 2.0);
+    for (unsigned n = 1; n <= 12; ++n) {
+      const double expected = n == depth + 1 ? object_intensity(depth, 0.83, 0.4, 2.0) : 0.0;
+      EXPECT_NEAR(response[n - 1], expected, kRelTol * expected)
+          << "depth " << depth << " bin " << n;
+    }
+  }
+  // Non-identical transmittances: I_obj = I_0 rho_obj prod tau_j^2.
+  const std::vector<VirtualLayer> stack = {{0.9, 0.0}, {0.5, 0.0}, {0.7, 0.0}};
+  const double expected = 0.4 * std::pow(0.9 * 0.5 * 0.7, 2);
+  EXPECT_NEAR(layer_stack_response(stack, 0.4, 6)[3], expected, kRelTol * expected);
+  EXPECT_DOUBLE_EQ(object_intensity(4, 0.9, 0.5, 2.0), 2.0 * 0.5 * std::pow(0.9, 8));
+}
+
+TEST(LayerStackResponse, ZeroBinsGiveEmptyResponse) {
+  EXPECT_TRUE(layer_stack_response(identical_stack(3, 0.9, 0.05), 0.5, 0).empty());
+}
+
+// ---- Fog to virtual layer ---------------------------------------------------------------------
+
+TEST(VirtualLayerFromFog, BeerLambertTransmittanceAndAreaReflectivity) {
+  // 0.15 m range resolution, alpha = 2e-3 /m, eta = 1e-5 m^2/m^3.
+  const VirtualLayer layer = virtual_layer_from_fog(2e-3, 1e-5, 0.15);
+  EXPECT_DOUBLE_EQ(layer.transmittance, std::exp(-3e-4));
+  EXPECT_DOUBLE_EQ(layer.reflectance, 1.5e-6);
+}
+
+// ---- Rejected inputs --------------------------------------------------------------------------
+
+TEST(LayerModelConfig, RejectsEveryInvalidField) {
+  expect_invalid([] { layer_path_count(4, 1); }, "kappa");
+  expect_invalid([] { layer_path_count(7, 0); }, "i");
+  expect_invalid([] { layer_path_count(7, 4); }, "i");
+  expect_invalid([] { layer_path_count(1, 2); }, "i");
+  expect_invalid([] { layer_model_intensity(2, 0.5, 0.1); }, "kappa");
+  expect_invalid([] { layer_model_intensity(3, 1.1, 0.0); }, "tau");
+  expect_invalid([] { layer_model_intensity(3, std::nan(""), 0.0); }, "tau");
+  expect_invalid([] { layer_model_intensity(3, 0.5, -0.1); }, "rho");
+  expect_invalid([] { layer_model_intensity(3, 0.6, 0.5); }, "rho");
+  expect_invalid([] { layer_model_intensity(3, 0.6, 0.1, -1.0); }, "i0");
+  expect_invalid([] { object_intensity(2, -0.1, 0.5); }, "tau");
+  expect_invalid([] { object_intensity(2, 0.9, 1.5); }, "rho_object");
+  expect_invalid([] { object_intensity(2, 0.9, 0.5, std::nan("")); }, "i0");
+
+  expect_invalid([] { VirtualLayer{1.2, 0.0}.validate(); }, "VirtualLayer.transmittance");
+  expect_invalid([] { VirtualLayer{0.5, -0.2}.validate(); }, "VirtualLayer.reflectance");
+  expect_invalid([] { VirtualLayer{0.7, 0.4}.validate(); }, "VirtualLayer.reflectance");
+  const std::vector<VirtualLayer> bad_stack = {{0.9, 0.05}, {0.9, 0.2}};
+  expect_invalid([&] { layer_stack_response(bad_stack, 0.5, 4); }, "VirtualLayer.reflectance");
+  const std::vector<VirtualLayer> good_stack = {{0.9, 0.05}};
+  expect_invalid([&] { layer_stack_response(good_stack, 1.5, 4); }, "rho_object");
+  expect_invalid([&] { layer_stack_response(good_stack, 0.5, 4, -2.0); }, "i0");
+
+  expect_invalid([] { virtual_layer_from_fog(-1e-3, 1e-5, 0.15); }, "extinction_per_m");
+  expect_invalid([] { virtual_layer_from_fog(1e-3, -1e-5, 0.15); }, "eta_m2_per_m3");
+  expect_invalid([] { virtual_layer_from_fog(1e-3, 1e-5, 0.0); }, "thickness_m");
+  expect_invalid([] { virtual_layer_from_fog(1e-3, 1e-5, std::nan("")); }, "thickness_m");
+  expect_invalid([] { virtual_layer_from_fog(0.0, 2.0, 1.0); }, "eta_m2_per_m3");  // tau + rho = 3
+}
+
+}  // namespace
+}  // namespace fogradar::propagation

@@ -1,0 +1,557 @@
+// CFAR tests. References (each test names its own and its tolerance):
+//   [GK88] P. P. Gandhi, S. A. Kassam, "Analysis of CFAR processors in nonhomogeneous
+//          background", IEEE TAES 24(4), 427-445, 1988: Pfa of CA, GO, SO, OS in exponential
+//          noise.
+//   [R83]  H. Rohling, "Radar CFAR thresholding in clutter and multiple target situations",
+//          IEEE TAES 19(4), 608-621, 1983: OS-CFAR Pfa.
+//   [Ri14] M. A. Richards, Fundamentals of Radar Signal Processing, 2nd ed., §6.5 (CA Pd for a
+//          Swerling 1 target; OS example N = 20, k = 15, alpha = 6.857 for Pfa = 1e-3).
+// Monte Carlo tests use fixed-seed std::mt19937_64 streams and statistically sized bounds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <boost/math/distributions/binomial.hpp>
+#include <boost/math/distributions/gamma.hpp>
+#include <boost/math/distributions/non_central_chi_squared.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/special_functions/binomial.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/radar/cfar.hpp"
+
+namespace fogradar::radar {
+namespace {
+
+const CfarKind kAllKinds[] = {CfarKind::ca, CfarKind::go, CfarKind::so, CfarKind::os};
+
+std::string kind_name(const testing::TestParamInfo<CfarKind>& info) {
+  return std::string(to_string(info.param));
+}
+
+// --- Published Pfa expressions, written out independently of the library ----------------------
+
+// [GK88] CA: Pfa = (1 + alpha/N)^-N (threshold alpha times the mean of N cells).
+double published_pfa_ca(unsigned big_n, double alpha) {
+  return std::pow(1.0 + alpha / big_n, -static_cast<double>(big_n));
+}
+
+// [GK88] SO with n cells per side, threshold T times the smaller side sum (T = alpha / n):
+//   Pfa = 2 sum_{k=0}^{n-1} C(n-1+k, k) (2+T)^-(n+k)
+double published_pfa_so(unsigned n, double alpha) {
+  const double t = alpha / n;
+  double sum = 0.0;
+  for (unsigned k = 0; k < n; ++k) {
+    sum += boost::math::binomial_coefficient<double>(n - 1 + k, k) *
+           std::pow(2.0 + t, -static_cast<double>(n + k));
+  }
+  return 2.0 * sum;
+}
+
+// [GK88] GO: Pfa = 2 (1+T)^-n - 2 sum_{k=0}^{n-1} C(n-1+k, k) (2+T)^-(n+k)
+double published_pfa_go(unsigned n, double alpha) {
+  const double t = alpha / n;
+  return 2.0 * std::pow(1.0 + t, -static_cast<double>(n)) - published_pfa_so(n, alpha);
+}
+
+// [R83] OS: Pfa = prod_{i=0}^{k-1} (N-i) / (N-i+alpha)
+double published_pfa_os(unsigned big_n, unsigned k, double alpha) {
+  double pfa = 1.0;
+  for (unsigned i = 0; i < k; ++i) pfa *= (big_n - i) / (big_n - i + alpha);
+  return pfa;
+}
+
+double published_pfa(const CfarConfig& config, double alpha) {
+  const unsigned n = config.training_cells;
+  switch (config.kind) {
+    case CfarKind::ca:
+      return published_pfa_ca(2 * n, alpha);
+    case CfarKind::go:
+      return published_pfa_go(n, alpha);
+    case CfarKind::so:
+      return published_pfa_so(n, alpha);
+    case CfarKind::os:
+      return published_pfa_os(2 * n, config.effective_os_rank(), alpha);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// --- Configuration ----------------------------------------------------------------------------
+
+void expect_invalid_field(const CfarConfig& config, const std::string& field) {
+  try {
+    config.validate();
+    ADD_FAILURE() << "validate() accepted an invalid " << field;
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), field) << error.what();
+  }
+}
+
+// Every invalid field is rejected with InvalidParameter naming it (STYLE.md practice 11).
+// Negative cell counts cannot be represented (unsigned fields); the scenario parser rejects
+// them before a CfarConfig exists.
+TEST(CfarConfig, RejectsEveryInvalidField) {
+  EXPECT_NO_THROW(CfarConfig{}.validate());
+
+  expect_invalid_field({.training_cells = 0}, "cfar.training_cells");
+  for (const double pfa : {0.0, 1.0, -1e-3, 1.5, std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::infinity()}) {
+    expect_invalid_field({.false_alarm_probability = pfa}, "cfar.false_alarm_probability");
+  }
+  expect_invalid_field({.kind = CfarKind::os, .training_cells = 8, .os_rank = 17}, "cfar.os_rank");
+  EXPECT_NO_THROW(
+      (CfarConfig{.kind = CfarKind::os, .training_cells = 8, .os_rank = 16}.validate()));
+  EXPECT_NO_THROW((CfarConfig{.kind = CfarKind::os, .training_cells = 8, .os_rank = 1}.validate()));
+
+  // Threshold factor and detector construction validate too.
+  EXPECT_THROW(cfar_threshold_factor({.training_cells = 0}), InvalidParameter);
+  EXPECT_THROW(CfarDetector({.false_alarm_probability = 2.0}), InvalidParameter);
+  EXPECT_THROW(cfar_false_alarm_probability({}, -1.0), InvalidParameter);
+}
+
+// A window wider than the profile: "cfar.training_cells" with the allowed range in the message.
+TEST(CfarConfig, RejectsWindowWiderThanProfile) {
+  const CfarConfig config{.guard_cells = 2, .training_cells = 8};  // window 21 cells
+  const std::vector<double> power(20, 1.0);
+  try {
+    cfar_detect(power, config);
+    ADD_FAILURE() << "a 20-cell profile was accepted for a 21-cell window";
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), "cfar.training_cells");
+    // (20 - 1) / 2 - 2 = 7 training cells fit.
+    EXPECT_NE(std::string(error.what()).find("[1, 7]"), std::string::npos) << error.what();
+  }
+  EXPECT_NO_THROW(cfar_detect(std::vector<double>(21, 1.0), config));
+
+  // Guard cells alone fill the profile: still named after training_cells.
+  try {
+    cfar_detect(std::vector<double>(5, 1.0), CfarConfig{.guard_cells = 2, .training_cells = 1});
+    ADD_FAILURE() << "a 5-cell profile was accepted for a 7-cell window";
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), "cfar.training_cells") << error.what();
+  }
+  EXPECT_THROW(cfar_detect(std::vector<double>{}, CfarConfig{}), InvalidParameter);
+}
+
+TEST(CfarConfig, KindNamesRoundTrip) {
+  for (const CfarKind kind : kAllKinds) EXPECT_EQ(parse_cfar_kind(to_string(kind)), kind);
+  try {
+    parse_cfar_kind("CA-CFAR", "processing.cfar");
+    ADD_FAILURE() << "accepted an unknown CFAR kind";
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), "processing.cfar");
+  }
+}
+
+// Default OS rank: round(3N/4) [R83, Ri14 "typically k ~ 0.75 N"].
+TEST(CfarConfig, DefaultOsRankIsThreeQuartersOfReferenceCells) {
+  EXPECT_EQ((CfarConfig{.training_cells = 8}.effective_os_rank()), 12u);
+  EXPECT_EQ((CfarConfig{.training_cells = 10}.effective_os_rank()), 15u);
+  EXPECT_EQ((CfarConfig{.training_cells = 1}.effective_os_rank()), 2u);  // round(1.5)
+  EXPECT_EQ((CfarConfig{.training_cells = 8, .os_rank = 5}.effective_os_rank()), 5u);
+}
+
+// --- Threshold factors ------------------------------------------------------------------------
+
+// CA closed form alpha = N (Pfa^(-1/N) - 1) against solving (1 + alpha/N)^-N = Pfa numerically
+// (TOMS 748 in this test). Tolerance 1e-12 relative (both double precision).
+TEST(CfarThreshold, CaClosedFormMatchesNumericalSolution) {
+  for (const unsigned n : {1u, 4u, 8u, 16u, 32u}) {
+    for (const double pfa : {1e-2, 1e-3, 1e-6, 1e-9}) {
+      const CfarConfig config{
+          .kind = CfarKind::ca, .training_cells = n, .false_alarm_probability = pfa};
+      const double alpha = cfar_threshold_factor(config);
+      const auto f = [&](double a) { return std::log(published_pfa_ca(2 * n, a)) - std::log(pfa); };
+      std::uintmax_t iterations = 200;
+      const auto [lo, hi] = boost::math::tools::toms748_solve(
+          f, 0.0, 1e6, boost::math::tools::eps_tolerance<double>(52), iterations);
+      const double solved = 0.5 * (lo + hi);
+      EXPECT_NEAR(alpha, solved, 1e-12 * solved) << "N=" << 2 * n << " Pfa=" << pfa;
+    }
+  }
+}
+
+// GO, SO, OS (and CA): the published Pfa expression [GK88, R83], evaluated at the solved
+// threshold factor, equals the design Pfa within 1e-9 relative.
+class CfarThresholdKind : public testing::TestWithParam<CfarKind> {};
+
+TEST_P(CfarThresholdKind, PublishedPfaAtSolvedFactorEqualsDesign) {
+  for (const unsigned n : {1u, 2u, 4u, 8u, 16u, 24u}) {
+    for (const double pfa : {0.1, 1e-3, 1e-6, 1e-9}) {
+      const CfarConfig config{
+          .kind = GetParam(), .training_cells = n, .false_alarm_probability = pfa};
+      const double alpha = cfar_threshold_factor(config);
+      ASSERT_TRUE(std::isfinite(alpha) && alpha > 0.0);
+      EXPECT_NEAR(published_pfa(config, alpha) / pfa, 1.0, 1e-9)
+          << to_string(GetParam()) << " n=" << n << " Pfa=" << pfa << " alpha=" << alpha;
+      // The library's own Pfa function agrees with the published form at nearby factors too.
+      for (const double scale : {0.5, 1.0, 2.0}) {
+        const double expected = published_pfa(config, scale * alpha);
+        EXPECT_NEAR(cfar_false_alarm_probability(config, scale * alpha) / expected, 1.0, 1e-9);
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, CfarThresholdKind, testing::ValuesIn(kAllKinds), kind_name);
+
+// Limiting case n = 1 (one cell per side), exact inverses of [GK88] by hand:
+//   SO: Pfa = 2 / (2 + alpha)                    =>  alpha = 2 / Pfa - 2
+//   GO: Pfa = 2 / (1 + alpha) - 2 / (2 + alpha)  =>  Pfa alpha^2 + 3 Pfa alpha + 2 Pfa - 2 = 0
+//   OS with N = 2, k = 1 (minimum): Pfa = 2 / (2 + alpha), same as SO.
+// Tolerance 1e-12 relative.
+TEST(CfarThreshold, SingleCellPerSideClosedForms) {
+  for (const double pfa : {0.5, 1e-3, 1e-6}) {
+    const double so = cfar_threshold_factor(
+        {.kind = CfarKind::so, .training_cells = 1, .false_alarm_probability = pfa});
+    EXPECT_NEAR(so, 2.0 / pfa - 2.0, 1e-12 * so);
+    const double go = cfar_threshold_factor(
+        {.kind = CfarKind::go, .training_cells = 1, .false_alarm_probability = pfa});
+    const double go_exact = (-3.0 * pfa + std::sqrt(pfa * pfa + 8.0 * pfa)) / (2.0 * pfa);
+    EXPECT_NEAR(go, go_exact, 1e-12 * go_exact);
+    const double os = cfar_threshold_factor(
+        {.kind = CfarKind::os, .training_cells = 1, .false_alarm_probability = pfa, .os_rank = 1});
+    EXPECT_NEAR(os, 2.0 / pfa - 2.0, 1e-12 * os);
+  }
+}
+
+// Published value [Ri14 §6.5.6]: OS-CFAR with N = 20, k = 15 needs alpha = 6.857 for
+// Pfa = 1e-3. Richards quotes four significant figures (6.857 gives Pfa = 0.99872e-3 by [R83]),
+// so the tolerance is 5e-4 relative; we solve 6.8554.
+TEST(CfarThreshold, RichardsOsExample) {
+  const double alpha = cfar_threshold_factor(
+      {.kind = CfarKind::os, .training_cells = 10, .false_alarm_probability = 1e-3, .os_rank = 15});
+  EXPECT_NEAR(alpha, 6.857, 5e-4 * 6.857);
+}
+
+// Ordering (a property of the estimators): SO's noise estimate is the smallest, GO's the
+// largest, so for the same N and Pfa alpha_SO > alpha_CA > alpha_GO [GK88 Fig. 3-4].
+TEST(CfarThreshold, SmallestOfNeedsLargestFactor) {
+  for (const unsigned n : {2u, 8u, 16u}) {
+    const auto alpha = [n](CfarKind kind) {
+      return cfar_threshold_factor(
+          {.kind = kind, .training_cells = n, .false_alarm_probability = 1e-6});
+    };
+    EXPECT_GT(alpha(CfarKind::so), alpha(CfarKind::ca));
+    EXPECT_GT(alpha(CfarKind::ca), alpha(CfarKind::go));
+  }
+}
+
+// --- Detector mechanics -----------------------------------------------------------------------
+
+// Brute-force reference of the documented edge policy: guard cells centred on the cell under
+// test, up to n nearest cells beyond the guard on each side, a short side's deficit taken from
+// the other side; GO/SO halves = first and last n reference cells in range order.
+std::vector<double> brute_force_threshold(const std::vector<double>& power,
+                                          const CfarConfig& config, double alpha) {
+  const long long length = static_cast<long long>(power.size());
+  const long long guard = config.guard_cells;
+  const std::size_t n = config.training_cells;
+  std::vector<double> threshold(power.size());
+  for (long long i = 0; i < length; ++i) {
+    std::vector<long long> left;
+    std::vector<long long> right;
+    for (long long j = i - guard - 1; j >= 0; --j) left.push_back(j);
+    for (long long j = i + guard + 1; j < length; ++j) right.push_back(j);
+    std::size_t a = std::min(n, left.size());
+    std::size_t b = std::min(n, right.size());
+    if (a < n) b = 2 * n - a;
+    if (b < n) a = 2 * n - b;
+    std::vector<long long> cells(left.begin(), left.begin() + static_cast<long>(a));
+    cells.insert(cells.end(), right.begin(), right.begin() + static_cast<long>(b));
+    std::sort(cells.begin(), cells.end());
+    std::vector<double> values;
+    for (const long long j : cells) values.push_back(power[static_cast<std::size_t>(j)]);
+    const double first =
+        std::accumulate(values.begin(), values.begin() + static_cast<long>(n), 0.0);
+    const double second = std::accumulate(values.begin() + static_cast<long>(n), values.end(), 0.0);
+    double estimate = 0.0;
+    switch (config.kind) {
+      case CfarKind::ca:
+        estimate = (first + second) / (2.0 * static_cast<double>(n));
+        break;
+      case CfarKind::go:
+        estimate = std::max(first, second) / static_cast<double>(n);
+        break;
+      case CfarKind::so:
+        estimate = std::min(first, second) / static_cast<double>(n);
+        break;
+      case CfarKind::os:
+        std::sort(values.begin(), values.end());
+        estimate = values[config.effective_os_rank() - 1];
+        break;
+    }
+    threshold[static_cast<std::size_t>(i)] = alpha * estimate;
+  }
+  return threshold;
+}
+
+class CfarDetectorKind : public testing::TestWithParam<CfarKind> {};
+
+// The running-sum / nth_element implementation equals the brute-force reference of the edge
+// policy in every cell (edge and interior), profile lengths from the minimum upward, with a
+// 90 dB target in the profile. Tolerance: 1e-12 relative (summation order) plus the
+// cancellation bound of long-double prefix sums, alpha * 4 eps_ld * (profile sum) / N.
+TEST_P(CfarDetectorKind, ThresholdMatchesBruteForceEdgePolicy) {
+  std::mt19937_64 rng(7);
+  std::exponential_distribution<double> noise(1.0);
+  for (const unsigned guard : {0u, 1u, 3u}) {
+    for (const unsigned n : {1u, 4u, 7u}) {
+      const CfarConfig config{.kind = GetParam(),
+                              .guard_cells = guard,
+                              .training_cells = n,
+                              .false_alarm_probability = 1e-4};
+      const CfarDetector detector(config);
+      for (const std::size_t extra : {0u, 1u, 5u, 40u}) {
+        std::vector<double> power(config.window_length() + extra);
+        for (double& value : power) value = noise(rng);
+        power[power.size() / 3] = 1e9;  // a strong target stresses the running sums
+        CfarWorkspace workspace;
+        detector.detect(power, workspace);
+        const std::vector<double> expected =
+            brute_force_threshold(power, config, detector.threshold_factor());
+        ASSERT_EQ(workspace.threshold.size(), power.size());
+        const double profile_sum = std::accumulate(power.begin(), power.end(), 0.0);
+        const double cancellation =
+            config.kind == CfarKind::os
+                ? 0.0
+                : detector.threshold_factor() * 4.0 *
+                      static_cast<double>(std::numeric_limits<long double>::epsilon()) *
+                      profile_sum / static_cast<double>(config.reference_cells());
+        for (std::size_t i = 0; i < power.size(); ++i) {
+          EXPECT_NEAR(workspace.threshold[i], expected[i], 1e-12 * expected[i] + cancellation)
+              << "cell " << i << " of " << power.size() << " guard " << guard << " n " << n;
+          EXPECT_EQ(power[i] > expected[i], std::binary_search(workspace.detections.begin(),
+                                                               workspace.detections.end(), i));
+        }
+      }
+    }
+  }
+}
+
+// Constant background 1 with one strong point target: the threshold away from the target is
+// alpha (every estimator returns 1), and only the target cell is detected; its neighbours
+// inside the guard cells do not see it.
+TEST_P(CfarDetectorKind, DetectsLoneTargetInConstantBackground) {
+  const CfarConfig config{
+      .kind = GetParam(), .guard_cells = 2, .training_cells = 8, .false_alarm_probability = 1e-6};
+  std::vector<double> power(100, 1.0);
+  power[50] = 1e4;
+  std::vector<double> threshold;
+  const std::vector<std::size_t> detections = cfar_detect(power, config, &threshold);
+  ASSERT_EQ(detections, std::vector<std::size_t>{50});
+  const double alpha = cfar_threshold_factor(config);
+  for (std::size_t i = 48; i <= 52; ++i) EXPECT_DOUBLE_EQ(threshold[i], alpha) << i;
+  EXPECT_DOUBLE_EQ(threshold[0], alpha);
+  EXPECT_DOUBLE_EQ(threshold[99], alpha);
+}
+
+// A workspace reused for profiles of different lengths gives the same result as a fresh one.
+TEST_P(CfarDetectorKind, WorkspaceReuseIsStateless) {
+  const CfarConfig config{
+      .kind = GetParam(), .guard_cells = 1, .training_cells = 4, .false_alarm_probability = 1e-2};
+  const CfarDetector detector(config);
+  std::mt19937_64 rng(3);
+  std::exponential_distribution<double> noise(1.0);
+  CfarWorkspace reused;
+  for (const std::size_t length : {200u, 11u, 64u}) {
+    std::vector<double> power(length);
+    for (double& value : power) value = noise(rng);
+    CfarWorkspace fresh;
+    detector.detect(power, fresh);
+    detector.detect(power, reused);
+    EXPECT_EQ(fresh.threshold, reused.threshold);
+    EXPECT_EQ(fresh.detections, reused.detections);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, CfarDetectorKind, testing::ValuesIn(kAllKinds), kind_name);
+
+// --- False-alarm rate on noise ----------------------------------------------------------------
+
+// Two-sided 99.9 % binomial acceptance interval for `cells` independent trials at p: the
+// 0.05 % and 99.95 % quantiles (Boost rounds discrete quantiles outwards).
+std::pair<double, double> binomial_interval(double cells, double p) {
+  const boost::math::binomial_distribution<double> count(cells, p);
+  return {boost::math::quantile(count, 0.0005),
+          boost::math::quantile(boost::math::complement(count, 0.0005))};
+}
+
+class CfarFalseAlarmRate : public testing::TestWithParam<CfarKind> {};
+
+// Square-law detected noise (exponential, mean 1), design Pfa = 1e-3, guard 2, n = 8 (N = 16),
+// 25'000 profiles of 64 cells = 1.6e6 cells: 1.1e6 interior cells (nominal window inside the
+// profile) and 5e5 edge cells (first and last guard + n = 10 cells of each profile). Each
+// group's false-alarm count must lie in the 99.9 % binomial interval of the design Pfa.
+// Note: decisions of neighbouring cells share reference cells and are weakly correlated; for
+// this configuration that widens the count's standard deviation by roughly 5 % over the
+// binomial one, so the interval is effectively about 3.1 sigma rather than 3.3 sigma.
+TEST_P(CfarFalseAlarmRate, MatchesDesignInInteriorAndEdgeCells) {
+  constexpr double kDesignPfa = 1e-3;
+  constexpr std::size_t kProfiles = 25'000;
+  constexpr std::size_t kLength = 64;
+  const CfarConfig config{.kind = GetParam(),
+                          .guard_cells = 2,
+                          .training_cells = 8,
+                          .false_alarm_probability = kDesignPfa};
+  const CfarDetector detector(config);
+  const std::size_t edge = config.guard_cells + config.training_cells;
+
+  std::mt19937_64 rng(20240601);
+  std::exponential_distribution<double> noise(1.0);
+  std::vector<double> power(kLength);
+  CfarWorkspace workspace;
+  std::size_t alarms_interior = 0;
+  std::size_t alarms_left = 0;
+  std::size_t alarms_right = 0;
+  for (std::size_t profile = 0; profile < kProfiles; ++profile) {
+    for (double& value : power) value = noise(rng);
+    detector.detect(power, workspace);
+    for (const std::size_t i : workspace.detections) {
+      if (i < edge) {
+        ++alarms_left;
+      } else if (i >= kLength - edge) {
+        ++alarms_right;
+      } else {
+        ++alarms_interior;
+      }
+    }
+  }
+  const double interior_cells = static_cast<double>(kProfiles * (kLength - 2 * edge));
+  const double edge_cells = static_cast<double>(kProfiles * 2 * edge);
+  const double alarms_edge = static_cast<double>(alarms_left + alarms_right);
+
+  const auto [interior_low, interior_high] = binomial_interval(interior_cells, kDesignPfa);
+  const auto [edge_low, edge_high] = binomial_interval(edge_cells, kDesignPfa);
+  std::printf(
+      "[ measured ] %s-CFAR Pfa interior %.4e (%zu / %.0f, accept [%.0f, %.0f]), "
+      "edge %.4e (left %zu + right %zu / %.0f, accept [%.0f, %.0f])\n",
+      std::string(to_string(GetParam())).c_str(),
+      static_cast<double>(alarms_interior) / interior_cells, alarms_interior, interior_cells,
+      interior_low, interior_high, alarms_edge / edge_cells, alarms_left, alarms_right, edge_cells,
+      edge_low, edge_high);
+  EXPECT_GE(static_cast<double>(alarms_interior), interior_low);
+  EXPECT_LE(static_cast<double>(alarms_interior), interior_high);
+  EXPECT_GE(alarms_edge, edge_low);
+  EXPECT_LE(alarms_edge, edge_high);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, CfarFalseAlarmRate, testing::ValuesIn(kAllKinds), kind_name);
+
+// --- Detection probability (CA) ---------------------------------------------------------------
+
+constexpr unsigned kPdGuard = 2;
+constexpr unsigned kPdTraining = 16;  // N = 32
+constexpr double kPdDesignPfa = 1e-6;
+constexpr std::size_t kPdTrials = 20'000;
+constexpr double kPdTolerance = 0.03;  // absolute; binomial sigma <= 0.0035 at 20'000 trials
+
+// Monte Carlo Pd of CA-CFAR: profiles of 16 disjoint full windows, the cell under test at each
+// window centre drawn by `draw_target`, reference cells exponential noise of mean 1.
+template <class DrawTarget>
+double monte_carlo_pd(std::mt19937_64& rng, DrawTarget draw_target) {
+  const CfarConfig config{.kind = CfarKind::ca,
+                          .guard_cells = kPdGuard,
+                          .training_cells = kPdTraining,
+                          .false_alarm_probability = kPdDesignPfa};
+  const CfarDetector detector(config);
+  const std::size_t window = config.window_length();
+  constexpr std::size_t kTargetsPerProfile = 16;
+  std::exponential_distribution<double> noise(1.0);
+  std::vector<double> power(window * kTargetsPerProfile);
+  CfarWorkspace workspace;
+  std::size_t hits = 0;
+  for (std::size_t trial = 0; trial < kPdTrials; trial += kTargetsPerProfile) {
+    for (double& value : power) value = noise(rng);
+    for (std::size_t t = 0; t < kTargetsPerProfile; ++t) {
+      power[t * window + window / 2] = draw_target(rng);
+    }
+    detector.detect(power, workspace);
+    for (const std::size_t i : workspace.detections) hits += (i % window == window / 2) ? 1 : 0;
+  }
+  return static_cast<double>(hits) / static_cast<double>(kPdTrials);
+}
+
+// Swerling 1: the cell under test is exponential with mean 1 + SNR; closed form
+// Pd = (1 + alpha / (N (1 + SNR)))^-N [Ri14 §6.5.3]. Tolerance +-0.03 absolute.
+TEST(CfarDetection, CaSwerling1MatchesClosedForm) {
+  const double alpha = cfar_threshold_factor({.kind = CfarKind::ca,
+                                              .guard_cells = kPdGuard,
+                                              .training_cells = kPdTraining,
+                                              .false_alarm_probability = kPdDesignPfa});
+  const double big_n = 2.0 * kPdTraining;
+  std::mt19937_64 rng(11);
+  for (const double snr_db : {5.0, 10.0, 15.0, 20.0, 25.0}) {
+    const double snr = std::pow(10.0, snr_db / 10.0);
+    const double expected = std::pow(1.0 + alpha / (big_n * (1.0 + snr)), -big_n);
+    std::exponential_distribution<double> target(1.0 / (1.0 + snr));
+    const double measured = monte_carlo_pd(rng, [&](std::mt19937_64& g) { return target(g); });
+    std::printf("[ measured ] CA Swerling 1 SNR %4.1f dB: Pd %.4f, closed form %.4f, error %+.4f\n",
+                snr_db, measured, expected, measured - expected);
+    EXPECT_NEAR(measured, expected, kPdTolerance) << "SNR " << snr_db << " dB";
+  }
+}
+
+// Swerling 0 reference, computed independently: the cell under test |A + w|^2 with |A|^2 = SNR
+// and w ~ CN(0, 1) exceeds tau with probability Q1(sqrt(2 SNR), sqrt(2 tau)), the complement
+// cdf of a non-central chi-squared with 2 degrees of freedom and lambda = 2 SNR at 2 tau.
+// The CA threshold is tau = alpha Z / N with Z ~ Gamma(N, 1), so
+//   Pd = integral_0^inf Q1(sqrt(2 SNR), sqrt(2 alpha z / N)) f_Gamma(N,1)(z) dz
+// (Gauss-Kronrod 61-point adaptive quadrature, Boost.Math).
+double swerling0_ca_pd(double snr, double alpha, double big_n) {
+  const boost::math::non_central_chi_squared_distribution<double> cut(2.0, 2.0 * snr);
+  const boost::math::gamma_distribution<double> z_dist(big_n, 1.0);
+  const auto integrand = [&](double z) {
+    return boost::math::cdf(boost::math::complement(cut, 2.0 * alpha * z / big_n)) *
+           boost::math::pdf(z_dist, z);
+  };
+  return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+      integrand, 0.0, std::numeric_limits<double>::infinity(), 15, 1e-12);
+}
+
+// The quadrature itself: at SNR -> 0 it must reproduce the CA Pfa (1 + alpha/N)^-N
+// (tolerance 1e-6 relative).
+TEST(CfarDetection, Swerling0IntegralReducesToPfaWithoutTarget) {
+  const double alpha = cfar_threshold_factor({.kind = CfarKind::ca,
+                                              .guard_cells = kPdGuard,
+                                              .training_cells = kPdTraining,
+                                              .false_alarm_probability = kPdDesignPfa});
+  EXPECT_NEAR(swerling0_ca_pd(1e-12, alpha, 2.0 * kPdTraining) / kPdDesignPfa, 1.0, 1e-6);
+}
+
+// Swerling 0 (constant amplitude, random phase, complex Gaussian noise) Monte Carlo against the
+// numerical integral above. Tolerance +-0.03 absolute.
+TEST(CfarDetection, CaSwerling0MatchesNumericalIntegral) {
+  const double alpha = cfar_threshold_factor({.kind = CfarKind::ca,
+                                              .guard_cells = kPdGuard,
+                                              .training_cells = kPdTraining,
+                                              .false_alarm_probability = kPdDesignPfa});
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> component(0.0, std::sqrt(0.5));  // E|w|^2 = 1
+  std::uniform_real_distribution<double> phase(0.0, 2.0 * std::numbers::pi);
+  for (const double snr_db : {5.0, 10.0, 15.0, 20.0, 25.0}) {
+    const double snr = std::pow(10.0, snr_db / 10.0);
+    const double expected = swerling0_ca_pd(snr, alpha, 2.0 * kPdTraining);
+    const double measured = monte_carlo_pd(rng, [&](std::mt19937_64& g) {
+      const std::complex<double> sample =
+          std::polar(std::sqrt(snr), phase(g)) + std::complex<double>(component(g), component(g));
+      return std::norm(sample);
+    });
+    std::printf("[ measured ] CA Swerling 0 SNR %4.1f dB: Pd %.4f, integral %.4f, error %+.4f\n",
+                snr_db, measured, expected, measured - expected);
+    EXPECT_NEAR(measured, expected, kPdTolerance) << "SNR " << snr_db << " dB";
+  }
+}
+
+}  // namespace
+}  // namespace fogradar::radar

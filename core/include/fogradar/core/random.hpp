@@ -1,0 +1,79 @@
+// Seeded, reproducible random streams. Every measurement gets its own stream derived from
+// (seed, step, index), so results do not depend on thread count or scheduling (STYLE.md §12).
+// Generator: xoshiro256++ (Blackman & Vigna, ACM TOMS 47(4), 2021); seeding and stream derivation
+// by SplitMix64 (Steele, Lea & Flood, OOPSLA 2014), as the xoshiro authors recommend.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <limits>
+
+#include "fogradar/core/constants.hpp"
+
+namespace fogradar {
+
+// One SplitMix64 step: advances `state` and returns a well-mixed 64-bit value.
+constexpr std::uint64_t splitmix64(std::uint64_t& state) {
+  state += 0x9E3779B97F4A7C15ULL;
+  std::uint64_t z = state;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+class RandomStream {
+ public:
+  using result_type = std::uint64_t;
+
+  // The stream for (seed, a, b): distinct triples give statistically independent streams.
+  explicit RandomStream(std::uint64_t seed, std::uint64_t a = 0, std::uint64_t b = 0) {
+    std::uint64_t mix = seed;
+    mix = splitmix64(mix) ^ a;
+    mix = splitmix64(mix) ^ b;
+    for (std::uint64_t& word : state_) word = splitmix64(mix);
+  }
+
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return std::numeric_limits<result_type>::max(); }
+
+  // xoshiro256++ next().
+  result_type operator()() {
+    const std::uint64_t result = rotl(state_[0] + state_[3], 23) + state_[0];
+    const std::uint64_t t = state_[1] << 17;
+    state_[2] ^= state_[0];
+    state_[3] ^= state_[1];
+    state_[1] ^= state_[2];
+    state_[0] ^= state_[3];
+    state_[2] ^= t;
+    state_[3] = rotl(state_[3], 45);
+    return result;
+  }
+
+  // Uniform in [0, 1) with 53 random bits.
+  double uniform() { return static_cast<double>((*this)() >> 11) * 0x1.0p-53; }
+
+  // Uniform in (0, 1]: safe for log().
+  double uniform_open_zero() { return 1.0 - uniform(); }
+
+  // Exponential with unit mean: -ln U.
+  double exponential() { return -std::log(uniform_open_zero()); }
+
+  // Circular complex Gaussian CN(0, variance) by Box-Muller: |z|^2 ~ variance * Exp(1) and a uniform
+  // phase, i.e. a Rayleigh amplitude with a random phase.
+  std::complex<double> complex_normal(double variance) {
+    const double radius = std::sqrt(variance * exponential());
+    const double phase = 2.0 * pi * uniform();
+    return {radius * std::cos(phase), radius * std::sin(phase)};
+  }
+
+  // Standard normal (the real part of CN(0, 2)).
+  double normal() { return complex_normal(2.0).real(); }
+
+ private:
+  static constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  std::array<std::uint64_t, 4> state_{};
+};
+
+}  // namespace fogradar

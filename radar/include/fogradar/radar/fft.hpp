@@ -1,0 +1,145 @@
+// FFTW behind one RAII class (STYLE.md practice 2): complex double 1-D transforms, single or
+// batched, planned once and executed concurrently by any number of threads on caller buffers.
+//
+// fftw3.h is deliberately not included here: FFTW is linked PRIVATE to fogradar::radar and the
+// API uses std::complex<double>, which FFTW documents as layout-compatible with fftw_complex
+// (FFTW 3.3 manual, "Complex numbers").
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <limits>
+#include <new>
+#include <span>
+#include <vector>
+
+struct fftw_plan_s;  // FFTW's opaque plan type (fftw_plan is fftw_plan_s*).
+
+namespace fogradar::radar {
+
+// --- Aligned memory ---------------------------------------------------------------------------
+
+// fftw_malloc / fftw_free: memory aligned for FFTW's SIMD codelets. Throws std::bad_alloc.
+void* fft_aligned_allocate(std::size_t bytes);
+void fft_aligned_free(void* pointer) noexcept;
+
+// True when `pointer` has the alignment FFTW's SIMD plans assume (fftw_alignment_of == 0), i.e.
+// the alignment of memory from fft_aligned_allocate.
+bool fft_is_aligned(const void* pointer) noexcept;
+
+// Standard allocator on fftw_malloc, so std::vector storage can be handed to an aligned FftPlan.
+template <class T>
+struct FftAllocator {
+  using value_type = T;
+  FftAllocator() noexcept = default;
+  template <class U>
+  FftAllocator(const FftAllocator<U>&) noexcept {}  // NOLINT(google-explicit-constructor)
+  T* allocate(std::size_t count) {
+    if (count > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_alloc();
+    return static_cast<T*>(fft_aligned_allocate(count * sizeof(T)));
+  }
+  void deallocate(T* pointer, std::size_t /*count*/) noexcept { fft_aligned_free(pointer); }
+  template <class U>
+  bool operator==(const FftAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+
+// Vector whose data() is FFTW-aligned: the buffer type for frames and FFT work arrays.
+template <class T>
+using AlignedVector = std::vector<T, FftAllocator<T>>;
+using ComplexVector = AlignedVector<std::complex<double>>;
+
+// --- Plans ------------------------------------------------------------------------------------
+
+// Sign of the exponent: forward X[k] = sum_j x[j] exp(-2 pi i j k / n); inverse uses +i and is
+// unnormalised (inverse(forward(x)) = n x), as in FFTW.
+enum class FftDirection { forward, inverse };
+
+// FFTW planner effort. `estimate` (FFTW_ESTIMATE) plans in microseconds from heuristics and
+// always picks the same algorithm, so results are bit-reproducible between runs; `measure`
+// (FFTW_MEASURE) times candidate algorithms (seconds for large sizes) and may pick a different
+// algorithm in another run, which can change results in the last bits. Use estimate for
+// simulation runs that promise byte-identical output, measure for throughput benchmarks.
+enum class FftPlanner { estimate, measure };
+
+// Which buffers a plan accepts at execute time.
+//   aligned:   buffers must satisfy fft_is_aligned (AlignedVector, fft_aligned_allocate); FFTW
+//              may use its aligned SIMD codelets. Passing an unaligned buffer is a programmer
+//              error caught by FOGRADAR_CHECK (InternalError), never silent misbehaviour.
+//   unaligned: FFTW_UNALIGNED: any buffer aligned for std::complex<double>; may be slower.
+enum class FftAlignment { aligned, unaligned };
+
+// Whether the plan transforms in place (execute(data)) or out of place (execute(in, out)); FFTW
+// requires the new-array execute to match the placement the plan was made for.
+enum class FftPlacement { out_of_place, in_place };
+
+// `howmany` transforms of length n over one buffer (fftw_plan_many_dft with rank 1): element j
+// of transform b lives at buffer[b * distance + j * stride]. distance = 0 means n (packed
+// rows). The same layout is used for input and output.
+struct FftLayout {
+  std::size_t n = 1;
+  std::size_t howmany = 1;
+  std::size_t stride = 1;
+  std::size_t distance = 0;
+};
+
+struct FftOptions {
+  FftPlanner planner = FftPlanner::estimate;
+  FftAlignment alignment = FftAlignment::aligned;
+  FftPlacement placement = FftPlacement::out_of_place;
+};
+
+// Owner of one FFTW plan. Non-copyable, movable; destroying it calls fftw_destroy_plan.
+//
+// Thread safety: construction and destruction take one process-wide mutex, because FFTW's
+// planner and fftw_destroy_plan are not thread-safe (FFTW 3.3 manual, "Thread safety").
+// execute() is const and uses fftw_execute_dft on the caller's buffers (the "new-array execute"
+// interface, documented thread-safe), so one plan can be shared by many threads at once as long
+// as each thread passes its own buffers.
+class FftPlan {
+ public:
+  // One transform of length n (n >= 1).
+  FftPlan(std::size_t n, FftDirection direction, FftOptions options = {});
+  // Batched transforms; throws InvalidParameter naming "fft.n", "fft.howmany", "fft.stride" or
+  // "fft.distance" for zero or too-large (> INT_MAX for FFTW) values.
+  FftPlan(const FftLayout& layout, FftDirection direction, FftOptions options = {});
+
+  // `rows` transforms of length `columns` over a row-major rows x columns matrix: e.g. the
+  // range FFT of every chirp of a frame stored chirp-major.
+  static FftPlan along_rows(std::size_t rows, std::size_t columns, FftDirection direction,
+                            FftOptions options = {});
+  // `columns` transforms of length `rows` down the columns of a row-major rows x columns
+  // matrix (stride = columns, distance = 1): e.g. the Doppler FFT across chirps.
+  static FftPlan along_columns(std::size_t rows, std::size_t columns, FftDirection direction,
+                               FftOptions options = {});
+
+  FftPlan(const FftPlan&) = delete;
+  FftPlan& operator=(const FftPlan&) = delete;
+  FftPlan(FftPlan&& other) noexcept;
+  FftPlan& operator=(FftPlan&& other) noexcept;
+  ~FftPlan();
+
+  // Out-of-place plan: transforms `in` into `out`. Both must hold at least buffer_size()
+  // elements, must not overlap, and (aligned plans) satisfy fft_is_aligned. `in` is preserved.
+  void execute(std::span<const std::complex<double>> in, std::span<std::complex<double>> out) const;
+  // In-place plan: transforms `data` (at least buffer_size() elements) in place.
+  void execute(std::span<std::complex<double>> data) const;
+
+  const FftLayout& layout() const noexcept { return layout_; }
+  FftDirection direction() const noexcept { return direction_; }
+  const FftOptions& options() const noexcept { return options_; }
+  // Smallest buffer the layout addresses: (howmany-1)*distance + (n-1)*stride + 1.
+  std::size_t buffer_size() const noexcept { return buffer_size_; }
+
+ private:
+  void reset() noexcept;
+
+  fftw_plan_s* plan_ = nullptr;
+  FftLayout layout_{};
+  FftDirection direction_ = FftDirection::forward;
+  FftOptions options_{};
+  std::size_t buffer_size_ = 0;
+};
+
+}  // namespace fogradar::radar

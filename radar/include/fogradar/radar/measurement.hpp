@@ -1,0 +1,66 @@
+// One radar measurement (one frame) of a scene in the fog chamber: the entry point the experiment
+// drives. The chain object holds everything made once (FFT plans, windows, CFAR threshold) and is
+// immutable, so one chain serves all threads; each thread brings its own workspace and stream.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "fogradar/core/random.hpp"
+#include "fogradar/propagation/chamber.hpp"
+#include "fogradar/radar/estimation.hpp"
+#include "fogradar/radar/processing.hpp"
+#include "fogradar/radar/scene.hpp"
+#include "fogradar/radar/synthesis.hpp"
+
+namespace fogradar::radar {
+
+struct Measurement {
+  std::vector<Detection> detections;
+  // The strongest detection within the association gate around the chamber's target range, or
+  // nothing: a missed detection is reported as such, never as a made-up value (DESIGN §3.6).
+  std::optional<Detection> target;
+  SynthesisReport synthesis;
+};
+
+struct MeasurementWorkspace {
+  ComplexVector frame;
+  std::vector<double> power;
+  std::vector<Tone> tones;
+  EstimationWorkspace estimation;
+};
+
+class RadarChain {
+ public:
+  explicit RadarChain(const RadarParams& params, FftPlanner planner = FftPlanner::estimate);
+
+  const RadarParams& params() const { return params_; }
+  const RadarDerived& derived() const { return derived_; }
+  const RangeDopplerProcessor& processor() const { return processor_; }
+  const CfarDetector& cfar() const { return cfar_; }
+
+  // Throws InvalidParameter if the chamber was resolved at another frequency than the radar's
+  // carrier, or the scene reaches beyond the radar's unambiguous range.
+  void check_compatible(const Scene& scene, const propagation::Chamber& chamber) const;
+
+  MeasurementWorkspace make_workspace() const;
+
+  // Synthesise, process and estimate one frame; `out` is overwritten (its buffers reused).
+  void measure(const Scene& scene, const propagation::Chamber& chamber,
+               const propagation::ActiveLayers& active, RandomStream& rng, MeasurementWorkspace& workspace,
+               Measurement& out) const;
+
+  // Only the synthesis and processing stages: leaves the range-Doppler map in workspace.frame and
+  // its power in workspace.power (for tests and benchmarks of the map itself).
+  SynthesisReport synthesize_and_process(const Scene& scene, const propagation::Chamber& chamber,
+                                         const propagation::ActiveLayers& active, RandomStream& rng,
+                                         MeasurementWorkspace& workspace) const;
+
+ private:
+  RadarParams params_;
+  RadarDerived derived_;
+  RangeDopplerProcessor processor_;
+  CfarDetector cfar_;
+};
+
+}  // namespace fogradar::radar

@@ -1,0 +1,78 @@
+// Parameters of the FMCW radar and its processing chain, and the quantities derived from them in
+// one place (STYLE.md §5). Defaults are the paper scenario of DESIGN §4: a typical 77 GHz long-range
+// radar (1 GHz sweep, 512 x 64 samples per frame, 10 dBm, 25 dBi, 12 dB noise figure).
+#pragma once
+
+#include <cstddef>
+
+#include "fogradar/radar/cfar.hpp"
+#include "fogradar/radar/window.hpp"
+
+namespace fogradar::radar {
+
+struct RadarParams {
+  double carrier_frequency_hz = 77e9;
+  double sweep_bandwidth_hz = 1e9;
+  double chirp_duration_s = 51.2e-6;
+  double chirp_interval_s = 51.2e-6;  // chirp start to chirp start (>= duration)
+  std::size_t samples_per_chirp = 512;
+  double sample_rate_hz = 10e6;  // complex (I/Q) samples per second
+  std::size_t chirps_per_frame = 64;
+  double tx_power_dbm = 10.0;
+  double tx_gain_dbi = 25.0;
+  double rx_gain_dbi = 25.0;
+  double azimuth_beamwidth_deg = 10.0;    // 3 dB, one way
+  double elevation_beamwidth_deg = 10.0;  // 3 dB, one way
+  double noise_figure_db = 12.0;
+  double reference_temperature_k = 290.0;  // T0 of k T0 F fs
+  bool thermal_noise = true;               // off only to check calibration without noise
+  unsigned adc_bits = 0;                   // 0: ideal (no quantisation)
+  double adc_full_scale_dbm = -20.0;       // power of a full-scale complex tone at the ADC input
+  double phase_noise_rms_rad = 0.0;        // white phase noise per sample (0: off)
+  WindowType window = WindowType::hann;    // range and Doppler
+  CfarConfig cfar{.kind = CfarKind::ca, .guard_cells = 2, .training_cells = 8,
+                  .false_alarm_probability = 1e-6, .os_rank = 0};
+  double association_gate_m = 0.5;  // |R_detected - R_expected| for the tracked target
+
+  // Throws InvalidParameter naming "radar.<field>" (or "cfar.<field>") and the allowed range.
+  void validate() const;
+};
+
+// Everything the chain derives from RadarParams.
+struct RadarDerived {
+  double wavelength_m;                  // c / f_c
+  double chirp_slope_hz_per_s;          // S = B / T_c
+  double range_resolution_m;            // c / (2 B)
+  double range_bin_m;                   // c fs / (2 S N): one range-FFT bin
+  double max_range_m;                   // c fs / (2 S): complex sampling, beat in [0, fs)
+  double velocity_resolution_m_per_s;   // lambda / (2 N_c T_i)
+  double max_unambiguous_velocity_m_per_s;  // lambda / (4 T_i)
+  double noise_power_w;                 // k T0 F fs, per complex sample
+  double tx_power_w;
+  double tx_gain;                       // linear
+  double rx_gain;
+  double beam_solid_angle_sr;           // two-way equivalent, Probert-Jones 1962
+};
+
+RadarDerived derive(const RadarParams& params);
+
+// Beat frequency of a path of two-way length L (m): f_b = S L / c (= 2 S R / c monostatic).
+double beat_frequency_hz(double path_length_m, double chirp_slope_hz_per_s);
+
+// Radar equation (paper eq. 7 solved for P_r): P_r = P_t G_t G_r lambda^2 sigma / ((4 pi)^3 R^4).
+double received_power_w(double tx_power_w, double tx_gain, double rx_gain, double wavelength_m,
+                        double rcs_m2, double range_m);
+
+// Paper eq. 7: sigma = (4 pi)^3 R^4 P_r / (P_t G_t G_r lambda^2).
+double rcs_from_received_power_m2(double received_power_w, double tx_power_w, double tx_gain,
+                                  double rx_gain, double wavelength_m, double range_m);
+
+// One-way power pattern of a Gaussian beam with 3 dB width theta_3dB (rad), per axis:
+// g(theta) = exp(-4 ln 2 (theta / theta_3dB)^2) (e.g. Skolnik, Radar Handbook 3rd ed., ch. 2).
+double gaussian_beam_power(double off_axis_rad, double beamwidth_3db_rad);
+
+// Probert-Jones (1962, QJRMS 88, 485) two-way equivalent solid angle of a Gaussian beam:
+// Omega = pi theta_az theta_el / (8 ln 2), angles in rad; fog clutter volume = Omega R^2 dR.
+double two_way_beam_solid_angle_sr(double azimuth_beamwidth_rad, double elevation_beamwidth_rad);
+
+}  // namespace fogradar::radar

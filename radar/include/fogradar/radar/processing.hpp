@@ -1,0 +1,48 @@
+// Range-Doppler processing of one frame: window -> range FFT along each chirp -> Doppler FFT across
+// chirps -> power map. Plans and windows are made once; one processor may be shared by many threads,
+// each processing its own frame buffer in place.
+#pragma once
+
+#include <complex>
+#include <span>
+#include <vector>
+
+#include "fogradar/radar/fft.hpp"
+#include "fogradar/radar/params.hpp"
+
+namespace fogradar::radar {
+
+class RangeDopplerProcessor {
+ public:
+  explicit RangeDopplerProcessor(const RadarParams& params, FftPlanner planner = FftPlanner::estimate);
+
+  std::size_t chirps() const { return chirps_; }
+  std::size_t samples() const { return samples_; }
+
+  // In place: frame (chirps x samples, chirp-major, FFTW-aligned) becomes the range-Doppler map
+  // Y[d][k] = sum_c sum_n w_d[c] w_r[n] x_c[n] exp(-i 2 pi (n k / N + c d / N_c)); `power` receives
+  // |Y|^2 (same layout). Doppler bin d < N_c/2 is velocity d, d >= N_c/2 is d - N_c.
+  void process(std::span<std::complex<double>> frame, std::span<double> power) const;
+
+  // Amplitude gain of the whole chain for a tone centred on a range and a Doppler bin:
+  // N CG_r N_c CG_d, so a tone of amplitude a peaks at |Y| = a * coherent_amplitude_gain().
+  double coherent_amplitude_gain() const { return coherent_amplitude_gain_; }
+  // Noise power gain: white noise of variance s^2 per sample gives E|Y|^2 = s^2 * this
+  // = s^2 (sum w_r^2)(sum w_d^2).
+  double noise_power_gain() const { return noise_power_gain_; }
+
+  std::span<const double> range_window() const { return range_window_; }
+  std::span<const double> doppler_window() const { return doppler_window_; }
+
+ private:
+  std::size_t chirps_;
+  std::size_t samples_;
+  std::vector<double> range_window_;
+  std::vector<double> doppler_window_;
+  FftPlan range_fft_;
+  FftPlan doppler_fft_;
+  double coherent_amplitude_gain_;
+  double noise_power_gain_;
+};
+
+}  // namespace fogradar::radar

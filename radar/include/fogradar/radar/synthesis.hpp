@@ -1,0 +1,34 @@
+// Beat-signal synthesis: complex baseband I/Q of one frame from the scene's paths, plus thermal
+// noise, optional phase noise and ADC quantisation. Frame layout: chirps_per_frame rows of
+// samples_per_chirp samples, row-major (chirp-major), in units of sqrt(W) at the receiver input.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <span>
+
+#include "fogradar/core/random.hpp"
+#include "fogradar/radar/params.hpp"
+#include "fogradar/radar/scene.hpp"
+
+namespace fogradar::radar {
+
+struct SynthesisReport {
+  std::size_t clipped_samples = 0;  // I or Q rail beyond the ADC full scale
+};
+
+// Per sample n of chirp c (t = n / fs, stop-and-hop between chirps, range rate kept within a chirp):
+//   x_c[n] = sum_p a_p exp(i 2 pi (f_b,p - 2 v_p / lambda) t) exp(-i 4 pi v_p c T_i / lambda) + w_c[n]
+// with f_b,p = S L_p / c and w ~ CN(0, k T0 F fs). Tones without velocity (the static scene) are
+// summed once by phasor recurrence and copied to every chirp. `frame` must hold rows x columns
+// samples; nothing is allocated.
+SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
+                                 const RadarDerived& derived, RandomStream& rng,
+                                 std::span<std::complex<double>> frame);
+
+// ADC model: I and Q each quantised mid-rise with 2^bits levels over [-A, A], A = sqrt(P_fs) the
+// amplitude of a full-scale complex tone; values beyond A clip to the outermost level. Returns the
+// number of samples with a clipped rail.
+std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits, double full_scale_amplitude);
+
+}  // namespace fogradar::radar

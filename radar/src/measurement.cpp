@@ -1,0 +1,62 @@
+#include "fogradar/radar/measurement.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "fogradar/core/error.hpp"
+
+namespace fogradar::radar {
+
+RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
+    : params_(params), derived_(derive(params)), processor_(params, planner), cfar_(params.cfar) {}
+
+void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {
+  scene.validate();
+  if (std::abs(chamber.frequency_hz() - params_.carrier_frequency_hz) > 1e-6 * params_.carrier_frequency_hz) {
+    throw_invalid("chamber.frequency_hz", chamber.frequency_hz(),
+                  "equal to radar.carrier_frequency_hz = " + std::to_string(params_.carrier_frequency_hz));
+  }
+  // Every path must have its beat frequency inside [0, fs): the farthest is the floor-floor path of
+  // the farthest centre; 1 m of margin covers micro-motion and the floor detour at chamber scales.
+  double farthest_m = chamber.target_range_m();
+  for (const ScatteringCentre& centre : scene.centres) {
+    farthest_m = std::max(farthest_m, chamber.target_range_m() + centre.range_offset_m);
+  }
+  const double limit_m = derived_.max_range_m - 1.0;
+  if (farthest_m > limit_m) {
+    throw_invalid("chamber.target_range_m", farthest_m,
+                  "< the radar's unambiguous range minus 1 m = " + std::to_string(limit_m) +
+                      " m (c fs / (2 S)); raise radar.sample_rate_hz or lower the range");
+  }
+}
+
+MeasurementWorkspace RadarChain::make_workspace() const {
+  MeasurementWorkspace ws;
+  const std::size_t cells = params_.chirps_per_frame * params_.samples_per_chirp;
+  ws.frame.resize(cells);
+  ws.power.resize(cells);
+  return ws;
+}
+
+SynthesisReport RadarChain::synthesize_and_process(const Scene& scene, const propagation::Chamber& chamber,
+                                                   const propagation::ActiveLayers& active, RandomStream& rng,
+                                                   MeasurementWorkspace& ws) const {
+  scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
+  const SynthesisReport report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame);
+  processor_.process(ws.frame, ws.power);
+  return report;
+}
+
+void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber,
+                         const propagation::ActiveLayers& active, RandomStream& rng, MeasurementWorkspace& ws,
+                         Measurement& out) const {
+  out.synthesis = synthesize_and_process(scene, chamber, active, rng, ws);
+  estimate_detections(ws.frame, ws.power, processor_, cfar_, params_, derived_, ws.estimation, out.detections);
+  out.target.reset();
+  for (const Detection& detection : out.detections) {
+    if (std::abs(detection.range_m - chamber.target_range_m()) > params_.association_gate_m) continue;
+    if (!out.target || detection.received_power_w > out.target->received_power_w) out.target = detection;
+  }
+}
+
+}  // namespace fogradar::radar
