@@ -11,5 +11,7 @@ namespace fogradar::cli {
 using Action = std::function<void()>;
 
 Action add_fog_command(CLI::App& app);
+Action add_run_command(CLI::App& app);
+Action add_scenario_command(CLI::App& app);
 
 }  // namespace fogradar::cli

@@ -87,8 +87,13 @@ void run_fog(const FogOptions& options) {
             << "frequency                 " << radar.frequency_hz * 1e-9 << " GHz (wavelength "
             << radar.wavelength_m * 1e3 << " mm)\n"
             << "water index m = n + ik    " << radar.refractive_index.real() << " + "
-            << radar.refractive_index.imag() << "i (" << propagation::to_string(spec.water_model)
-            << ", " << spec.temperature_c << " C)\n"
+            << radar.refractive_index.imag() << "i (";
+  if (spec.water_model == propagation::WaterModel::segelstein) {
+    std::cout << "Segelstein table, about 25 C";
+  } else {
+    std::cout << "Liebe, " << spec.temperature_c << " C";
+  }
+  std::cout << ")\n"
             << "droplets                  " << propagation::distribution_name(spec.droplets) << ", "
             << fog.number_concentration_per_m3() * 1e-6 << " per cm^3\n"
             << "liquid water content      " << fog.lwc_g_per_m3() << " g/m^3\n"

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   CLI::App app{"fogradar: 77 GHz FMCW automotive radar in fog, simulated from physics"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(FOGRADAR_VERSION));
+  const fogradar::cli::Action run = fogradar::cli::add_run_command(app);
+  const fogradar::cli::Action scenario = fogradar::cli::add_scenario_command(app);
   const fogradar::cli::Action fog = fogradar::cli::add_fog_command(app);
   try {
     app.parse(argc, argv);
@@ -25,6 +27,8 @@ int main(int argc, char** argv) {
     return bad_input;
   }
   try {
+    if (app.got_subcommand("run")) run();
+    if (app.got_subcommand("scenario")) scenario();
     if (app.got_subcommand("fog")) fog();
   } catch (const fogradar::InvalidParameter& e) {
     std::cerr << "fogradar: " << e.what() << '\n';

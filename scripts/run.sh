@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Quick start (1): installs missing packages, builds Release, runs the main job.
-# Extra arguments go to the fogradar command, e.g. `scripts/run.sh fog --lwc 0.5`.
+# With arguments they go to the fogradar command instead, e.g. `scripts/run.sh fog --lwc 0.5`.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
@@ -10,4 +10,4 @@ cmake --build "$root/build/release" --target fogradar
 if (($#)); then
   exec "$root/build/release/cli/fogradar" "$@"
 fi
-exec "$root/build/release/cli/fogradar" fog
+exec "$root/build/release/cli/fogradar" run

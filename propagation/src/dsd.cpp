@@ -4,6 +4,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/gamma.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "fogradar/core/constants.hpp"
@@ -13,6 +14,10 @@ namespace fogradar::propagation {
 namespace {
 
 constexpr double metres_per_um = 1e-6;
+// Droplet sizes fogradar accepts: 10 nm (below, water is no continuum droplet) to 1 mm (drizzle;
+// fog droplets are < 100 um, paper sec. I). Distributions are truncated to this interval.
+constexpr double min_droplet_diameter_m = 1e-8;
+constexpr double max_droplet_diameter_m = 1e-3;
 // Tail mass left outside the quadrature range on each side.
 constexpr double tail_fraction = 1e-12;
 // Composite Gauss-Legendre: panels x points per panel in ln D. 20-point rules are exact for
@@ -51,15 +56,14 @@ std::string_view distribution_name(const DropSizeDistribution& dsd) {
   return std::visit(Name{}, dsd);
 }
 
-// Allowed droplet sizes: 10 nm (below that water is no longer a continuum droplet) to 1 mm
-// (drizzle; fog droplets are < 100 um, paper sec. I).
 void validate(const DropSizeDistribution& dsd) {
   struct Check {
     void operator()(const Monodisperse& d) const {
-      require_in_range("fog.droplets.diameter_m", d.diameter_m, 1e-8, 1e-3);
+      require_in_range("fog.droplets.diameter_m", d.diameter_m, min_droplet_diameter_m, max_droplet_diameter_m);
     }
     void operator()(const Lognormal& d) const {
-      require_in_range("fog.droplets.median_diameter_m", d.median_diameter_m, 1e-8, 1e-3);
+      require_in_range("fog.droplets.median_diameter_m", d.median_diameter_m, min_droplet_diameter_m,
+                       max_droplet_diameter_m);
       require_in_range("fog.droplets.geometric_std", d.geometric_std, 1.01, 3.0);
     }
     void operator()(const ModifiedGamma& d) const {
@@ -96,9 +100,14 @@ double diameter_moment(const DropSizeDistribution& dsd, int k) {
   return std::visit(Moment{k}, dsd);
 }
 
-// LWC = rho_w N (pi/6) <D^3>  =>  N = LWC / (rho_w (pi/6) <D^3>).
+// LWC = rho_w N (pi/6) <D^3>  =>  N = LWC / (rho_w (pi/6) <D^3>), with <D^3> of the truncated
+// distribution the optics integrate over, so that N and the bulk sums hold exactly that LWC.
 double number_concentration_per_m3(const DropSizeDistribution& dsd, double lwc_g_per_m3) {
-  return lwc_g_per_m3 / (water_density_g_per_m3 * pi / 6.0 * diameter_moment(dsd, 3));
+  double mean_volume_m3 = 0.0;
+  for (const QuadratureNode& node : quadrature_nodes(dsd)) {
+    mean_volume_m3 += node.weight * pi / 6.0 * node.diameter_m * node.diameter_m * node.diameter_m;
+  }
+  return lwc_g_per_m3 / (water_density_g_per_m3 * mean_volume_m3);
 }
 
 double diameter_pdf(const DropSizeDistribution& dsd, double diameter_m) {
@@ -147,7 +156,8 @@ DiameterRange quadrature_range(const DropSizeDistribution& dsd) {
               2.0 * metres_per_um * radius_um_from_u(d, u_high)};
     }
   };
-  return std::visit(Range{}, dsd);
+  const DiameterRange tails = std::visit(Range{}, dsd);
+  return {std::max(tails.min_m, min_droplet_diameter_m), std::min(tails.max_m, max_droplet_diameter_m)};
 }
 
 std::vector<QuadratureNode> quadrature_nodes(const DropSizeDistribution& dsd) {
@@ -175,6 +185,10 @@ std::vector<QuadratureNode> quadrature_nodes(const DropSizeDistribution& dsd) {
       if (x != 0.0) add_node(mid, -x, w);
     }
   }
+  // Normalise to the truncated distribution (a no-op to ~1e-12 unless the 1 mm cap cut a tail).
+  double total = 0.0;
+  for (const QuadratureNode& node : nodes) total += node.weight;
+  for (QuadratureNode& node : nodes) node.weight /= total;
   return nodes;
 }
 

@@ -96,7 +96,9 @@ void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> 
     const double s = std::sin(pi * u / nd);
     const double magnitude = std::abs(s) < 1e-12 ? (std::abs(std::remainder(u, nd)) < 1e-9 ? 1.0 : 0.0)
                                                  : std::sin(pi * u) / (nd * s);
-    kernel[m] = std::polar(magnitude, pi * u * (nd - 1.0) / nd);
+    // X(nu) = sum_m X[m] (1/N) sum_n exp(-i 2 pi (nu - m) n / N): the geometric sum has phase
+    // exp(-i pi u (N-1)/N) for FFTW's forward sign exp(-i 2 pi n k / N).
+    kernel[m] = std::polar(magnitude, -pi * u * (nd - 1.0) / nd);
   }
 }
 

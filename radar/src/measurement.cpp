@@ -19,8 +19,15 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
   // Every path must have its beat frequency inside [0, fs): the farthest is the floor-floor path of
   // the farthest centre; 1 m of margin covers micro-motion and the floor detour at chamber scales.
   double farthest_m = chamber.target_range_m();
-  for (const ScatteringCentre& centre : scene.centres) {
-    farthest_m = std::max(farthest_m, chamber.target_range_m() + centre.range_offset_m);
+  for (std::size_t i = 0; i < scene.centres.size(); ++i) {
+    const double along_m = chamber.target_range_m() + scene.centres[i].range_offset_m;
+    // A centre at or behind the radar has no meaningful radar equation (R^-4 diverges at 0).
+    if (!(along_m > 0.0)) {
+      throw_invalid("target.centres[" + std::to_string(i) + "].range_offset_m", scene.centres[i].range_offset_m,
+                    "> -" + std::to_string(chamber.target_range_m()) +
+                        " (the negative chamber target range): the centre must lie in front of the radar");
+    }
+    farthest_m = std::max(farthest_m, along_m);
   }
   const double limit_m = derived_.max_range_m - 1.0;
   if (farthest_m > limit_m) {

@@ -30,8 +30,8 @@ double adaptive_integral(const DropSizeDistribution& dsd, F f) {
 }
 
 std::vector<DropSizeDistribution> continuous_distributions() {
-  return {Lognormal{1e-6, 1.5}, Lognormal{8e-6, 2.2}, advection_fog(), radiation_fog(),
-          ModifiedGamma{.alpha = 2.0, .gamma = 0.5, .b_per_um_gamma = 2.0}};
+  return {Lognormal{1e-6, 1.5}, Lognormal{8e-6, 1.5}, advection_fog(), radiation_fog(),
+          ModifiedGamma{.alpha = 6.0, .gamma = 2.0, .b_per_um_gamma = 0.2}};
 }
 
 TEST(Dsd, PdfIntegratesToOneAndMomentsMatchClosedForms) {
@@ -84,6 +84,29 @@ TEST(Dsd, QuadratureNodesReproduceMoments) {
 // Shettle & Fenn presets as tabulated by Al Naboulsi et al. 2004: with their scale a, the number
 // concentration a Gamma(alpha+1) / b^(alpha+1) is 20 cm^-3 (advection, a = 0.027) and 100 cm^-3
 // (radiation, a = 2.37305); mode radii alpha / b are 10 um and 4 um.
+// A broad distribution is truncated at the largest accepted droplet (1 mm) and renormalised; the
+// truncated distribution still holds exactly the requested LWC (independent adaptive integral of the
+// pdf over the truncated range, normalised by its own integral).
+TEST(Dsd, BroadDistributionsAreTruncatedAtOneMillimetre) {
+  const DropSizeDistribution broad = Lognormal{20e-6, 2.5};
+  const DiameterRange r = quadrature_range(broad);
+  EXPECT_EQ(r.max_m, 1e-3);
+  const auto truncated = [&](auto f) {
+    const auto integrand = [&](double log_d) {
+      const double d = std::exp(log_d);
+      return f(d) * diameter_pdf(broad, d) * d;
+    };
+    return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(integrand, std::log(r.min_m),
+                                                                          std::log(r.max_m), 20, 1e-12);
+  };
+  const double mass_fraction_kept = truncated([](double d) { return d * d * d; }) / diameter_moment(broad, 3);
+  EXPECT_LT(mass_fraction_kept, 0.99);  // the cap really cuts this one
+  const double lwc = 0.5;
+  const double held = number_concentration_per_m3(broad, lwc) * rho_water_g_per_m3 * std::numbers::pi / 6.0 *
+                      truncated([](double d) { return d * d * d; }) / truncated([](double) { return 1.0; });
+  EXPECT_NEAR(held / lwc, 1.0, 1e-6);
+}
+
 TEST(Dsd, ShettleFennPresets) {
   const auto check = [](const ModifiedGamma& d, double a_per_cm3_um, double n_per_cm3, double mode_um) {
     EXPECT_NEAR(a_per_cm3_um * boost::math::tgamma(d.alpha + 1.0) / std::pow(d.b_per_um_gamma, d.alpha + 1.0),

@@ -72,10 +72,10 @@ TEST_F(FogTest, BackscatterMatchesRayleighClosedForm) {
 
 // The node sum against an independent adaptive Gauss-Kronrod integral of Mie extinction at 550 nm,
 // where the Mie efficiency oscillates with size. Water's k ~ 2e-9 at 550 nm makes Mie resonances so
-// narrow that no smooth rule resolves them: for radiation fog (x up to ~300) they carry ~4e-4 of the
+// narrow that no smooth rule resolves them: for radiation fog (x up to ~430) they carry ~4e-4 of the
 // integral (a 2e4- and an 8e4-point trapezoid rule in ln D disagree by 7.5e-5 and sit 4.6e-4 and
 // 3.8e-4 from the node sum; doubling the node count moves it by 3e-5). Hence 1e-3 there; the default
-// 1 um fog (x < 60) has no such resonances in reach and must agree within 2e-5.
+// 1 um fog (x up to ~265, but with almost no weight beyond x ~ 60) must agree within 2e-5.
 TEST_F(FogTest, OpticalQuadratureMatchesAdaptiveIntegral) {
   struct Case {
     DropSizeDistribution dsd;

@@ -49,11 +49,11 @@ std::string_view distribution_name(const DropSizeDistribution& dsd);
 // Throws InvalidParameter naming the field (e.g. "Lognormal.geometric_std") if out of range.
 void validate(const DropSizeDistribution& dsd);
 
-// k-th raw moment <D^k> of the normalised distribution (m^k), closed form.
+// k-th raw moment <D^k> of the normalised, untruncated distribution (m^k), closed form.
 double diameter_moment(const DropSizeDistribution& dsd, int k);
 
 // Number concentration N (1/m^3) that holds `lwc_g_per_m3` of liquid water:
-//   N = LWC / (rho_w (pi/6) <D^3>).
+//   N = LWC / (rho_w (pi/6) <D^3>), <D^3> of the distribution truncated to the quadrature range.
 double number_concentration_per_m3(const DropSizeDistribution& dsd, double lwc_g_per_m3);
 
 // Normalised probability density of diameter, p(D) (1/m), integrating to 1. Zero for monodisperse
@@ -61,15 +61,18 @@ double number_concentration_per_m3(const DropSizeDistribution& dsd, double lwc_g
 double diameter_pdf(const DropSizeDistribution& dsd, double diameter_m);
 
 // Diameter interval outside which each tail holds less than 1e-12 of the number (lower end) and of
-// the D^6 moment (upper end); the quadrature range. Both ends equal the diameter for monodisperse.
+// the D^6 moment (upper end), clipped to the droplet sizes fogradar accepts (10 nm .. 1 mm): the
+// quadrature range. A broad distribution (e.g. lognormal, median 20 um, sigma_g 2.5) is truncated at
+// 1 mm: its drops beyond are drizzle, not fog. Both ends equal the diameter for monodisperse.
 struct DiameterRange {
   double min_m;
   double max_m;
 };
 DiameterRange quadrature_range(const DropSizeDistribution& dsd);
 
-// Nodes and weights with sum_j weight_j f(D_j) ~ integral f(D) p(D) dD: composite Gauss-Legendre in
-// ln D over quadrature_range (a single node of weight 1 for monodisperse). Bulk fog optics are sums
+// Nodes and weights with sum_j weight_j f(D_j) ~ integral f(D) p(D) dD over the truncated and
+// renormalised distribution: composite Gauss-Legendre in ln D over quadrature_range (a single node of
+// weight 1 for monodisperse). Bulk fog optics are sums
 // of per-droplet cross sections over these nodes.
 struct QuadratureNode {
   double diameter_m;

@@ -40,14 +40,15 @@ class SegelsteinTable {
 };
 
 // Liebe, Hufford & Manabe 1991 (Int. J. IR mm Waves 12, 659) double-Debye relative permittivity of
-// liquid water, in the form of ITU-R P.840-8 eq. (6)-(12). Valid 0-1000 GHz, temperature_k in
+// liquid water, in the form ITU-R P.840 uses (eq. (4)-(11) in the numbering of P.840-7), which keeps
+// the high-frequency permittivity eps2 = 3.52 constant as Liebe et al. 1993 do. Valid 0-1000 GHz, temperature_k in
 // [253.15, 323.15] (-20..50 C, supercooled water included as P.840 does); outside throws.
 std::complex<double> liebe1991_permittivity(double frequency_hz, double temperature_k);
 
 // m = sqrt(eps) on the branch with Im(m) >= 0.
 std::complex<double> refractive_index_from_permittivity(std::complex<double> permittivity);
 
-// ITU-R P.840-8 eq. (2): Rayleigh specific attenuation coefficient of cloud/fog liquid water,
+// ITU-R P.840 eq. (2)-(3) (P.840-7 numbering): Rayleigh specific attenuation coefficient of cloud/fog liquid water,
 // K_l = 0.819 f / (eps'' (1 + eta^2)), eta = (2 + eps') / eps'', in (dB/km)/(g/m^3), f in GHz.
 double itu_p840_specific_attenuation_coefficient(double frequency_hz, double temperature_k);
 

@@ -37,7 +37,7 @@ struct EstimationWorkspace {
 };
 
 // Exact interpolation of a DFT to a fractional bin nu: the DTFT of the (windowed) time signal,
-// X(nu) = sum_m X[m] K(nu - m), K(u) = exp(i pi u (N-1)/N) sin(pi u) / (N sin(pi u / N)) (the
+// X(nu) = sum_m X[m] K(nu - m), K(u) = exp(-i pi u (N-1)/N) sin(pi u) / (N sin(pi u / N)) (the
 // periodic sinc / Dirichlet kernel; e.g. Oppenheim & Schafer, Discrete-Time Signal Processing,
 // 3rd ed., sec. 8.4). Fills `kernel` with K(nu - m), m = 0..N-1.
 void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel);

@@ -1,0 +1,193 @@
+#include "fogradar/experiment/outputs.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <toml++/toml.h>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/stats/format.hpp"
+#include "fogradar/stats/svg_plot.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+std::string joined_outliers(const std::vector<double>& outliers) {
+  std::string text;
+  for (double v : outliers) {
+    if (!text.empty()) text += ';';
+    text += stats::format_fixed(v, 4);
+  }
+  return text;
+}
+
+void write_file(const fs::path& path, const std::string& content) {
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  file << content;
+  file.close();
+  if (!file) throw_invalid("--out", path.string(), "a writable location (writing failed)");
+}
+
+}  // namespace
+
+std::string samples_csv(const ExperimentResult& result) {
+  std::string out = "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db\n";
+  for (const StepResult& step : result.steps) {
+    for (std::size_t i = 0; i < step.records.size(); ++i) {
+      const MeasurementRecord& r = step.records[i];
+      out += std::to_string(step.active_layers) + ',' + std::to_string(i) + ',' + (r.detected ? "1" : "0") + ',';
+      if (r.detected) out += stats::format_fixed(r.range_m, 4) + ',' + stats::format_fixed(r.rcs_dbsm, 4) + ',' + stats::format_fixed(r.snr_db, 3);
+      else out += ",,";
+      out += '\n';
+    }
+  }
+  return out;
+}
+
+std::string summary_csv(const ExperimentSummary& summary) {
+  std::string out =
+      "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,"
+      "max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value\n";
+  for (const StepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.rcs;
+    out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' + std::to_string(s.detections) + ',' +
+           stats::format_fixed(s.detection_rate, 4) + ',' + stats::format_fixed(b.mean, 4) + ',' + stats::format_fixed(b.std_dev, 4) + ',' + stats::format_fixed(b.min, 4) +
+           ',' + stats::format_fixed(b.q1, 4) + ',' + stats::format_fixed(b.median, 4) + ',' + stats::format_fixed(b.q3, 4) + ',' + stats::format_fixed(b.max, 4) + ',' +
+           stats::format_fixed(b.whisker_low, 4) + ',' + stats::format_fixed(b.whisker_high, 4) + ',' + joined_outliers(b.outliers) + ',' +
+           stats::format_fixed(s.median_shift_db, 4) + ',' + (std::isnan(s.p_value) ? "" : stats::format_number(s.p_value, 6)) +
+           '\n';
+  }
+  return out;
+}
+
+std::string summary_json(const Scenario& scenario, const ExperimentSummary& summary) {
+  std::ostringstream scenario_json;
+  scenario_json << toml::json_formatter{toml::parse(to_toml(scenario))};
+  nlohmann::json steps = nlohmann::json::array();
+  for (const StepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.rcs;
+    steps.push_back({{"active_layers", s.active_layers},
+                     {"n", s.n},
+                     {"detections", s.detections},
+                     {"detection_rate", s.detection_rate},
+                     {"mean_dbsm", number_or_null(b.mean)},
+                     {"std_db", number_or_null(b.std_dev)},
+                     {"min_dbsm", number_or_null(b.min)},
+                     {"q1_dbsm", number_or_null(b.q1)},
+                     {"median_dbsm", number_or_null(b.median)},
+                     {"q3_dbsm", number_or_null(b.q3)},
+                     {"max_dbsm", number_or_null(b.max)},
+                     {"whisker_low_dbsm", number_or_null(b.whisker_low)},
+                     {"whisker_high_dbsm", number_or_null(b.whisker_high)},
+                     {"outliers", b.outliers},
+                     {"median_shift_db", number_or_null(s.median_shift_db)},
+                     {"median_shift_ci95_db", {number_or_null(s.median_shift_ci95.low), number_or_null(s.median_shift_ci95.high)}},
+                     {"p_value", number_or_null(s.p_value)},
+                     {"median_snr_db", number_or_null(s.median_snr_db)},
+                     {"two_way_attenuation_db", s.two_way_attenuation_db},
+                     {"confusion_rate", s.confusion_rate}});
+  }
+  const nlohmann::json out = {
+      {"scenario", nlohmann::json::parse(scenario_json.str())},
+      {"steps", steps},
+      {"sensor_limit_layers",
+       summary.sensor_limit_layers ? nlohmann::json(*summary.sensor_limit_layers) : nlohmann::json(nullptr)},
+      {"sensor_limit_criterion", sensor_limit_criterion},
+      {"attenuation_margin_db",
+       summary.attenuation_margin_db ? number_or_null(*summary.attenuation_margin_db) : nlohmann::json(nullptr)},
+      {"statistics",
+       {{"quantiles", "Hyndman & Fan (1996) type 7 (R's default)"},
+        {"whiskers", "Tukey: most extreme values within 1.5 IQR of the quartiles"},
+        {"shift_test", "Mann-Whitney U (two-sided) against the 0-layer series"}}},
+  };
+  return out.dump(2) + '\n';
+}
+
+std::string rcs_boxplot_svg(const ExperimentSummary& summary) {
+  std::vector<stats::BoxPlotSeries> series;
+  for (const StepSummary& s : summary.steps) {
+    series.push_back({std::to_string(s.active_layers), s.rcs});
+  }
+  stats::SvgPlotOptions options;
+  options.title = "RCS of the tracked target against active fog layers";
+  options.x_label = "Active fog layers";
+  options.y_label = "RCS (dBsm)";
+  return stats::box_plot_svg(series, options);
+}
+
+std::string summary_table(const ExperimentSummary& summary) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%6s %5s %8s %9s %9s %9s %9s %10s %9s %8s\n", "layers", "n", "detected",
+                "median", "IQR", "mean", "std", "shift", "p", "loss");
+  out << line;
+  std::snprintf(line, sizeof line, "%6s %5s %8s %9s %9s %9s %9s %10s %9s %8s\n", "", "", "%", "dBsm", "dB", "dBsm",
+                "dB", "dB", "", "dB 2-way");
+  out << line;
+  for (const StepSummary& s : summary.steps) {
+    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %9.3f %9.3f %9.3f %9.3f %10.4f %9.3g %8.4f\n", s.active_layers,
+                  s.n, 100.0 * s.detection_rate, s.rcs.median, s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev,
+                  s.median_shift_db, s.p_value, s.two_way_attenuation_db);
+    out << line;
+  }
+  out << "sensor limit: ";
+  if (summary.sensor_limit_layers) out << *summary.sensor_limit_layers << " active layers\n";
+  else out << "not reached\n";
+  if (summary.attenuation_margin_db) {
+    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n", *summary.attenuation_margin_db);
+    out << line;
+  }
+  return out.str();
+}
+
+bool prepare_output_directory(const fs::path& dir) {
+  std::error_code error;
+  const bool existed = fs::exists(dir, error);
+  if (existed && !fs::is_directory(dir, error)) throw_invalid("--out", dir.string(), "a directory");
+  if (!existed && !fs::create_directories(dir, error)) {
+    throw_invalid("--out", dir.string(), "a directory that can be created (" + error.message() + ")");
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) throw_invalid("--out", dir.string(), "a writable directory");
+  return !existed;
+}
+
+void write_outputs(const fs::path& dir, const Scenario& scenario, const ExperimentResult& result,
+                   const ExperimentSummary& summary) {
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"samples.csv", samples_csv(result)},
+      {"summary.csv", summary_csv(summary)},
+      {"summary.json", summary_json(scenario, summary)},
+      {"rcs_boxplot.svg", rcs_boxplot_svg(summary)},
+      {"scenario.toml", to_toml(scenario)},
+  };
+  const std::string suffix = ".tmp-" + std::to_string(::getpid());
+  std::vector<fs::path> written;
+  try {
+    for (const auto& [name, content] : files) {
+      written.push_back(dir / ("." + name + suffix));
+      write_file(written.back(), content);
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      std::error_code error;
+      fs::rename(written[i], dir / files[i].first, error);
+      if (error) throw_invalid("--out", (dir / files[i].first).string(), "replaceable (" + error.message() + ")");
+    }
+  } catch (...) {
+    std::error_code ignored;
+    for (const fs::path& path : written) fs::remove(path, ignored);
+    throw;
+  }
+}
+
+}  // namespace fogradar::experiment

@@ -1,0 +1,100 @@
+#include "fogradar/experiment/runner.hpp"
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/core/random.hpp"
+#include "fogradar/core/units.hpp"
+#include "fogradar/radar/measurement.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+bool inside_active_layer(double range_m, const propagation::Chamber& chamber,
+                         const propagation::ActiveLayers& active) {
+  for (std::size_t i = 0; i < chamber.layer_count(); ++i) {
+    if (active[i] && range_m >= chamber.layer(i).start_m && range_m < chamber.layer(i).end_m) return true;
+  }
+  return false;
+}
+
+MeasurementRecord record_of(const radar::Measurement& m, const propagation::Chamber& chamber,
+                            const propagation::ActiveLayers& active) {
+  MeasurementRecord record;
+  double strongest_fog_w = 0.0;
+  for (const radar::Detection& d : m.detections) {
+    if (!inside_active_layer(d.range_m, chamber, active)) continue;
+    ++record.fog_detections;
+    strongest_fog_w = std::max(strongest_fog_w, d.received_power_w);
+  }
+  if (m.target) {
+    record.detected = true;
+    record.range_m = m.target->range_m;
+    record.rcs_dbsm = m.target->rcs_dbsm;
+    record.snr_db = m.target->snr_db;
+  }
+  record.fog_rivals_target = record.fog_detections > 0 && (!m.target || strongest_fog_w >= m.target->received_power_w);
+  return record;
+}
+
+}  // namespace
+
+ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
+  scenario.validate();
+  const propagation::SegelsteinTable table;
+  const propagation::Chamber chamber(scenario.chamber_spec(), scenario.radar.carrier_frequency_hz, table);
+  const radar::Scene scene = scenario.scene();
+  const radar::RadarChain chain(scenario.radar);
+  chain.check_compatible(scene, chamber);
+
+  const std::size_t steps = scenario.experiment.max_active_layers + 1;
+  const std::size_t per_step = scenario.experiment.measurements_per_step;
+  ExperimentResult result;
+  result.cfar_threshold_db = power_ratio_to_db(chain.cfar().threshold_factor());
+  std::vector<propagation::ActiveLayers> active(steps);
+  result.steps.resize(steps);
+  for (std::size_t k = 0; k < steps; ++k) {
+    active[k] = propagation::first_layers_active(k, chamber.layer_count());
+    result.steps[k].active_layers = k;
+    result.steps[k].two_way_attenuation_db = chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
+    result.steps[k].records.resize(per_step);
+  }
+
+  const std::size_t total = steps * per_step;
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = static_cast<unsigned>(
+      std::min<std::size_t>(options.threads == 0 ? hardware : options.threads, total));
+  std::atomic<std::size_t> next{0}, done{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+
+  const auto worker = [&] {
+    try {
+      radar::MeasurementWorkspace workspace = chain.make_workspace();
+      radar::Measurement measurement;
+      for (std::size_t item = next++; item < total; item = next++) {
+        const std::size_t k = item / per_step, i = item % per_step;
+        RandomStream rng(scenario.experiment.seed, k, i);
+        chain.measure(scene, chamber, active[k], rng, workspace, measurement);
+        result.steps[k].records[i] = record_of(measurement, chamber, active[k]);
+        const std::size_t finished = ++done;
+        if (options.progress) options.progress(finished, total);
+      }
+    } catch (...) {
+      const std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = total;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& thread : pool) thread.join();
+  if (failure) std::rethrow_exception(failure);
+  return result;
+}
+
+}  // namespace fogradar::experiment

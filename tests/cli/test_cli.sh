@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# End-to-end checks of the fogradar command (DESIGN §4, §6): outputs, byte-identical results for 1 and
+# 2 threads, and bad input -> exit status 2, one message naming the argument or key, no files left.
+# Usage: test_cli.sh FOGRADAR_BINARY SOURCE_DIR
+set -u
+fogradar=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passes=0
+pass() { passes=$((passes + 1)); }
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# --- outputs and determinism -------------------------------------------------------------------
+"$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t1" --threads 1 >"$work/t1.log" 2>&1 \
+  || fail "small run (1 thread) failed: $(cat "$work/t1.log")"
+"$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t2" --threads 2 >/dev/null 2>&1 \
+  || fail "small run (2 threads) failed"
+for f in samples.csv summary.csv summary.json rcs_boxplot.svg scenario.toml; do
+  if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
+done
+head -1 "$work/t1/samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db' && pass \
+  || fail "samples.csv header"
+head -1 "$work/t1/summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value' \
+  && pass || fail "summary.csv header"
+[ "$(wc -l <"$work/t1/samples.csv")" -eq 31 ] && pass || fail "samples.csv should have 5 x 6 rows"
+grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary.json lacks sensor_limit_layers"
+grep -q '<svg' "$work/t1/rcs_boxplot.svg" && pass || fail "no svg element"
+# The resolved scenario reproduces the run exactly.
+"$fogradar" run --scenario "$work/t1/scenario.toml" --out "$work/t3" >/dev/null 2>&1 || fail "rerun from scenario.toml"
+cmp -s "$work/t1/samples.csv" "$work/t3/samples.csv" && pass || fail "scenario.toml does not reproduce the run"
+ls -A "$work/t1" | grep -q '\.tmp' && fail "temporary files left behind" || pass
+
+# --- bad input -----------------------------------------------------------------------------------
+# expect_bad NAME EXPECTED_TEXT ARGS...: exit 2, stderr names EXPECTED_TEXT, the output dir stays empty.
+expect_bad() {
+  local name=$1 expected=$2
+  shift 2
+  local out="$work/bad-$name"
+  "$fogradar" "$@" >"$work/stdout" 2>"$work/stderr"
+  local rc=$?
+  if [ $rc -ne 2 ]; then fail "$name: exit $rc, expected 2 ($(cat "$work/stderr"))"; return; fi
+  if ! grep -qF -- "$expected" "$work/stderr"; then fail "$name: message does not name '$expected': $(cat "$work/stderr")"; return; fi
+  if [ "$(wc -l <"$work/stderr")" -gt 2 ]; then fail "$name: more than one message: $(cat "$work/stderr")"; return; fi
+  if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then fail "$name: files left in $out"; return; fi
+  pass
+}
+printf '[radar]\ntx_power_w = 1\n' >"$work/unknown.toml"
+printf '[radar]\ntx_power_dbm = "ten"\n' >"$work/type.toml"
+printf '[chamber]\nlayer_count = 0\n' >"$work/zero.toml"
+printf '[experiment]\nmax_active_layers = 9\n' >"$work/many.toml"
+printf '[processing.cfar]\ntraining_cells = 400\n' >"$work/cfar.toml"
+printf '[radar]\ncarrier_frequency_hz = 5e13\n' >"$work/freq.toml"
+printf '[fog]\nlwc_g_per_m3 = nan\n' >"$work/nan.toml"
+printf '[radar\n' >"$work/malformed.toml"
+touch "$work/a-file"
+expect_bad unknown-key radar.tx_power_w run --scenario "$work/unknown.toml" --out "$work/bad-unknown-key"
+expect_bad wrong-type radar.tx_power_dbm run --scenario "$work/type.toml" --out "$work/bad-wrong-type"
+expect_bad zero-layers chamber.layer_count run --scenario "$work/zero.toml" --out "$work/bad-zero-layers"
+expect_bad too-many-active experiment.max_active_layers run --scenario "$work/many.toml" --out "$work/bad-too-many-active"
+expect_bad cfar-window processing.cfar.training_cells run --scenario "$work/cfar.toml" --out "$work/bad-cfar-window"
+expect_bad frequency radar.carrier_frequency_hz run --scenario "$work/freq.toml" --out "$work/bad-frequency"
+expect_bad nan-lwc fog.lwc_g_per_m3 run --scenario "$work/nan.toml" --out "$work/bad-nan-lwc"
+expect_bad malformed malformed.toml:1 run --scenario "$work/malformed.toml" --out "$work/bad-malformed"
+expect_bad missing-file --scenario run --scenario "$work/does-not-exist.toml" --out "$work/bad-missing-file"
+expect_bad out-is-file --out run --scenario "$src/tests/cli/small.toml" --out "$work/a-file"
+expect_bad out-unwritable --out run --scenario "$src/tests/cli/small.toml" --out /proc/fogradar-out
+expect_bad threads-negative --threads run --threads -1 --out "$work/bad-threads-negative"
+expect_bad threads-text --threads run --threads many --out "$work/bad-threads-text"
+expect_bad seed-negative --seed run --seed -4 --out "$work/bad-seed-negative"
+expect_bad unknown-option --frobnicate run --frobnicate --out "$work/bad-unknown-option"
+expect_bad fog-lwc --lwc fog --lwc -1
+expect_bad fog-model --water-model fog --water-model mie
+expect_bad fog-two-densities --visibility-m fog --lwc 1 --visibility-m 3
+expect_bad fog-frequency --frequency-ghz fog --frequency-ghz 1e9
+
+# --- fog --json carries the DESIGN §4 keys ----------------------------------------------------------
+json=$("$fogradar" fog --frequency-ghz 77 --lwc 1 --temperature-c 20 --json)
+for key in frequency_hz wavelength_m refractive_index_n refractive_index_k lwc_g_per_m3 \
+  specific_attenuation_db_per_km volume_backscatter_m2_per_m3 optical_extinction_per_km visibility_m; do
+  echo "$json" | grep -q "\"$key\"" && pass || fail "fog --json lacks $key"
+done
+"$fogradar" scenario | grep -q '^\[experiment\]' && pass || fail "fogradar scenario prints no [experiment]"
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,252 @@
+// Radar parameters: every invalid field rejected with its name (STYLE.md practice 11), and the
+// derived quantities against the textbook FMCW relations written out here:
+//   [Ri14] M. A. Richards, Fundamentals of Radar Signal Processing, 2nd ed.: range resolution
+//          c / (2B), Doppler 2v/lambda, velocity resolution lambda / (2 N_c T_i).
+//   [PJ62] J. R. Probert-Jones, QJRMS 88, 485 (1962): two-way Gaussian-beam solid angle
+//          pi theta_az theta_el / (8 ln 2).
+// Tolerances: derived quantities 1e-12 relative (the same formulas in double precision).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "chain_test_support.hpp"
+#include "fogradar/core/error.hpp"
+#include "fogradar/radar/measurement.hpp"
+
+namespace fogradar::radar {
+namespace {
+
+constexpr double kC = 299'792'458.0;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void expect_rejected(const std::function<void(RadarParams&)>& change, const std::string& field) {
+  RadarParams p;
+  change(p);
+  try {
+    p.validate();
+    ADD_FAILURE() << "validate() accepted an invalid " << field;
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), field) << error.what();
+    EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+  }
+  // The chain and derive() validate too.
+  EXPECT_THROW(derive(p), InvalidParameter) << field;
+  EXPECT_THROW(RadarChain{p}, InvalidParameter) << field;
+}
+
+// Every double field: below its range, above it, NaN (and infinity where the range is finite).
+TEST(RadarParams, RejectsEveryInvalidField) {
+  EXPECT_NO_THROW(RadarParams{}.validate());
+  struct DoubleField {
+    const char* name;
+    double RadarParams::*member;
+    double too_low;
+    double too_high;
+  };
+  const DoubleField fields[] = {
+      {"radar.carrier_frequency_hz", &RadarParams::carrier_frequency_hz, 0.5e9, 400e9},
+      {"radar.sweep_bandwidth_hz", &RadarParams::sweep_bandwidth_hz, 0.0, 50e9},
+      {"radar.chirp_duration_s", &RadarParams::chirp_duration_s, 0.0, 1.0},
+      {"radar.chirp_interval_s", &RadarParams::chirp_interval_s, 50e-6, 2.0},  // < duration
+      {"radar.sample_rate_hz", &RadarParams::sample_rate_hz, -1.0, 1e11},
+      {"radar.tx_power_dbm", &RadarParams::tx_power_dbm, -40.0, 60.0},
+      {"radar.tx_gain_dbi", &RadarParams::tx_gain_dbi, -1.0, 70.0},
+      {"radar.rx_gain_dbi", &RadarParams::rx_gain_dbi, -1.0, 70.0},
+      {"radar.azimuth_beamwidth_deg", &RadarParams::azimuth_beamwidth_deg, 0.0, 200.0},
+      {"radar.elevation_beamwidth_deg", &RadarParams::elevation_beamwidth_deg, 0.0, 200.0},
+      {"radar.noise_figure_db", &RadarParams::noise_figure_db, -1.0, 50.0},
+      {"radar.reference_temperature_k", &RadarParams::reference_temperature_k, 0.0, 2000.0},
+      {"radar.adc_full_scale_dbm", &RadarParams::adc_full_scale_dbm, -200.0, 40.0},
+      {"radar.phase_noise_rms_rad", &RadarParams::phase_noise_rms_rad, -0.1, 4.0},
+      {"radar.association_gate_m", &RadarParams::association_gate_m, -1.0, 2e3},
+  };
+  for (const DoubleField& f : fields) {
+    for (const double bad : {f.too_low, f.too_high, kNaN, -kInf, kInf}) {
+      expect_rejected([&](RadarParams& p) { p.*(f.member) = bad; }, f.name);
+    }
+  }
+  // Counts.
+  expect_rejected([](RadarParams& p) { p.samples_per_chirp = 8; }, "radar.samples_per_chirp");
+  expect_rejected([](RadarParams& p) { p.chirps_per_frame = 0; }, "radar.chirps_per_frame");
+  expect_rejected([](RadarParams& p) { p.adc_bits = 25; }, "radar.adc_bits");
+  // The samples must fit in the chirp: 1024 samples at 10 MS/s need 102.4 us > 51.2 us.
+  expect_rejected([](RadarParams& p) { p.samples_per_chirp = 1024; }, "radar.samples_per_chirp");
+  // CFAR fields keep their own names.
+  expect_rejected([](RadarParams& p) { p.cfar.training_cells = 0; }, "cfar.training_cells");
+  expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = 1.0; }, "cfar.false_alarm_probability");
+  expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = kNaN; }, "cfar.false_alarm_probability");
+  expect_rejected(
+      [](RadarParams& p) {
+        p.cfar.kind = CfarKind::os;
+        p.cfar.os_rank = 17;
+      },
+      "cfar.os_rank");
+  // A CFAR window (2 (g + n) + 1 = 21 cells) longer than the range profile (16 samples).
+  expect_rejected(
+      [](RadarParams& p) {
+        p.samples_per_chirp = 16;
+        p.sample_rate_hz = 1e6;
+      },
+      "cfar.training_cells");
+}
+
+// Paper radar (DESIGN §4): the derived quantities by the textbook relations [Ri14, PJ62].
+TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
+  const RadarParams p;
+  const RadarDerived d = derive(p);
+  const double lambda = kC / 77e9;
+  const double slope = 1e9 / 51.2e-6;
+  const double max_range = kC * 10e6 / (2.0 * slope);
+  const double deg = std::numbers::pi / 180.0;
+  EXPECT_NEAR(d.wavelength_m / lambda, 1.0, 1e-12);
+  EXPECT_NEAR(d.chirp_slope_hz_per_s / slope, 1.0, 1e-12);
+  EXPECT_NEAR(d.range_resolution_m / (kC / 2e9), 1.0, 1e-12);
+  EXPECT_NEAR(d.max_range_m / max_range, 1.0, 1e-12);
+  EXPECT_NEAR(d.range_bin_m / (max_range / 512.0), 1.0, 1e-12);
+  EXPECT_NEAR(d.range_bin_m / test::reference_range_bin_m(p), 1.0, 1e-12);
+  EXPECT_NEAR(d.velocity_resolution_m_per_s / (lambda / (2.0 * 64 * 51.2e-6)), 1.0, 1e-12);
+  EXPECT_NEAR(d.max_unambiguous_velocity_m_per_s / (lambda / (4.0 * 51.2e-6)), 1.0, 1e-12);
+  EXPECT_NEAR(d.noise_power_w / test::reference_noise_power_w(p), 1.0, 1e-12);
+  EXPECT_NEAR(d.tx_power_w, 0.01, 1e-15);
+  EXPECT_NEAR(d.tx_gain / std::pow(10.0, 2.5), 1.0, 1e-12);
+  EXPECT_NEAR(d.rx_gain / std::pow(10.0, 2.5), 1.0, 1e-12);
+  EXPECT_NEAR(d.beam_solid_angle_sr / (std::numbers::pi * 100.0 * deg * deg / (8.0 * std::log(2.0))), 1.0, 1e-12);
+  std::printf(
+      "[ measured ] paper radar: lambda %.4f mm, range resolution %.4f m, range bin %.4f m, max range %.2f m, "
+      "velocity resolution %.4f m/s, max |v| %.3f m/s, noise k T0 F fs %.2f dBm, beam solid angle %.5f sr\n",
+      d.wavelength_m * 1e3, d.range_resolution_m, d.range_bin_m, d.max_range_m, d.velocity_resolution_m_per_s,
+      d.max_unambiguous_velocity_m_per_s, 10.0 * std::log10(d.noise_power_w / 1e-3), d.beam_solid_angle_sr);
+}
+
+// Radar equation round trip and against the reference form (Skolnik eq. 2.1): 1e-12 relative.
+TEST(RadarParams, RadarEquationAndEq7AreInverse) {
+  RadarParams p;
+  p.tx_power_dbm = 3.0;
+  p.tx_gain_dbi = 21.0;
+  p.rx_gain_dbi = 14.0;
+  p.carrier_frequency_hz = 79e9;
+  const RadarDerived d = derive(p);
+  for (const double r : {1.0, 10.0, 55.5}) {
+    const double pr = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, 3.3, r);
+    EXPECT_NEAR(pr / test::reference_received_power_w(p, 3.3, r), 1.0, 1e-12);
+    EXPECT_NEAR(rcs_from_received_power_m2(pr, d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, r), 3.3, 3.3e-12);
+  }
+  EXPECT_NEAR(beat_frequency_hz(20.0, 1e9 / 51.2e-6), 20.0 * 1e9 / 51.2e-6 / kC, 1e-6);
+}
+
+// The Gaussian beam is 3 dB down at half the beamwidth off axis, and its two-way solid angle
+// integral of g(az)^2 g(el)^2 over angles (small-angle, trapezoid on a fine grid here) equals the
+// Probert-Jones closed form within 1e-6.
+TEST(RadarParams, GaussianBeamAndTwoWaySolidAngle) {
+  const double bw = 10.0 * std::numbers::pi / 180.0;
+  EXPECT_NEAR(gaussian_beam_power(0.5 * bw, bw), 0.5, 1e-15);
+  EXPECT_NEAR(gaussian_beam_power(-0.5 * bw, bw), 0.5, 1e-15);
+  EXPECT_EQ(gaussian_beam_power(0.0, bw), 1.0);
+  const double bw_el = 6.0 * std::numbers::pi / 180.0;
+  const auto line_integral = [](double beam) {
+    const int n = 20000;
+    const double h = 8.0 * beam / n;
+    double s = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double x = -4.0 * beam + i * h;
+      const double g = gaussian_beam_power(x, beam);
+      s += (i == 0 || i == n ? 0.5 : 1.0) * g * g;
+    }
+    return s * h;
+  };
+  EXPECT_NEAR(two_way_beam_solid_angle_sr(bw, bw_el) / (line_integral(bw) * line_integral(bw_el)), 1.0, 1e-6);
+}
+
+// --- Scene ------------------------------------------------------------------------------------
+
+void expect_scene_rejected(const std::function<void(Scene&)>& change, const std::string& field) {
+  Scene scene;
+  change(scene);
+  try {
+    scene.validate();
+    ADD_FAILURE() << "Scene::validate() accepted an invalid " << field;
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), field) << error.what();
+  }
+}
+
+TEST(Scene, RejectsEveryInvalidField) {
+  EXPECT_NO_THROW(Scene{}.validate());
+  EXPECT_NO_THROW(evt_rear_scene().validate());
+  EXPECT_NO_THROW(point_target_scene(10.0).validate());
+  expect_scene_rejected([](Scene& s) { s.centres.clear(); }, "target.centres");
+  for (const double bad : {-200.0, 200.0, kNaN}) {
+    expect_scene_rejected([&](Scene& s) { s.centres[0].range_offset_m = bad; }, "target.centres[0].range_offset_m");
+    expect_scene_rejected([&](Scene& s) { s.centres[0].lateral_m = bad; }, "target.centres[0].lateral_m");
+    expect_scene_rejected([&](Scene& s) { s.centres[0].height_m = bad; }, "target.centres[0].height_m");
+    expect_scene_rejected([&](Scene& s) { s.centres[0].radial_velocity_m_per_s = bad * 10.0; },
+                          "target.centres[0].radial_velocity_m_per_s");
+    expect_scene_rejected([&](Scene& s) { s.sensor_height_m = bad; }, "target.sensor_height_m");
+  }
+  for (const double bad : {-1.0, 2e6, kNaN}) {
+    expect_scene_rejected([&](Scene& s) { s.centres[0].rcs_m2 = bad; }, "target.centres[0].rcs_m2");
+  }
+  // The index names the offending centre.
+  expect_scene_rejected(
+      [](Scene& s) {
+        s = evt_rear_scene();
+        s.centres[3].rcs_m2 = -1.0;
+      },
+      "target.centres[3].rcs_m2");
+  for (const double bad : {-1.5, 1.5, kNaN}) {
+    expect_scene_rejected([&](Scene& s) { s.floor.reflection_coefficient = bad; }, "target.floor_reflection_coefficient");
+  }
+  for (const double bad : {-1e-3, 0.2, kNaN}) {
+    expect_scene_rejected([&](Scene& s) { s.micro_motion_std_m = bad; }, "target.micro_motion_std_m");
+  }
+  expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 0; }, "target.clutter_scatterers_per_bin");
+  expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 65; }, "target.clutter_scatterers_per_bin");
+}
+
+TEST(Scene, SwerlingNamesRoundTrip) {
+  for (const Swerling s : {Swerling::zero, Swerling::one, Swerling::three}) EXPECT_EQ(parse_swerling(to_string(s)), s);
+  try {
+    parse_swerling("2", "target.centres[1].swerling");
+    ADD_FAILURE() << "accepted Swerling 2";
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), "target.centres[1].swerling");
+  }
+}
+
+// The chain rejects a chamber resolved at another frequency, a target beyond the unambiguous
+// range (c fs / (2 S) - 1 m = 75.8 m for the paper radar) and a centre at or behind the radar.
+TEST(RadarChain, CheckCompatibleNamesTheField) {
+  const RadarChain chain(RadarParams{});
+  const propagation::Chamber at_77 = test::make_chamber(test::paper_chamber_spec(), 77e9);
+  const propagation::Chamber at_79 = test::make_chamber(test::paper_chamber_spec(), 79e9);
+  EXPECT_NO_THROW(chain.check_compatible(evt_rear_scene(), at_77));
+  const auto expect_field = [&](const Scene& scene, const propagation::Chamber& chamber, const std::string& field) {
+    try {
+      chain.check_compatible(scene, chamber);
+      ADD_FAILURE() << "check_compatible accepted an invalid " << field;
+    } catch (const InvalidParameter& error) {
+      EXPECT_EQ(error.field(), field) << error.what();
+    }
+  };
+  expect_field(evt_rear_scene(), at_79, "chamber.frequency_hz");
+  Scene far = point_target_scene(10.0);
+  far.centres[0].range_offset_m = 70.0;  // 80 m
+  expect_field(far, at_77, "chamber.target_range_m");
+  Scene invalid = point_target_scene(10.0);
+  invalid.centres[0].rcs_m2 = kNaN;
+  expect_field(invalid, at_77, "target.centres[0].rcs_m2");
+  Scene behind = point_target_scene(10.0);
+  behind.centres[0].range_offset_m = -10.0;  // at the radar
+  expect_field(behind, at_77, "target.centres[0].range_offset_m");
+  behind.centres[0].range_offset_m = -12.0;  // behind it
+  expect_field(behind, at_77, "target.centres[0].range_offset_m");
+}
+
+}  // namespace
+}  // namespace fogradar::radar
