@@ -2,19 +2,26 @@
 // 512 samples at 10 MS/s) and the bench workload (128 chirps x 1024 samples; the sample rate is
 // raised to 20 MS/s so the 1024 samples fit the 51.2 us chirp, as in examples/long_chamber.toml).
 // Scene: the paper chamber (propagation::ChamberSpec defaults, all four layers on, default fog of
-// 900/km optical extinction) and the EVT rear (evt_rear_scene, floor multipath on), thermal noise on.
-// Stages: scene_tones, synthesize_frame (with noise), processing (window + range FFT + Doppler FFT +
-// |.|^2), estimate_detections (CFAR + grouping + interpolation + RCS), the full RadarChain::measure,
-// and the floor: the range and Doppler FFTs alone with the same plans (FFTW_ESTIMATE, as the chain
-// uses). Arg 0: 0 = paper frame, 1 = bench frame.
-// Run: ./build/chain-rel/bench/chain_bench --benchmark_format=json (ratios: docs/radar.md).
+// 900/km optical extinction) and the EVT rear (evt_rear_scene, floor multipath on), thermal noise
+// on. Stages: scene_tones, synthesize_frame (with noise), processing (window + range FFT + Doppler
+// FFT +
+// |.|^2), estimate_detections (CFAR + grouping + interpolation + RCS), the full
+// RadarChain::measure, and the floor: the range and Doppler FFTs alone with the same plans
+// (FFTW_ESTIMATE, as the chain uses). Arg 0: 0 = paper frame, 1 = bench frame. Run:
+//   ./build/chain-rel/bench/chain_bench --benchmark_repetitions=9
+//       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
+// The last lines print each stage as a ratio to the FFT-only floor measured in the same run
+// (docs/radar.md §9); interleaving keeps the ratios stable on a loaded machine.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "fogradar/core/random.hpp"
@@ -74,14 +81,16 @@ Setup& setup(std::int64_t size) {
 void label(benchmark::State& state, const Setup& s) {
   state.counters["chirps"] = static_cast<double>(s.chain.params().chirps_per_frame);
   state.counters["samples"] = static_cast<double>(s.chain.params().samples_per_chirp);
-  state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["frames/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 // The floor: range FFT of every chirp (out of place from the raw frame, so every iteration starts
 // from the same data) and the Doppler FFT of every range bin (in place), FFTW_ESTIMATE.
 void BM_FftOnly(benchmark::State& state) {
   Setup& s = setup(state.range(0));
-  const std::size_t rows = s.chain.params().chirps_per_frame, cols = s.chain.params().samples_per_chirp;
+  const std::size_t rows = s.chain.params().chirps_per_frame,
+                    cols = s.chain.params().samples_per_chirp;
   const FftPlan range_fft = FftPlan::along_rows(rows, cols, FftDirection::forward);
   const FftPlan doppler_fft = FftPlan::along_columns(rows, cols, FftDirection::forward,
                                                      {.placement = FftPlacement::in_place});
@@ -154,8 +163,8 @@ void BM_Estimation(benchmark::State& state) {
   EstimationWorkspace ws;
   std::vector<Detection> detections;
   for (auto _ : state) {
-    estimate_detections(s.workspace.frame, s.workspace.power, s.chain.processor(), s.chain.cfar(), s.chain.params(),
-                        s.chain.derived(), ws, detections);
+    estimate_detections(s.workspace.frame, s.workspace.power, s.chain.processor(), s.chain.cfar(),
+                        s.chain.params(), s.chain.derived(), ws, detections);
     benchmark::DoNotOptimize(detections.data());
   }
   state.counters["detections"] = static_cast<double>(detections.size());
@@ -183,6 +192,66 @@ BENCHMARK(BM_Processing)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Estimation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Measure)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+// Console output plus, at the end, every stage's real time per frame as a ratio to the FFT-only
+// floor of the same size measured in the same run (the median when --benchmark_repetitions > 1).
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& run : runs) {
+      if (run.error_occurred) continue;
+      const std::string key = run.run_name.function_name + "/" + run.run_name.args;
+      Entry& entry = entries_[key];
+      entry.size = run.run_name.args.substr(0, run.run_name.args.find('/'));
+      if (run.run_type == Run::RT_Aggregate) {
+        if (run.aggregate_name == "median") entry.median_us = to_us(run);
+      } else {
+        entry.sum_us += to_us(run);
+        entry.count += 1;
+      }
+    }
+  }
+  void Finalize() override {
+    ConsoleReporter::Finalize();
+    std::printf("\nReal time per frame as a ratio to the FFT-only floor of the same run:\n");
+    for (const char* size : {"0", "1"}) {
+      const auto floor = entries_.find(std::string("BM_FftOnly/") + size);
+      if (floor == entries_.end()) continue;
+      std::printf("  %s frame: FFT-only %.1f us\n",
+                  size[0] == '0' ? "paper 64 x 512" : "bench 128 x 1024", floor->second.time_us());
+      for (const auto& [key, entry] : entries_) {
+        if (entry.size != size) continue;
+        std::printf("    %-22s %10.1f us  %6.2f x\n", key.c_str(), entry.time_us(),
+                    entry.time_us() / floor->second.time_us());
+      }
+    }
+  }
+
+ private:
+  struct Entry {
+    std::string size;
+    double median_us = -1.0;
+    double sum_us = 0.0;
+    int count = 0;
+    double time_us() const { return median_us >= 0.0 ? median_us : sum_us / count; }
+  };
+  static double to_us(const Run& run) {
+    const double seconds_per_unit = run.time_unit == benchmark::kNanosecond    ? 1e-9
+                                    : run.time_unit == benchmark::kMicrosecond ? 1e-6
+                                    : run.time_unit == benchmark::kMillisecond ? 1e-3
+                                                                               : 1.0;
+    return run.GetAdjustedRealTime() * seconds_per_unit * 1e6;
+  }
+  std::map<std::string, Entry> entries_;
+};
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}

@@ -23,9 +23,10 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
     const double along_m = chamber.target_range_m() + scene.centres[i].range_offset_m;
     // A centre at or behind the radar has no meaningful radar equation (R^-4 diverges at 0).
     if (!(along_m > 0.0)) {
-      throw_invalid("target.centres[" + std::to_string(i) + "].range_offset_m", scene.centres[i].range_offset_m,
+      throw_invalid("target.centres[" + std::to_string(i) + "].range_offset_m",
+                    scene.centres[i].range_offset_m,
                     "> -" + std::to_string(chamber.target_range_m()) +
-                        " (the negative chamber target range): the centre must lie in front of the radar");
+                        " (minus the chamber's target range): the centre must lie in front of the radar");
     }
     farthest_m = std::max(farthest_m, along_m);
   }

@@ -1,5 +1,6 @@
 #include "fogradar/radar/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -98,7 +99,7 @@ void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
     if (!active[i]) continue;
     const propagation::LayerOptics& layer = chamber.layer(i);
     if (layer.optics.volume_backscatter_m2_per_m3 <= 0.0) continue;
-    for (double a = layer.start_m; a < layer.end_m; a += bin_m) {
+    for (double a = std::max(layer.start_m, bin_m); a < layer.end_m; a += bin_m) {
       const double b = std::min(a + bin_m, layer.end_m);
       const double sigma_m2 = chamber.backscatter_cross_section_m2(a, b, d.beam_solid_angle_sr, active);
       for (unsigned s = 0; s < per_bin; ++s) {

@@ -42,7 +42,8 @@ inline propagation::ChamberSpec paper_chamber_spec(
   return spec;
 }
 
-inline propagation::Chamber make_chamber(const propagation::ChamberSpec& spec, double frequency_hz) {
+inline propagation::Chamber make_chamber(const propagation::ChamberSpec& spec,
+                                         double frequency_hz) {
   return propagation::Chamber(spec, frequency_hz, segelstein_table());
 }
 
@@ -76,7 +77,8 @@ inline double reference_noise_power_w(const RadarParams& p) {
 // One range-FFT bin in metres: c / (2 S T_s N) with T_s = 1/fs, i.e. c fs / (2 S N).
 inline double reference_range_bin_m(const RadarParams& p) {
   const double slope = p.sweep_bandwidth_hz / p.chirp_duration_s;
-  return 299'792'458.0 * p.sample_rate_hz / (2.0 * slope * static_cast<double>(p.samples_per_chirp));
+  return 299'792'458.0 * p.sample_rate_hz /
+         (2.0 * slope * static_cast<double>(p.samples_per_chirp));
 }
 
 inline double sum_of(std::span<const double> w) {

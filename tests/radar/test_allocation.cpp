@@ -49,8 +49,10 @@ TEST(Allocation, SteadyStateMeasurementDoesNotAllocate) {
   p.phase_noise_rms_rad = 0.01;
   p.adc_bits = 14;
   const RadarChain chain(p);
-  const propagation::Chamber chamber = test::make_chamber(test::paper_chamber_spec(), p.carrier_frequency_hz);
-  const auto all_on = propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
+  const propagation::Chamber chamber =
+      test::make_chamber(test::paper_chamber_spec(), p.carrier_frequency_hz);
+  const auto all_on =
+      propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
   Scene scene = evt_rear_scene();
   scene.floor.enabled = true;
   MeasurementWorkspace ws = chain.make_workspace();

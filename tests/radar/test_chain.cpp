@@ -112,7 +112,8 @@ std::complex<double> bin_correlation(const std::vector<double>& w, long lag) {
   std::complex<double> s{};
   for (std::size_t j = 0; j < w.size(); ++j) {
     s += w[j] * w[j] *
-         std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(j) * static_cast<double>(lag) / n);
+         std::polar(
+             1.0, -2.0 * std::numbers::pi * static_cast<double>(j) * static_cast<double>(lag) / n);
   }
   return s / sum_of_squares(w);
 }
@@ -162,8 +163,9 @@ class NoiseOnly : public testing::TestWithParam<WindowType> {};
 // Mean cell power of the processed noise-only map equals k T0 F fs * sum(w_r^2) * sum(w_d^2)
 // (white noise through a windowed 2-D DFT, Parseval), reference written out in the test with the
 // closed-form window sums [H78]. Tolerance 2 % (the issue's); the statistical 1-sigma error of
-// the mean over 8 paper frames (262'144 cells, correlated by the window over <= ENBW^2 cells) is
-// <= 0.4 %. The cells are also exponential: chi-square GoF (20 equiprobable cells, no fitted
+// the mean over M = 8 paper frames (262'144 cells, correlated by the window) is
+// sqrt(S_r S_d / M) with S = N sum w^4 / (sum w^2)^2: 0.20 % rectangular, 0.38 % Hann, 0.54 %
+// Blackman-Harris. The cells are also exponential: chi-square GoF (20 equiprobable cells, no fitted
 // parameter, mean fixed to the prediction), significance 1e-3, on cells spaced by a stride at
 // which the window's bin correlation |rho| < 0.01 (exactly 0 for rectangular, Hann, Hamming).
 TEST_P(NoiseOnly, MeanCellPowerIsKT0FfsTimesWindowGainsAndExponential) {
@@ -190,7 +192,8 @@ TEST_P(NoiseOnly, MeanCellPowerIsKT0FfsTimesWindowGainsAndExponential) {
     processor.process(frame, power);
     for (const double v : power) sum_w += v;
     for (std::size_t r = 0; r < rows; r += doppler_stride) {
-      for (std::size_t k = 0; k < cols; k += range_stride) normalised.push_back(power[r * cols + k] / expected_w);
+      for (std::size_t k = 0; k < cols; k += range_stride)
+        normalised.push_back(power[r * cols + k] / expected_w);
     }
   }
   const double mean_w = sum_w / static_cast<double>(kFrames * rows * cols);
@@ -198,12 +201,13 @@ TEST_P(NoiseOnly, MeanCellPowerIsKT0FfsTimesWindowGainsAndExponential) {
   std::printf(
       "[ measured ] noise-only %s: mean cell power / (k T0 F fs sum w_r^2 sum w_d^2) = %.4f; "
       "chi-square GoF on %zu cells (stride %zu x %zu): p = %.3f\n",
-      std::string(to_string(p.window)).c_str(), mean_w / expected_w, normalised.size(), doppler_stride,
-      range_stride, p_value);
+      std::string(to_string(p.window)).c_str(), mean_w / expected_w, normalised.size(),
+      doppler_stride, range_stride, p_value);
   EXPECT_NEAR(mean_w / expected_w, 1.0, 0.02);
   EXPECT_GT(p_value, 1e-3);
   // The chain's own noise gain (used for SNR) agrees with the closed form.
-  EXPECT_NEAR(processor.noise_power_gain() / (window_noise_gain(p.window, cols) * window_noise_gain(p.window, rows)),
+  EXPECT_NEAR(processor.noise_power_gain() /
+                  (window_noise_gain(p.window, cols) * window_noise_gain(p.window, rows)),
               1.0, 1e-12);
   EXPECT_NEAR(d.noise_power_w / reference_noise_power_w(p), 1.0, 1e-12);
 }
@@ -236,17 +240,20 @@ TEST(ChainCfar, CaFalseAlarmRateOnNoiseMapRectangularWindow) {
     processor.process(frame, power);
     for (std::size_t r = 0; r < rows; ++r) {
       cfar.detect(std::span<const double>(power).subspan(r * cols, cols), ws);
-      for (const std::size_t k : ws.detections) (k < edge || k >= cols - edge ? edges : interior) += 1.0;
+      for (const std::size_t k : ws.detections)
+        (k < edge || k >= cols - edge ? edges : interior) += 1.0;
     }
   }
   const double interior_cells = static_cast<double>(kFrames * rows * (cols - 2 * edge));
   const double edge_cells = static_cast<double>(kFrames * rows * 2 * edge);
   const auto [il, ih] = binomial_interval(interior_cells, 1e-3);
   const auto [el, eh] = binomial_interval(edge_cells, 1e-3);
-  std::printf("[ measured ] chain CA-CFAR (rectangular) Pfa interior %.4e (%.0f/%.0f, accept [%.0f, %.0f]), "
-              "edge %.4e (%.0f/%.0f, accept [%.0f, %.0f])\n",
-              interior / interior_cells, interior, interior_cells, il, ih, edges / edge_cells, edges, edge_cells,
-              el, eh);
+  std::printf(
+      "[ measured ] chain CA-CFAR (rectangular) Pfa interior %.4e (%.0f/%.0f, accept [%.0f, "
+      "%.0f]), "
+      "edge %.4e (%.0f/%.0f, accept [%.0f, %.0f])\n",
+      interior / interior_cells, interior, interior_cells, il, ih, edges / edge_cells, edges,
+      edge_cells, el, eh);
   EXPECT_GE(interior, il);
   EXPECT_LE(interior, ih);
   EXPECT_GE(edges, el);
@@ -281,22 +288,27 @@ TEST(ChainCfar, CaFalseAlarmRateWithHannWindowMatchesCorrelatedCellPrediction) {
   }
   const double big_n = 2.0 * n;
   const auto correlated_pfa = [&](double design_pfa) {
-    const double alpha = big_n * (std::pow(design_pfa, -1.0 / big_n) - 1.0);  // [Ri14] CA closed form
-    std::vector<std::vector<std::complex<double>>> m(offsets.size(),
-                                                     std::vector<std::complex<double>>(offsets.size()));
+    const double alpha =
+        big_n * (std::pow(design_pfa, -1.0 / big_n) - 1.0);  // [Ri14] CA closed form
+    std::vector<std::vector<std::complex<double>>> m(
+        offsets.size(), std::vector<std::complex<double>>(offsets.size()));
     for (std::size_t i = 0; i < offsets.size(); ++i) {
       for (std::size_t j = 0; j < offsets.size(); ++j) {
-        m[i][j] = (i == j ? 1.0 : 0.0) + alpha / big_n * bin_correlation(w, offsets[j] - offsets[i]);
+        m[i][j] =
+            (i == j ? 1.0 : 0.0) + alpha / big_n * bin_correlation(w, offsets[j] - offsets[i]);
       }
     }
     return 1.0 / determinant(m).real();
   };
   const double predicted_pfa = correlated_pfa(1e-3);
-  std::printf("[ measured ] CA N=16 g=2 with Hann range window: predicted real Pfa %.3e at design 1e-3, %.3e at "
-              "design 1e-6 (the paper default)\n",
-              predicted_pfa, correlated_pfa(1e-6));
+  std::printf(
+      "[ measured ] CA N=16 g=2 with Hann range window: predicted real Pfa %.3e at design 1e-3, "
+      "%.3e at "
+      "design 1e-6 (the paper default)\n",
+      predicted_pfa, correlated_pfa(1e-6));
   for (long lag = g + 1; lag <= static_cast<long>(g + n); ++lag) {
-    ASSERT_LT(std::abs(bin_correlation(w, lag)), 1e-12) << "cell under test correlated with lag " << lag;
+    ASSERT_LT(std::abs(bin_correlation(w, lag)), 1e-12)
+        << "cell under test correlated with lag " << lag;
   }
 
   ComplexVector frame(cols);
@@ -315,9 +327,10 @@ TEST(ChainCfar, CaFalseAlarmRateWithHannWindowMatchesCorrelatedCellPrediction) {
     }
   }
   const auto [low, high] = binomial_interval(cells, predicted_pfa);
-  std::printf("[ measured ] chain CA-CFAR (Hann, design Pfa 1e-3) Pfa %.4e (%.0f/%.0f); correlated-cell "
-              "prediction %.4e (accept [%.0f, %.0f])\n",
-              alarms / cells, alarms, cells, predicted_pfa, low, high);
+  std::printf(
+      "[ measured ] chain CA-CFAR (Hann, design Pfa 1e-3) Pfa %.4e (%.0f/%.0f); correlated-cell "
+      "prediction %.4e (accept [%.0f, %.0f])\n",
+      alarms / cells, alarms, cells, predicted_pfa, low, high);
   EXPECT_GE(alarms, low);
   EXPECT_LE(alarms, high);
   EXPECT_GT(predicted_pfa, 1.5e-3);  // the effect is real, not within noise of the design value
@@ -349,8 +362,10 @@ class PointTargetCalibration : public testing::TestWithParam<WindowType> {};
 void check_calibration(const RadarParams& params_in, const char* label) {
   const RadarParams params = noise_free(params_in);
   const RadarChain chain(params);
-  const propagation::Chamber chamber = make_chamber(paper_chamber_spec(), params.carrier_frequency_hz);
-  const propagation::ActiveLayers no_fog = propagation::first_layers_active(0, chamber.layer_count());
+  const propagation::Chamber chamber =
+      make_chamber(paper_chamber_spec(), params.carrier_frequency_hz);
+  const propagation::ActiveLayers no_fog =
+      propagation::first_layers_active(0, chamber.layer_count());
   const double bin_m = reference_range_bin_m(params);
   constexpr double kRcsDbsm = 7.5;
   constexpr double kRcsTolDb = 0.2;
@@ -379,9 +394,10 @@ void check_calibration(const RadarParams& params_in, const char* label) {
       ++count;
     }
   }
-  std::printf("[ measured ] calibration %s %s: %d points 3-60 m x 20 sub-bin offsets, worst |RCS error| "
-              "%.2e dB, worst |range error| %.2e m\n",
-              label, std::string(to_string(params.window)).c_str(), count, worst_db, worst_m);
+  std::printf(
+      "[ measured ] calibration %s %s: %d points 3-60 m x 20 sub-bin offsets, worst |RCS error| "
+      "%.2e dB, worst |range error| %.2e m\n",
+      label, std::string(to_string(params.window)).c_str(), count, worst_db, worst_m);
 }
 
 TEST_P(PointTargetCalibration, PaperRadarReadsBackRcsAndRange) {
@@ -397,7 +413,8 @@ TEST_P(PointTargetCalibration, ChangedPowerGainsAndWavelengthReadBackRcsAndRange
   check_calibration(p, "Pt 3 dBm, Gt 21 dBi, Gr 14 dBi, 79 GHz");
 }
 
-INSTANTIATE_TEST_SUITE_P(AllWindows, PointTargetCalibration, testing::ValuesIn(kAllWindows), window_name);
+INSTANTIATE_TEST_SUITE_P(AllWindows, PointTargetCalibration, testing::ValuesIn(kAllWindows),
+                         window_name);
 
 // The full paper frame (64 x 512, Hann) at the example's 25 m and a half-bin offset: the RCS
 // within 0.2 dB, the range within 2 cm, and the SNR equal to the radar-equation prediction
@@ -408,7 +425,8 @@ TEST(PointTargetCalibration, FullPaperFrameAndSnr) {
   const RadarChain chain(p);
   const propagation::Chamber chamber = make_chamber(paper_chamber_spec(), p.carrier_frequency_hz);
   const auto no_fog = propagation::first_layers_active(0, chamber.layer_count());
-  const double range_m = (std::round(25.0 / reference_range_bin_m(p)) + 0.5) * reference_range_bin_m(p);
+  const double range_m =
+      (std::round(25.0 / reference_range_bin_m(p)) + 0.5) * reference_range_bin_m(p);
   Scene scene = point_target_scene(10.0);
   scene.centres[0].range_offset_m = range_m - chamber.target_range_m();
   MeasurementWorkspace ws = chain.make_workspace();
@@ -420,11 +438,13 @@ TEST(PointTargetCalibration, FullPaperFrameAndSnr) {
   const auto w_r = make_window(p.window, p.samples_per_chirp);
   const auto w_d = make_window(p.window, p.chirps_per_frame);
   const double expected_snr_db =
-      10.0 * std::log10(reference_received_power_w(p, 10.0, range_m) * std::pow(sum_of(w_r) * sum_of(w_d), 2) /
+      10.0 * std::log10(reference_received_power_w(p, 10.0, range_m) *
+                        std::pow(sum_of(w_r) * sum_of(w_d), 2) /
                         (reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d)));
-  std::printf("[ measured ] paper frame 10 dBsm at %.4f m: RCS %.5f dBsm, range %.5f m, SNR %.3f dB "
-              "(expected %.3f dB)\n",
-              range_m, det->rcs_dbsm, det->range_m, det->snr_db, expected_snr_db);
+  std::printf(
+      "[ measured ] paper frame 10 dBsm at %.4f m: RCS %.5f dBsm, range %.5f m, SNR %.3f dB "
+      "(expected %.3f dB)\n",
+      range_m, det->rcs_dbsm, det->range_m, det->snr_db, expected_snr_db);
   EXPECT_NEAR(det->rcs_dbsm, 10.0, 0.2);
   EXPECT_NEAR(det->range_m, range_m, 0.02);
   EXPECT_NEAR(det->snr_db, expected_snr_db, 0.01);
@@ -447,9 +467,11 @@ TEST(Estimation, DirichletKernelInterpolatesTheDftToTheDtft) {
       std::complex<double> interpolated{}, direct{};
       for (std::size_t k = 0; k < n; ++k) interpolated += spectrum[k] * kernel[k];
       for (std::size_t j = 0; j < n; ++j) {
-        direct += x[j] * std::polar(1.0, -2.0 * std::numbers::pi * nu * static_cast<double>(j) / static_cast<double>(n));
+        direct += x[j] * std::polar(1.0, -2.0 * std::numbers::pi * nu * static_cast<double>(j) /
+                                             static_cast<double>(n));
       }
-      EXPECT_LT(std::abs(interpolated - direct), 1e-9 * std::abs(direct) + 1e-12) << "N=" << n << " nu=" << nu;
+      EXPECT_LT(std::abs(interpolated - direct), 1e-9 * std::abs(direct) + 1e-12)
+          << "N=" << n << " nu=" << nu;
     }
   }
 }
@@ -465,7 +487,8 @@ TEST(Fog, LossyFogLowersRcsByTwoWayAttenuation) {
   const RadarChain chain(p);
   propagation::FogSpec fog;
   fog.density = propagation::LiquidWaterContent{50.0};
-  const propagation::Chamber chamber = make_chamber(paper_chamber_spec(fog), p.carrier_frequency_hz);
+  const propagation::Chamber chamber =
+      make_chamber(paper_chamber_spec(fog), p.carrier_frequency_hz);
   const Scene scene = point_target_scene(10.0);
   MeasurementWorkspace ws = chain.make_workspace();
   Measurement m;
@@ -478,19 +501,24 @@ TEST(Fog, LossyFogLowersRcsByTwoWayAttenuation) {
     if (layers == 0) clear_dbsm = m.target->rcs_dbsm;
     const double drop_db = clear_dbsm - m.target->rcs_dbsm;
     // Independent of the chamber: 2 x (specific attenuation) x (1 m per active layer).
-    const double path_db = 2.0 * chamber.layer(0).optics.specific_attenuation_db_per_km * 1e-3 * static_cast<double>(layers);
+    const double path_db = 2.0 * chamber.layer(0).optics.specific_attenuation_db_per_km * 1e-3 *
+                           static_cast<double>(layers);
     const propagation::VirtualLayer layer = propagation::virtual_layer_from_fog(
-        chamber.layer(0).optics.extinction_per_m, chamber.layer(0).optics.volume_backscatter_m2_per_m3, 1.0);
-    const double eq4_db =
-        -10.0 * std::log10(propagation::object_intensity(static_cast<unsigned>(layers), layer.transmittance, 1.0));
-    std::printf("[ measured ] lossy fog (50 g/m^3) %zu layers: RCS drop %.4f dB, 2 a L = %.4f dB (error %.1e dB), "
-                "eq. 4 = %.4f dB (error %.1e dB)\n",
-                layers, drop_db, path_db, drop_db - path_db, eq4_db, drop_db - eq4_db);
+        chamber.layer(0).optics.extinction_per_m,
+        chamber.layer(0).optics.volume_backscatter_m2_per_m3, 1.0);
+    const double eq4_db = -10.0 * std::log10(propagation::object_intensity(
+                                      static_cast<unsigned>(layers), layer.transmittance, 1.0));
+    std::printf(
+        "[ measured ] lossy fog (50 g/m^3) %zu layers: RCS drop %.4f dB, 2 a L = %.4f dB (error "
+        "%.1e dB), "
+        "eq. 4 = %.4f dB (error %.1e dB)\n",
+        layers, drop_db, path_db, drop_db - path_db, eq4_db, drop_db - eq4_db);
     EXPECT_NEAR(drop_db, path_db, 0.1);
     EXPECT_NEAR(drop_db, eq4_db, 0.1);
     EXPECT_NEAR(drop_db, chamber.two_way_attenuation_db(10.0, active), 0.1);
   }
-  EXPECT_GT(2.0 * chamber.layer(0).optics.specific_attenuation_db_per_km * 4e-3, 0.3);  // a visible effect
+  EXPECT_GT(2.0 * chamber.layer(0).optics.specific_attenuation_db_per_km * 4e-3,
+            0.3);  // a visible effect
 }
 
 // Fog volume clutter. Derivation of the expected processed cell power (docs/radar.md, "Fog
@@ -517,8 +545,10 @@ TEST_P(FogClutter, MeanCellPowerIsEnbwTimesVolumeRadarEquation) {
   propagation::FogSpec fog;
   fog.density = propagation::LiquidWaterContent{100.0};
   fog.droplets = propagation::Monodisperse{100e-6};
-  const propagation::Chamber chamber = make_chamber(paper_chamber_spec(fog), p.carrier_frequency_hz);
-  const auto all_on = propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
+  const propagation::Chamber chamber =
+      make_chamber(paper_chamber_spec(fog), p.carrier_frequency_hz);
+  const auto all_on =
+      propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
   Scene scene = point_target_scene(10.0);
   scene.centres[0].rcs_m2 = 0.0;  // clutter only
   const std::size_t cols = p.samples_per_chirp;
@@ -527,9 +557,11 @@ TEST_P(FogClutter, MeanCellPowerIsEnbwTimesVolumeRadarEquation) {
   const double enbw = static_cast<double>(cols) * sum_of_squares(w) / (sum_of(w) * sum_of(w));
   const double gain = sum_of(w) * sum_of(make_window(p.window, p.chirps_per_frame));
   const double eta = chamber.layer(0).optics.volume_backscatter_m2_per_m3;
-  const double omega = std::numbers::pi * std::pow(p.azimuth_beamwidth_deg * std::numbers::pi / 180.0, 2) /
+  const double omega = std::numbers::pi *
+                       std::pow(p.azimuth_beamwidth_deg * std::numbers::pi / 180.0, 2) /
                        (8.0 * std::log(2.0));  // Probert-Jones, 10 deg x 10 deg
-  const double fog_start_m = chamber.layer(0).start_m, fog_end_m = chamber.layer(chamber.layer_count() - 1).end_m;
+  const double fog_start_m = chamber.layer(0).start_m,
+               fog_end_m = chamber.layer(chamber.layer_count() - 1).end_m;
 
   std::vector<std::size_t> cells;
   for (std::size_t k = 0; k < cols; ++k) {
@@ -544,21 +576,26 @@ TEST_P(FogClutter, MeanCellPowerIsEnbwTimesVolumeRadarEquation) {
     chain.synthesize_and_process(scene, chamber, all_on, rng, ws);
     for (const std::size_t k : cells) {
       const double r = static_cast<double>(k) * bin_m;
-      const double one_way_db = 1e-3 * chamber.layer(0).optics.specific_attenuation_db_per_km * (r - fog_start_m);
-      const double expected_w = enbw * reference_received_power_w(p, eta * omega * r * r * bin_m, r) *
+      const double one_way_db =
+          1e-3 * chamber.layer(0).optics.specific_attenuation_db_per_km * (r - fog_start_m);
+      const double expected_w = enbw *
+                                reference_received_power_w(p, eta * omega * r * r * bin_m, r) *
                                 std::pow(10.0, -2.0 * one_way_db / 10.0);
       ratio_sum += ws.power[k] / (gain * gain) / expected_w;  // Doppler bin 0 is row 0
     }
   }
   const double ratio = ratio_sum / static_cast<double>(kFrames * cells.size());
-  std::printf("[ measured ] fog clutter %s (eta %.3e m^-1, ENBW %.3f): mean cell / (ENBW eta V radar eq.) = %.4f "
-              "over %zu cells x %d frames\n",
-              std::string(to_string(p.window)).c_str(), eta, enbw, ratio, cells.size(), kFrames);
+  std::printf(
+      "[ measured ] fog clutter %s (eta %.3e m^-1, ENBW %.3f): mean cell / (ENBW eta V radar eq.) "
+      "= %.4f "
+      "over %zu cells x %d frames\n",
+      std::string(to_string(p.window)).c_str(), eta, enbw, ratio, cells.size(), kFrames);
   EXPECT_NEAR(ratio, 1.0, 0.10);
 }
 
 INSTANTIATE_TEST_SUITE_P(Windows, FogClutter,
-                         testing::Values(WindowType::rectangular, WindowType::hann, WindowType::blackman_harris),
+                         testing::Values(WindowType::rectangular, WindowType::hann,
+                                         WindowType::blackman_harris),
                          window_name);
 
 // --- Target fluctuation and motion ------------------------------------------------------------
@@ -593,16 +630,18 @@ TEST(Fluctuation, SwerlingOneMeasuredRcsIsExponentialWithTheSetMean) {
   const double low = boost::math::quantile(mean_dist, 0.0005);
   const double high = boost::math::quantile(boost::math::complement(mean_dist, 0.0005));
   const double p_value = exponential_chi_square_p_value(normalised, 10);
-  std::printf("[ measured ] Swerling 1: mean RCS %.3f m^2 (set 10, accept [%.3f, %.3f]); chi-square p = %.3f\n", mean,
-              low, high, p_value);
+  std::printf(
+      "[ measured ] Swerling 1: mean RCS %.3f m^2 (set 10, accept [%.3f, %.3f]); chi-square p = "
+      "%.3f\n",
+      mean, low, high, p_value);
   EXPECT_GE(mean, low);
   EXPECT_LE(mean, high);
   EXPECT_GT(p_value, 1e-3);
 }
 
-// A moving point target, noise off, paper frame (64 x 512), every window: the velocity estimate within
-// 0.01 velocity bin of the set value, the range corrected for range-Doppler coupling within 2 mm
-// of the true range (the uncorrected beat-frequency range would be off by 2 v / lambda * c /
+// A moving point target, noise off, paper frame (64 x 512), every window: the velocity estimate
+// within 0.01 velocity bin of the set value, the range corrected for range-Doppler coupling within
+// 2 mm of the true range (the uncorrected beat-frequency range would be off by 2 v / lambda * c /
 // (2 S), 1.1-1.9 cm here: asserted larger than 5 mm so the check has teeth), RCS within 0.2 dB.
 class Motion : public testing::TestWithParam<WindowType> {};
 
@@ -614,7 +653,8 @@ TEST_P(Motion, MovingTargetVelocityAndCouplingCorrectedRange) {
   const propagation::Chamber chamber = make_chamber(paper_chamber_spec(), p.carrier_frequency_hz);
   const auto no_fog = propagation::first_layers_active(0, chamber.layer_count());
   const double lambda_m = kC / p.carrier_frequency_hz;
-  const double v_bin = lambda_m / (2.0 * static_cast<double>(p.chirps_per_frame) * p.chirp_interval_s);
+  const double v_bin =
+      lambda_m / (2.0 * static_cast<double>(p.chirps_per_frame) * p.chirp_interval_s);
   const double slope = p.sweep_bandwidth_hz / p.chirp_duration_s;
   EXPECT_NEAR(d.velocity_resolution_m_per_s / v_bin, 1.0, 1e-12);
   MeasurementWorkspace ws = chain.make_workspace();
@@ -626,10 +666,12 @@ TEST_P(Motion, MovingTargetVelocityAndCouplingCorrectedRange) {
     chain.measure(scene, chamber, no_fog, rng, ws, m);
     ASSERT_TRUE(m.target.has_value()) << v;
     const double coupling_m = 2.0 * std::abs(v) / lambda_m * kC / (2.0 * slope);
-    std::printf("[ measured ] moving target %s v = %+.3f m/s: v error %.2e bin, range error %.2e m "
-                "(uncorrected coupling %.4f m), RCS error %.2e dB\n",
-                std::string(to_string(p.window)).c_str(), v, (m.target->radial_velocity_m_per_s - v) / v_bin, m.target->range_m - 10.0, coupling_m,
-                m.target->rcs_dbsm - 10.0);
+    std::printf(
+        "[ measured ] moving target %s v = %+.3f m/s: v error %.2e bin, range error %.2e m "
+        "(uncorrected coupling %.4f m), RCS error %.2e dB\n",
+        std::string(to_string(p.window)).c_str(), v,
+        (m.target->radial_velocity_m_per_s - v) / v_bin, m.target->range_m - 10.0, coupling_m,
+        m.target->rcs_dbsm - 10.0);
     EXPECT_NEAR(m.target->radial_velocity_m_per_s, v, 0.01 * v_bin);
     EXPECT_NEAR(m.target->range_m, 10.0, 0.002);
     EXPECT_GT(coupling_m, 0.005);
@@ -663,8 +705,10 @@ TEST(Adc, QuantisationErrorIsUniformQSquaredOverTwelvePerRail) {
     var_im += e.imag() * e.imag();
   }
   const double n = static_cast<double>(x.size());
-  std::printf("[ measured ] ADC 8 bit, sigma = 4 q: error variance / (q^2/12) I %.4f Q %.4f, mean / q I %.1e Q %.1e\n",
-              var_re / n / (q * q / 12.0), var_im / n / (q * q / 12.0), mean_re / n / q, mean_im / n / q);
+  std::printf(
+      "[ measured ] ADC 8 bit, sigma = 4 q: error variance / (q^2/12) I %.4f Q %.4f, mean / q I "
+      "%.1e Q %.1e\n",
+      var_re / n / (q * q / 12.0), var_im / n / (q * q / 12.0), mean_re / n / q, mean_im / n / q);
   EXPECT_NEAR(var_re / n / (q * q / 12.0), 1.0, 0.02);
   EXPECT_NEAR(var_im / n / (q * q / 12.0), 1.0, 0.02);
   EXPECT_LT(std::abs(mean_re / n / q), 0.01);
@@ -701,8 +745,9 @@ TEST(Adc, ClippingIsCountedExactly) {
     expected += (out(v.real()) || out(v.imag())) ? 1 : 0;
   }
   // Gaussian rails: P(clip) = 1 - (1 - 2 Q(sqrt 2))^2 = 0.29.
-  std::printf("[ measured ] ADC clipping at full scale = noise power: %zu of %zu samples (expected %zu)\n",
-              report.clipped_samples, frame.size(), expected);
+  std::printf(
+      "[ measured ] ADC clipping at full scale = noise power: %zu of %zu samples (expected %zu)\n",
+      report.clipped_samples, frame.size(), expected);
   EXPECT_EQ(report.clipped_samples, expected);
   EXPECT_GT(expected, frame.size() / 5);
   p.adc_full_scale_dbm = noise_dbm + 40.0;
@@ -732,11 +777,14 @@ TEST(Adc, QuantisationNoiseAddsToTheNoiseFloor) {
     processor.process(frame, power);
     for (const double v : power) sum += v;
   }
-  const double gains = window_noise_gain(p.window, p.samples_per_chirp) * window_noise_gain(p.window, p.chirps_per_frame);
+  const double gains = window_noise_gain(p.window, p.samples_per_chirp) *
+                       window_noise_gain(p.window, p.chirps_per_frame);
   const double mean = sum / static_cast<double>(kFrames * frame.size());
   const double expected = (reference_noise_power_w(p) + q * q / 6.0) * gains;
-  std::printf("[ measured ] ADC 8 bit, q = sigma: mean cell / ((kT0Ffs + q^2/6) gains) = %.4f, / (kT0Ffs gains) = %.4f\n",
-              mean / expected, mean / (reference_noise_power_w(p) * gains));
+  std::printf(
+      "[ measured ] ADC 8 bit, q = sigma: mean cell / ((kT0Ffs + q^2/6) gains) = %.4f, / (kT0Ffs "
+      "gains) = %.4f\n",
+      mean / expected, mean / (reference_noise_power_w(p) * gains));
   EXPECT_NEAR(mean / expected, 1.0, 0.02);
 }
 
@@ -773,8 +821,10 @@ TEST(PhaseNoise, OffByDefaultAndCoherentLossIsExpMinusSigmaSquared) {
   }
   const double change_db = 10.0 * std::log10(ratio_sum / kFrames);
   const double expected_db = 10.0 * std::log10(std::exp(-0.25));
-  std::printf("[ measured ] phase noise 0.5 rad rms: mean RCS change %.4f dB over %d frames (expected %.4f dB)\n",
-              change_db, kFrames, expected_db);
+  std::printf(
+      "[ measured ] phase noise 0.5 rad rms: mean RCS change %.4f dB over %d frames (expected %.4f "
+      "dB)\n",
+      change_db, kFrames, expected_db);
   EXPECT_NEAR(change_db, expected_db, 0.04);
 }
 
@@ -782,15 +832,17 @@ TEST(PhaseNoise, OffByDefaultAndCoherentLossIsExpMinusSigmaSquared) {
 
 // Two-ray floor reflection [Sk; Radar Handbook ch. 26]: with direct legs r_d, floor legs r_f (via
 // the image below the floor), one-way amplitude patterns g_d, g_f (Gaussian beam) and a real
-// floor coefficient Gamma, the monostatic field is (g_d e^{-jk r_d}/r_d + Gamma g_f e^{-jk r_f}/r_f)^2,
-// so the RCS read back (eq. 7 at the estimated range R) is
+// floor coefficient Gamma, the monostatic field is (g_d e^{-jk r_d}/r_d + Gamma g_f e^{-jk
+// r_f}/r_f)^2, so the RCS read back (eq. 7 at the estimated range R) is
 //   sigma * g_d^4 |1 + Gamma (g_f/g_d)(r_d/r_f) e^{-jk(r_f - r_d)}|^4 (R / r_d)^4.
 // Computed here from the geometry. k: the beat signal sweeps from f_c downwards (the chain's
 // phase convention: carrier phase -2 pi f_c tau with beat frequency +S tau, i.e. rx * conj(tx)
 // of a down-chirp), so the processed peak sees the phase at the window's centre frequency
 // f_c - S N / (2 fs). A 150 MHz sweep keeps the three delays within 0.01 bin of each other, so the
-// window's response is flat across them. Tolerance 0.1 dB, at 12 geometries (heights 0.2-0.65 m,
-// ranges 20-35 m) and Gamma in {-0.5, -0.9, 0.4}; expected factors between -24 and +9 dB.
+// window's response is flat across them. Tolerance 0.1 dB, at 18 geometries (heights 0.2 and
+// 0.65 m, ranges 20-35 m, Gamma in {-0.5, -0.9, 0.4}); expected factors between -8 and +11 dB.
+// (For information the test also prints the worst error had k been taken at f_c or at the
+// up-chirp centre f_c + B/2: both are far outside the tolerance, which pins the convention.)
 TEST(FloorMultipath, TwoRayFactorFromGeometry) {
   RadarParams p = noise_free(RadarParams{});
   p.sweep_bandwidth_hz = 150e6;
@@ -799,7 +851,8 @@ TEST(FloorMultipath, TwoRayFactorFromGeometry) {
   const propagation::Chamber chamber = make_chamber(paper_chamber_spec(), p.carrier_frequency_hz);
   const auto no_fog = propagation::first_layers_active(0, chamber.layer_count());
   const double slope = p.sweep_bandwidth_hz / p.chirp_duration_s;
-  const double f_eff = p.carrier_frequency_hz - slope * static_cast<double>(p.samples_per_chirp) / (2.0 * p.sample_rate_hz);
+  const double f_eff = p.carrier_frequency_hz -
+                       slope * static_cast<double>(p.samples_per_chirp) / (2.0 * p.sample_rate_hz);
   const double k = 2.0 * std::numbers::pi * f_eff / kC;
   const double beam_rad = p.elevation_beamwidth_deg * std::numbers::pi / 180.0;
   const auto amplitude_pattern = [&](double angle_rad) {
@@ -809,6 +862,7 @@ TEST(FloorMultipath, TwoRayFactorFromGeometry) {
   Measurement m;
   const double sensor_h = 0.5;
   double worst_db = 0.0, lowest_db = 1e9, highest_db = -1e9;
+  double worst_other_db[2] = {0.0, 0.0};
   int count = 0;
   for (const double gamma : {-0.5, -0.9, 0.4}) {
     for (const double target_h : {0.2, 0.65}) {
@@ -827,20 +881,34 @@ TEST(FloorMultipath, TwoRayFactorFromGeometry) {
         const double r_f = std::hypot(horizontal_m, target_h + sensor_h);
         const double g_d = amplitude_pattern(std::atan2(target_h - sensor_h, horizontal_m));
         const double g_f = amplitude_pattern(std::atan2(target_h + sensor_h, horizontal_m));
-        const std::complex<double> two_ray =
-            1.0 + gamma * (g_f / g_d) * (r_d / r_f) * std::polar(1.0, -k * (r_f - r_d));
-        const double expected_m2 = 10.0 * std::pow(g_d, 4) * std::pow(std::abs(two_ray), 4) * std::pow(det->range_m / r_d, 4);
+        const auto expected_for = [&](double wavenumber) {
+          const std::complex<double> two_ray =
+              1.0 + gamma * (g_f / g_d) * (r_d / r_f) * std::polar(1.0, -wavenumber * (r_f - r_d));
+          return 10.0 * std::pow(g_d, 4) * std::pow(std::abs(two_ray), 4) *
+                 std::pow(det->range_m / r_d, 4);
+        };
+        const double expected_m2 = expected_for(k);
+        const double k_start = 2.0 * std::numbers::pi * p.carrier_frequency_hz / kC;
+        const double k_up = 2.0 * std::numbers::pi * (2.0 * p.carrier_frequency_hz - f_eff) / kC;
+        worst_other_db[0] = std::max(
+            worst_other_db[0], std::abs(det->rcs_dbsm - 10.0 * std::log10(expected_for(k_start))));
+        worst_other_db[1] = std::max(
+            worst_other_db[1], std::abs(det->rcs_dbsm - 10.0 * std::log10(expected_for(k_up))));
         const double error_db = det->rcs_dbsm - 10.0 * std::log10(expected_m2);
         worst_db = std::max(worst_db, std::abs(error_db));
         lowest_db = std::min(lowest_db, 10.0 * std::log10(expected_m2 / 10.0));
         highest_db = std::max(highest_db, 10.0 * std::log10(expected_m2 / 10.0));
-        EXPECT_NEAR(error_db, 0.0, 0.1) << "Gamma " << gamma << " h " << target_h << " D " << horizontal_m
-                                        << " expected factor " << 10.0 * std::log10(expected_m2 / 10.0) << " dB";
+        EXPECT_NEAR(error_db, 0.0, 0.1)
+            << "Gamma " << gamma << " h " << target_h << " D " << horizontal_m
+            << " expected factor " << 10.0 * std::log10(expected_m2 / 10.0) << " dB";
       }
     }
   }
-  std::printf("[ measured ] floor two-ray: %d geometries, expected factors %.1f..%.1f dB, worst error %.3f dB\n", count,
-              lowest_db, highest_db, worst_db);
+  std::printf(
+      "[ measured ] floor two-ray: %d geometries, expected factors %.1f..%.1f dB, worst error %.3f "
+      "dB (with k at "
+      "f_c: %.2f dB, at f_c + B/2: %.2f dB)\n",
+      count, lowest_db, highest_db, worst_db, worst_other_db[0], worst_other_db[1]);
 }
 
 // --- Determinism ------------------------------------------------------------------------------
@@ -866,7 +934,8 @@ TEST(Determinism, SameSeedGivesIdenticalMeasurement) {
   p.adc_bits = 14;
   const RadarChain chain(p);
   const propagation::Chamber chamber = make_chamber(paper_chamber_spec(), p.carrier_frequency_hz);
-  const auto all_on = propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
+  const auto all_on =
+      propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
   Scene scene = evt_rear_scene();
   scene.floor.enabled = true;
   chain.check_compatible(scene, chamber);

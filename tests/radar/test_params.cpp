@@ -79,8 +79,10 @@ TEST(RadarParams, RejectsEveryInvalidField) {
   expect_rejected([](RadarParams& p) { p.samples_per_chirp = 1024; }, "radar.samples_per_chirp");
   // CFAR fields keep their own names.
   expect_rejected([](RadarParams& p) { p.cfar.training_cells = 0; }, "cfar.training_cells");
-  expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = 1.0; }, "cfar.false_alarm_probability");
-  expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = kNaN; }, "cfar.false_alarm_probability");
+  expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = 1.0; },
+                  "cfar.false_alarm_probability");
+  expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = kNaN; },
+                  "cfar.false_alarm_probability");
   expect_rejected(
       [](RadarParams& p) {
         p.cfar.kind = CfarKind::os;
@@ -116,12 +118,17 @@ TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
   EXPECT_NEAR(d.tx_power_w, 0.01, 1e-15);
   EXPECT_NEAR(d.tx_gain / std::pow(10.0, 2.5), 1.0, 1e-12);
   EXPECT_NEAR(d.rx_gain / std::pow(10.0, 2.5), 1.0, 1e-12);
-  EXPECT_NEAR(d.beam_solid_angle_sr / (std::numbers::pi * 100.0 * deg * deg / (8.0 * std::log(2.0))), 1.0, 1e-12);
+  EXPECT_NEAR(
+      d.beam_solid_angle_sr / (std::numbers::pi * 100.0 * deg * deg / (8.0 * std::log(2.0))), 1.0,
+      1e-12);
   std::printf(
-      "[ measured ] paper radar: lambda %.4f mm, range resolution %.4f m, range bin %.4f m, max range %.2f m, "
-      "velocity resolution %.4f m/s, max |v| %.3f m/s, noise k T0 F fs %.2f dBm, beam solid angle %.5f sr\n",
-      d.wavelength_m * 1e3, d.range_resolution_m, d.range_bin_m, d.max_range_m, d.velocity_resolution_m_per_s,
-      d.max_unambiguous_velocity_m_per_s, 10.0 * std::log10(d.noise_power_w / 1e-3), d.beam_solid_angle_sr);
+      "[ measured ] paper radar: lambda %.4f mm, range resolution %.4f m, range bin %.4f m, max "
+      "range %.2f m, "
+      "velocity resolution %.4f m/s, max |v| %.3f m/s, noise k T0 F fs %.2f dBm, beam solid angle "
+      "%.5f sr\n",
+      d.wavelength_m * 1e3, d.range_resolution_m, d.range_bin_m, d.max_range_m,
+      d.velocity_resolution_m_per_s, d.max_unambiguous_velocity_m_per_s,
+      10.0 * std::log10(d.noise_power_w / 1e-3), d.beam_solid_angle_sr);
 }
 
 // Radar equation round trip and against the reference form (Skolnik eq. 2.1): 1e-12 relative.
@@ -135,7 +142,9 @@ TEST(RadarParams, RadarEquationAndEq7AreInverse) {
   for (const double r : {1.0, 10.0, 55.5}) {
     const double pr = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, 3.3, r);
     EXPECT_NEAR(pr / test::reference_received_power_w(p, 3.3, r), 1.0, 1e-12);
-    EXPECT_NEAR(rcs_from_received_power_m2(pr, d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, r), 3.3, 3.3e-12);
+    EXPECT_NEAR(
+        rcs_from_received_power_m2(pr, d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, r), 3.3,
+        3.3e-12);
   }
   EXPECT_NEAR(beat_frequency_hz(20.0, 1e9 / 51.2e-6), 20.0 * 1e9 / 51.2e-6 / kC, 1e-6);
 }
@@ -160,7 +169,8 @@ TEST(RadarParams, GaussianBeamAndTwoWaySolidAngle) {
     }
     return s * h;
   };
-  EXPECT_NEAR(two_way_beam_solid_angle_sr(bw, bw_el) / (line_integral(bw) * line_integral(bw_el)), 1.0, 1e-6);
+  EXPECT_NEAR(two_way_beam_solid_angle_sr(bw, bw_el) / (line_integral(bw) * line_integral(bw_el)),
+              1.0, 1e-6);
 }
 
 // --- Scene ------------------------------------------------------------------------------------
@@ -182,9 +192,12 @@ TEST(Scene, RejectsEveryInvalidField) {
   EXPECT_NO_THROW(point_target_scene(10.0).validate());
   expect_scene_rejected([](Scene& s) { s.centres.clear(); }, "target.centres");
   for (const double bad : {-200.0, 200.0, kNaN}) {
-    expect_scene_rejected([&](Scene& s) { s.centres[0].range_offset_m = bad; }, "target.centres[0].range_offset_m");
-    expect_scene_rejected([&](Scene& s) { s.centres[0].lateral_m = bad; }, "target.centres[0].lateral_m");
-    expect_scene_rejected([&](Scene& s) { s.centres[0].height_m = bad; }, "target.centres[0].height_m");
+    expect_scene_rejected([&](Scene& s) { s.centres[0].range_offset_m = bad; },
+                          "target.centres[0].range_offset_m");
+    expect_scene_rejected([&](Scene& s) { s.centres[0].lateral_m = bad; },
+                          "target.centres[0].lateral_m");
+    expect_scene_rejected([&](Scene& s) { s.centres[0].height_m = bad; },
+                          "target.centres[0].height_m");
     expect_scene_rejected([&](Scene& s) { s.centres[0].radial_velocity_m_per_s = bad * 10.0; },
                           "target.centres[0].radial_velocity_m_per_s");
     expect_scene_rejected([&](Scene& s) { s.sensor_height_m = bad; }, "target.sensor_height_m");
@@ -200,17 +213,22 @@ TEST(Scene, RejectsEveryInvalidField) {
       },
       "target.centres[3].rcs_m2");
   for (const double bad : {-1.5, 1.5, kNaN}) {
-    expect_scene_rejected([&](Scene& s) { s.floor.reflection_coefficient = bad; }, "target.floor_reflection_coefficient");
+    expect_scene_rejected([&](Scene& s) { s.floor.reflection_coefficient = bad; },
+                          "target.floor_reflection_coefficient");
   }
   for (const double bad : {-1e-3, 0.2, kNaN}) {
-    expect_scene_rejected([&](Scene& s) { s.micro_motion_std_m = bad; }, "target.micro_motion_std_m");
+    expect_scene_rejected([&](Scene& s) { s.micro_motion_std_m = bad; },
+                          "target.micro_motion_std_m");
   }
-  expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 0; }, "target.clutter_scatterers_per_bin");
-  expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 65; }, "target.clutter_scatterers_per_bin");
+  expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 0; },
+                        "target.clutter_scatterers_per_bin");
+  expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 65; },
+                        "target.clutter_scatterers_per_bin");
 }
 
 TEST(Scene, SwerlingNamesRoundTrip) {
-  for (const Swerling s : {Swerling::zero, Swerling::one, Swerling::three}) EXPECT_EQ(parse_swerling(to_string(s)), s);
+  for (const Swerling s : {Swerling::zero, Swerling::one, Swerling::three})
+    EXPECT_EQ(parse_swerling(to_string(s)), s);
   try {
     parse_swerling("2", "target.centres[1].swerling");
     ADD_FAILURE() << "accepted Swerling 2";
@@ -226,7 +244,8 @@ TEST(RadarChain, CheckCompatibleNamesTheField) {
   const propagation::Chamber at_77 = test::make_chamber(test::paper_chamber_spec(), 77e9);
   const propagation::Chamber at_79 = test::make_chamber(test::paper_chamber_spec(), 79e9);
   EXPECT_NO_THROW(chain.check_compatible(evt_rear_scene(), at_77));
-  const auto expect_field = [&](const Scene& scene, const propagation::Chamber& chamber, const std::string& field) {
+  const auto expect_field = [&](const Scene& scene, const propagation::Chamber& chamber,
+                                const std::string& field) {
     try {
       chain.check_compatible(scene, chamber);
       ADD_FAILURE() << "check_compatible accepted an invalid " << field;

@@ -75,8 +75,10 @@ TEST(SceneTones, DirectPathPowerPhaseAndPattern) {
   ASSERT_EQ(f.tones.size(), 1u);
   const double lambda = kC / f.params.carrier_frequency_hz;
   EXPECT_NEAR(f.tones[0].path_length_m, 20.0, 1e-12);
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / reference_received_power_w(f.params, 10.0, 10.0), 1.0, 1e-12);
-  EXPECT_NEAR(wrap_phase(std::arg(f.tones[0].amplitude) + 2.0 * std::numbers::pi * 20.0 / lambda), 0.0, 1e-6);
+  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / reference_received_power_w(f.params, 10.0, 10.0),
+              1.0, 1e-12);
+  EXPECT_NEAR(wrap_phase(std::arg(f.tones[0].amplitude) + 2.0 * std::numbers::pi * 20.0 / lambda),
+              0.0, 1e-6);
   EXPECT_EQ(f.tones[0].radial_velocity_m_per_s, 0.0);
 
   scene.centres[0].lateral_m = 1.0;
@@ -87,7 +89,9 @@ TEST(SceneTones, DirectPathPowerPhaseAndPattern) {
   const double beam = 10.0 * std::numbers::pi / 180.0;
   const double g = std::exp(-4.0 * std::log(2.0) * (az / beam) * (az / beam));
   EXPECT_NEAR(f.tones[0].path_length_m, 2.0 * r, 1e-12);
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / (reference_received_power_w(f.params, 10.0, r) * g * g), 1.0, 1e-12);
+  EXPECT_NEAR(
+      std::norm(f.tones[0].amplitude) / (reference_received_power_w(f.params, 10.0, r) * g * g),
+      1.0, 1e-12);
 }
 
 // Floor on: three tones, lengths 2 r_d, r_d + r_f, 2 r_f; relative complex amplitudes of the
@@ -103,7 +107,9 @@ TEST(SceneTones, FloorPathsAreTheTwoRayExpansion) {
   ASSERT_EQ(f.tones.size(), 3u);
   const double k = 2.0 * std::numbers::pi * f.params.carrier_frequency_hz / kC;
   const double beam = 10.0 * std::numbers::pi / 180.0;
-  const auto amp = [&](double angle) { return std::exp(-2.0 * std::log(2.0) * (angle / beam) * (angle / beam)); };
+  const auto amp = [&](double angle) {
+    return std::exp(-2.0 * std::log(2.0) * (angle / beam) * (angle / beam));
+  };
   const double r_d = std::hypot(10.0, 0.3), r_f = std::hypot(10.0, 1.3);
   const double g_d = amp(std::atan2(0.3, 10.0)), g_f = amp(std::atan2(1.3, 10.0));
   const std::complex<double> e_d = g_d / r_d * std::polar(1.0, -k * r_d);
@@ -112,11 +118,13 @@ TEST(SceneTones, FloorPathsAreTheTwoRayExpansion) {
   const double lengths[] = {2.0 * r_d, r_d + r_f, 2.0 * r_f};
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(f.tones[i].path_length_m, lengths[i], 1e-12);
-    const std::complex<double> ratio = (f.tones[i].amplitude / f.tones[0].amplitude) / (expected[i] / expected[0]);
+    const std::complex<double> ratio =
+        (f.tones[i].amplitude / f.tones[0].amplitude) / (expected[i] / expected[0]);
     EXPECT_NEAR(std::abs(ratio - 1.0), 0.0, 1e-9) << "path " << i;
   }
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / (reference_received_power_w(f.params, 10.0, r_d) * std::pow(g_d, 4)), 1.0,
-              1e-12);
+  EXPECT_NEAR(std::norm(f.tones[0].amplitude) /
+                  (reference_received_power_w(f.params, 10.0, r_d) * std::pow(g_d, 4)),
+              1.0, 1e-12);
 }
 
 // Micro-motion: each centre's line-of-sight displacement ~ N(0, s^2), s = 0.2 mm, so the
@@ -139,8 +147,10 @@ TEST(SceneTones, MicroMotionMovesThePathByTwiceTheJitter) {
   const double mean = sum / kDraws;
   const double std = std::sqrt(sum2 / kDraws - mean * mean);
   const double lambda = kC / f.params.carrier_frequency_hz;
-  std::printf("[ measured ] micro-motion 0.2 mm: path std %.4f mm (expected 0.4), phase std %.3f rad (4 pi s / lambda = %.3f)\n",
-              std * 1e3, 2.0 * std::numbers::pi * std / lambda, 4.0 * std::numbers::pi * 0.2e-3 / lambda);
+  std::printf(
+      "[ measured ] micro-motion 0.2 mm: path std %.4f mm (expected 0.4), phase std %.3f rad (4 pi "
+      "s / lambda = %.3f)\n",
+      std * 1e3, 2.0 * std::numbers::pi * std / lambda, 4.0 * std::numbers::pi * 0.2e-3 / lambda);
   EXPECT_NEAR(std / 0.4e-3, 1.0, 0.05);
   EXPECT_NEAR(mean, 0.0, 4.0 * 0.4e-3 / std::sqrt(kDraws));
 }
@@ -165,9 +175,12 @@ TEST(SceneTones, SwerlingFluctuationDistributions) {
       counts[std::min(kCells - 1, static_cast<int>(u * kCells))] += 1.0;
     }
     double statistic = 0.0;
-    for (const double c : counts) statistic += (c - kDraws / kCells) * (c - kDraws / kCells) / (kDraws / kCells);
-    const double p = boost::math::cdf(boost::math::complement(boost::math::chi_squared_distribution<double>(kCells - 1), statistic));
-    std::printf("[ measured ] Swerling %s tone power GoF p = %.3f\n", std::string(to_string(model)).c_str(), p);
+    for (const double c : counts)
+      statistic += (c - kDraws / kCells) * (c - kDraws / kCells) / (kDraws / kCells);
+    const double p = boost::math::cdf(boost::math::complement(
+        boost::math::chi_squared_distribution<double>(kCells - 1), statistic));
+    std::printf("[ measured ] Swerling %s tone power GoF p = %.3f\n",
+                std::string(to_string(model)).c_str(), p);
     EXPECT_GT(p, 1e-3);
   }
   Scene steady = point_target_scene(10.0);
@@ -188,13 +201,15 @@ TEST(SceneTones, FogClutterPowerIsTheVolumeIntegral) {
   propagation::FogSpec fog;
   fog.density = propagation::LiquidWaterContent{20.0};
   fog.droplets = propagation::Monodisperse{50e-6};
-  const propagation::Chamber chamber = make_chamber(paper_chamber_spec(fog), f.params.carrier_frequency_hz);
+  const propagation::Chamber chamber =
+      make_chamber(paper_chamber_spec(fog), f.params.carrier_frequency_hz);
   const auto all_on = propagation::first_layers_active(4, 4);
   const double eta = chamber.layer(0).optics.volume_backscatter_m2_per_m3;
   const double a_db_per_m = chamber.layer(0).optics.specific_attenuation_db_per_km * 1e-3;
   const double omega = f.derived.beam_solid_angle_sr;
   const auto integrand = [&](double r) {
-    return reference_received_power_w(f.params, eta * omega * r * r, r) * std::pow(10.0, -2.0 * a_db_per_m * (r - 2.0) / 10.0);
+    return reference_received_power_w(f.params, eta * omega * r * r, r) *
+           std::pow(10.0, -2.0 * a_db_per_m * (r - 2.0) / 10.0);
   };
   const int panels = 2000;
   const double h = 4.0 / panels;
@@ -210,7 +225,8 @@ TEST(SceneTones, FogClutterPowerIsTheVolumeIntegral) {
     for (int i = 0; i < kDraws; ++i) {
       RandomStream rng(6, per_bin, i);
       scene_tones(scene, chamber, all_on, f.params, f.derived, rng, f.tones);
-      ASSERT_EQ(f.tones.size(), 1 + 4 * static_cast<std::size_t>(std::ceil(1.0 / f.derived.range_bin_m)) * per_bin);
+      ASSERT_EQ(f.tones.size(),
+                1 + 4 * static_cast<std::size_t>(std::ceil(1.0 / f.derived.range_bin_m)) * per_bin);
       for (std::size_t t = 1; t < f.tones.size(); ++t) {
         const Tone& tone = f.tones[t];
         ASSERT_GE(tone.path_length_m, 4.0);
@@ -220,15 +236,16 @@ TEST(SceneTones, FogClutterPowerIsTheVolumeIntegral) {
       }
     }
     const double mean = total / kDraws;
-    std::printf("[ measured ] fog clutter tones (%u per bin): mean total power / volume integral = %.4f\n", per_bin,
-                mean / expected);
+    std::printf(
+        "[ measured ] fog clutter tones (%u per bin): mean total power / volume integral = %.4f\n",
+        per_bin, mean / expected);
     EXPECT_NEAR(mean / expected, 1.0, 0.03);
   }
   // The target tone carries the chamber's two-way transmittance 10^(-2 a 4 m / 10).
   RandomStream rng(1);
   scene_tones(point_target_scene(10.0), chamber, all_on, f.params, f.derived, rng, f.tones);
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) /
-                  (reference_received_power_w(f.params, 10.0, 10.0) * std::pow(10.0, -2.0 * a_db_per_m * 4.0 / 10.0)),
+  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / (reference_received_power_w(f.params, 10.0, 10.0) *
+                                                 std::pow(10.0, -2.0 * a_db_per_m * 4.0 / 10.0)),
               1.0, 1e-12);
 }
 

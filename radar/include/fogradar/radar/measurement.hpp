@@ -39,8 +39,10 @@ class RadarChain {
   const RangeDopplerProcessor& processor() const { return processor_; }
   const CfarDetector& cfar() const { return cfar_; }
 
-  // Throws InvalidParameter if the chamber was resolved at another frequency than the radar's
-  // carrier, or the scene reaches beyond the radar's unambiguous range.
+  // Validates the scene, then throws InvalidParameter if the chamber was resolved at another
+  // frequency than the radar's carrier ("chamber.frequency_hz"), a centre lies at or behind the
+  // radar ("target.centres[i].range_offset_m"), or the scene reaches beyond the radar's
+  // unambiguous range minus 1 m ("chamber.target_range_m").
   void check_compatible(const Scene& scene, const propagation::Chamber& chamber) const;
 
   MeasurementWorkspace make_workspace() const;

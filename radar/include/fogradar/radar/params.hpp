@@ -11,6 +11,9 @@
 namespace fogradar::radar {
 
 struct RadarParams {
+  // Frequency at the start of each chirp. The chain's sign conventions (beat e^{+i 2 pi f_b t},
+  // echo phase e^{-i 2 pi f_c tau}) make the sweep run down to f_c - B (77 -> 76 GHz, the long-range
+  // band), so echoes that share a range cell interfere at the phase of f_c - B/2 (docs/radar.md).
   double carrier_frequency_hz = 77e9;
   double sweep_bandwidth_hz = 1e9;
   double chirp_duration_s = 51.2e-6;

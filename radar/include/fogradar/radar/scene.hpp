@@ -36,7 +36,9 @@ struct ScatteringCentre {
 // exists via its image below a flat floor, with a real amplitude reflection coefficient.
 struct FloorMultipath {
   bool enabled = false;
-  double reflection_coefficient = -0.5;  // in [-1, 1]; negative: near-grazing phase reversal
+  // In [-1, 1]; -0.7: smooth concrete near grazing incidence (docs/scenario.md), negative for the
+  // phase reversal of both polarisations there.
+  double reflection_coefficient = -0.7;
 };
 
 struct Scene {
@@ -47,7 +49,9 @@ struct Scene {
   // sight per measurement: the mechanical jitter of a real target and mount. 0.2 mm (lambda/19 at
   // 77 GHz) moves the two-way phase by 0.65 rad rms; docs/radar.md justifies the default.
   double micro_motion_std_m = 0.2e-3;
-  // Random point scatterers per range bin that represent the fog's volume clutter.
+  // Random point scatterers per range bin that represent the fog's volume clutter. Fog nearer than
+  // one range bin to the radar is left out: the far-field radar equation (R^-4) does not hold there
+  // (a 25 dBi antenna's far field starts at about 1 m at 77 GHz) and the radar cannot resolve it.
   unsigned clutter_scatterers_per_bin = 4;
 
   void validate() const;  // names "target.<field>" / "target.centres[i].<field>"
