@@ -136,7 +136,7 @@ struct EndToEnd {
 
 EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads) {
   const Clock::time_point start = Clock::now();
-  const experiment::ExperimentResult result = experiment::run_experiment(scenario, {.threads = threads});
+  const experiment::ExperimentResult result = experiment::run_experiment(scenario, {.threads = threads, .progress = {}});
   const Clock::time_point summary_start = Clock::now();
   const experiment::ExperimentSummary summary = experiment::summarize(result);
   EndToEnd e;
@@ -150,13 +150,13 @@ EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads)
 
 // The transforms of one frame, planned once like RangeDopplerProcessor plans them.
 struct FloorPlans {
-  FloorPlans(std::size_t rows, std::size_t columns)
-      : rows(rows),
-        columns(columns),
-        range(radar::FftPlan::along_rows(rows, columns, radar::FftDirection::forward,
+  FloorPlans(std::size_t chirps, std::size_t samples)
+      : rows(chirps),
+        columns(samples),
+        range(radar::FftPlan::along_rows(chirps, samples, radar::FftDirection::forward,
                                          {.planner = radar::FftPlanner::estimate,
                                           .placement = radar::FftPlacement::in_place})),
-        doppler(radar::FftPlan::along_columns(rows, columns, radar::FftDirection::forward,
+        doppler(radar::FftPlan::along_columns(chirps, samples, radar::FftDirection::forward,
                                               {.planner = radar::FftPlanner::estimate,
                                                .placement = radar::FftPlacement::in_place})) {}
   std::size_t rows, columns;

@@ -3,6 +3,8 @@
 // eta over a spherical shell sector; eq. 4 of the virtual layer model as a second method.
 #include <gtest/gtest.h>
 
+#include "rejected_field.hpp"
+
 #include <cmath>
 
 #include "fogradar/core/error.hpp"
@@ -86,13 +88,8 @@ TEST(Chamber, BackscatterIsTheVolumeIntegral) {
 }
 
 TEST(Chamber, RejectsInvalidGeometryAndStates) {
-  const auto field_of = [](const ChamberSpec& spec) -> std::string {
-    try {
-      Chamber chamber(spec, 77e9, table());
-    } catch (const InvalidParameter& e) {
-      return e.field();
-    }
-    return "accepted";
+  const auto field_of = [](const ChamberSpec& spec) {
+    return testing::rejected_field([&] { Chamber(spec, 77e9, table()); });
   };
   ChamberSpec spec;
   spec.layers[2].length_m = 0.0;

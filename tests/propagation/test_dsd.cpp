@@ -4,6 +4,8 @@
 // (Al Naboulsi et al. 2004, Table 1: a, alpha, b, N).
 #include <gtest/gtest.h>
 
+#include "rejected_field.hpp"
+
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
@@ -121,13 +123,8 @@ TEST(Dsd, ShettleFennPresets) {
 }
 
 TEST(Dsd, RejectsInvalidParameters) {
-  const auto field_of = [](const DropSizeDistribution& dsd) -> std::string {
-    try {
-      validate(dsd);
-    } catch (const InvalidParameter& e) {
-      return e.field();
-    }
-    return "accepted";
+  const auto field_of = [](const DropSizeDistribution& dsd) {
+    return testing::rejected_field([&] { validate(dsd); });
   };
   EXPECT_EQ(field_of(Monodisperse{-1e-6}), "fog.droplets.diameter_m");
   EXPECT_EQ(field_of(Monodisperse{std::nan("")}), "fog.droplets.diameter_m");
