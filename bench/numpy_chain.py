@@ -21,8 +21,8 @@ Per frame, as fogradar does it, but written the way one would in NumPy:
   CFAR      cell-averaging CFAR along range in every Doppler bin by cumulative sums: 2 guard and 8
             training cells per side, Pfa 1e-6 (alpha = N (Pfa^(-1/N) - 1), N = 16); the range axis
             wraps around at its ends (fogradar instead slides the training window inward there).
-  estimate  detected cells grouped into 8-connected objects (scipy.ndimage.label), each object's
-            strongest cell interpolated like fogradar: scipy.optimize.minimize_scalar (bounded, within
+  estimate  detected cells grouped into 8-connected objects (scipy.ndimage.label, find_objects),
+            each object's strongest cell interpolated like fogradar: scipy.optimize.minimize_scalar (bounded, within
             +-0.75 bin) of the DTFT magnitude along range via the Dirichlet kernel, then every chirp's
             row interpolated to that range and the same search across Doppler; received power and RCS
             (paper eq. 7); the target is the strongest object within 0.5 m of 10 m.
@@ -181,8 +181,12 @@ def measure(rng, k):
     labels, count = ndimage.label(detected, structure=np.ones((3, 3)))
     best = None
     if count:
-        peaks = ndimage.maximum_position(p, labels, np.arange(1, count + 1))
-        for d, kbin in peaks:
+        # Strongest cell of each object inside its bounding box (ndimage.maximum_position would
+        # argsort the whole map on every call, 14 ms per frame here).
+        for label, (rows, cols) in enumerate(ndimage.find_objects(labels), start=1):
+            box = np.where(labels[rows, cols] == label, p[rows, cols], -1.0)
+            dd, kk = np.unravel_index(np.argmax(box), box.shape)
+            d, kbin = rows.start + dd, cols.start + kk
             range_off = peak_offset(y[d], kbin)
             kernel = dirichlet(kbin + range_off, N)
             doppler = y @ kernel

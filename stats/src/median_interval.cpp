@@ -39,15 +39,55 @@ void require_two_samples(std::span<const double> x, std::span<const double> y) {
   detail::require_finite_values("y", y);
 }
 
-std::vector<double> sorted_differences(std::span<const double> x, std::span<const double> y) {
-  std::vector<double> differences;
-  differences.reserve(x.size() * y.size());
-  for (const double xi : x) {
-    for (const double yj : y) differences.push_back(xi - yj);
+// Order statistics of the m n differences x_i - y_j without forming them (memory O(m + n), so
+// long series do not grow the run's memory quadratically): the k-th smallest by bisection on the
+// value, each step counting the differences <= t with two pointers over the sorted samples.
+// fl(x_i - y_j) is monotone in x_i and in -y_j, so the count is exact for the computed differences
+// and the result is exactly the element a full sort would give.
+class PairwiseDifferences {
+ public:
+  PairwiseDifferences(std::span<const double> x, std::span<const double> y)
+      : x_(detail::sorted_copy(x)), y_(detail::sorted_copy(y)) {}
+
+  std::size_t size() const { return x_.size() * y_.size(); }
+
+  // The k-th smallest difference, k in [1, size()].
+  double kth_smallest(std::size_t k) const {
+    double lo = x_.front() - y_.back();  // the smallest difference
+    double hi = x_.back() - y_.front();  // the largest
+    if (count_at_most(lo) >= k) return lo;
+    // Invariant count(lo) < k <= count(hi); it ends with lo and hi adjacent doubles, and the only
+    // difference in (lo, hi] is then hi itself.
+    for (;;) {
+      const double mid = lo + 0.5 * (hi - lo);
+      if (mid <= lo || mid >= hi) return hi;
+      (count_at_most(mid) >= k ? hi : lo) = mid;
+    }
   }
-  std::sort(differences.begin(), differences.end());
-  return differences;
-}
+
+  // Type-7 quantile of the differences (Hyndman & Fan 1996).
+  double quantile_type7(double p) const {
+    const double h = static_cast<double>(size() - 1) * p;
+    const auto j = static_cast<std::size_t>(std::floor(h));
+    const double low = kth_smallest(j + 1);
+    return h == static_cast<double>(j) ? low : low + (h - static_cast<double>(j)) * (kth_smallest(j + 2) - low);
+  }
+
+ private:
+  // #{(i, j) : x_i - y_j <= t}; for ascending x_i the qualifying j form a shrinking-from-the-left
+  // suffix of the ascending y.
+  std::size_t count_at_most(double t) const {
+    std::size_t count = 0, j = 0;
+    for (const double xi : x_) {
+      while (j < y_.size() && xi - y_[j] > t) ++j;
+      count += y_.size() - j;
+    }
+    return count;
+  }
+
+  std::vector<double> x_;
+  std::vector<double> y_;
+};
 
 // Exact: the largest C with P(U <= C - 1) <= alpha / 2, i.e. the smallest C with
 // P(U <= C) > alpha / 2 (R's qwilcox uses >=, which differs only when P(U <= C) equals alpha / 2
@@ -96,7 +136,7 @@ double median_standard_error(std::span<const double> values) {
 
 double hodges_lehmann_shift(std::span<const double> x, std::span<const double> y) {
   require_two_samples(x, y);
-  return detail::quantile_type7_unchecked(sorted_differences(x, y), 0.5);
+  return PairwiseDifferences(x, y).quantile_type7(0.5);
 }
 
 Interval median_shift_interval(std::span<const double> x, std::span<const double> y,
@@ -112,8 +152,8 @@ Interval median_shift_interval(std::span<const double> x, std::span<const double
                             : normal_shift_rank(m, n, tie_term, alpha_half);
   if (c == 0) return unbounded;
   // [d_(C), d_(mn + 1 - C)], 1-based order statistics of the differences.
-  const std::vector<double> differences = sorted_differences(x, y);
-  return {differences[c - 1], differences[m * n - c]};
+  const PairwiseDifferences differences(x, y);
+  return {differences.kth_smallest(c), differences.kth_smallest(m * n + 1 - c)};
 }
 
 }  // namespace fogradar::stats

@@ -534,6 +534,45 @@ TEST(ShiftInterval, NormalApproximationCoverageBySimulation) {
 
 // --- Number formatting --------------------------------------------------------------------------
 
+// The Hodges-Lehmann shift and the shift interval select order statistics of the m n pairwise
+// differences without forming them; a second method, the brute-force sort of all differences, must
+// give exactly the same elements, also with heavy ties (values on a 0.5 dB grid) and unequal sizes.
+TEST(ShiftInterval, SelectionEqualsFullSortOfDifferences) {
+  RandomStream rng(2024);
+  for (const double grid : {0.0, 0.5}) {
+    std::vector<double> x(37), y(53);
+    const auto draw = [&](double centre) {
+      const double v = centre + 3.0 * rng.normal();
+      return grid > 0.0 ? grid * std::round(v / grid) : v;
+    };
+    for (double& v : x) v = draw(0.4);
+    for (double& v : y) v = draw(0.0);
+    std::vector<double> differences;
+    for (const double xi : x) {
+      for (const double yj : y) differences.push_back(xi - yj);
+    }
+    std::sort(differences.begin(), differences.end());
+    const double h = 0.5 * static_cast<double>(differences.size() - 1);
+    const auto j = static_cast<std::size_t>(h);
+    const double brute_median = differences[j] + (h - static_cast<double>(j)) * (differences[j + 1] - differences[j]);
+    EXPECT_EQ(hodges_lehmann_shift(x, y), brute_median) << "grid " << grid;
+    const Interval ci = median_shift_interval(x, y, 0.95);
+    EXPECT_TRUE(std::binary_search(differences.begin(), differences.end(), ci.low));
+    EXPECT_TRUE(std::binary_search(differences.begin(), differences.end(), ci.high));
+    // Both ends sit at mirrored ranks: some C has d_(C) = low and d_(mn+1-C) = high (1-based; with
+    // ties each end matches a range of ranks, and the two ranges must allow a common C).
+    const auto first = [&](double v) {
+      return static_cast<std::size_t>(std::lower_bound(differences.begin(), differences.end(), v) - differences.begin());
+    };
+    const auto past = [&](double v) {
+      return static_cast<std::size_t>(std::upper_bound(differences.begin(), differences.end(), v) - differences.begin());
+    };
+    const std::size_t mn = differences.size();
+    EXPECT_LE(std::max(first(ci.low) + 1, mn - past(ci.high) + 1), std::min(past(ci.low), mn - first(ci.high)))
+        << "grid " << grid;
+  }
+}
+
 TEST(Format, MatchesPrintfGeneralAndRoundTrips) {  // Python "%.10g" % v as reference
   EXPECT_EQ(format_number(14.97), "14.97");
   EXPECT_EQ(format_number(1e-6), "1e-06");

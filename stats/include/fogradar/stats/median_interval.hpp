@@ -50,7 +50,8 @@ double hodges_lehmann_shift(std::span<const double> x, std::span<const double> y
 //    standard deviation of U: Hollander, Wolfe & Chicken's large-sample C = n_x n_y / 2 -
 //    z sigma rounded to the nearest integer (R instead solves the corrected z for the shift by
 //    root finding, which lands between the order statistics).
-// Memory and time O(n_x n_y log(n_x n_y)): all differences are formed and sorted.
+// Memory O(n_x + n_y): the order statistics of the differences are selected without forming them
+// (bisection on the value with an O(n_x + n_y) count per step).
 // Throws InvalidParameter naming "x", "y" or "confidence".
 Interval median_shift_interval(std::span<const double> x, std::span<const double> y,
                                double confidence);
