@@ -1,11 +1,11 @@
 #include "fogradar/experiment/runner.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
 #include <thread>
 
-#include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/core/units.hpp"
 #include "fogradar/radar/measurement.hpp"

@@ -1,6 +1,5 @@
 #include "fogradar/experiment/summary.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
