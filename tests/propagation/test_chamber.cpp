@@ -89,7 +89,7 @@ TEST(Chamber, BackscatterIsTheVolumeIntegral) {
 
 TEST(Chamber, RejectsInvalidGeometryAndStates) {
   const auto field_of = [](const ChamberSpec& spec) {
-    return testing::rejected_field([&] { Chamber(spec, 77e9, table()); });
+    return test_support::rejected_field([&] { Chamber(spec, 77e9, table()); });
   };
   ChamberSpec spec;
   spec.layers[2].length_m = 0.0;

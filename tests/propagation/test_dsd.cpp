@@ -124,7 +124,7 @@ TEST(Dsd, ShettleFennPresets) {
 
 TEST(Dsd, RejectsInvalidParameters) {
   const auto field_of = [](const DropSizeDistribution& dsd) {
-    return testing::rejected_field([&] { validate(dsd); });
+    return test_support::rejected_field([&] { validate(dsd); });
   };
   EXPECT_EQ(field_of(Monodisperse{-1e-6}), "fog.droplets.diameter_m");
   EXPECT_EQ(field_of(Monodisperse{std::nan("")}), "fog.droplets.diameter_m");

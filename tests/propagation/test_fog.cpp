@@ -137,7 +137,7 @@ TEST_F(FogTest, NoWaterNoFog) {
 
 TEST_F(FogTest, RejectsInvalidSpecs) {
   const auto field_of = [](const FogSpec& spec) {
-    return testing::rejected_field([&] { Fog(spec, FogTest::table()).at_frequency(77e9); });
+    return test_support::rejected_field([&] { Fog(spec, FogTest::table()).at_frequency(77e9); });
   };
   EXPECT_EQ(field_of({.density = LiquidWaterContent{-0.1}}), "fog.lwc_g_per_m3");
   EXPECT_EQ(field_of({.density = LiquidWaterContent{std::nan("")}}), "fog.lwc_g_per_m3");

@@ -27,7 +27,7 @@ constexpr unsigned kMaxKappa = 15;
 
 // Expects `call` to throw InvalidParameter naming `field`.
 void expect_invalid(const std::function<void()>& call, const std::string& field) {
-  EXPECT_EQ(testing::rejected_field(call), field);
+  EXPECT_EQ(test_support::rejected_field(call), field);
 }
 
 // ---- Catalan and Narayana numbers ----------------------------------------------------------

@@ -2,6 +2,8 @@
 // 2001). References are the published closed forms evaluated by hand; tolerances 1e-12 unless said.
 #include <gtest/gtest.h>
 
+#include "rejected_field.hpp"
+
 #include <cmath>
 
 #include "fogradar/core/error.hpp"
@@ -79,12 +81,7 @@ TEST(Visibility, RejectsNonPhysicalInput) {
   EXPECT_THROW(kim_q(0.0), InvalidParameter);
   EXPECT_THROW(kunkel_extinction_per_km(-0.1), InvalidParameter);
   EXPECT_THROW(kruse_extinction_per_km(1.0, -905.0), InvalidParameter);
-  try {
-    attenuation_db_per_km(-1.0);
-    FAIL();
-  } catch (const InvalidParameter& e) {
-    EXPECT_EQ(e.field(), "extinction_per_km");
-  }
+  EXPECT_EQ(test_support::rejected_field([] { attenuation_db_per_km(-1.0); }), "extinction_per_km");
 }
 
 }  // namespace

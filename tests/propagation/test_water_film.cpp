@@ -35,7 +35,7 @@ constexpr complex kWater77Ghz{3.76, 2.32};
 
 // Expects `call` to throw InvalidParameter naming `field`.
 void expect_invalid(const std::function<void()>& call, const std::string& field) {
-  EXPECT_EQ(testing::rejected_field(call), field);
+  EXPECT_EQ(test_support::rejected_field(call), field);
 }
 
 // Fresnel amplitude coefficients at normal incidence from a into b.

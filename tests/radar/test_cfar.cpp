@@ -9,6 +9,8 @@
 // Monte Carlo tests use fixed-seed std::mt19937_64 streams and statistically sized bounds.
 #include <gtest/gtest.h>
 
+#include "rejected_field.hpp"
+
 #include <algorithm>
 #include <boost/math/distributions/binomial.hpp>
 #include <boost/math/distributions/gamma.hpp>
@@ -89,12 +91,7 @@ double published_pfa(const CfarConfig& config, double alpha) {
 // --- Configuration ----------------------------------------------------------------------------
 
 void expect_invalid_field(const CfarConfig& config, const std::string& field) {
-  try {
-    config.validate();
-    ADD_FAILURE() << "validate() accepted an invalid " << field;
-  } catch (const InvalidParameter& error) {
-    EXPECT_EQ(error.field(), field) << error.what();
-  }
+  EXPECT_EQ(test_support::rejected_field([&] { config.validate(); }), field);
 }
 
 // Every invalid field is rejected with InvalidParameter naming it (STYLE.md practice 11).

@@ -5,7 +5,7 @@
 
 #include "fogradar/core/error.hpp"
 
-namespace fogradar::testing {
+namespace fogradar::test_support {
 
 // The field named by the InvalidParameter that `call` throws, or "accepted" when it throws none.
 template <class Call>
@@ -18,4 +18,4 @@ std::string rejected_field(Call&& call) {
   return "accepted";
 }
 
-}  // namespace fogradar::testing
+}  // namespace fogradar::test_support
