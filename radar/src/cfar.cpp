@@ -128,6 +128,76 @@ ReferenceCells reference_cells(std::size_t i, std::size_t length, std::size_t gu
   return {left_end - a, left_end, right_begin, right_begin + b};
 }
 
+// Sums of every n consecutive cells, sums[j] = power[j] + ... + power[j + n - 1] for j in
+// [0, length - n], by doubling: blocks of 1, 2, 4, ... cells are added pairwise and the blocks of
+// n's binary digits collected. O(length log n), and every sum adds non-negative values only, so
+// its relative error is below (2 log2 n + 1) eps however strong a target sits in the profile
+// (a running sum, add one cell and subtract another, would carry an absolute error of the
+// strongest cell that ever passed through it).
+std::span<const double> window_sums(std::span<const double> power, std::size_t n, std::vector<double>& sums,
+                                    std::vector<double>& blocks) {
+  const std::size_t length = power.size();
+  const std::size_t count = length - n + 1;
+  sums.resize(count);
+  blocks.assign(power.begin(), power.end());
+  std::size_t covered = 0;  // sums[j] holds power[j .. j + covered)
+  for (std::size_t block = 1; block <= n; block *= 2) {
+    if ((n & block) != 0) {
+      const double* from = blocks.data() + covered;
+      if (covered == 0) {
+        std::copy(from, from + count, sums.begin());
+      } else {
+        for (std::size_t j = 0; j < count; ++j) sums[j] += from[j];
+      }
+      covered += block;
+    }
+    if (2 * block <= n) {  // blocks[j] = power[j .. j + 2 block) for j <= length - 2 block
+      double* data = blocks.data();
+      for (std::size_t j = 0; j + 2 * block <= length; ++j) data[j] += data[j + block];
+    }
+  }
+  return sums;
+}
+
+// CA/GO/SO thresholds: scale * combine(S_lead, S_lag), S the sums of the two halves of the
+// reference cells (scale = alpha / N for CA, alpha / n for GO/SO). Interior cells read the two
+// window sums; the 2 (guard + n) edge cells add their reference ranges directly.
+template <class Combine>
+void two_sided_thresholds(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
+                          std::span<const double> sums, std::vector<double>& threshold, Combine combine) {
+  const std::size_t length = power.size();
+  const auto add = [&power](std::size_t begin, std::size_t end) {
+    double total = 0.0;
+    for (std::size_t j = begin; j < end; ++j) total += power[j];
+    return total;
+  };
+  // Edge cells: the two halves are the first n and the last n reference cells in range order.
+  const auto edge_cell = [&](std::size_t i) {
+    const ReferenceCells r = reference_cells(i, length, guard, n);
+    const std::size_t a = r.le - r.lb;
+    double first = 0.0;
+    double second = 0.0;
+    if (a >= n) {
+      first = add(r.lb, r.lb + n);
+      second = add(r.lb + n, r.le) + add(r.rb, r.re);
+    } else {
+      first = add(r.lb, r.le) + add(r.rb, r.rb + (n - a));
+      second = add(r.rb + (n - a), r.re);
+    }
+    threshold[i] = scale * combine(first, second);
+  };
+  const std::size_t interior_begin = guard + n;
+  const std::size_t interior_end = length - guard - n;  // > interior_begin (validated)
+  for (std::size_t i = 0; i < interior_begin; ++i) edge_cell(i);
+  const double* lead = sums.data();                // S_lead of cell i = sums[i - guard - n]
+  const double* lag = sums.data() + 2 * guard + n + 1;  // S_lag of cell i = sums[i + guard + 1]
+  for (std::size_t i = interior_begin; i < interior_end; ++i) {
+    const std::size_t j = i - interior_begin;
+    threshold[i] = scale * combine(lead[j], lag[j]);
+  }
+  for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
+}
+
 }  // namespace
 
 std::string_view to_string(CfarKind kind) noexcept {
@@ -309,56 +379,22 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
       r = next;
     }
   } else {
-    // CA/GO/SO: running (prefix) sums, O(1) per cell. long double (64-bit mantissa on x86-64)
-    // keeps the differences of large prefix sums accurate next to strong targets: the absolute
-    // error of a side sum is a few ulp of the running total, ~1e-19 of the profile energy.
-    std::vector<long double>& prefix = workspace.prefix_sums;
-    prefix.resize(length + 1);
-    prefix[0] = 0.0L;
-    for (std::size_t i = 0; i < length; ++i) prefix[i + 1] = prefix[i] + power[i];
-    const auto sum = [&prefix](std::size_t begin, std::size_t end) {
-      return prefix[end] - prefix[begin];
-    };
-    const long double n_ld = static_cast<long double>(n);
-    const long double big_n_ld = static_cast<long double>(big_n);
-    const CfarKind kind = config_.kind;
-    const auto estimate_from_halves = [&](long double first, long double second) {
-      switch (kind) {
-        case CfarKind::ca:
-          return (first + second) / big_n_ld;
-        case CfarKind::go:
-          return std::max(first, second) / n_ld;
-        case CfarKind::so:
-        case CfarKind::os:
-          break;
-      }
-      return std::min(first, second) / n_ld;
-    };
-    // Edge cells (nominal window leaves the profile): general reference ranges; the two halves
-    // are the first n and the last n reference cells in range order.
-    const auto edge_cell = [&](std::size_t i) {
-      const ReferenceCells r = reference_cells(i, length, guard, n);
-      const std::size_t a = r.le - r.lb;
-      long double first = 0.0L;
-      long double second = 0.0L;
-      if (a >= n) {
-        first = sum(r.lb, r.lb + n);
-        second = sum(r.lb + n, r.le) + sum(r.rb, r.re);
-      } else {
-        first = sum(r.lb, r.le) + sum(r.rb, r.rb + (n - a));
-        second = sum(r.rb + (n - a), r.re);
-      }
-      workspace.threshold[i] = alpha * static_cast<double>(estimate_from_halves(first, second));
-    };
-    const std::size_t interior_begin = guard + n;
-    const std::size_t interior_end = length - guard - n;  // > interior_begin (validated)
-    for (std::size_t i = 0; i < interior_begin; ++i) edge_cell(i);
-    for (std::size_t i = interior_begin; i < interior_end; ++i) {
-      const long double lead = prefix[i - guard] - prefix[i - guard - n];
-      const long double lag = prefix[i + guard + 1 + n] - prefix[i + guard + 1];
-      workspace.threshold[i] = alpha * static_cast<double>(estimate_from_halves(lead, lag));
+    const std::span<const double> sums = window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
+    switch (config_.kind) {
+      case CfarKind::ca:
+        two_sided_thresholds(power, guard, n, alpha / static_cast<double>(big_n), sums, workspace.threshold,
+                             [](double lead, double lag) { return lead + lag; });
+        break;
+      case CfarKind::go:
+        two_sided_thresholds(power, guard, n, alpha / static_cast<double>(n), sums, workspace.threshold,
+                             [](double lead, double lag) { return std::max(lead, lag); });
+        break;
+      case CfarKind::so:
+      case CfarKind::os:
+        two_sided_thresholds(power, guard, n, alpha / static_cast<double>(n), sums, workspace.threshold,
+                             [](double lead, double lag) { return std::min(lead, lag); });
+        break;
     }
-    for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
   }
 
   for (std::size_t i = 0; i < length; ++i) {

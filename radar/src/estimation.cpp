@@ -1,40 +1,250 @@
 #include "fogradar/radar/estimation.hpp"
 
 #include <boost/math/tools/minima.hpp>
+#include <algorithm>
 #include <cmath>
+#include <complex>
+#include <limits>
 
 #include "fogradar/core/constants.hpp"
+#include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 
 namespace fogradar::radar {
 namespace {
 
-// Bits of precision for Brent's search of the peak: 2^-30 bins is far below any physical effect.
-constexpr int peak_search_bits = 30;
+using detail::f64x4;
+
+// Brent's bracket of the peak (2^-24 bin), then at most a few Newton steps within 2^-20 bin of it
+// (find_peak); Newton converges quadratically from there, so three steps reach rounding level.
+constexpr int brent_bits = 24;
+constexpr double newton_neighbourhood_bins = 0x1p-20;
+constexpr int max_newton_steps = 4;
 // The true maximum of a tone lies within half a bin of the largest cell; a little margin lets
 // Brent's method find it when two cells are nearly equal.
 constexpr double peak_search_half_width_bins = 0.75;
 
-std::complex<double> interpolate(std::span<const std::complex<double>> values,
-                                 std::span<const std::complex<double>> kernel) {
-  std::complex<double> sum{};
-  for (std::size_t m = 0; m < values.size(); ++m) sum += values[m] * kernel[m];
-  return sum;
+// sum_m (re[m] + i im[m]) / (sin_j[m] cos_delta + cos_j[m] sin_delta): the Dirichlet sum of one
+// fractional bin (dirichlet_kernel in estimation.hpp), four lanes of partial sums.
+FOGRADAR_SIMD_CLONES
+std::complex<double> sum_over_sines(const double* re, const double* im, const double* sin_j, const double* cos_j,
+                                    std::size_t n, double cos_delta, double sin_delta) {
+  f64x4 sum_re{}, sum_im{};
+  std::size_t m = 0;
+  for (; m + 4 <= n; m += 4) {
+    const f64x4 inverse = 1.0 / (detail::load4(sin_j + m) * cos_delta + detail::load4(cos_j + m) * sin_delta);
+    sum_re += detail::load4(re + m) * inverse;
+    sum_im += detail::load4(im + m) * inverse;
+  }
+  double tail_re = 0.0, tail_im = 0.0;
+  for (; m < n; ++m) {
+    const double inverse = 1.0 / (sin_j[m] * cos_delta + cos_j[m] * sin_delta);
+    tail_re += re[m] * inverse;
+    tail_im += im[m] * inverse;
+  }
+  return {detail::sum_lanes(sum_re) + tail_re, detail::sum_lanes(sum_im) + tail_im};
 }
 
-// Fractional offset in [-w, w] around bin `centre` that maximises |X(centre + offset)|.
-double peak_offset(std::span<const std::complex<double>> values, std::size_t centre,
-                   std::span<std::complex<double>> kernel) {
-  const std::size_t n = values.size();
-  if (n == 1) return 0.0;
-  const auto negative_magnitude = [&](double offset) {
-    dirichlet_kernel(static_cast<double>(centre) + offset, n, kernel);
-    return -std::norm(interpolate(values, kernel));
+// out[r] = sum_m map[r][m] K[m] for every row r, with the kernel stored with each value twice
+// (kernel_re[2m] = kernel_re[2m+1] = Re K[m], likewise Im) to multiply interleaved (re, im) pairs.
+FOGRADAR_SIMD_CLONES
+void rows_times_kernel(const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
+                       const double* kernel_im, double* out) {
+  const std::size_t values = 2 * columns;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* x = map + r * values;
+    f64x4 by_re{}, by_im{};  // (x_re K_re, x_im K_re, ...) and (x_re K_im, x_im K_im, ...)
+    std::size_t i = 0;
+    for (; i + 4 <= values; i += 4) {
+      const f64x4 v = detail::load4(x + i);
+      by_re += v * detail::load4(kernel_re + i);
+      by_im += v * detail::load4(kernel_im + i);
+    }
+    double re = (by_re[0] + by_re[2]) - (by_im[1] + by_im[3]);
+    double im = (by_re[1] + by_re[3]) + (by_im[0] + by_im[2]);
+    if (i < values) {  // odd column count: one complex value left
+      re += x[i] * kernel_re[i] - x[i + 1] * kernel_im[i];
+      im += x[i] * kernel_im[i] + x[i + 1] * kernel_re[i];
+    }
+    out[2 * r] = re;
+    out[2 * r + 1] = im;
+  }
+}
+
+// nu = k + f with k the nearest integer, reduced modulo 2N (the period of e^{i pi j/N}), and f.
+struct SplitBin {
+  std::size_t k_mod_2n;
+  double fraction;
+};
+
+SplitBin split_bin(double nu, std::size_t n) {
+  const double k = std::nearbyint(nu);
+  const double two_n = 2.0 * static_cast<double>(n);
+  double k_mod = std::fmod(k, two_n);
+  if (k_mod < 0.0) k_mod += two_n;
+  return {static_cast<std::size_t>(k_mod), nu - k};
+}
+
+// |X(k + f)|^2 of a DFT for f in [-w, w] around bin k (0 <= k < N): the rotated values
+// X[m] e^{i pi j/N} and the table entries of j = k - m are gathered once, so each evaluation is
+// three sines and one sum_over_sines.
+class FractionalBinPower {
+ public:
+  FractionalBinPower(std::span<const std::complex<double>> values, std::size_t k, const DirichletTable& table,
+                     EstimationWorkspace& ws)
+      : n_(values.size()), centre_(values[k]), ws_(ws) {
+    ws.rotated_re.resize(n_);
+    ws.rotated_im.resize(n_);
+    ws.sin_j.resize(n_);
+    ws.cos_j.resize(n_);
+    for (std::size_t m = 0; m < n_; ++m) {
+      const std::size_t j = (k + 2 * n_ - m) % (2 * n_);
+      const double c = table.cos_pi_j_over_n(j), s = table.sin_pi_j_over_n(j);
+      ws.sin_j[m] = s;
+      ws.cos_j[m] = c;
+      ws.rotated_re[m] = values[m].real() * c - values[m].imag() * s;
+      ws.rotated_im[m] = values[m].real() * s + values[m].imag() * c;
+    }
+  }
+
+  double operator()(double f) const {
+    if (f == 0.0) return std::norm(centre_);
+    const double nd = static_cast<double>(n_);
+    const double delta = pi * f / nd;
+    const std::complex<double> sum = sum_over_sines(ws_.rotated_re.data(), ws_.rotated_im.data(), ws_.sin_j.data(),
+                                                    ws_.cos_j.data(), n_, std::cos(delta), std::sin(delta));
+    const double scale = std::sin(pi * f) / nd;
+    return scale * scale * std::norm(sum);
+  }
+
+ private:
+  std::size_t n_;
+  std::complex<double> centre_;
+  const EstimationWorkspace& ws_;
+};
+
+// The DTFT around bin k from the time signal: g(f) = X(k + f) = sum_n y[n] e^{-i 2 pi f n / N},
+// y[n] = x[n] e^{-i 2 pi k n / N}, x = IDFT(X), with its first two derivatives in f. Unlike the
+// Dirichlet sum, nothing here is singular at f = 0, so the stationarity condition
+// dP/df = 2 Re(conj(g) g') = 0 of P = |g|^2 can be solved to rounding level, where searching on
+// values of P alone stalls at ~sqrt(eps) (P is flat to second order at its maximum).
+class TimeSignalDtft {
+ public:
+  TimeSignalDtft(std::span<const std::complex<double>> values, std::size_t k, const DirichletTable& table,
+                 InverseDft& inverse)
+      : n_(values.size()), y_(inverse.signal) {
+    inverse.prepare(n_);
+    inverse.plan->execute(values, y_);
+    const double nd = static_cast<double>(n_);
+    for (std::size_t n = 0; n < n_; ++n) {
+      const std::size_t j = (2 * k * n) % (2 * n_);  // e^{-i 2 pi k n / N} = e^{-i pi j / N}
+      y_[n] *= std::complex<double>(table.cos_pi_j_over_n(j), -table.sin_pi_j_over_n(j)) / nd;
+    }
+  }
+
+  struct Derivatives {
+    double power, slope, curvature;  // P, dP/df, d2P/df2
   };
-  return boost::math::tools::brent_find_minima(negative_magnitude, -peak_search_half_width_bins,
-                                               peak_search_half_width_bins, peak_search_bits)
-      .first;
+
+  // Phases are taken about the centre n0 = (N-1)/2 (|P| and its derivatives do not depend on it;
+  // the derivative weights stay small); the phasor runs by recurrence (error ~ N eps).
+  Derivatives at(double f) const {
+    const double nd = static_cast<double>(n_);
+    const double centre = 0.5 * (nd - 1.0);
+    const std::complex<double> step = std::polar(1.0, -2.0 * pi * f / nd);
+    const std::complex<double> start = std::polar(1.0, 2.0 * pi * f * centre / nd);
+    double phasor_re = start.real(), phasor_im = start.imag();
+    double g_re = 0.0, g_im = 0.0, g1_re = 0.0, g1_im = 0.0, g2_re = 0.0, g2_im = 0.0;
+    for (std::size_t n = 0; n < n_; ++n) {
+      const double w = -2.0 * pi * (static_cast<double>(n) - centre) / nd;  // d/df of the phase
+      const double term_re = y_[n].real() * phasor_re - y_[n].imag() * phasor_im;
+      const double term_im = y_[n].real() * phasor_im + y_[n].imag() * phasor_re;
+      g_re += term_re;
+      g_im += term_im;
+      g1_re -= w * term_im;  // i w term
+      g1_im += w * term_re;
+      g2_re -= w * w * term_re;
+      g2_im -= w * w * term_im;
+      const double next_re = phasor_re * step.real() - phasor_im * step.imag();
+      phasor_im = phasor_re * step.imag() + phasor_im * step.real();
+      phasor_re = next_re;
+    }
+    const double power = g_re * g_re + g_im * g_im;
+    const double slope = 2.0 * (g_re * g1_re + g_im * g1_im);
+    const double curvature = 2.0 * ((g1_re * g1_re + g1_im * g1_im) + (g_re * g2_re + g_im * g2_im));
+    return {power, slope, curvature};
+  }
+
+ private:
+  std::size_t n_;
+  ComplexVector& y_;
+};
+
+// Fractional offset in [-w, w] around bin `centre` that maximises |X(centre + offset)|, and the
+// maximum |X|^2. Brent's method on the Dirichlet sums brackets the maximum robustly to 2^-24 bin;
+// Newton steps on dP/df = 0 from the time signal then take it to rounding level. A Newton step
+// that is not at a maximum (d2P/df2 >= 0) or that leaves the 2^-20-bin neighbourhood of Brent's
+// point is not taken.
+struct Peak {
+  double offset;
+  double power;
+};
+
+Peak find_peak(std::span<const std::complex<double>> values, std::size_t centre, const DirichletTable& table,
+               InverseDft& inverse, EstimationWorkspace& ws) {
+  if (values.size() == 1) return {0.0, std::norm(values[0])};
+  const FractionalBinPower power(values, centre, table, ws);
+  const double bracketed = boost::math::tools::brent_find_minima([&power](double offset) { return -power(offset); },
+                                                                 -peak_search_half_width_bins,
+                                                                 peak_search_half_width_bins, brent_bits)
+                               .first;
+  const TimeSignalDtft dtft(values, centre, table, inverse);
+  double offset = bracketed;
+  TimeSignalDtft::Derivatives at = dtft.at(offset);
+  for (int iteration = 0; iteration < max_newton_steps && at.curvature < 0.0; ++iteration) {
+    const double next = offset - at.slope / at.curvature;
+    if (!(std::abs(next - bracketed) <= newton_neighbourhood_bins)) break;
+    const bool converged = std::abs(next - offset) <= 4.0 * std::numeric_limits<double>::epsilon();
+    offset = next;
+    at = dtft.at(offset);
+    if (converged) break;
+  }
+  return {offset, at.power};
+}
+
+// Calls sink(m, K(nu - m)) for m = 0..N-1 (the evaluation described at dirichlet_kernel).
+template <class Sink>
+void dirichlet_weights(double nu, const DirichletTable& table, Sink sink) {
+  const std::size_t n = table.length();
+  FOGRADAR_CHECK(n > 0);
+  const auto [k, f] = split_bin(nu, n);
+  const double nd = static_cast<double>(n);
+  // An integer nu: 1 at bin nu and its aliases (j a multiple of N), 0 elsewhere.
+  if (f == 0.0) {
+    for (std::size_t m = 0; m < n; ++m) sink(m, (k + 2 * n - m) % n == 0 ? 1.0 : 0.0);
+    return;
+  }
+  const double delta = pi * f / nd;
+  const double cos_delta = std::cos(delta), sin_delta = std::sin(delta);
+  const std::complex<double> a = std::polar(std::sin(pi * f) / nd, -pi * f * (nd - 1.0) / nd);
+  for (std::size_t m = 0; m < n; ++m) {
+    const std::size_t j = (k + 2 * n - m) % (2 * n);
+    const double c = table.cos_pi_j_over_n(j), s = table.sin_pi_j_over_n(j);
+    sink(m, a * std::complex<double>(c, s) / (s * cos_delta + c * sin_delta));
+  }
+}
+
+// ws.doppler[r] = X_r(nu): every row of the map interpolated to the fractional range bin nu.
+void interpolate_rows(std::span<const std::complex<double>> map, std::size_t rows, std::size_t columns, double nu,
+                      EstimationWorkspace& ws) {
+  dirichlet_weights(nu, ws.range_table, [&ws](std::size_t m, std::complex<double> weight) {
+    ws.kernel_re[2 * m] = ws.kernel_re[2 * m + 1] = weight.real();
+    ws.kernel_im[2 * m] = ws.kernel_im[2 * m + 1] = weight.imag();
+  });
+  // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
+  rows_times_kernel(reinterpret_cast<const double*>(map.data()), rows, columns, ws.kernel_re.data(),
+                    ws.kernel_im.data(), reinterpret_cast<double*>(ws.doppler.data()));
 }
 
 // Doppler bin in [-N/2, N/2).
@@ -45,13 +255,19 @@ double signed_bin(double bin, std::size_t n) {
   return wrapped >= half ? wrapped - static_cast<double>(n) : wrapped;
 }
 
-// Marks each CFAR detection in the mask, row by row.
+// Marks each CFAR detection in the mask and lists it, row by row (ascending cell index). The mask
+// is all zero between frames: every listed cell is cleared again by take_object, so it is never
+// swept in full.
 void run_cfar(std::span<const double> power, std::size_t rows, std::size_t columns, const CfarDetector& cfar,
               EstimationWorkspace& ws) {
-  ws.detected.assign(rows * columns, 0);
+  if (ws.detected.size() != rows * columns) ws.detected.assign(rows * columns, 0);
+  ws.detected_cells.clear();
   for (std::size_t d = 0; d < rows; ++d) {
     cfar.detect(power.subspan(d * columns, columns), ws.cfar);
-    for (std::size_t k : ws.cfar.detections) ws.detected[d * columns + k] = 1;
+    for (std::size_t k : ws.cfar.detections) {
+      ws.detected[d * columns + k] = 1;
+      ws.detected_cells.push_back(d * columns + k);
+    }
   }
 }
 
@@ -87,19 +303,31 @@ std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<cons
 
 }  // namespace
 
-void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel) {
-  FOGRADAR_CHECK(kernel.size() >= n);
-  const double nd = static_cast<double>(n);
-  for (std::size_t m = 0; m < n; ++m) {
-    const double u = nu - static_cast<double>(m);
-    // Integer u: the kernel is 1 at multiples of N (aliases of bin m) and 0 elsewhere.
-    const double s = std::sin(pi * u / nd);
-    const double magnitude = std::abs(s) < 1e-12 ? (std::abs(std::remainder(u, nd)) < 1e-9 ? 1.0 : 0.0)
-                                                 : std::sin(pi * u) / (nd * s);
-    // X(nu) = sum_m X[m] (1/N) sum_n exp(-i 2 pi (nu - m) n / N): the geometric sum has phase
-    // exp(-i pi u (N-1)/N) for FFTW's forward sign exp(-i 2 pi n k / N).
-    kernel[m] = std::polar(magnitude, -pi * u * (nd - 1.0) / nd);
+void InverseDft::prepare(std::size_t n) {
+  if (plan && signal.size() == n) return;
+  plan.emplace(n, FftDirection::inverse, FftOptions{.alignment = FftAlignment::unaligned});
+  signal.resize(n);
+}
+
+void DirichletTable::prepare(std::size_t n) {
+  if (n == n_) return;
+  n_ = n;
+  cos_.resize(2 * n);
+  sin_.resize(2 * n);
+  for (std::size_t j = 0; j < 2 * n; ++j) {
+    const double angle = pi * static_cast<double>(j) / static_cast<double>(n);
+    cos_[j] = std::cos(angle);
+    sin_[j] = std::sin(angle);
   }
+}
+
+void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel) {
+  dirichlet_kernel(nu, DirichletTable(n), kernel);
+}
+
+void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::complex<double>> kernel) {
+  FOGRADAR_CHECK(kernel.size() >= table.length());
+  dirichlet_weights(nu, table, [&kernel](std::size_t m, std::complex<double> weight) { kernel[m] = weight; });
 }
 
 void estimate_detections(std::span<const std::complex<double>> map, std::span<const double> power,
@@ -110,28 +338,25 @@ void estimate_detections(std::span<const std::complex<double>> map, std::span<co
   FOGRADAR_CHECK(map.size() == rows * columns && power.size() == map.size());
   detections.clear();
   run_cfar(power, rows, columns, cfar, ws);
-  ws.kernel.resize(std::max(rows, columns));
+  ws.range_table.prepare(columns);
+  ws.doppler_table.prepare(rows);
+  ws.kernel_re.resize(2 * columns);
+  ws.kernel_im.resize(2 * columns);
   ws.doppler.resize(rows);
   const double noise_per_cell_w = derived.noise_power_w * processor.noise_power_gain();
   const double gain = processor.coherent_amplitude_gain();
 
-  for (std::size_t seed = 0; seed < ws.detected.size(); ++seed) {
-    if (!ws.detected[seed]) continue;
+  for (const std::size_t seed : ws.detected_cells) {
+    if (!ws.detected[seed]) continue;  // already taken with an earlier cell of its object
     const auto [peak, cells] = take_object(seed, power, rows, columns, ws);
     const std::size_t d = peak / columns, k = peak % columns;
 
     // Range: the DTFT maximum along the peak's Doppler row.
-    const std::span<std::complex<double>> range_kernel(ws.kernel.data(), columns);
-    const double range_offset = peak_offset(map.subspan(d * columns, columns), k, range_kernel);
+    const double range_offset =
+        find_peak(map.subspan(d * columns, columns), k, ws.range_table, ws.range_inverse, ws).offset;
     // Doppler: interpolate every row to that range, then find the maximum across Doppler.
-    dirichlet_kernel(static_cast<double>(k) + range_offset, columns, range_kernel);
-    for (std::size_t row = 0; row < rows; ++row) {
-      ws.doppler[row] = interpolate(map.subspan(row * columns, columns), range_kernel);
-    }
-    const std::span<std::complex<double>> doppler_kernel(ws.kernel.data(), rows);
-    const double doppler_offset = peak_offset(ws.doppler, d, doppler_kernel);
-    dirichlet_kernel(static_cast<double>(d) + doppler_offset, rows, doppler_kernel);
-    const double peak_power = std::norm(interpolate(ws.doppler, doppler_kernel));
+    interpolate_rows(map, rows, columns, static_cast<double>(k) + range_offset, ws);
+    const auto [doppler_offset, peak_power] = find_peak(ws.doppler, d, ws.doppler_table, ws.doppler_inverse, ws);
 
     Detection det;
     det.range_bin = static_cast<double>(k) + range_offset;

@@ -84,7 +84,8 @@ struct CfarWorkspace {
   std::vector<double> threshold;         // threshold per cell (same length as the profile)
   std::vector<std::size_t> detections;   // indices of cells with power > threshold, ascending
   std::vector<double> order_scratch;     // OS: the N reference cells, sorted
-  std::vector<long double> prefix_sums;  // CA/GO/SO: running sums of the profile
+  std::vector<double> window_sums;       // CA/GO/SO: sums of every training_cells consecutive cells
+  std::vector<double> sum_scratch;       // CA/GO/SO: partial block sums while forming window_sums
 };
 
 // A validated configuration with its threshold factor solved once: the hot-path object.
@@ -98,10 +99,11 @@ class CfarDetector {
   double threshold_factor() const noexcept { return alpha_; }
 
   // Thresholds and detections for one profile into `workspace` (resized to the profile,
-  // so no allocation once it has served a profile at least this long). CA/GO/SO use running
-  // (prefix) sums in long double, O(1) per cell; OS keeps the N reference cells sorted while
-  // the window slides (binary search + O(N) moves per cell, about 10x faster than a selection
-  // per cell). `power` must be finite and non-negative (square-law detected). Throws
+  // so no allocation once it has served a profile at least this long). CA/GO/SO read sums of
+  // training_cells consecutive cells, formed by doubling in O(log n) per cell from non-negative
+  // terms only (relative error < (2 log2 n + 1) eps, whatever the profile's dynamic range); OS
+  // keeps the N reference cells sorted while the window slides (binary search + O(N) moves per
+  // cell, about 10x faster than a selection per cell). `power` must be finite and non-negative (square-law detected). Throws
   // InvalidParameter via validate_profile_length.
   void detect(std::span<const double> power, CfarWorkspace& workspace) const;
 

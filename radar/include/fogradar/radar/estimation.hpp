@@ -6,10 +6,12 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "fogradar/radar/cfar.hpp"
+#include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/processing.hpp"
 
@@ -27,20 +29,52 @@ struct Detection {
   std::size_t cells = 0;                  // detected cells in the object
 };
 
+// cos(pi j / N) and sin(pi j / N) for j = 0 .. 2N-1, the rotations from which the Dirichlet
+// kernel is assembled without per-bin trigonometry (see dirichlet_kernel).
+class DirichletTable {
+ public:
+  explicit DirichletTable(std::size_t n = 0) { prepare(n); }
+  // Makes the table for length n; nothing happens if it is already made for n.
+  void prepare(std::size_t n);
+  std::size_t length() const noexcept { return n_; }
+  double cos_pi_j_over_n(std::size_t j) const { return cos_[j]; }  // j < 2N
+  double sin_pi_j_over_n(std::size_t j) const { return sin_[j]; }
+
+ private:
+  std::size_t n_ = 0;
+  std::vector<double> cos_, sin_;
+};
+
+// Inverse DFT of one row or column (the peak's time signal), planned on first use for its length.
+struct InverseDft {
+  std::optional<FftPlan> plan;
+  ComplexVector signal;
+  void prepare(std::size_t n);
+};
+
 // Reusable buffers, one per thread.
 struct EstimationWorkspace {
   CfarWorkspace cfar;
-  std::vector<std::uint8_t> detected;   // chirps x samples mask
+  std::vector<std::uint8_t> detected;   // chirps x samples mask, all zero between frames
+  std::vector<std::size_t> detected_cells;  // the cells set in the mask, ascending
   std::vector<std::size_t> stack;       // flood fill
-  std::vector<std::complex<double>> kernel;   // Dirichlet weights along range
+  DirichletTable range_table, doppler_table;
+  std::vector<double> rotated_re, rotated_im, sin_j, cos_j;  // one peak search (see estimation.cpp)
+  InverseDft range_inverse, doppler_inverse;  // the peak's time signal for the final Newton steps
+  std::vector<double> kernel_re, kernel_im;   // Dirichlet weights along range, each value twice
   std::vector<std::complex<double>> doppler;  // range-interpolated value per Doppler bin
 };
 
 // Exact interpolation of a DFT to a fractional bin nu: the DTFT of the (windowed) time signal,
 // X(nu) = sum_m X[m] K(nu - m), K(u) = exp(-i pi u (N-1)/N) sin(pi u) / (N sin(pi u / N)) (the
 // periodic sinc / Dirichlet kernel; e.g. Oppenheim & Schafer, Discrete-Time Signal Processing,
-// 3rd ed., sec. 8.4). Fills `kernel` with K(nu - m), m = 0..N-1.
+// 3rd ed., sec. 8.4). Fills `kernel` with K(nu - m), m = 0..N-1. Evaluated as
+//   K(nu - m) = A(f) e^{i pi j/N} / sin(pi (j + f) / N),  A(f) = sin(pi f) e^{-i pi f (N-1)/N} / N,
+// with nu = k + f (k the nearest integer) and j = k - m: the sines and rotations of pi j / N come
+// from `table` (made for n), sin(pi (j + f)/N) = sin(pi j/N) cos(pi f/N) + cos(pi j/N) sin(pi f/N),
+// so one call costs three sines and N divisions (derivation in docs/radar.md sec. 5).
 void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel);
+void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::complex<double>> kernel);
 
 // Detections of one processed frame (map = complex range-Doppler map, power = |map|^2).
 // `detections` is cleared and refilled.

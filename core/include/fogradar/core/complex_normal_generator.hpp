@@ -1,0 +1,46 @@
+// Thermal noise for whole frames: circular complex Gaussian samples, four at a time in SIMD lanes.
+// Scalar Box–Muller through libm (RandomStream::complex_normal) costs ~40 ns per sample, five times
+// a frame's FFTs; this generator runs four xoshiro256++ streams side by side (one per SIMD lane, the
+// vectorisation the xoshiro authors describe) and evaluates Box–Muller with fdlibm's polynomials
+// (detail/box_muller_math.hpp), ~4 ns per sample (docs/performance.md).
+// Reproducibility: the lanes are seeded from the caller's RandomStream, and the arithmetic uses only
+// IEEE-exact operations without FMA, so the samples depend on the seed alone, not on the thread
+// count or on which instruction set (AVX2 or the x86-64 baseline) the library picks at run time.
+#pragma once
+
+#include <array>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "fogradar/core/random.hpp"
+
+namespace fogradar {
+
+class ComplexNormalGenerator {
+ public:
+  static constexpr std::size_t lanes = 4;
+
+  // Lane l's xoshiro256++ state is the SplitMix64 sequence started at the l-th of `lanes` draws
+  // from `parent` (the seeding the xoshiro authors recommend), so the generator is a pure function
+  // of the parent stream's state, and `parent` advances by `lanes` draws.
+  explicit ComplexNormalGenerator(RandomStream& parent);
+
+  // samples[j] += z_j with z_j ~ CN(0, variance) independent (E|z|^2 = variance), for all j.
+  // Sample j uses the words of lane j mod 4 (first the radius word, then the phase word); a call
+  // whose length is not a multiple of 4 discards the unused lanes of its last group, so the
+  // samples depend on how a buffer is split into calls. variance >= 0.
+  void add(std::span<std::complex<double>> samples, double variance);
+
+  // out[j] = base[j] + z_j with the same samples z_j as add(): one pass that writes a noisy copy
+  // of `base` (the static chirp copied into every chirp of a frame). base.size() == out.size();
+  // base may be out itself.
+  void add(std::span<const std::complex<double>> base, std::span<std::complex<double>> out, double variance);
+
+ private:
+  // Word w of lane l at state_[w * lanes + l] (structure of arrays: one vector per word).
+  alignas(32) std::array<std::uint64_t, 4 * lanes> state_{};
+};
+
+}  // namespace fogradar

@@ -1,0 +1,32 @@
+// Four-lane vector types of GCC and Clang (vector extensions): one AVX register, or two SSE2
+// registers on the x86-64 baseline, with the same lane-wise IEEE arithmetic either way. Used by the
+// few hot loops that are compiled for several instruction sets (target_clones); internal to
+// fogradar, not part of the public API.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+namespace fogradar::detail {
+
+using f64x4 = double __attribute__((vector_size(32)));
+using u64x4 = std::uint64_t __attribute__((vector_size(32)));
+
+[[gnu::always_inline]] inline f64x4 load4(const double* from) {
+  f64x4 v;
+  std::memcpy(&v, from, sizeof v);
+  return v;
+}
+
+[[gnu::always_inline]] inline void store4(double* to, f64x4 v) { std::memcpy(to, &v, sizeof v); }
+
+[[gnu::always_inline]] inline double sum_lanes(f64x4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
+}  // namespace fogradar::detail
+
+// The clones the loader chooses between (GCC on x86-64; elsewhere the one portable version).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define FOGRADAR_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define FOGRADAR_SIMD_CLONES
+#endif
