@@ -11,6 +11,8 @@
 //               preplanned aligned frame buffer, nothing else. Multi-threaded: the frames are split
 //               into equal contiguous shares, each thread transforms its own buffer, the two plans
 //               are shared (new-array execute).
+//   noise alone the thermal-noise stage, which the floor does not bound: ComplexNormalGenerator over
+//               every sample of the same number of frames, into a buffer per thread.
 //
 // Both are timed at 1 thread and at all hardware threads; each of the four measurements is repeated
 // --repeats times, interleaved (e2e/1, floor/1, e2e/all, floor/all, then again), and the median is
@@ -33,6 +35,7 @@
 #include <thread>
 #include <vector>
 
+#include "fogradar/core/complex_normal_generator.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/experiment/runner.hpp"
@@ -223,10 +226,32 @@ int rescale_exponent_for(const FloorPlans& plans) {
   return -8 * log2n;
 }
 
+// --- Thermal noise alone ----------------------------------------------------------------------
+
+// The stage the FFT floor does not bound: per frame, a ComplexNormalGenerator from a fresh stream
+// adds CN(0, 1) samples to the whole frame (what synthesize_frame draws per frame), nothing else.
+// Frames split into shares as for the floor; each thread adds into its own buffer (the values
+// grow only as the square root of the frame count).
+double time_noise(std::vector<radar::ComplexVector>& buffers, std::size_t frames, unsigned threads) {
+  const Clock::time_point start = Clock::now();
+  const auto work = [&](unsigned t) {
+    const std::size_t first = frames * t / threads, last = frames * (t + 1) / threads;
+    for (std::size_t f = first; f < last; ++f) {
+      RandomStream rng(7, f);
+      ComplexNormalGenerator(rng).add(buffers[t], 1.0);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (std::thread& thread : pool) thread.join();
+  return seconds_since(start);
+}
+
 // --- Report -----------------------------------------------------------------------------------
 
 struct Series {
-  std::vector<double> e2e, floor;
+  std::vector<double> e2e, floor, noise;
 };
 
 void print_row(const char* label, double e2e_s, double floor_s, std::size_t frames) {
@@ -254,7 +279,8 @@ int run(const Options& options) {
   std::printf("  repeats       %d, interleaved; medians reported\n", options.repeats);
   std::printf("  end to end    run_experiment + summarize, result files not written\n");
   std::printf("  FFT floor     in-place range + Doppler FFT per frame, FftPlan FFTW_ESTIMATE, same "
-              "frame count\n\n");
+              "frame count\n");
+  std::printf("  noise alone   ComplexNormalGenerator over every frame's samples, same frame count\n\n");
   std::fflush(stdout);
 
   const FloorPlans plans(rows, columns);
@@ -262,6 +288,7 @@ int run(const Options& options) {
   std::vector<FloorBuffer> buffers;
   for (unsigned t = 0; t < all; ++t) buffers.push_back(make_floor_buffer(plans, 100 + t));
   time_fft_floor(plans, buffers, std::min<std::size_t>(frames, 2 * all), all, rescale);  // warm-up
+  std::vector<radar::ComplexVector> noise_buffers(all, radar::ComplexVector(rows * columns));
 
   const unsigned thread_counts[] = {1u, all};
   const std::size_t variants = all > 1 ? 2 : 1;
@@ -275,8 +302,10 @@ int run(const Options& options) {
       detections = e.detections;
       summarize_s = std::max(summarize_s, e.summarize_seconds);
       series[v].floor.push_back(time_fft_floor(plans, buffers, frames, thread_counts[v], rescale));
-      std::printf("  repeat %d, %u thread%s: end to end %.3f s, FFT floor %.3f s\n", r + 1, thread_counts[v],
-                  thread_counts[v] == 1 ? "" : "s", series[v].e2e.back(), series[v].floor.back());
+      series[v].noise.push_back(time_noise(noise_buffers, frames, thread_counts[v]));
+      std::printf("  repeat %d, %u thread%s: end to end %.3f s, FFT floor %.3f s, noise alone %.3f s\n", r + 1,
+                  thread_counts[v], thread_counts[v] == 1 ? "" : "s", series[v].e2e.back(), series[v].floor.back(),
+                  series[v].noise.back());
       std::fflush(stdout);
     }
   }
@@ -291,6 +320,14 @@ int run(const Options& options) {
   }
   std::printf("\n  per frame at 1 thread: end to end %.3f ms, FFT floor %.3f ms\n", 1e3 * e2e_med[0] / static_cast<double>(frames),
               1e3 * floor_med[0] / static_cast<double>(frames));
+  for (std::size_t v = 0; v < variants; ++v) {
+    const double noise_med = median(series[v].noise);
+    std::printf("  %u thread%s: noise alone %.3f s = %.2f x the FFT floor (%.2f ns per complex sample per thread); "
+                "end to end without it %.2f x the floor\n",
+                thread_counts[v], thread_counts[v] == 1 ? "" : "s", noise_med, noise_med / floor_med[v],
+                1e9 * noise_med * thread_counts[v] / static_cast<double>(frames * rows * columns),
+                (e2e_med[v] - noise_med) / floor_med[v]);
+  }
   if (variants == 2) {
     std::printf("  speed-up 1 -> %u threads: end to end %.2f x, FFT floor %.2f x\n", all, e2e_med[0] / e2e_med[1],
                 floor_med[0] / floor_med[1]);

@@ -139,11 +139,12 @@ std::span<const double> window_sums(std::span<const double> power, std::size_t n
   const std::size_t length = power.size();
   const std::size_t count = length - n + 1;
   sums.resize(count);
-  blocks.assign(power.begin(), power.end());
-  std::size_t covered = 0;  // sums[j] holds power[j .. j + covered)
+  blocks.resize(length);
+  const double* current = power.data();  // current[j] = power[j .. j + block)
+  std::size_t covered = 0;               // sums[j] holds power[j .. j + covered)
   for (std::size_t block = 1; block <= n; block *= 2) {
     if ((n & block) != 0) {
-      const double* from = blocks.data() + covered;
+      const double* from = current + covered;
       if (covered == 0) {
         std::copy(from, from + count, sums.begin());
       } else {
@@ -152,8 +153,9 @@ std::span<const double> window_sums(std::span<const double> power, std::size_t n
       covered += block;
     }
     if (2 * block <= n) {  // blocks[j] = power[j .. j + 2 block) for j <= length - 2 block
-      double* data = blocks.data();
-      for (std::size_t j = 0; j + 2 * block <= length; ++j) data[j] += data[j + block];
+      double* next = blocks.data();
+      for (std::size_t j = 0; j + 2 * block <= length; ++j) next[j] = current[j] + current[j + block];
+      current = next;
     }
   }
   return sums;

@@ -2,6 +2,7 @@
 
 #include <boost/math/tools/minima.hpp>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -21,6 +22,14 @@ using detail::f64x4;
 constexpr int brent_bits = 24;
 constexpr double newton_neighbourhood_bins = 0x1p-20;
 constexpr int max_newton_steps = 4;
+// Objects whose rows are interpolated in one pass over the map.
+constexpr std::size_t interpolation_batch = 4;
+
+// An object's strongest cell and its range offset, between the range and the Doppler search.
+struct ObjectPeak {
+  std::size_t doppler_cell = 0, range_cell = 0, cells = 0;
+  double range_offset = 0.0;
+};
 // The true maximum of a tone lies within half a bin of the largest cell; a little margin lets
 // Brent's method find it when two cells are nearly equal.
 constexpr double peak_search_half_width_bins = 0.75;
@@ -46,29 +55,36 @@ std::complex<double> sum_over_sines(const double* re, const double* im, const do
   return {detail::sum_lanes(sum_re) + tail_re, detail::sum_lanes(sum_im) + tail_im};
 }
 
-// out[r] = sum_m map[r][m] K[m] for every row r, with the kernel stored with each value twice
-// (kernel_re[2m] = kernel_re[2m+1] = Re K[m], likewise Im) to multiply interleaved (re, im) pairs.
+// out[o][r] = sum_m map[r][m] K_o[m] for every row r and each of `count` kernels, kernel o at
+// kernel_re/kernel_im + o * 2 columns with each value stored twice (kernel_re[2m] = kernel_re[2m+1]
+// = Re K[m], likewise Im) to multiply interleaved (re, im) pairs; out[o] at out + o * 2 rows.
+// Each row is read once for all kernels: the map is larger than the caches, and reading it is
+// most of the work.
 FOGRADAR_SIMD_CLONES
-void rows_times_kernel(const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
-                       const double* kernel_im, double* out) {
+void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
+                        const double* kernel_im, std::size_t count, double* out) {
   const std::size_t values = 2 * columns;
   for (std::size_t r = 0; r < rows; ++r) {
     const double* x = map + r * values;
-    f64x4 by_re{}, by_im{};  // (x_re K_re, x_im K_re, ...) and (x_re K_im, x_im K_im, ...)
-    std::size_t i = 0;
-    for (; i + 4 <= values; i += 4) {
-      const f64x4 v = detail::load4(x + i);
-      by_re += v * detail::load4(kernel_re + i);
-      by_im += v * detail::load4(kernel_im + i);
+    for (std::size_t o = 0; o < count; ++o) {
+      const double* k_re = kernel_re + o * values;
+      const double* k_im = kernel_im + o * values;
+      f64x4 by_re{}, by_im{};  // (x_re K_re, x_im K_re, ...) and (x_re K_im, x_im K_im, ...)
+      std::size_t i = 0;
+      for (; i + 4 <= values; i += 4) {
+        const f64x4 v = detail::load4(x + i);
+        by_re += v * detail::load4(k_re + i);
+        by_im += v * detail::load4(k_im + i);
+      }
+      double re = (by_re[0] + by_re[2]) - (by_im[1] + by_im[3]);
+      double im = (by_re[1] + by_re[3]) + (by_im[0] + by_im[2]);
+      if (i < values) {  // odd column count: one complex value left
+        re += x[i] * k_re[i] - x[i + 1] * k_im[i];
+        im += x[i] * k_im[i] + x[i + 1] * k_re[i];
+      }
+      out[o * 2 * rows + 2 * r] = re;
+      out[o * 2 * rows + 2 * r + 1] = im;
     }
-    double re = (by_re[0] + by_re[2]) - (by_im[1] + by_im[3]);
-    double im = (by_re[1] + by_re[3]) + (by_im[0] + by_im[2]);
-    if (i < values) {  // odd column count: one complex value left
-      re += x[i] * kernel_re[i] - x[i + 1] * kernel_im[i];
-      im += x[i] * kernel_im[i] + x[i + 1] * kernel_re[i];
-    }
-    out[2 * r] = re;
-    out[2 * r + 1] = im;
   }
 }
 
@@ -235,16 +251,22 @@ void dirichlet_weights(double nu, const DirichletTable& table, Sink sink) {
   }
 }
 
-// ws.doppler[r] = X_r(nu): every row of the map interpolated to the fractional range bin nu.
-void interpolate_rows(std::span<const std::complex<double>> map, std::size_t rows, std::size_t columns, double nu,
-                      EstimationWorkspace& ws) {
-  dirichlet_weights(nu, ws.range_table, [&ws](std::size_t m, std::complex<double> weight) {
-    ws.kernel_re[2 * m] = ws.kernel_re[2 * m + 1] = weight.real();
-    ws.kernel_im[2 * m] = ws.kernel_im[2 * m + 1] = weight.imag();
-  });
+// ws.doppler[o * rows + r] = X_r(nu_o): every row of the map interpolated to the fractional range
+// bins nu_o of up to interpolation_batch objects, in one pass over the map.
+void interpolate_rows(std::span<const std::complex<double>> map, std::size_t rows, std::size_t columns,
+                      std::span<const double> nu, EstimationWorkspace& ws) {
+  const std::size_t values = 2 * columns;
+  for (std::size_t o = 0; o < nu.size(); ++o) {
+    double* k_re = ws.kernel_re.data() + o * values;
+    double* k_im = ws.kernel_im.data() + o * values;
+    dirichlet_weights(nu[o], ws.range_table, [k_re, k_im](std::size_t m, std::complex<double> weight) {
+      k_re[2 * m] = k_re[2 * m + 1] = weight.real();
+      k_im[2 * m] = k_im[2 * m + 1] = weight.imag();
+    });
+  }
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
-  rows_times_kernel(reinterpret_cast<const double*>(map.data()), rows, columns, ws.kernel_re.data(),
-                    ws.kernel_im.data(), reinterpret_cast<double*>(ws.doppler.data()));
+  rows_times_kernels(reinterpret_cast<const double*>(map.data()), rows, columns, ws.kernel_re.data(),
+                     ws.kernel_im.data(), nu.size(), reinterpret_cast<double*>(ws.doppler.data()));
 }
 
 // Doppler bin in [-N/2, N/2).
@@ -340,39 +362,59 @@ void estimate_detections(std::span<const std::complex<double>> map, std::span<co
   run_cfar(power, rows, columns, cfar, ws);
   ws.range_table.prepare(columns);
   ws.doppler_table.prepare(rows);
-  ws.kernel_re.resize(2 * columns);
-  ws.kernel_im.resize(2 * columns);
-  ws.doppler.resize(rows);
+  ws.kernel_re.resize(interpolation_batch * 2 * columns);
+  ws.kernel_im.resize(interpolation_batch * 2 * columns);
+  ws.doppler.resize(interpolation_batch * rows);
   const double noise_per_cell_w = derived.noise_power_w * processor.noise_power_gain();
   const double gain = processor.coherent_amplitude_gain();
 
-  for (const std::size_t seed : ws.detected_cells) {
-    if (!ws.detected[seed]) continue;  // already taken with an earlier cell of its object
-    const auto [peak, cells] = take_object(seed, power, rows, columns, ws);
-    const std::size_t d = peak / columns, k = peak % columns;
+  // Objects in seed order, in batches: range peaks first, then one pass over the map interpolates
+  // every row to each object's range, then each object's Doppler peak.
+  std::array<ObjectPeak, interpolation_batch> batch{};
+  std::array<double, interpolation_batch> range_bins{};
+  std::size_t next_seed = 0;
+  while (true) {
+    std::size_t count = 0;
+    for (; count < interpolation_batch && next_seed < ws.detected_cells.size(); ++next_seed) {
+      const std::size_t seed = ws.detected_cells[next_seed];
+      if (!ws.detected[seed]) continue;  // already taken with an earlier cell of its object
+      const auto [peak, cells] = take_object(seed, power, rows, columns, ws);
+      ObjectPeak& object = batch[count];
+      object.doppler_cell = peak / columns;
+      object.range_cell = peak % columns;
+      object.cells = cells;
+      // Range: the DTFT maximum along the peak's Doppler row.
+      object.range_offset = find_peak(map.subspan(object.doppler_cell * columns, columns), object.range_cell,
+                                      ws.range_table, ws.range_inverse, ws)
+                                .offset;
+      range_bins[count] = static_cast<double>(object.range_cell) + object.range_offset;
+      ++count;
+    }
+    if (count == 0) break;
+    // Doppler: every row interpolated to the object's range, then the maximum across Doppler.
+    interpolate_rows(map, rows, columns, std::span<const double>(range_bins.data(), count), ws);
+    for (std::size_t o = 0; o < count; ++o) {
+      const ObjectPeak& object = batch[o];
+      const std::span<const std::complex<double>> profile(ws.doppler.data() + o * rows, rows);
+      const auto [doppler_offset, peak_power] =
+          find_peak(profile, object.doppler_cell, ws.doppler_table, ws.doppler_inverse, ws);
 
-    // Range: the DTFT maximum along the peak's Doppler row.
-    const double range_offset =
-        find_peak(map.subspan(d * columns, columns), k, ws.range_table, ws.range_inverse, ws).offset;
-    // Doppler: interpolate every row to that range, then find the maximum across Doppler.
-    interpolate_rows(map, rows, columns, static_cast<double>(k) + range_offset, ws);
-    const auto [doppler_offset, peak_power] = find_peak(ws.doppler, d, ws.doppler_table, ws.doppler_inverse, ws);
-
-    Detection det;
-    det.range_bin = static_cast<double>(k) + range_offset;
-    det.doppler_bin = signed_bin(static_cast<double>(d) + doppler_offset, rows);
-    det.radial_velocity_m_per_s = -det.doppler_bin * derived.velocity_resolution_m_per_s;
-    // The beat frequency holds the Doppler shift too (range-Doppler coupling): remove it.
-    const double beat_hz = det.range_bin * params.sample_rate_hz / static_cast<double>(columns);
-    const double doppler_hz = -2.0 * det.radial_velocity_m_per_s / derived.wavelength_m;
-    det.range_m = (beat_hz - doppler_hz) * speed_of_light_m_per_s / (2.0 * derived.chirp_slope_hz_per_s);
-    det.received_power_w = peak_power / (gain * gain);
-    det.snr_db = power_ratio_to_db(peak_power / noise_per_cell_w);
-    det.rcs_m2 = rcs_from_received_power_m2(det.received_power_w, derived.tx_power_w, derived.tx_gain,
-                                            derived.rx_gain, derived.wavelength_m, det.range_m);
-    det.rcs_dbsm = power_ratio_to_db(det.rcs_m2);
-    det.cells = cells;
-    detections.push_back(det);
+      Detection det;
+      det.range_bin = range_bins[o];
+      det.doppler_bin = signed_bin(static_cast<double>(object.doppler_cell) + doppler_offset, rows);
+      det.radial_velocity_m_per_s = -det.doppler_bin * derived.velocity_resolution_m_per_s;
+      // The beat frequency holds the Doppler shift too (range-Doppler coupling): remove it.
+      const double beat_hz = det.range_bin * params.sample_rate_hz / static_cast<double>(columns);
+      const double doppler_hz = -2.0 * det.radial_velocity_m_per_s / derived.wavelength_m;
+      det.range_m = (beat_hz - doppler_hz) * speed_of_light_m_per_s / (2.0 * derived.chirp_slope_hz_per_s);
+      det.received_power_w = peak_power / (gain * gain);
+      det.snr_db = power_ratio_to_db(peak_power / noise_per_cell_w);
+      det.rcs_m2 = rcs_from_received_power_m2(det.received_power_w, derived.tx_power_w, derived.tx_gain,
+                                              derived.rx_gain, derived.wavelength_m, det.range_m);
+      det.rcs_dbsm = power_ratio_to_db(det.rcs_m2);
+      det.cells = object.cells;
+      detections.push_back(det);
+    }
   }
 }
 

@@ -61,8 +61,8 @@ struct EstimationWorkspace {
   DirichletTable range_table, doppler_table;
   std::vector<double> rotated_re, rotated_im, sin_j, cos_j;  // one peak search (see estimation.cpp)
   InverseDft range_inverse, doppler_inverse;  // the peak's time signal for the final Newton steps
-  std::vector<double> kernel_re, kernel_im;   // Dirichlet weights along range, each value twice
-  std::vector<std::complex<double>> doppler;  // range-interpolated value per Doppler bin
+  std::vector<double> kernel_re, kernel_im;   // Dirichlet weights along range, each value twice, per object
+  std::vector<std::complex<double>> doppler;  // range-interpolated value per Doppler bin, per object
 };
 
 // Exact interpolation of a DFT to a fractional bin nu: the DTFT of the (windowed) time signal,
