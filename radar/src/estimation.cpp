@@ -22,6 +22,9 @@ using detail::f64x4;
 constexpr int brent_bits = 24;
 constexpr double newton_neighbourhood_bins = 0x1p-20;
 constexpr int max_newton_steps = 4;
+// The true maximum of a tone lies within half a bin of the largest cell; a little margin lets
+// Brent's method find it when two cells are nearly equal.
+constexpr double peak_search_half_width_bins = 0.75;
 // Objects whose rows are interpolated in one pass over the map.
 constexpr std::size_t interpolation_batch = 4;
 
@@ -30,9 +33,6 @@ struct ObjectPeak {
   std::size_t doppler_cell = 0, range_cell = 0, cells = 0;
   double range_offset = 0.0;
 };
-// The true maximum of a tone lies within half a bin of the largest cell; a little margin lets
-// Brent's method find it when two cells are nearly equal.
-constexpr double peak_search_half_width_bins = 0.75;
 
 // sum_m (re[m] + i im[m]) / (sin_j[m] cos_delta + cos_j[m] sin_delta): the Dirichlet sum of one
 // fractional bin (dirichlet_kernel in estimation.hpp), four lanes of partial sums.
@@ -336,10 +336,14 @@ void DirichletTable::prepare(std::size_t n) {
   n_ = n;
   cos_.resize(2 * n);
   sin_.resize(2 * n);
-  for (std::size_t j = 0; j < 2 * n; ++j) {
+  // The second half by symmetry, so sin(pi j/N) is exactly 0 at j = N as at j = 0: the Dirichlet
+  // denominator sin(pi j/N) cos(pi f/N) + ... must vanish with f there, not leave 1e-16.
+  for (std::size_t j = 0; j < n; ++j) {
     const double angle = pi * static_cast<double>(j) / static_cast<double>(n);
     cos_[j] = std::cos(angle);
     sin_[j] = std::sin(angle);
+    cos_[j + n] = -cos_[j];
+    sin_[j + n] = -sin_[j];
   }
 }
 
