@@ -19,9 +19,10 @@ struct SynthesisReport {
 
 // Per sample n of chirp c (t = n / fs, stop-and-hop between chirps, range rate kept within a chirp):
 //   x_c[n] = sum_p a_p exp(i 2 pi (f_b,p - 2 v_p / lambda) t) exp(-i 4 pi v_p c T_i / lambda) + w_c[n]
-// with f_b,p = S L_p / c and w ~ CN(0, k T0 F fs). Tones without velocity (the static scene) are
-// summed once by phasor recurrence and copied to every chirp. `frame` must hold rows x columns
-// samples; nothing is allocated.
+// with f_b,p = S L_p / c and w ~ CN(0, k T0 F fs) from a ComplexNormalGenerator seeded by `rng`.
+// Tones without velocity (the static scene) are summed once, in blocks of 16 samples from
+// precomputed phasor powers, and copied to every chirp, the thermal noise added during the copy
+// when phase noise is off. `frame` must hold rows x columns samples; nothing is allocated.
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
                                  std::span<std::complex<double>> frame);
