@@ -3,7 +3,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "fogradar/core/detail/box_muller_math.hpp"
+#include "fogradar/core/detail/simd.hpp"
+#include "fogradar/core/detail/ziggurat.hpp"
 #include "fogradar/core/error.hpp"
 
 namespace fogradar {
@@ -11,7 +12,12 @@ namespace {
 
 using detail::f64x4;
 using detail::u64x4;
+using f32x8 = float __attribute__((vector_size(32)));
+using u32x8 = std::uint32_t __attribute__((vector_size(32)));
 
+constexpr detail::ZigguratTable kZiggurat = detail::make_ziggurat_table();
+
+// Word w of lane l at word[w][l].
 struct LaneStates {
   u64x4 word[4];
 };
@@ -32,35 +38,87 @@ struct LaneStates {
   return result;
 }
 
-[[gnu::always_inline]] inline f64x4 sqrt_lanes(f64x4 x) {
-  // A loop of std::sqrt: with -fno-math-errno (set for this file) the compiler emits one vector
-  // square root; IEEE square roots are exact, so any instruction set gives the same bits.
-  f64x4 root;
-  for (int l = 0; l < 4; ++l) root[l] = std::sqrt(x[l]);
-  return root;
+// The same update on lane `lane` of the states in memory (the rare slow path).
+std::uint64_t next_in_lane(std::uint64_t* words, std::size_t lane) {
+  const auto rotl64 = [](std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); };
+  std::uint64_t* s[4] = {words + lane, words + 4 + lane, words + 8 + lane, words + 12 + lane};
+  const std::uint64_t result = rotl64(*s[0] + *s[3], 23) + *s[0];
+  const std::uint64_t t = *s[1] << 17;
+  *s[2] ^= *s[0];
+  *s[3] ^= *s[1];
+  *s[1] ^= *s[2];
+  *s[0] ^= *s[3];
+  *s[2] ^= t;
+  *s[3] = rotl64(*s[3], 45);
+  return result;
 }
 
-// Four complex samples, interleaved (re, im, re, im, ...): out[0..7] = base[0..7] + samples.
-[[gnu::always_inline]] inline void add_four(LaneStates& state, double variance, const double* base, double* out) {
-  const u64x4 radius_word = next(state);
-  const u64x4 phase_word = next(state);
-  f64x4 real, imag;
-  detail::box_muller(radius_word, phase_word, variance, sqrt_lanes, real, imag);
-  detail::store4(out, detail::load4(base) + __builtin_shufflevector(real, imag, 0, 4, 1, 5));
-  detail::store4(out + 4, detail::load4(base + 4) + __builtin_shufflevector(real, imag, 2, 6, 3, 7));
+// Samples 0..7 of a group (real and imaginary part of four complex samples; sample h came from
+// the half-word h of the group, lane h / 2) whose fast path failed: finished in order h = 0..7,
+// each drawing its further words from its own lane. Out of line and in memory: it runs for ~2 % of
+// the groups, and the vector clones must not pass vector arguments to it (their ABIs differ).
+[[gnu::noinline]] void finish_slow_samples(std::uint64_t* lane_words, const std::uint32_t* sample_words,
+                                           float* samples) {
+  for (std::size_t h = 0; h < 8; ++h) {
+    float x = 0.0F;
+    if (detail::ziggurat_fast(sample_words[h], kZiggurat, x)) continue;
+    samples[h] = detail::ziggurat_normal(sample_words[h], kZiggurat,
+                                         [&] { return next_in_lane(lane_words, h / 2); });
+  }
+}
+
+// The {x_i, x_{i+1}} floats of sample h's layer, as one 64-bit word.
+[[gnu::always_inline]] inline std::uint64_t layer_bits(const u32x8& words, int h) {
+  std::uint64_t bits;
+  std::memcpy(&bits, kZiggurat.fast[words[h] & (detail::ziggurat_layers - 1)].data(), sizeof bits);
+  return bits;
+}
+
+// Four complex samples from one word per lane: lane l's low half is the real part of sample l, its
+// high half the imaginary part, so the eight floats come out interleaved (re, im, re, im, ...).
+[[gnu::always_inline]] inline void add_four(LaneStates& state, double scale, const double* base, double* out) {
+  const u32x8 words = detail::lanes_as<u32x8>(next(state));
+  // Each layer's {width, covered} pair as one 64-bit load per sample, then split into two vectors.
+  const f32x8 first_pairs = detail::lanes_as<f32x8>(
+      u64x4{layer_bits(words, 0), layer_bits(words, 1), layer_bits(words, 2), layer_bits(words, 3)});
+  const f32x8 last_pairs = detail::lanes_as<f32x8>(
+      u64x4{layer_bits(words, 4), layer_bits(words, 5), layer_bits(words, 6), layer_bits(words, 7)});
+  const f32x8 width = __builtin_shufflevector(first_pairs, last_pairs, 0, 2, 4, 6, 8, 10, 12, 14);
+  const f32x8 covered = __builtin_shufflevector(first_pairs, last_pairs, 1, 3, 5, 7, 9, 11, 13, 15);
+  constexpr int shift = 32 - detail::ziggurat_uniform_bits;
+  const f32x8 uniform = detail::lanes_as<f32x8>(((words >> shift) << (23 - detail::ziggurat_uniform_bits)) | 0x3F80'0000U) - 1.0F;
+  const f32x8 magnitude = uniform * width;
+  f32x8 samples = detail::lanes_as<f32x8>(detail::lanes_as<u32x8>(magnitude) ^
+                                       ((words << (31 - detail::ziggurat_index_bits)) & 0x8000'0000U));
+  const u64x4 slow = detail::lanes_as<u64x4>(magnitude >= covered);
+  if ((slow[0] | slow[1] | slow[2] | slow[3]) != 0) [[unlikely]] {
+    alignas(32) std::uint64_t lane_words[16];
+    alignas(32) std::uint32_t sample_words[8];
+    alignas(32) float finished[8];
+    std::memcpy(lane_words, &state, sizeof lane_words);
+    std::memcpy(sample_words, &words, sizeof sample_words);
+    std::memcpy(finished, &samples, sizeof finished);
+    finish_slow_samples(lane_words, sample_words, finished);
+    std::memcpy(&state, lane_words, sizeof lane_words);
+    std::memcpy(&samples, finished, sizeof finished);
+  }
+  const f64x4 low = __builtin_convertvector(__builtin_shufflevector(samples, samples, 0, 1, 2, 3), f64x4) * scale;
+  const f64x4 high = __builtin_convertvector(__builtin_shufflevector(samples, samples, 4, 5, 6, 7), f64x4) * scale;
+  detail::store4(out, detail::load4(base) + low);
+  detail::store4(out + 4, detail::load4(base + 4) + high);
 }
 
 // One body, compiled for AVX2 and for the x86-64 baseline (SSE2); the loader picks the clone.
 FOGRADAR_SIMD_CLONES
 void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
-                        double variance) {
+                        double scale) {
   LaneStates state;
   std::memcpy(&state, state_words, sizeof state);
   std::size_t j = 0;
-  for (; j + 4 <= count; j += 4) add_four(state, variance, base + 2 * j, out + 2 * j);
+  for (; j + 4 <= count; j += 4) add_four(state, scale, base + 2 * j, out + 2 * j);
   if (j < count) {
     double tail[8] = {};
-    add_four(state, variance, tail, tail);
+    add_four(state, scale, tail, tail);
     for (std::size_t i = 0; i < 2 * (count - j); ++i) out[2 * j + i] = base[2 * j + i] + tail[i];
   }
   std::memcpy(state_words, &state, sizeof state);
@@ -84,7 +142,7 @@ void ComplexNormalGenerator::add(std::span<const std::complex<double>> base, std
   FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size());
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   add_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
-                     reinterpret_cast<double*>(out.data()), out.size(), variance);
+                     reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(0.5 * variance));
 }
 
 }  // namespace fogradar

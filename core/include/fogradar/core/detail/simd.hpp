@@ -22,11 +22,27 @@ using u64x4 = std::uint64_t __attribute__((vector_size(32)));
 
 [[gnu::always_inline]] inline double sum_lanes(f64x4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
+// std::bit_cast for vectors inside the cloned functions. Everything that takes or returns a vector
+// there must be inlined: a clone built for AVX2 passes vectors in registers, an out-of-line function
+// built for the baseline expects them in memory, and an unoptimised build (which does not inline
+// std::bit_cast) would call one from the other and crash.
+template <class To, class From>
+[[gnu::always_inline]] inline To lanes_as(From from) {
+  static_assert(sizeof(To) == sizeof(From));
+  To to;
+  std::memcpy(&to, &from, sizeof to);
+  return to;
+}
+
 }  // namespace fogradar::detail
 
 // The clones the loader chooses between (GCC on x86-64; elsewhere the one portable version).
+// Defining it empty (-DFOGRADAR_SIMD_CLONES=) builds only the baseline version, which is how the
+// tests check it on a machine whose loader would pick AVX2 (docs/architecture.md).
+#ifndef FOGRADAR_SIMD_CLONES
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define FOGRADAR_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define FOGRADAR_SIMD_CLONES
+#endif
 #endif
