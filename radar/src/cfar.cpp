@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::radar {
@@ -128,6 +129,40 @@ ReferenceCells reference_cells(std::size_t i, std::size_t length, std::size_t gu
   return {left_end - a, left_end, right_begin, right_begin + b};
 }
 
+// The passes of window_sums, cloned so that AVX2 adds four cells per instruction (element-wise
+// sums: the same bits in every clone). Only `a` and `b` may overlap (both are read).
+FOGRADAR_SIMD_CLONES
+void add_cells(const double* __restrict a, const double* __restrict b, double* __restrict out, std::size_t count) {
+  for (std::size_t j = 0; j < count; ++j) out[j] = a[j] + b[j];
+}
+
+FOGRADAR_SIMD_CLONES
+void accumulate_cells(double* __restrict sums, const double* __restrict terms, std::size_t count) {
+  for (std::size_t j = 0; j < count; ++j) sums[j] += terms[j];
+}
+
+// Appends every i with power[i] > threshold[i]. Detections are rare: a branch-free vector test of
+// 16 cells at a time leaves the look at single cells to the few blocks that hold one.
+FOGRADAR_SIMD_CLONES
+void append_cells_above(const double* power, const double* threshold, std::size_t length,
+                        std::vector<std::size_t>& cells) {
+  using detail::load4;
+  constexpr std::size_t block = 16;
+  for (std::size_t begin = 0; begin < length; begin += block) {
+    const std::size_t end = std::min(length, begin + block);
+    if (end - begin == block) {
+      detail::u64x4 above{};
+      for (std::size_t k = begin; k < end; k += 4) {
+        above |= detail::lanes_as<detail::u64x4>(load4(power + k) > load4(threshold + k));
+      }
+      if ((above[0] | above[1] | above[2] | above[3]) == 0) continue;
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      if (power[i] > threshold[i]) cells.push_back(i);
+    }
+  }
+}
+
 // Sums of every n consecutive cells, sums[j] = power[j] + ... + power[j + n - 1] for j in
 // [0, length - n], by doubling: blocks of 1, 2, 4, ... cells are added pairwise and the blocks of
 // n's binary digits collected. O(length log n), and every sum adds non-negative values only, so
@@ -139,34 +174,67 @@ std::span<const double> window_sums(std::span<const double> power, std::size_t n
   const std::size_t length = power.size();
   const std::size_t count = length - n + 1;
   sums.resize(count);
-  blocks.resize(length);
+  blocks.resize(2 * length);  // two buffers, written in turn, so that no pass works in place
   const double* current = power.data();  // current[j] = power[j .. j + block)
   std::size_t covered = 0;               // sums[j] holds power[j .. j + covered)
   for (std::size_t block = 1; block <= n; block *= 2) {
     if ((n & block) != 0) {
       const double* from = current + covered;
+      if (block == n) return {from, count};  // n a power of two: the blocks are the sums
       if (covered == 0) {
         std::copy(from, from + count, sums.begin());
       } else {
-        for (std::size_t j = 0; j < count; ++j) sums[j] += from[j];
+        accumulate_cells(sums.data(), from, count);
       }
       covered += block;
     }
-    if (2 * block <= n) {  // blocks[j] = power[j .. j + 2 block) for j <= length - 2 block
-      double* next = blocks.data();
-      for (std::size_t j = 0; j + 2 * block <= length; ++j) next[j] = current[j] + current[j + block];
+    if (2 * block <= n) {  // next[j] = power[j .. j + 2 block) for j <= length - 2 block
+      double* next = current == blocks.data() ? blocks.data() + length : blocks.data();
+      add_cells(current, current + block, next, length + 1 - 2 * block);
       current = next;
     }
   }
   return sums;
 }
 
+// How the two half sums of the reference cells make the noise estimate: CA adds them, GO takes
+// the greater, SO the smaller.
+enum class HalfSums { add, greater, smaller };
+
+[[gnu::always_inline]] inline double combine(HalfSums rule, double lead, double lag) {
+  if (rule == HalfSums::add) return lead + lag;
+  return rule == HalfSums::greater ? std::max(lead, lag) : std::min(lead, lag);
+}
+
+template <HalfSums rule>
+[[gnu::always_inline]] inline void fill_thresholds(const double* lead, const double* lag, double scale,
+                                                   double* threshold, std::size_t count) {
+  for (std::size_t j = 0; j < count; ++j) threshold[j] = scale * combine(rule, lead[j], lag[j]);
+}
+
+// threshold[j] = scale * combine(lead[j], lag[j]) for the interior cells; the rule is fixed
+// outside the loop so that each clone vectorises all three.
+FOGRADAR_SIMD_CLONES
+void interior_thresholds(HalfSums rule, const double* lead, const double* lag, double scale, double* threshold,
+                         std::size_t count) {
+  switch (rule) {
+    case HalfSums::add:
+      fill_thresholds<HalfSums::add>(lead, lag, scale, threshold, count);
+      break;
+    case HalfSums::greater:
+      fill_thresholds<HalfSums::greater>(lead, lag, scale, threshold, count);
+      break;
+    case HalfSums::smaller:
+      fill_thresholds<HalfSums::smaller>(lead, lag, scale, threshold, count);
+      break;
+  }
+}
+
 // CA/GO/SO thresholds: scale * combine(S_lead, S_lag), S the sums of the two halves of the
 // reference cells (scale = alpha / N for CA, alpha / n for GO/SO). Interior cells read the two
 // window sums; the 2 (guard + n) edge cells add their reference ranges directly.
-template <class Combine>
 void two_sided_thresholds(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
-                          std::span<const double> sums, std::vector<double>& threshold, Combine combine) {
+                          std::span<const double> sums, std::vector<double>& threshold, HalfSums rule) {
   const std::size_t length = power.size();
   const auto add = [&power](std::size_t begin, std::size_t end) {
     double total = 0.0;
@@ -186,17 +254,14 @@ void two_sided_thresholds(std::span<const double> power, std::size_t guard, std:
       first = add(r.lb, r.le) + add(r.rb, r.rb + (n - a));
       second = add(r.rb + (n - a), r.re);
     }
-    threshold[i] = scale * combine(first, second);
+    threshold[i] = scale * combine(rule, first, second);
   };
   const std::size_t interior_begin = guard + n;
   const std::size_t interior_end = length - guard - n;  // > interior_begin (validated)
   for (std::size_t i = 0; i < interior_begin; ++i) edge_cell(i);
   const double* lead = sums.data();                // S_lead of cell i = sums[i - guard - n]
   const double* lag = sums.data() + 2 * guard + n + 1;  // S_lag of cell i = sums[i + guard + 1]
-  for (std::size_t i = interior_begin; i < interior_end; ++i) {
-    const std::size_t j = i - interior_begin;
-    threshold[i] = scale * combine(lead[j], lag[j]);
-  }
+  interior_thresholds(rule, lead, lag, scale, threshold.data() + interior_begin, interior_end - interior_begin);
   for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
 }
 
@@ -382,26 +447,23 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
     }
   } else {
     const std::span<const double> sums = window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
+    const double per_half = alpha / static_cast<double>(n);
     switch (config_.kind) {
       case CfarKind::ca:
         two_sided_thresholds(power, guard, n, alpha / static_cast<double>(big_n), sums, workspace.threshold,
-                             [](double lead, double lag) { return lead + lag; });
+                             HalfSums::add);
         break;
       case CfarKind::go:
-        two_sided_thresholds(power, guard, n, alpha / static_cast<double>(n), sums, workspace.threshold,
-                             [](double lead, double lag) { return std::max(lead, lag); });
+        two_sided_thresholds(power, guard, n, per_half, sums, workspace.threshold, HalfSums::greater);
         break;
       case CfarKind::so:
       case CfarKind::os:
-        two_sided_thresholds(power, guard, n, alpha / static_cast<double>(n), sums, workspace.threshold,
-                             [](double lead, double lag) { return std::min(lead, lag); });
+        two_sided_thresholds(power, guard, n, per_half, sums, workspace.threshold, HalfSums::smaller);
         break;
     }
   }
 
-  for (std::size_t i = 0; i < length; ++i) {
-    if (power[i] > workspace.threshold[i]) workspace.detections.push_back(i);
-  }
+  append_cells_above(power.data(), workspace.threshold.data(), length, workspace.detections);
 }
 
 std::vector<std::size_t> cfar_detect(std::span<const double> power, const CfarConfig& config,

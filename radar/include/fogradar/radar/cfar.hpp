@@ -85,7 +85,7 @@ struct CfarWorkspace {
   std::vector<std::size_t> detections;   // indices of cells with power > threshold, ascending
   std::vector<double> order_scratch;     // OS: the N reference cells, sorted
   std::vector<double> window_sums;       // CA/GO/SO: sums of every training_cells consecutive cells
-  std::vector<double> sum_scratch;       // CA/GO/SO: partial block sums while forming window_sums
+  std::vector<double> sum_scratch;       // CA/GO/SO: block sums while forming window_sums (2 profiles)
 };
 
 // A validated configuration with its threshold factor solved once: the hot-path object.
