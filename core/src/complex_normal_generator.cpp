@@ -1,5 +1,6 @@
 #include "fogradar/core/complex_normal_generator.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -38,21 +39,6 @@ struct LaneStates {
   return result;
 }
 
-// The same update on lane `lane` of the states in memory (the rare slow path).
-std::uint64_t next_in_lane(std::uint64_t* words, std::size_t lane) {
-  const auto rotl64 = [](std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); };
-  std::uint64_t* s[4] = {words + lane, words + 4 + lane, words + 8 + lane, words + 12 + lane};
-  const std::uint64_t result = rotl64(*s[0] + *s[3], 23) + *s[0];
-  const std::uint64_t t = *s[1] << 17;
-  *s[2] ^= *s[0];
-  *s[3] ^= *s[1];
-  *s[1] ^= *s[2];
-  *s[0] ^= *s[3];
-  *s[2] ^= t;
-  *s[3] = rotl64(*s[3], 45);
-  return result;
-}
-
 // Samples 0..7 of a group (real and imaginary part of four complex samples; sample h came from
 // the half-word h of the group, lane h / 2) whose fast path failed: finished in order h = 0..7,
 // each drawing its further words from its own lane. Out of line and in memory: it runs for ~2 % of
@@ -62,8 +48,11 @@ std::uint64_t next_in_lane(std::uint64_t* words, std::size_t lane) {
   for (std::size_t h = 0; h < 8; ++h) {
     float x = 0.0F;
     if (detail::ziggurat_fast(sample_words[h], kZiggurat, x)) continue;
-    samples[h] = detail::ziggurat_normal(sample_words[h], kZiggurat,
-                                         [&] { return next_in_lane(lane_words, h / 2); });
+    const std::size_t lane = h / 2;
+    std::array<std::uint64_t, 4> state{};
+    for (std::size_t w = 0; w < 4; ++w) state[w] = lane_words[w * 4 + lane];
+    samples[h] = detail::ziggurat_normal(sample_words[h], kZiggurat, [&] { return xoshiro256pp_next(state); });
+    for (std::size_t w = 0; w < 4; ++w) lane_words[w * 4 + lane] = state[w];
   }
 }
 

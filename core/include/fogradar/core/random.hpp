@@ -23,6 +23,21 @@ constexpr std::uint64_t splitmix64(std::uint64_t& state) {
   return z ^ (z >> 31);
 }
 
+// xoshiro256++ next() on a state of four words: the update of RandomStream, also run by
+// ComplexNormalGenerator on one of its SIMD lanes.
+constexpr std::uint64_t xoshiro256pp_next(std::array<std::uint64_t, 4>& s) {
+  const auto rotl = [](std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); };
+  const std::uint64_t result = rotl(s[0] + s[3], 23) + s[0];
+  const std::uint64_t t = s[1] << 17;
+  s[2] ^= s[0];
+  s[3] ^= s[1];
+  s[1] ^= s[2];
+  s[0] ^= s[3];
+  s[2] ^= t;
+  s[3] = rotl(s[3], 45);
+  return result;
+}
+
 class RandomStream {
  public:
   using result_type = std::uint64_t;
@@ -39,17 +54,7 @@ class RandomStream {
   static constexpr result_type max() { return std::numeric_limits<result_type>::max(); }
 
   // xoshiro256++ next().
-  result_type operator()() {
-    const std::uint64_t result = rotl(state_[0] + state_[3], 23) + state_[0];
-    const std::uint64_t t = state_[1] << 17;
-    state_[2] ^= state_[0];
-    state_[3] ^= state_[1];
-    state_[1] ^= state_[2];
-    state_[0] ^= state_[3];
-    state_[2] ^= t;
-    state_[3] = rotl(state_[3], 45);
-    return result;
-  }
+  result_type operator()() { return xoshiro256pp_next(state_); }
 
   // Uniform in [0, 1) with 53 random bits.
   double uniform() { return static_cast<double>((*this)() >> 11) * 0x1.0p-53; }
@@ -72,7 +77,6 @@ class RandomStream {
   double normal() { return complex_normal(2.0).real(); }
 
  private:
-  static constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   std::array<std::uint64_t, 4> state_{};
 };
 
