@@ -74,11 +74,8 @@ struct LaneStates {
       u64x4{layer_bits(words, 4), layer_bits(words, 5), layer_bits(words, 6), layer_bits(words, 7)});
   const f32x8 width = __builtin_shufflevector(first_pairs, last_pairs, 0, 2, 4, 6, 8, 10, 12, 14);
   const f32x8 covered = __builtin_shufflevector(first_pairs, last_pairs, 1, 3, 5, 7, 9, 11, 13, 15);
-  constexpr int shift = 32 - detail::ziggurat_uniform_bits;
-  const f32x8 uniform = detail::lanes_as<f32x8>(((words >> shift) << (23 - detail::ziggurat_uniform_bits)) | 0x3F80'0000U) - 1.0F;
-  const f32x8 magnitude = uniform * width;
-  f32x8 samples = detail::lanes_as<f32x8>(detail::lanes_as<u32x8>(magnitude) ^
-                                       ((words << (31 - detail::ziggurat_index_bits)) & 0x8000'0000U));
+  const f32x8 magnitude = detail::layer_uniform<f32x8>(words) * width;
+  f32x8 samples = detail::with_sign(magnitude, words);
   const u64x4 slow = detail::lanes_as<u64x4>(magnitude >= covered);
   if ((slow[0] | slow[1] | slow[2] | slow[3]) != 0) [[unlikely]] {
     alignas(32) std::uint64_t lane_words[16];

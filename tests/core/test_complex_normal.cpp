@@ -883,7 +883,7 @@ TEST(ZigguratNormal, BranchFrequenciesMatchTheZigguratsAreas) {
 TEST(ZigguratNormal, TailBranchFollowsTheConditionalTail) {
   constexpr std::size_t n = std::size_t{1} << 20;
   constexpr std::uint32_t top_uniform = ~std::uint32_t{0} << 12;
-  ASSERT_GE(detail::layer_uniform(top_uniform) * kTable.fast[0][0], kTable.fast[0][1]);
+  ASSERT_GE(detail::layer_uniform<float>(top_uniform) * kTable.fast[0][0], kTable.fast[0][1]);
   Xoshiro256pp stream = seeded_xoshiro(0x2166'0002);
   std::vector<double> magnitude;
   magnitude.reserve(n);

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "fogradar/core/detail/lanes_as.hpp"
+
 namespace fogradar::detail {
 
 using f64x4 = double __attribute__((vector_size(32)));
@@ -21,18 +23,6 @@ using u64x4 = std::uint64_t __attribute__((vector_size(32)));
 [[gnu::always_inline]] inline void store4(double* to, f64x4 v) { std::memcpy(to, &v, sizeof v); }
 
 [[gnu::always_inline]] inline double sum_lanes(f64x4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-
-// std::bit_cast for vectors inside the cloned functions. Everything that takes or returns a vector
-// there must be inlined: a clone built for AVX2 passes vectors in registers, an out-of-line function
-// built for the baseline expects them in memory, and an unoptimised build (which does not inline
-// std::bit_cast) would call one from the other and crash.
-template <class To, class From>
-[[gnu::always_inline]] inline To lanes_as(From from) {
-  static_assert(sizeof(To) == sizeof(From));
-  To to;
-  std::memcpy(&to, &from, sizeof to);
-  return to;
-}
 
 }  // namespace fogradar::detail
 

@@ -17,6 +17,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "fogradar/core/detail/lanes_as.hpp"
+
 namespace fogradar::detail {
 
 // 1 + (top 52 bits of `word`) 2^-52: a double in [1, 2) with 52 random mantissa bits.
@@ -102,23 +104,26 @@ constexpr ZigguratTable make_ziggurat_table() {
   return table;
 }
 
+// The bit layout of a sample word, for one word (Float = float, Word = std::uint32_t) or for
+// the lanes of a vector of them (the generator's f32x8, u32x8).
+
 // u in [0, 1) from the top 20 bits of a sample word, exactly (a float has 23 mantissa bits).
-constexpr float layer_uniform(std::uint32_t word) {
-  return std::bit_cast<float>(((word >> (32 - ziggurat_uniform_bits)) << (23 - ziggurat_uniform_bits)) |
-                              0x3F80'0000U) -
-         1.0F;
+template <class Float, class Word>
+[[gnu::always_inline]] inline Float layer_uniform(Word word) {
+  constexpr int shift = 32 - ziggurat_uniform_bits;
+  return lanes_as<Float>(((word >> shift) << (23 - ziggurat_uniform_bits)) | 0x3F80'0000U) - 1.0F;
 }
 
 // |x| with the sign of bit 11 of the sample word.
-constexpr float with_sign(float magnitude, std::uint32_t word) {
-  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(magnitude) ^
-                              ((word << (31 - ziggurat_index_bits)) & 0x8000'0000U));
+template <class Float, class Word>
+[[gnu::always_inline]] inline Float with_sign(Float magnitude, Word word) {
+  return lanes_as<Float>(lanes_as<Word>(magnitude) ^ ((word << (31 - ziggurat_index_bits)) & 0x8000'0000U));
 }
 
 // The fast path: x = u x_i, taken when x < x_{i+1}. Returns false (and x) otherwise.
-constexpr bool ziggurat_fast(std::uint32_t word, const ZigguratTable& table, float& x) {
+inline bool ziggurat_fast(std::uint32_t word, const ZigguratTable& table, float& x) {
   const auto& layer = table.fast[word & (ziggurat_layers - 1)];
-  x = layer_uniform(word) * layer[0];
+  x = layer_uniform<float>(word) * layer[0];
   return x < layer[1];
 }
 
