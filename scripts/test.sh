@@ -2,21 +2,40 @@
 # Quick start (2): installs missing packages, builds everything (Release), runs the test suite.
 # `scripts/test.sh --sanitize` builds and runs the same suite under ASan + UBSan instead, unoptimised
 # (Debug), which also covers the code paths an -O0 build takes (nothing inlined that is not forced).
+# `scripts/test.sh --baseline` builds the vector loops for the x86-64 baseline only (no AVX2 clone,
+# -DFOGRADAR_SIMD_CLONES=): the same tests, pinned noise samples included, then check that the
+# version the loader picks on machines without AVX2 gives the same bits.
 # With CI=true warnings are errors.
 set -euo pipefail
+mode=${1:-}
+case "$mode" in
+  "" | --sanitize | --baseline) ;;
+  *)
+    echo "scripts/test.sh: unknown argument '$mode'; allowed: none, --sanitize, --baseline" >&2
+    exit 2
+    ;;
+esac
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
 werror=OFF
 [ "${CI:-}" = "true" ] && werror=ON
-if [ "${1:-}" = "--sanitize" ]; then
-  dir="$root/build/sanitize"
-  cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
-    -DFOGRADAR_SANITIZE=ON -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF >/dev/null
-  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-else
-  dir="$root/build/release"
-  cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DFOGRADAR_WARNINGS_AS_ERRORS=$werror >/dev/null
-fi
+case "$mode" in
+  "")
+    dir="$root/build/release"
+    cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror >/dev/null
+    ;;
+  --sanitize)
+    dir="$root/build/sanitize"
+    cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+      -DFOGRADAR_SANITIZE=ON -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF >/dev/null
+    export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    ;;
+  --baseline)
+    dir="$root/build/baseline"
+    cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_CLONES=" \
+      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF >/dev/null
+    ;;
+esac
 cmake --build "$dir"
 ctest --test-dir "$dir" --output-on-failure -j "$(nproc)"
