@@ -295,6 +295,16 @@ double expect_binomial(double count, double n, double p, const char* what) {
 
 constexpr double kKernelMaxUlp = 2.0;  // fdlibm documents < 1 ulp; 2 leaves room for libm's own
 
+// Records a log test's measured errors and checks both against kKernelMaxUlp; `argument` names
+// the argument in the failure message.
+void expect_log_within_tolerance(const UlpStats& stats, const char* argument) {
+  ::testing::Test::RecordProperty("max_ulp_vs_log", sci(stats.max_vs_libm));
+  ::testing::Test::RecordProperty("max_ulp_vs_logl", sci(stats.max_vs_extended));
+  ::testing::Test::RecordProperty("fraction_equal_to_log", sci(stats.fraction_equal()));
+  EXPECT_LE(stats.max_vs_libm, kKernelMaxUlp) << "at " << argument << " = " << stats.worst_argument;
+  EXPECT_LE(stats.max_vs_extended, kKernelMaxUlp);
+}
+
 TEST(ZigguratKernels, MantissaInOneTwoTakesTheTop52Bits) {
   // Exact by construction: 1 + (word >> 12) 2^-52.
   EXPECT_EQ(detail::mantissa_in_one_two(std::uint64_t{0}), 1.0);
@@ -322,11 +332,7 @@ TEST(ZigguratKernels, LogMatchesLibmOnTailArguments) {
     stats.add(u, detail::log_positive(u), std::log(u), std::log(static_cast<long double>(u)));
   }
   EXPECT_EQ(detail::log_positive(1.0), 0.0);
-  RecordProperty("max_ulp_vs_log", sci(stats.max_vs_libm));
-  RecordProperty("max_ulp_vs_logl", sci(stats.max_vs_extended));
-  RecordProperty("fraction_equal_to_log", sci(stats.fraction_equal()));
-  EXPECT_LE(stats.max_vs_libm, kKernelMaxUlp) << "at u = " << stats.worst_argument;
-  EXPECT_LE(stats.max_vs_extended, kKernelMaxUlp);
+  expect_log_within_tolerance(stats, "u");
 }
 
 // log_positive on the wedge's arguments y = f_i + U (f_{i+1} - f_i), y in [f(r), 1]: a random layer
@@ -348,11 +354,7 @@ TEST(ZigguratKernels, LogMatchesLibmOnWedgeArguments) {
     check(y);
   }
   for (std::size_t i = 1; i <= ziggurat_layers; ++i) check(kTable.f[i]);
-  RecordProperty("max_ulp_vs_log", sci(stats.max_vs_libm));
-  RecordProperty("max_ulp_vs_logl", sci(stats.max_vs_extended));
-  RecordProperty("fraction_equal_to_log", sci(stats.fraction_equal()));
-  EXPECT_LE(stats.max_vs_libm, kKernelMaxUlp) << "at y = " << stats.worst_argument;
-  EXPECT_LE(stats.max_vs_extended, kKernelMaxUlp);
+  expect_log_within_tolerance(stats, "y");
 }
 
 // log_positive over all normal binades: powers of two 2^-1022 .. 2^1023, a few random mantissas per
@@ -396,10 +398,7 @@ TEST(ZigguratKernels, LogMatchesLibmAcrossBinades) {
     stats.add(x, detail::log_positive(x), std::log(x), std::log(static_cast<long double>(x)));
   }
   RecordProperty("arguments", std::to_string(arguments.size()));
-  RecordProperty("max_ulp_vs_log", sci(stats.max_vs_libm));
-  RecordProperty("max_ulp_vs_logl", sci(stats.max_vs_extended));
-  EXPECT_LE(stats.max_vs_libm, kKernelMaxUlp) << "at x = " << stats.worst_argument;
-  EXPECT_LE(stats.max_vs_extended, kKernelMaxUlp);
+  expect_log_within_tolerance(stats, "x");
 }
 
 // sqrt_newton against std::sqrt (correctly rounded, so within 0.5 ulp of exact) on the table's
