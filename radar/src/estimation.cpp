@@ -55,37 +55,89 @@ std::complex<double> sum_over_sines(const double* re, const double* im, const do
   return {detail::sum_lanes(sum_re) + tail_re, detail::sum_lanes(sum_im) + tail_im};
 }
 
-// out[o][r] = sum_m map[r][m] K_o[m] for every row r and each of `count` kernels, kernel o at
-// kernel_re/kernel_im + o * 2 columns with each value stored twice (kernel_re[2m] = kernel_re[2m+1]
-// = Re K[m], likewise Im) to multiply interleaved (re, im) pairs; out[o] at out + o * 2 rows.
-// Each row is read once for all kernels: the map is larger than the caches, and reading it is
-// most of the work.
-FOGRADAR_SIMD_CLONES
-void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
-                        const double* kernel_im, std::size_t count, double* out) {
-  const std::size_t values = 2 * columns;
-  for (std::size_t r = 0; r < rows; ++r) {
-    const double* x = map + r * values;
-    for (std::size_t o = 0; o < count; ++o) {
-      const double* k_re = kernel_re + o * values;
-      const double* k_im = kernel_im + o * values;
-      f64x4 by_re{}, by_im{};  // (x_re K_re, x_im K_re, ...) and (x_re K_im, x_im K_im, ...)
-      std::size_t i = 0;
-      for (; i + 4 <= values; i += 4) {
-        const f64x4 v = detail::load4(x + i);
-        by_re += v * detail::load4(k_re + i);
-        by_im += v * detail::load4(k_im + i);
+// out[o] += sum_m x[m] K_o[m] over the interleaved (re, im) values [begin, end) of one row
+// (begin a multiple of 4), for the `objects` kernels at k_re/k_im + o * stride (stored as at
+// rows_times_kernels). Each load of x serves every kernel, and `groups` consecutive steps go to
+// separate partial sums so that at least 4 sums are in flight (one would make every step wait for
+// the previous addition, 4 cycles, instead of for its loads).
+template <std::size_t objects>
+[[gnu::always_inline]] inline void add_row_stretch(const double* x, const double* k_re, const double* k_im,
+                                                   std::size_t stride, std::size_t begin, std::size_t end,
+                                                   std::complex<double>* out) {
+  constexpr std::size_t groups = objects == 1 ? 4 : 2;
+  // by_re: (x_re K_re, x_im K_re, ...), by_im: (x_re K_im, x_im K_im, ...); value i of the stretch
+  // in partial sum (i - begin) / 4 % groups (sum 0 past the last whole group).
+  f64x4 by_re[objects][groups] = {}, by_im[objects][groups] = {};
+  std::size_t i = begin;
+  for (; i + 4 * groups <= end; i += 4 * groups) {
+    for (std::size_t g = 0; g < groups; ++g) {
+      const f64x4 v = detail::load4(x + i + 4 * g);
+      for (std::size_t o = 0; o < objects; ++o) {
+        by_re[o][g] += v * detail::load4(k_re + o * stride + i + 4 * g);
+        by_im[o][g] += v * detail::load4(k_im + o * stride + i + 4 * g);
       }
-      double re = (by_re[0] + by_re[2]) - (by_im[1] + by_im[3]);
-      double im = (by_re[1] + by_re[3]) + (by_im[0] + by_im[2]);
-      if (i < values) {  // odd column count: one complex value left
-        re += x[i] * k_re[i] - x[i + 1] * k_im[i];
-        im += x[i] * k_im[i] + x[i + 1] * k_re[i];
-      }
-      out[o * 2 * rows + 2 * r] = re;
-      out[o * 2 * rows + 2 * r + 1] = im;
     }
   }
+  for (; i + 4 <= end; i += 4) {
+    const f64x4 v = detail::load4(x + i);
+    for (std::size_t o = 0; o < objects; ++o) {
+      by_re[o][0] += v * detail::load4(k_re + o * stride + i);
+      by_im[o][0] += v * detail::load4(k_im + o * stride + i);
+    }
+  }
+  for (std::size_t o = 0; o < objects; ++o) {
+    f64x4 all_re = by_re[o][0], all_im = by_im[o][0];
+    for (std::size_t g = 1; g < groups; ++g) {
+      all_re += by_re[o][g];
+      all_im += by_im[o][g];
+    }
+    double re = (all_re[0] + all_re[2]) - (all_im[1] + all_im[3]);
+    double im = (all_re[1] + all_re[3]) + (all_im[0] + all_im[2]);
+    if (i < end) {  // odd column count: one complex value left
+      const double* kr = k_re + o * stride;
+      const double* ki = k_im + o * stride;
+      re += x[i] * kr[i] - x[i + 1] * ki[i];
+      im += x[i] * ki[i] + x[i + 1] * kr[i];
+    }
+    out[o] += std::complex<double>(re, im);
+  }
+}
+
+// out[o][r] = sum_m map[r][m] K_o[m] for every row r and each of `objects` kernels, kernel o at
+// kernel_re/kernel_im + o * 2 columns with each value stored twice (kernel_re[2m] = kernel_re[2m+1]
+// = Re K[m], likewise Im) to multiply interleaved (re, im) pairs; out[o][r] at out[o * rows + r].
+// The map is read once for all kernels, in stripes of columns narrow enough that every kernel's
+// stripe stays in the L1 cache while all rows pass (whole kernels, 32 KiB each, would come from L2
+// for every row, and that bounded the loop).
+template <std::size_t objects>
+[[gnu::always_inline]] inline void rows_times_kernels_of(const double* map, std::size_t rows, std::size_t columns,
+                                                         const double* kernel_re, const double* kernel_im,
+                                                         std::complex<double>* out) {
+  constexpr std::size_t stripe_values = 256;  // 128 columns: 2 KiB of each kernel part
+  const std::size_t values = 2 * columns;
+  std::fill(out, out + objects * rows, std::complex<double>{});
+  std::complex<double> row_sums[objects];
+  for (std::size_t begin = 0; begin < values; begin += stripe_values) {
+    const std::size_t end = std::min(values, begin + stripe_values);
+    for (std::size_t r = 0; r < rows; ++r) {
+      std::fill(row_sums, row_sums + objects, std::complex<double>{});
+      add_row_stretch<objects>(map + r * values, kernel_re, kernel_im, values, begin, end, row_sums);
+      for (std::size_t o = 0; o < objects; ++o) out[o * rows + r] += row_sums[o];
+    }
+  }
+}
+
+FOGRADAR_SIMD_CLONES
+void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
+                        const double* kernel_im, std::size_t objects, std::complex<double>* out) {
+  switch (objects) {
+    case 1: return rows_times_kernels_of<1>(map, rows, columns, kernel_re, kernel_im, out);
+    case 2: return rows_times_kernels_of<2>(map, rows, columns, kernel_re, kernel_im, out);
+    case 3: return rows_times_kernels_of<3>(map, rows, columns, kernel_re, kernel_im, out);
+    case 4: return rows_times_kernels_of<4>(map, rows, columns, kernel_re, kernel_im, out);
+    default: FOGRADAR_CHECK(objects == 0);
+  }
+  static_assert(interpolation_batch == 4, "one case per batch size");
 }
 
 // nu = k + f with k the nearest integer, reduced modulo 2N (the period of e^{i pi j/N}), and f.
@@ -266,7 +318,7 @@ void interpolate_rows(std::span<const std::complex<double>> map, std::size_t row
   }
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   rows_times_kernels(reinterpret_cast<const double*>(map.data()), rows, columns, ws.kernel_re.data(),
-                     ws.kernel_im.data(), nu.size(), reinterpret_cast<double*>(ws.doppler.data()));
+                     ws.kernel_im.data(), nu.size(), ws.doppler.data());
 }
 
 // Doppler bin in [-N/2, N/2).
