@@ -26,12 +26,15 @@ using u64x4 = std::uint64_t __attribute__((vector_size(32)));
 
 }  // namespace fogradar::detail
 
-// The clones the loader chooses between (GCC on x86-64; elsewhere the one portable version).
-// Defining it empty (-DFOGRADAR_SIMD_CLONES=) builds only the baseline version, which is how the
-// tests check it on a machine whose loader would pick AVX2 (docs/architecture.md).
+// The clones the loader chooses between (GCC on x86-64; elsewhere the one portable version):
+// x86-64-v4 (AVX-512), AVX2 and the baseline. Defining FOGRADAR_SIMD_NO_AVX512 leaves out the
+// first, and defining FOGRADAR_SIMD_CLONES empty builds only the baseline version: that is how the
+// tests check, on an AVX-512 machine, the clones its loader would not pick (docs/architecture.md).
 #ifndef FOGRADAR_SIMD_CLONES
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(FOGRADAR_SIMD_NO_AVX512)
 #define FOGRADAR_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#elif defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define FOGRADAR_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define FOGRADAR_SIMD_CLONES
 #endif
