@@ -23,6 +23,27 @@ struct LaneStates {
   u64x4 word[4];
 };
 
+// The lane states move between memory and vectors only at the ends of a call and around the rare
+// slow path; copying the whole struct with memcpy made GCC keep it in memory, so that every step
+// of the generator waited for a store and a reload.
+[[gnu::always_inline]] inline void store_lanes(std::uint64_t* to, u64x4 v) { std::memcpy(to, &v, sizeof v); }
+
+[[gnu::always_inline]] inline u64x4 load_lanes(const std::uint64_t* from) {
+  u64x4 v;
+  std::memcpy(&v, from, sizeof v);
+  return v;
+}
+
+// Whether any lane of a comparison result is set: the two halves or-ed, then two 64-bit words
+// (fewer extractions than four).
+[[gnu::always_inline]] inline bool any_lane(u32x8 mask) {
+  using u32x4 = std::uint32_t __attribute__((vector_size(16)));
+  using u64x2 = std::uint64_t __attribute__((vector_size(16)));
+  const u32x4 halves = __builtin_shufflevector(mask, mask, 0, 1, 2, 3) | __builtin_shufflevector(mask, mask, 4, 5, 6, 7);
+  const u64x2 words = detail::lanes_as<u64x2>(halves);
+  return (words[0] | words[1]) != 0;
+}
+
 [[gnu::always_inline]] inline u64x4 rotl(u64x4 x, int k) { return (x << k) | (x >> (64 - k)); }
 
 // xoshiro256++ next() in every lane (Blackman & Vigna, ACM TOMS 47(4), 2021).
@@ -76,16 +97,15 @@ struct LaneStates {
   const f32x8 covered = __builtin_shufflevector(first_pairs, last_pairs, 1, 3, 5, 7, 9, 11, 13, 15);
   const f32x8 magnitude = detail::layer_uniform<f32x8>(words) * width;
   f32x8 samples = detail::with_sign(magnitude, words);
-  const u64x4 slow = detail::lanes_as<u64x4>(magnitude >= covered);
-  if ((slow[0] | slow[1] | slow[2] | slow[3]) != 0) [[unlikely]] {
+  if (any_lane(detail::lanes_as<u32x8>(magnitude >= covered))) [[unlikely]] {
     alignas(32) std::uint64_t lane_words[16];
     alignas(32) std::uint32_t sample_words[8];
     alignas(32) float finished[8];
-    std::memcpy(lane_words, &state, sizeof lane_words);
+    for (std::size_t w = 0; w < 4; ++w) store_lanes(lane_words + 4 * w, state.word[w]);
     std::memcpy(sample_words, &words, sizeof sample_words);
     std::memcpy(finished, &samples, sizeof finished);
     finish_slow_samples(lane_words, sample_words, finished);
-    std::memcpy(&state, lane_words, sizeof lane_words);
+    for (std::size_t w = 0; w < 4; ++w) state.word[w] = load_lanes(lane_words + 4 * w);
     std::memcpy(&samples, finished, sizeof finished);
   }
   const f64x4 low = __builtin_convertvector(__builtin_shufflevector(samples, samples, 0, 1, 2, 3), f64x4) * scale;
@@ -99,7 +119,7 @@ FOGRADAR_SIMD_CLONES
 void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
                         double scale) {
   LaneStates state;
-  std::memcpy(&state, state_words, sizeof state);
+  for (std::size_t w = 0; w < 4; ++w) state.word[w] = load_lanes(state_words + 4 * w);
   std::size_t j = 0;
   for (; j + 4 <= count; j += 4) add_four(state, scale, base + 2 * j, out + 2 * j);
   if (j < count) {
@@ -107,7 +127,7 @@ void add_complex_normal(std::uint64_t* state_words, const double* base, double* 
     add_four(state, scale, tail, tail);
     for (std::size_t i = 0; i < 2 * (count - j); ++i) out[2 * j + i] = base[2 * j + i] + tail[i];
   }
-  std::memcpy(state_words, &state, sizeof state);
+  for (std::size_t w = 0; w < 4; ++w) store_lanes(state_words + 4 * w, state.word[w]);
 }
 
 }  // namespace
