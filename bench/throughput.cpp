@@ -16,7 +16,7 @@
 //
 // Both are timed at 1 thread and at all hardware threads; each of the four measurements is repeated
 // --repeats times, interleaved (e2e/1, floor/1, e2e/all, floor/all, then again), and the median is
-// reported. Run (Release build):
+// reported, with the median of each repeat's own ratio and the ratio of the fastest runs. Run (Release build):
 //   ./build/perf/bench/throughput [--scenario FILE] [--repeats N] [--measurements N]
 // Default scenario: examples/bench.toml of the source tree (128 chirps x 1024 samples, 5 x 200
 // frames).
@@ -317,6 +317,18 @@ int run(const Options& options) {
     floor_med[v] = median(series[v].floor);
     const std::string label = std::to_string(thread_counts[v]) + (thread_counts[v] == 1 ? " thread" : " threads");
     print_row(label.c_str(), e2e_med[v], floor_med[v], frames);
+  }
+  // The machine's speed drifts between repeats (other tenants): the ratio of each repeat's end to end
+  // and its floor, timed seconds apart, and the ratio of the fastest of each, both vary less than
+  // the ratio of medians taken at different moments.
+  for (std::size_t v = 0; v < variants; ++v) {
+    std::vector<double> paired;
+    for (std::size_t r = 0; r < series[v].e2e.size(); ++r) paired.push_back(series[v].e2e[r] / series[v].floor[r]);
+    const auto [low, high] = std::minmax_element(paired.begin(), paired.end());
+    std::printf("  %u thread%s: ratio per repeat median %.2f x (%.2f-%.2f), fastest end to end / fastest floor %.2f x\n",
+                thread_counts[v], thread_counts[v] == 1 ? "" : "s", median(paired), *low, *high,
+                *std::min_element(series[v].e2e.begin(), series[v].e2e.end()) /
+                    *std::min_element(series[v].floor.begin(), series[v].floor.end()));
   }
   std::printf("\n  per frame at 1 thread: end to end %.3f ms, FFT floor %.3f ms\n", 1e3 * e2e_med[0] / static_cast<double>(frames),
               1e3 * floor_med[0] / static_cast<double>(frames));
