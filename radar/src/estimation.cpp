@@ -140,6 +140,10 @@ void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns
   static_assert(interpolation_batch == 4, "one case per batch size");
 }
 
+// (j - 1) mod period for 0 <= j < period: the table index of the next column, without a division
+// per column.
+std::size_t previous_index(std::size_t j, std::size_t period) { return j == 0 ? period - 1 : j - 1; }
+
 // nu = k + f with k the nearest integer, reduced modulo 2N (the period of e^{i pi j/N}), and f.
 struct SplitBin {
   std::size_t k_mod_2n;
@@ -166,8 +170,7 @@ class FractionalBinPower {
     ws.rotated_im.resize(n_);
     ws.sin_j.resize(n_);
     ws.cos_j.resize(n_);
-    for (std::size_t m = 0; m < n_; ++m) {
-      const std::size_t j = (k + 2 * n_ - m) % (2 * n_);
+    for (std::size_t m = 0, j = k; m < n_; ++m, j = previous_index(j, 2 * n_)) {  // j = (k - m) mod 2N
       const double c = table.cos_pi_j_over_n(j), s = table.sin_pi_j_over_n(j);
       ws.sin_j[m] = s;
       ws.cos_j[m] = c;
@@ -205,8 +208,8 @@ class TimeSignalDtft {
     inverse.prepare(n_);
     inverse.plan->execute(values, y_);
     const double nd = static_cast<double>(n_);
-    for (std::size_t n = 0; n < n_; ++n) {
-      const std::size_t j = (2 * k * n) % (2 * n_);  // e^{-i 2 pi k n / N} = e^{-i pi j / N}
+    // j = 2 k n mod 2N: e^{-i 2 pi k n / N} = e^{-i pi j / N}; both j and 2k are below 2N.
+    for (std::size_t n = 0, j = 0; n < n_; ++n, j = j + 2 * k >= 2 * n_ ? j + 2 * k - 2 * n_ : j + 2 * k) {
       y_[n] *= std::complex<double>(table.cos_pi_j_over_n(j), -table.sin_pi_j_over_n(j)) / nd;
     }
   }
@@ -296,8 +299,7 @@ void dirichlet_weights(double nu, const DirichletTable& table, Sink sink) {
   const double delta = pi * f / nd;
   const double cos_delta = std::cos(delta), sin_delta = std::sin(delta);
   const std::complex<double> a = std::polar(std::sin(pi * f) / nd, -pi * f * (nd - 1.0) / nd);
-  for (std::size_t m = 0; m < n; ++m) {
-    const std::size_t j = (k + 2 * n - m) % (2 * n);
+  for (std::size_t m = 0, j = k; m < n; ++m, j = previous_index(j, 2 * n)) {  // j = (k - m) mod 2N
     const double c = table.cos_pi_j_over_n(j), s = table.sin_pi_j_over_n(j);
     sink(m, a * std::complex<double>(c, s) / (s * cos_delta + c * sin_delta));
   }
