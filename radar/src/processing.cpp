@@ -2,6 +2,7 @@
 
 #include <numeric>
 
+#include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::radar {
@@ -11,6 +12,26 @@ double sum_of_squares(std::span<const double> w) {
   return std::inner_product(w.begin(), w.end(), w.begin(), 0.0);
 }
 
+// Each value twice, to scale interleaved (re, im) pairs.
+std::vector<double> doubled(std::span<const double> w) {
+  std::vector<double> pairs(2 * w.size());
+  for (std::size_t n = 0; n < w.size(); ++n) pairs[2 * n] = pairs[2 * n + 1] = w[n];
+  return pairs;
+}
+
+// frame[c][i] *= doppler_window[c] * range_pairs[i] over the interleaved (re, im) values of each
+// chirp: the same products as scaling each complex sample by w_d[c] w_r[n], written over doubles
+// so that the clones vectorise it (std::complex<double> *= double was not), about a third faster.
+FOGRADAR_SIMD_CLONES
+void apply_window(double* frame, std::size_t chirps, std::size_t values, const double* doppler_window,
+                  const double* range_pairs) {
+  for (std::size_t c = 0; c < chirps; ++c) {
+    double* row = frame + c * values;
+    const double wd = doppler_window[c];
+    for (std::size_t i = 0; i < values; ++i) row[i] *= wd * range_pairs[i];
+  }
+}
+
 }  // namespace
 
 RangeDopplerProcessor::RangeDopplerProcessor(const RadarParams& params, FftPlanner planner)
@@ -18,6 +39,7 @@ RangeDopplerProcessor::RangeDopplerProcessor(const RadarParams& params, FftPlann
       samples_(params.samples_per_chirp),
       range_window_(make_window(params.window, samples_)),
       doppler_window_(make_window(params.window, chirps_)),
+      range_window_pairs_(doubled(range_window_)),
       range_fft_(FftPlan::along_rows(chirps_, samples_, FftDirection::forward,
                                      {.planner = planner, .placement = FftPlacement::in_place})),
       doppler_fft_(FftPlan::along_columns(chirps_, samples_, FftDirection::forward,
@@ -29,11 +51,9 @@ RangeDopplerProcessor::RangeDopplerProcessor(const RadarParams& params, FftPlann
 void RangeDopplerProcessor::process(std::span<std::complex<double>> frame, std::span<double> power) const {
   FOGRADAR_CHECK(frame.size() == chirps_ * samples_ && power.size() == frame.size());
   // Both windows at once: the 2-D window is separable and the transforms are linear.
-  for (std::size_t c = 0; c < chirps_; ++c) {
-    std::complex<double>* row = frame.data() + c * samples_;
-    const double wd = doppler_window_[c];
-    for (std::size_t n = 0; n < samples_; ++n) row[n] *= wd * range_window_[n];
-  }
+  // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
+  apply_window(reinterpret_cast<double*>(frame.data()), chirps_, 2 * samples_, doppler_window_.data(),
+               range_window_pairs_.data());
   range_fft_.execute(frame);
   doppler_fft_.execute(frame);
   for (std::size_t i = 0; i < frame.size(); ++i) power[i] = std::norm(frame[i]);

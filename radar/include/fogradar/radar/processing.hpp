@@ -39,6 +39,7 @@ class RangeDopplerProcessor {
   std::size_t samples_;
   std::vector<double> range_window_;
   std::vector<double> doppler_window_;
+  std::vector<double> range_window_pairs_;  // w_r[n] at 2n and 2n + 1
   FftPlan range_fft_;
   FftPlan doppler_fft_;
   double coherent_amplitude_gain_;
