@@ -4,9 +4,8 @@
 // Scene: the paper chamber (propagation::ChamberSpec defaults, all four layers on, default fog of
 // 900/km optical extinction) and the EVT rear (evt_rear_scene, floor multipath on), thermal noise
 // on. Stages: scene_tones, synthesize_frame (with noise), processing (window + range FFT + Doppler
-// FFT +
-// |.|^2), estimate_detections (CFAR + grouping + interpolation + RCS), the full
-// RadarChain::measure, and the floor: the range and Doppler FFTs alone with the same plans
+// FFT, RangeDopplerProcessor::transform), estimate_detections (|.|^2 and CFAR row by row, grouping,
+// interpolation, RCS), the full RadarChain::measure, and the floor: the range and Doppler FFTs alone with the same plans
 // (FFTW_ESTIMATE, as the chain uses). Arg 0: 0 = paper frame, 1 = bench frame. Run:
 //   ./build/chain-rel/bench/chain_bench --benchmark_repetitions=9
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
@@ -137,22 +136,21 @@ void BM_Synthesize(benchmark::State& state) {
   label(state, s);
 }
 
-// Window + both FFTs + power map. The processor works in place, so each iteration first restores
-// the synthesised frame (copy excluded from the timing).
+// Window + both FFTs, as RadarChain::measure runs them. The processor works in place, so each
+// iteration first restores the synthesised frame (copy excluded from the timing).
 void BM_Processing(benchmark::State& state) {
   Setup& s = setup(state.range(0));
   std::vector<Tone> tones;
   RandomStream rng(5);
   scene_tones(s.scene, s.chamber, s.active, s.chain.params(), s.chain.derived(), rng, tones);
   ComplexVector raw(s.workspace.frame.size()), frame(raw.size());
-  std::vector<double> power(raw.size());
   synthesize_frame(tones, s.chain.params(), s.chain.derived(), rng, raw);
   for (auto _ : state) {
     state.PauseTiming();
     std::copy(raw.begin(), raw.end(), frame.begin());
     state.ResumeTiming();
-    s.chain.processor().process(frame, power);
-    benchmark::DoNotOptimize(power.data());
+    s.chain.processor().transform(frame);
+    benchmark::DoNotOptimize(frame.data());
   }
   label(state, s);
 }
@@ -163,7 +161,7 @@ void BM_Estimation(benchmark::State& state) {
   EstimationWorkspace ws;
   std::vector<Detection> detections;
   for (auto _ : state) {
-    estimate_detections(s.workspace.frame, s.workspace.power, s.chain.processor(), s.chain.cfar(),
+    estimate_detections(s.workspace.frame, s.chain.processor(), s.chain.cfar(),
                         s.chain.params(), s.chain.derived(), ws, detections);
     benchmark::DoNotOptimize(detections.data());
   }

@@ -337,13 +337,17 @@ double signed_bin(double bin, std::size_t n) {
 
 // Marks each CFAR detection in the mask and lists it, row by row (ascending cell index). The mask
 // is all zero between frames: every listed cell is cleared again by take_object, so it is never
-// swept in full.
-void run_cfar(std::span<const double> power, std::size_t rows, std::size_t columns, const CfarDetector& cfar,
-              EstimationWorkspace& ws) {
+// swept in full. Each Doppler row's |X|^2 is formed just before its CFAR, in a row buffer that
+// stays in the L1 cache: a whole power map would be written out and read back (1 MiB each for a
+// bench frame) and push the map itself out of the cache before the row interpolation reads it.
+void run_cfar(std::span<const std::complex<double>> map, std::size_t rows, std::size_t columns,
+              const CfarDetector& cfar, EstimationWorkspace& ws) {
   if (ws.detected.size() != rows * columns) ws.detected.assign(rows * columns, 0);
   ws.detected_cells.clear();
+  ws.row_power.resize(columns);
   for (std::size_t d = 0; d < rows; ++d) {
-    cfar.detect(power.subspan(d * columns, columns), ws.cfar);
+    squared_magnitudes(map.subspan(d * columns, columns), ws.row_power);
+    cfar.detect(ws.row_power, ws.cfar);
     for (std::size_t k : ws.cfar.detections) {
       ws.detected[d * columns + k] = 1;
       ws.detected_cells.push_back(d * columns + k);
@@ -353,7 +357,7 @@ void run_cfar(std::span<const double> power, std::size_t rows, std::size_t colum
 
 // Flood fill of the 8-connected object containing `seed` (Doppler wraps); clears its cells from the
 // mask and returns the index of its strongest cell and its size.
-std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<const double> power,
+std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<const std::complex<double>> map,
                                                 std::size_t rows, std::size_t columns,
                                                 EstimationWorkspace& ws) {
   std::size_t peak = seed, cells = 0;
@@ -364,7 +368,7 @@ std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<cons
     const std::size_t cell = ws.stack.back();
     ws.stack.pop_back();
     ++cells;
-    if (power[cell] > power[peak]) peak = cell;
+    if (std::norm(map[cell]) > std::norm(map[peak])) peak = cell;
     const std::size_t d = cell / columns, k = cell % columns;
     for (int dd = -1; dd <= 1; ++dd) {
       const std::size_t nd = (d + rows + static_cast<std::size_t>(dd + 1) - 1) % rows;
@@ -414,14 +418,13 @@ void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::com
   dirichlet_weights(nu, table, [&kernel](std::size_t m, std::complex<double> weight) { kernel[m] = weight; });
 }
 
-void estimate_detections(std::span<const std::complex<double>> map, std::span<const double> power,
-                         const RangeDopplerProcessor& processor, const CfarDetector& cfar,
-                         const RadarParams& params, const RadarDerived& derived,
+void estimate_detections(std::span<const std::complex<double>> map, const RangeDopplerProcessor& processor,
+                         const CfarDetector& cfar, const RadarParams& params, const RadarDerived& derived,
                          EstimationWorkspace& ws, std::vector<Detection>& detections) {
   const std::size_t rows = processor.chirps(), columns = processor.samples();
-  FOGRADAR_CHECK(map.size() == rows * columns && power.size() == map.size());
+  FOGRADAR_CHECK(map.size() == rows * columns);
   detections.clear();
-  run_cfar(power, rows, columns, cfar, ws);
+  run_cfar(map, rows, columns, cfar, ws);
   ws.range_table.prepare(columns);
   ws.doppler_table.prepare(rows);
   ws.kernel_re.resize(interpolation_batch * 2 * columns);
@@ -440,7 +443,7 @@ void estimate_detections(std::span<const std::complex<double>> map, std::span<co
     for (; count < interpolation_batch && next_seed < ws.detected_cells.size(); ++next_seed) {
       const std::size_t seed = ws.detected_cells[next_seed];
       if (!ws.detected[seed]) continue;  // already taken with an earlier cell of its object
-      const auto [peak, cells] = take_object(seed, power, rows, columns, ws);
+      const auto [peak, cells] = take_object(seed, map, rows, columns, ws);
       ObjectPeak& object = batch[count];
       object.doppler_cell = peak / columns;
       object.range_cell = peak % columns;

@@ -40,26 +40,33 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
 
 MeasurementWorkspace RadarChain::make_workspace() const {
   MeasurementWorkspace ws;
-  const std::size_t cells = params_.chirps_per_frame * params_.samples_per_chirp;
-  ws.frame.resize(cells);
-  ws.power.resize(cells);
+  ws.frame.resize(params_.chirps_per_frame * params_.samples_per_chirp);
   return ws;
+}
+
+SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene, const propagation::Chamber& chamber,
+                                                     const propagation::ActiveLayers& active, RandomStream& rng,
+                                                     MeasurementWorkspace& ws) const {
+  scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
+  const SynthesisReport report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame);
+  processor_.transform(ws.frame);
+  return report;
 }
 
 SynthesisReport RadarChain::synthesize_and_process(const Scene& scene, const propagation::Chamber& chamber,
                                                    const propagation::ActiveLayers& active, RandomStream& rng,
                                                    MeasurementWorkspace& ws) const {
-  scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
-  const SynthesisReport report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame);
-  processor_.process(ws.frame, ws.power);
+  const SynthesisReport report = synthesize_and_transform(scene, chamber, active, rng, ws);
+  ws.power.resize(ws.frame.size());
+  squared_magnitudes(ws.frame, ws.power);
   return report;
 }
 
 void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber,
                          const propagation::ActiveLayers& active, RandomStream& rng, MeasurementWorkspace& ws,
                          Measurement& out) const {
-  out.synthesis = synthesize_and_process(scene, chamber, active, rng, ws);
-  estimate_detections(ws.frame, ws.power, processor_, cfar_, params_, derived_, ws.estimation, out.detections);
+  out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws);
+  estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation, out.detections);
   out.target.reset();
   for (const Detection& detection : out.detections) {
     if (std::abs(detection.range_m - chamber.target_range_m()) > params_.association_gate_m) continue;

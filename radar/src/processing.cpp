@@ -48,15 +48,25 @@ RangeDopplerProcessor::RangeDopplerProcessor(const RadarParams& params, FftPlann
                                static_cast<double>(chirps_) * coherent_gain(doppler_window_)),
       noise_power_gain_(sum_of_squares(range_window_) * sum_of_squares(doppler_window_)) {}
 
+void squared_magnitudes(std::span<const std::complex<double>> values, std::span<double> power) {
+  FOGRADAR_CHECK(power.size() == values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) power[i] = std::norm(values[i]);
+}
+
 void RangeDopplerProcessor::process(std::span<std::complex<double>> frame, std::span<double> power) const {
-  FOGRADAR_CHECK(frame.size() == chirps_ * samples_ && power.size() == frame.size());
+  FOGRADAR_CHECK(power.size() == frame.size());
+  transform(frame);
+  squared_magnitudes(frame, power);
+}
+
+void RangeDopplerProcessor::transform(std::span<std::complex<double>> frame) const {
+  FOGRADAR_CHECK(frame.size() == chirps_ * samples_);
   // Both windows at once: the 2-D window is separable and the transforms are linear.
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   apply_window(reinterpret_cast<double*>(frame.data()), chirps_, 2 * samples_, doppler_window_.data(),
                range_window_pairs_.data());
   range_fft_.execute(frame);
   doppler_fft_.execute(frame);
-  for (std::size_t i = 0; i < frame.size(); ++i) power[i] = std::norm(frame[i]);
 }
 
 }  // namespace fogradar::radar

@@ -496,7 +496,6 @@ TEST(Estimation, PeakPowerIsTheDirectTwoDimensionalDtftForEveryBatchSize) {
   double worst = 0.0;
   for (std::size_t tones = 1; tones <= 6; ++tones) {
     ComplexVector frame(rows * columns), map(frame.size());
-    std::vector<double> power(frame.size());
     RandomStream rng(11, tones);
     for (auto& v : frame) v = rng.complex_normal(1.0);
     for (std::size_t i = 0; i < tones; ++i) {
@@ -510,10 +509,10 @@ TEST(Estimation, PeakPowerIsTheDirectTwoDimensionalDtftForEveryBatchSize) {
       }
     }
     std::copy(frame.begin(), frame.end(), map.begin());
-    processor.process(map, power);
+    processor.transform(map);
     EstimationWorkspace ws;
     std::vector<Detection> detections;
-    estimate_detections(map, power, processor, cfar, p, derived, ws, detections);
+    estimate_detections(map, processor, cfar, p, derived, ws, detections);
     ASSERT_GE(detections.size(), tones) << tones << " tones";
     for (const Detection& det : detections) {
       Wide direct{};

@@ -55,6 +55,7 @@ struct InverseDft {
 // Reusable buffers, one per thread.
 struct EstimationWorkspace {
   CfarWorkspace cfar;
+  std::vector<double> row_power;        // |X|^2 of the Doppler row under CFAR
   std::vector<std::uint8_t> detected;   // chirps x samples mask, all zero between frames
   std::vector<std::size_t> detected_cells;  // the cells set in the mask, ascending
   std::vector<std::size_t> stack;       // flood fill
@@ -76,11 +77,11 @@ struct EstimationWorkspace {
 void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel);
 void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::complex<double>> kernel);
 
-// Detections of one processed frame (map = complex range-Doppler map, power = |map|^2).
+// Detections of one processed frame (map = the complex range-Doppler map of
+// RangeDopplerProcessor; the CFAR runs on |map|^2, formed one Doppler row at a time).
 // `detections` is cleared and refilled.
-void estimate_detections(std::span<const std::complex<double>> map, std::span<const double> power,
-                         const RangeDopplerProcessor& processor, const CfarDetector& cfar,
-                         const RadarParams& params, const RadarDerived& derived,
+void estimate_detections(std::span<const std::complex<double>> map, const RangeDopplerProcessor& processor,
+                         const CfarDetector& cfar, const RadarParams& params, const RadarDerived& derived,
                          EstimationWorkspace& workspace, std::vector<Detection>& detections);
 
 }  // namespace fogradar::radar

@@ -25,7 +25,7 @@ struct Measurement {
 
 struct MeasurementWorkspace {
   ComplexVector frame;
-  std::vector<double> power;
+  std::vector<double> power;  // filled by synthesize_and_process only; measure does not need it
   std::vector<Tone> tones;
   EstimationWorkspace estimation;
 };
@@ -59,6 +59,11 @@ class RadarChain {
                                          MeasurementWorkspace& workspace) const;
 
  private:
+  // Synthesis and the transforms: the range-Doppler map in workspace.frame.
+  SynthesisReport synthesize_and_transform(const Scene& scene, const propagation::Chamber& chamber,
+                                           const propagation::ActiveLayers& active, RandomStream& rng,
+                                           MeasurementWorkspace& workspace) const;
+
   RadarParams params_;
   RadarDerived derived_;
   RangeDopplerProcessor processor_;

@@ -12,6 +12,9 @@
 
 namespace fogradar::radar {
 
+// power[i] = |values[i]|^2 (re^2 + im^2, the one formula every stage uses).
+void squared_magnitudes(std::span<const std::complex<double>> values, std::span<double> power);
+
 class RangeDopplerProcessor {
  public:
   explicit RangeDopplerProcessor(const RadarParams& params, FftPlanner planner = FftPlanner::estimate);
@@ -20,8 +23,10 @@ class RangeDopplerProcessor {
   std::size_t samples() const { return samples_; }
 
   // In place: frame (chirps x samples, chirp-major, FFTW-aligned) becomes the range-Doppler map
-  // Y[d][k] = sum_c sum_n w_d[c] w_r[n] x_c[n] exp(-i 2 pi (n k / N + c d / N_c)); `power` receives
-  // |Y|^2 (same layout). Doppler bin d < N_c/2 is velocity d, d >= N_c/2 is d - N_c.
+  // Y[d][k] = sum_c sum_n w_d[c] w_r[n] x_c[n] exp(-i 2 pi (n k / N + c d / N_c)). Doppler bin
+  // d < N_c/2 is velocity d, d >= N_c/2 is d - N_c.
+  void transform(std::span<std::complex<double>> frame) const;
+  // transform, and `power` receives |Y|^2 (same layout).
   void process(std::span<std::complex<double>> frame, std::span<double> power) const;
 
   // Amplitude gain of the whole chain for a tone centred on a range and a Doppler bin:
