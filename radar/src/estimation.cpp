@@ -144,9 +144,12 @@ void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns
   static_assert(interpolation_batch == 4, "one case per batch size");
 }
 
-// (j - 1) mod period for 0 <= j < period: the table index of the next column, without a division
-// per column.
+// (j - 1) mod period and (j + step) mod period for 0 <= j, step < period: the table index of the
+// next column, without a division per column.
 std::size_t previous_index(std::size_t j, std::size_t period) { return j == 0 ? period - 1 : j - 1; }
+std::size_t next_index(std::size_t j, std::size_t step, std::size_t period) {
+  return j >= period - step ? j - (period - step) : j + step;
+}
 
 // nu = k + f with k the nearest integer, reduced modulo 2N (the period of e^{i pi j/N}), and f.
 struct SplitBin {
@@ -212,8 +215,8 @@ class TimeSignalDtft {
     inverse.prepare(n_);
     inverse.plan->execute(values, y_);
     const double nd = static_cast<double>(n_);
-    // j = 2 k n mod 2N: e^{-i 2 pi k n / N} = e^{-i pi j / N}; both j and 2k are below 2N.
-    for (std::size_t n = 0, j = 0; n < n_; ++n, j = j + 2 * k >= 2 * n_ ? j + 2 * k - 2 * n_ : j + 2 * k) {
+    // j = 2 k n mod 2N: e^{-i 2 pi k n / N} = e^{-i pi j / N}.
+    for (std::size_t n = 0, j = 0; n < n_; ++n, j = next_index(j, 2 * k, 2 * n_)) {
       y_[n] *= std::complex<double>(table.cos_pi_j_over_n(j), -table.sin_pi_j_over_n(j)) / nd;
     }
   }
