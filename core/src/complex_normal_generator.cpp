@@ -86,7 +86,11 @@ struct LaneStates {
 
 // Four complex samples from one word per lane: lane l's low half is the real part of sample l, its
 // high half the imaginary part, so the eight floats come out interleaved (re, im, re, im, ...).
-[[gnu::always_inline]] inline void add_four(LaneStates& state, double scale, const double* base, double* out) {
+// Weighted: each sum base + scale x is then multiplied by row_weight * weights[i] (the frame window
+// applied in the same pass, with the products the separate window pass would form).
+template <bool weighted>
+[[gnu::always_inline]] inline void add_four(LaneStates& state, double scale, const double* base, double* out,
+                                            double row_weight, const double* weights) {
   const u32x8 words = detail::lanes_as<u32x8>(next(state));
   // Each layer's {width, covered} pair as one 64-bit load per sample, then split into two vectors.
   const f32x8 first_pairs = detail::lanes_as<f32x8>(
@@ -110,24 +114,48 @@ struct LaneStates {
   }
   const f64x4 low = __builtin_convertvector(__builtin_shufflevector(samples, samples, 0, 1, 2, 3), f64x4) * scale;
   const f64x4 high = __builtin_convertvector(__builtin_shufflevector(samples, samples, 4, 5, 6, 7), f64x4) * scale;
-  detail::store4(out, detail::load4(base) + low);
-  detail::store4(out + 4, detail::load4(base + 4) + high);
+  f64x4 first = detail::load4(base) + low;
+  f64x4 last = detail::load4(base + 4) + high;
+  if constexpr (weighted) {
+    first *= row_weight * detail::load4(weights);
+    last *= row_weight * detail::load4(weights + 4);
+  }
+  detail::store4(out, first);
+  detail::store4(out + 4, last);
 }
 
-// One body, compiled for AVX2 and for the x86-64 baseline (SSE2); the loader picks the clone.
-FOGRADAR_SIMD_CLONES
-void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
-                        double scale) {
+template <bool weighted>
+[[gnu::always_inline]] inline void add_complex_normal_body(std::uint64_t* state_words, const double* base, double* out,
+                                                           std::size_t count, double scale, double row_weight,
+                                                           const double* weights) {
   LaneStates state;
   for (std::size_t w = 0; w < 4; ++w) state.word[w] = load_lanes(state_words + 4 * w);
   std::size_t j = 0;
-  for (; j + 4 <= count; j += 4) add_four(state, scale, base + 2 * j, out + 2 * j);
+  for (; j + 4 <= count; j += 4) {
+    add_four<weighted>(state, scale, base + 2 * j, out + 2 * j, row_weight, weighted ? weights + 2 * j : nullptr);
+  }
   if (j < count) {
     double tail[8] = {};
-    add_four(state, scale, tail, tail);
-    for (std::size_t i = 0; i < 2 * (count - j); ++i) out[2 * j + i] = base[2 * j + i] + tail[i];
+    add_four<false>(state, scale, tail, tail, row_weight, nullptr);
+    for (std::size_t i = 0; i < 2 * (count - j); ++i) {
+      const double sum = base[2 * j + i] + tail[i];
+      out[2 * j + i] = weighted ? sum * (row_weight * weights[2 * j + i]) : sum;
+    }
   }
   for (std::size_t w = 0; w < 4; ++w) store_lanes(state_words + 4 * w, state.word[w]);
+}
+
+// One body, compiled for AVX-512, AVX2 and the x86-64 baseline (SSE2); the loader picks the clone.
+FOGRADAR_SIMD_CLONES
+void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
+                        double scale) {
+  add_complex_normal_body<false>(state_words, base, out, count, scale, 1.0, nullptr);
+}
+
+FOGRADAR_SIMD_CLONES
+void add_weighted_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
+                                 double scale, double row_weight, const double* weights) {
+  add_complex_normal_body<true>(state_words, base, out, count, scale, row_weight, weights);
 }
 
 }  // namespace
@@ -149,6 +177,15 @@ void ComplexNormalGenerator::add(std::span<const std::complex<double>> base, std
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   add_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
                      reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(0.5 * variance));
+}
+
+void ComplexNormalGenerator::add_weighted(std::span<const std::complex<double>> base,
+                                          std::span<std::complex<double>> out, double variance, double row_weight,
+                                          std::span<const double> part_weights) {
+  FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size() && part_weights.size() == 2 * out.size());
+  add_weighted_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
+                              reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(0.5 * variance),
+                              row_weight, part_weights.data());
 }
 
 }  // namespace fogradar

@@ -48,8 +48,9 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene, const p
                                                      const propagation::ActiveLayers& active, RandomStream& rng,
                                                      MeasurementWorkspace& ws) const {
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
-  const SynthesisReport report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame);
-  processor_.transform(ws.frame);
+  const FrameWindow window = processor_.window();
+  const SynthesisReport report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window);
+  processor_.transform_windowed(ws.frame);
   return report;
 }
 

@@ -2,7 +2,6 @@
 
 #include <numeric>
 
-#include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::radar {
@@ -17,19 +16,6 @@ std::vector<double> doubled(std::span<const double> w) {
   std::vector<double> pairs(2 * w.size());
   for (std::size_t n = 0; n < w.size(); ++n) pairs[2 * n] = pairs[2 * n + 1] = w[n];
   return pairs;
-}
-
-// frame[c][i] *= doppler_window[c] * range_pairs[i] over the interleaved (re, im) values of each
-// chirp: the same products as scaling each complex sample by w_d[c] w_r[n], written over doubles
-// so that the clones vectorise it (std::complex<double> *= double was not), about a third faster.
-FOGRADAR_SIMD_CLONES
-void apply_window(double* frame, std::size_t chirps, std::size_t values, const double* doppler_window,
-                  const double* range_pairs) {
-  for (std::size_t c = 0; c < chirps; ++c) {
-    double* row = frame + c * values;
-    const double wd = doppler_window[c];
-    for (std::size_t i = 0; i < values; ++i) row[i] *= wd * range_pairs[i];
-  }
 }
 
 }  // namespace
@@ -62,9 +48,12 @@ void RangeDopplerProcessor::process(std::span<std::complex<double>> frame, std::
 void RangeDopplerProcessor::transform(std::span<std::complex<double>> frame) const {
   FOGRADAR_CHECK(frame.size() == chirps_ * samples_);
   // Both windows at once: the 2-D window is separable and the transforms are linear.
-  // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
-  apply_window(reinterpret_cast<double*>(frame.data()), chirps_, 2 * samples_, doppler_window_.data(),
-               range_window_pairs_.data());
+  apply_frame_window(window(), frame);
+  transform_windowed(frame);
+}
+
+void RangeDopplerProcessor::transform_windowed(std::span<std::complex<double>> frame) const {
+  FOGRADAR_CHECK(frame.size() == chirps_ * samples_);
   range_fft_.execute(frame);
   doppler_fft_.execute(frame);
 }

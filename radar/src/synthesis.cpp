@@ -86,23 +86,36 @@ std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits, dou
 
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
-                                 std::span<std::complex<double>> frame) {
+                                 std::span<std::complex<double>> frame, const FrameWindow* window) {
   const std::size_t columns = params.samples_per_chirp;
   const std::size_t rows = params.chirps_per_frame;
   FOGRADAR_CHECK(frame.size() == rows * columns);
+  FOGRADAR_CHECK(window == nullptr || (window->doppler.size() == rows && window->range_pairs.size() == 2 * columns));
   const auto row = [&](std::size_t c) { return frame.subspan(c * columns, columns); };
 
   // Static paths: one chirp, copied to all. Without phase noise (which multiplies the noise-free
   // signal) the thermal noise is added in the same pass as the copy; chirp 0, the source of the
-  // copies, takes its noise last.
+  // copies, takes its noise last. When nothing follows the noise (no moving path, no ADC), that
+  // pass applies the window too.
   std::fill(row(0).begin(), row(0).end(), std::complex<double>{});
+  bool moving_paths = false;
   for (const Tone& tone : tones) {
-    if (tone.radial_velocity_m_per_s != 0.0) continue;
+    if (tone.radial_velocity_m_per_s != 0.0) {
+      moving_paths = true;
+      continue;
+    }
     add_tone(row(0), tone.amplitude, beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
              params.sample_rate_hz);
   }
   const bool noise_with_copy = params.thermal_noise && params.phase_noise_rms_rad == 0.0;
-  if (noise_with_copy) {
+  const bool window_with_noise = window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
+  if (window_with_noise) {
+    ComplexNormalGenerator noise(rng);
+    for (std::size_t c = 1; c < rows; ++c) {
+      noise.add_weighted(row(0), row(c), derived.noise_power_w, window->doppler[c], window->range_pairs);
+    }
+    noise.add_weighted(row(0), row(0), derived.noise_power_w, window->doppler[0], window->range_pairs);
+  } else if (noise_with_copy) {
     ComplexNormalGenerator noise(rng);
     for (std::size_t c = 1; c < rows; ++c) noise.add(row(0), row(c), derived.noise_power_w);
     noise.add(row(0), derived.noise_power_w);
@@ -132,6 +145,7 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
     report.clipped_samples =
         quantize(frame, params.adc_bits, std::sqrt(dbm_to_watt(params.adc_full_scale_dbm)));
   }
+  if (window != nullptr && !window_with_noise) apply_frame_window(*window, frame);
   return report;
 }
 

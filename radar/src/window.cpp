@@ -8,6 +8,7 @@
 #include <numeric>
 #include <string>
 
+#include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/fft.hpp"
 
@@ -22,6 +23,19 @@ constexpr std::array<std::pair<WindowType, std::string_view>, 5> kWindowNames{{
     {WindowType::blackman_harris, "blackman_harris"},
     {WindowType::chebyshev, "chebyshev"},
 }};
+
+// frame[c][i] *= doppler[c] * range_pairs[i] over the interleaved (re, im) values of each chirp:
+// the same products as scaling each complex sample by w_d[c] w_r[n], written over doubles so that
+// the clones vectorise it (std::complex<double> *= double was not), about a third faster.
+FOGRADAR_SIMD_CLONES
+void scale_rows(double* frame, std::size_t chirps, std::size_t values, const double* doppler,
+                const double* range_pairs) {
+  for (std::size_t c = 0; c < chirps; ++c) {
+    double* row = frame + c * values;
+    const double wd = doppler[c];
+    for (std::size_t i = 0; i < values; ++i) row[i] *= wd * range_pairs[i];
+  }
+}
 
 // Generalised cosine window sum_m (-1)^m a_m cos(m x), x = 2 pi j / period (Harris 1978 eq. 30).
 template <std::size_t Terms>
@@ -157,6 +171,13 @@ double noise_equivalent_bandwidth_bins(std::span<const double> window) {
   const double sum = std::accumulate(window.begin(), window.end(), 0.0);
   const double sum_squares = std::inner_product(window.begin(), window.end(), window.begin(), 0.0);
   return static_cast<double>(window.size()) * sum_squares / (sum * sum);
+}
+
+void apply_frame_window(const FrameWindow& window, std::span<std::complex<double>> frame) {
+  FOGRADAR_CHECK(2 * frame.size() == window.doppler.size() * window.range_pairs.size());
+  // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
+  scale_rows(reinterpret_cast<double*>(frame.data()), window.doppler.size(), window.range_pairs.size(),
+             window.doppler.data(), window.range_pairs.data());
 }
 
 }  // namespace fogradar::radar

@@ -1269,6 +1269,54 @@ TEST(ComplexNormalGenerator, TwoSpanAddWritesBasePlusNoise) {
   EXPECT_TRUE(bitwise_equal(in_place, expected));
 }
 
+TEST(ComplexNormalGenerator, WeightedAddIsTheTwoSpanAddTimesTheWeights) {
+  // out = (base + z) (row_weight w) per part, with the z of the unweighted add (reference: add()
+  // from an equal parent, then each part multiplied by row_weight * w in double, the products a
+  // separate window pass forms; tolerance: identical bits). Lengths 1027 and 4096 + 3 exercise the
+  // tail of a call; distinct re/im weights check that each part takes its own; in place too.
+  for (const std::size_t n : {std::size_t{1027}, std::size_t{4099}}) {
+    std::vector<cplx> base;
+    for (std::size_t j = 0; j < n; ++j)
+      base.emplace_back(0.5 * static_cast<double>(j), -3.0 + 1e-3 * static_cast<double>(j));
+    std::vector<double> weights(2 * n);
+    for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = 0.25 + 1e-4 * static_cast<double>(i * i % 997);
+    const double row_weight = 0.8125 + 1e-9;
+    std::vector<cplx> expected = base;
+    RandomStream reference_parent(79);
+    ComplexNormalGenerator(reference_parent).add(expected, 0.7);
+    for (std::size_t j = 0; j < n; ++j) {
+      expected[j] = cplx(expected[j].real() * (row_weight * weights[2 * j]),
+                         expected[j].imag() * (row_weight * weights[2 * j + 1]));
+    }
+
+    RandomStream parent(79);
+    std::vector<cplx> out(n, cplx(9.0, 9.0));
+    ComplexNormalGenerator(parent).add_weighted(base, out, 0.7, row_weight, weights);
+    EXPECT_TRUE(bitwise_equal(out, expected)) << n;
+
+    RandomStream aliased_parent(79);
+    std::vector<cplx> in_place = base;
+    ComplexNormalGenerator(aliased_parent).add_weighted(in_place, in_place, 0.7, row_weight, weights);
+    EXPECT_TRUE(bitwise_equal(in_place, expected)) << n;
+  }
+}
+
+TEST(ComplexNormalGenerator, WeightedAddRejectsAWrongNumberOfWeightsWithoutDrawing) {
+  // Precondition part_weights.size() == 2 out.size() (FOGRADAR_CHECK -> InternalError); a rejected
+  // call leaves out and the generator state unchanged.
+  RandomStream parent(19);
+  ComplexNormalGenerator generator(parent);
+  const std::vector<cplx> base(8, cplx(1.0, 1.0));
+  std::vector<cplx> out(8, cplx(2.0, 2.0));
+  const std::vector<double> one_per_sample(8, 1.0), one_too_many(17, 1.0);
+  EXPECT_THROW(generator.add_weighted(base, out, 1.0, 1.0, one_per_sample), InternalError);
+  EXPECT_THROW(generator.add_weighted(base, out, 1.0, 1.0, one_too_many), InternalError);
+  EXPECT_EQ(out, std::vector<cplx>(8, cplx(2.0, 2.0)));
+  std::vector<cplx> after(16);
+  generator.add(after, 1.0);
+  EXPECT_TRUE(bitwise_equal(after, generate(19, 16, 1.0)));
+}
+
 TEST(ComplexNormalGenerator, ZeroVarianceLeavesTheBufferUnchanged) {
   // Reference: the buffer before the call; tolerance: equal values (+-0 noise added to each).
   RandomStream parent(5);

@@ -20,6 +20,7 @@
 #include <complex>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -826,6 +827,49 @@ TEST(Adc, QuantisationErrorIsUniformQSquaredOverTwelvePerRail) {
   for (std::size_t i = 0; i < 100; ++i) {
     const double level = y[i].real() / q - 0.5;
     EXPECT_NEAR(level, std::round(level), 1e-9);
+  }
+}
+
+// synthesize_frame given the processor's window returns exactly the frame it returns without one,
+// multiplied by apply_frame_window afterwards (reference; tolerance: identical bits), on every
+// path: the window inside the noise pass (static scene, thermal noise, no phase noise, no ADC) and
+// after everything else (a moving path, phase noise, an ADC, no thermal noise).
+TEST(Synthesis, WindowInTheNoisePassEqualsTheWindowAfterwards) {
+  RadarParams base;
+  base.chirps_per_frame = 16;
+  base.samples_per_chirp = 250;  // not a multiple of 4: the generator's tail
+  const double amplitude = 30.0 * std::sqrt(reference_noise_power_w(base));
+  const std::vector<Tone> static_tones{{20.0, {amplitude, -0.5 * amplitude}, 0.0},
+                                       {31.3, {0.2 * amplitude, 0.7 * amplitude}, 0.0}};
+  std::vector<Tone> with_moving = static_tones;
+  with_moving.push_back({25.0, {0.0, amplitude}, 2.5});
+  struct Case {
+    const char* name;
+    std::vector<Tone> tones;
+    void (*edit)(RadarParams&);
+  };
+  const Case cases[] = {
+      {"static scene, thermal noise", static_tones, [](RadarParams&) {}},
+      {"moving path", with_moving, [](RadarParams&) {}},
+      {"phase noise", static_tones, [](RadarParams& p) { p.phase_noise_rms_rad = 0.01; }},
+      {"ADC", static_tones, [](RadarParams& p) { p.adc_bits = 10; }},
+      {"no thermal noise", static_tones, [](RadarParams& p) { p.thermal_noise = false; }},
+  };
+  for (const Case& c : cases) {
+    RadarParams p = base;
+    c.edit(p);
+    const RadarDerived d = derive(p);
+    const RangeDopplerProcessor processor(p);
+    const FrameWindow window = processor.window();
+    ComplexVector windowed(p.chirps_per_frame * p.samples_per_chirp), afterwards(windowed.size());
+    RandomStream rng_windowed(41), rng_afterwards(41);
+    const SynthesisReport report = synthesize_frame(c.tones, p, d, rng_windowed, windowed, &window);
+    const SynthesisReport report_afterwards = synthesize_frame(c.tones, p, d, rng_afterwards, afterwards);
+    apply_frame_window(window, afterwards);
+    EXPECT_EQ(report.clipped_samples, report_afterwards.clipped_samples) << c.name;
+    EXPECT_EQ(std::memcmp(windowed.data(), afterwards.data(), windowed.size() * sizeof windowed[0]), 0)
+        << c.name;
+    EXPECT_EQ(rng_windowed(), rng_afterwards()) << c.name;  // the same draws
   }
 }
 

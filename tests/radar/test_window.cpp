@@ -239,6 +239,25 @@ TEST(ChebyshevWindow, PeriodicSidelobesEqualDesignLevel) {
 
 // --- Names and invalid input ------------------------------------------------------------------
 
+TEST(FrameWindow, ScalesEachSampleByBothWeights) {
+  // Reference: each complex sample times the real product w_d[c] w_r[n] in std::complex
+  // arithmetic (both parts times the same double); tolerance: identical values. 5 x 7 samples,
+  // an odd row length, with distinct weights.
+  const std::vector<double> doppler = make_window(WindowType::hamming, 5);
+  const std::vector<double> range = make_window(WindowType::blackman_harris, 7, 80.0, WindowSymmetry::symmetric);
+  std::vector<double> range_pairs;
+  for (const double w : range) range_pairs.insert(range_pairs.end(), {w, w});
+  std::vector<std::complex<double>> frame, expected;
+  for (std::size_t c = 0; c < doppler.size(); ++c) {
+    for (std::size_t n = 0; n < range.size(); ++n) {
+      frame.emplace_back(1.0 + 0.1 * static_cast<double>(c * 7 + n), -2.0 + 0.3 * static_cast<double>(n));
+      expected.push_back(frame.back() * (doppler[c] * range[n]));
+    }
+  }
+  apply_frame_window({doppler, range_pairs}, frame);
+  EXPECT_EQ(frame, expected);
+}
+
 TEST(Window, NamesRoundTrip) {
   for (const WindowType type : kAllWindows) EXPECT_EQ(parse_window_type(to_string(type)), type);
   try {

@@ -11,8 +11,8 @@
 // 5e-37.
 // Reproducibility: the lanes are seeded from the caller's RandomStream, and the arithmetic uses only
 // IEEE-exact operations without FMA or libm, so the samples depend on the seed alone, not on the
-// thread count or on which instruction set (AVX2 or the x86-64 baseline) the library picks at run
-// time.
+// thread count or on which instruction set (AVX-512, AVX2 or the x86-64 baseline) the library
+// picks at run time.
 #pragma once
 
 #include <array>
@@ -45,6 +45,13 @@ class ComplexNormalGenerator {
   // of `base` (the static chirp copied into every chirp of a frame). base.size() == out.size();
   // base may be out itself.
   void add(std::span<const std::complex<double>> base, std::span<std::complex<double>> out, double variance);
+
+  // The same pass with weights: Re out[j] = Re(base[j] + z_j) (row_weight part_weights[2j]) and
+  // Im out[j] = Im(base[j] + z_j) (row_weight part_weights[2j + 1]), the same z_j as add(), so that
+  // a separable window (row_weight a chirp's Doppler weight, part_weights the range weights, each
+  // twice) costs no pass of its own. part_weights.size() == 2 out.size().
+  void add_weighted(std::span<const std::complex<double>> base, std::span<std::complex<double>> out, double variance,
+                    double row_weight, std::span<const double> part_weights);
 
  private:
   // Word w of lane l at state_[w * lanes + l] (structure of arrays: one vector per word).

@@ -9,6 +9,7 @@
 
 #include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/params.hpp"
+#include "fogradar/radar/window.hpp"
 
 namespace fogradar::radar {
 
@@ -26,6 +27,9 @@ class RangeDopplerProcessor {
   // Y[d][k] = sum_c sum_n w_d[c] w_r[n] x_c[n] exp(-i 2 pi (n k / N + c d / N_c)). Doppler bin
   // d < N_c/2 is velocity d, d >= N_c/2 is d - N_c.
   void transform(std::span<std::complex<double>> frame) const;
+  // The range and Doppler FFTs of transform, for a frame that already carries window() (as
+  // synthesize_frame leaves it when given the window).
+  void transform_windowed(std::span<std::complex<double>> frame) const;
   // transform, and `power` receives |Y|^2 (same layout).
   void process(std::span<std::complex<double>> frame, std::span<double> power) const;
 
@@ -38,6 +42,8 @@ class RangeDopplerProcessor {
 
   std::span<const double> range_window() const { return range_window_; }
   std::span<const double> doppler_window() const { return doppler_window_; }
+  // Both windows, as transform applies them.
+  FrameWindow window() const { return {doppler_window_, range_window_pairs_}; }
 
  private:
   std::size_t chirps_;

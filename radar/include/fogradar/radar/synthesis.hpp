@@ -10,6 +10,7 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/scene.hpp"
+#include "fogradar/radar/window.hpp"
 
 namespace fogradar::radar {
 
@@ -23,9 +24,13 @@ struct SynthesisReport {
 // Tones without velocity (the static scene) are summed once, in blocks of 16 samples from
 // precomputed phasor powers, and copied to every chirp, the thermal noise added during the copy
 // when phase noise is off. `frame` must hold rows x columns samples; nothing is allocated.
+// Given a window (rows Doppler weights, 2 columns range-pair weights), the frame comes out
+// multiplied by it, with the values apply_frame_window would give afterwards: for a static scene
+// with thermal noise and neither phase noise nor an ADC it is applied in the noise pass, which
+// saves a pass over the frame; otherwise after everything else.
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
-                                 std::span<std::complex<double>> frame);
+                                 std::span<std::complex<double>> frame, const FrameWindow* window = nullptr);
 
 // ADC model: I and Q each quantised mid-rise with 2^bits levels over [-A, A], A = sqrt(P_fs) the
 // amplitude of a full-scale complex tone; values beyond A clip to the outermost level. Returns the

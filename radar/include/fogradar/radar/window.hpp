@@ -4,6 +4,7 @@
 // Fourier transform", Proc. IEEE 66(1), 51-83, 1978 (Table 1 for the figures of merit).
 #pragma once
 
+#include <complex>
 #include <cstddef>
 #include <span>
 #include <string_view>
@@ -58,5 +59,17 @@ double coherent_gain(std::span<const double> window);
 // Equivalent noise bandwidth in bins ENBW = N sum(w^2) / (sum w)^2 (Harris 1978 eq. 13,
 // Table 1): white-noise power through the window relative to a rectangular window.
 double noise_equivalent_bandwidth_bins(std::span<const double> window);
+
+// The separable window of a frame, w[c][n] = doppler[c] range[n] (chirp c, sample n), with each
+// range weight stored twice (range_pairs[2n] = range_pairs[2n + 1] = range[n]) to scale the
+// interleaved (re, im) values of a chirp.
+struct FrameWindow {
+  std::span<const double> doppler;
+  std::span<const double> range_pairs;
+};
+
+// frame[c][n] *= doppler[c] range[n] for a doppler.size() x range_pairs.size() / 2 frame
+// (chirp-major).
+void apply_frame_window(const FrameWindow& window, std::span<std::complex<double>> frame);
 
 }  // namespace fogradar::radar
