@@ -1,4 +1,5 @@
-// Data windows (tapers) for the range and Doppler FFTs, and their processing-gain figures.
+// Data windows (tapers) for the range and Doppler FFTs, their processing-gain figures, and the
+// separable 2-D window applied to a frame.
 //
 // Reference: F. J. Harris, "On the use of windows for harmonic analysis with the discrete
 // Fourier transform", Proc. IEEE 66(1), 51-83, 1978 (Table 1 for the figures of merit).
