@@ -60,12 +60,23 @@ Chamber::Chamber(const ChamberSpec& spec, double frequency_hz, const SegelsteinT
   require_positive("frequency_hz", frequency_hz);
   double start_m = spec.sensor_gap_m;
   layers_.reserve(spec.layers.size());
-  for (const FogLayerSpec& layer_spec : spec.layers) {
-    const Fog fog(layer_spec.fog, table);
-    layers_.push_back({.start_m = start_m,
-                       .end_m = start_m + layer_spec.length_m,
-                       .lwc_g_per_m3 = fog.lwc_g_per_m3(),
-                       .optics = fog.at_frequency(frequency_hz)});
+  for (std::size_t i = 0; i < spec.layers.size(); ++i) {
+    const FogLayerSpec& layer_spec = spec.layers[i];
+    LayerOptics layer{.start_m = start_m, .end_m = start_m + layer_spec.length_m, .lwc_g_per_m3 = 0.0, .optics = {}};
+    // A layer filled with the same fog as an earlier one (the study's chamber: one fog in all four)
+    // takes its results: resolving a density given at 550 nm sums a Mie series for every drop size
+    // of the quadrature, most of a run's start-up, and would only repeat the same arithmetic.
+    std::size_t same = 0;
+    while (same < i && !(spec.layers[same].fog == layer_spec.fog)) ++same;
+    if (same < i) {
+      layer.lwc_g_per_m3 = layers_[same].lwc_g_per_m3;
+      layer.optics = layers_[same].optics;
+    } else {
+      const Fog fog(layer_spec.fog, table);
+      layer.lwc_g_per_m3 = fog.lwc_g_per_m3();
+      layer.optics = fog.at_frequency(frequency_hz);
+    }
+    layers_.push_back(layer);
     start_m += layer_spec.length_m;
   }
 }

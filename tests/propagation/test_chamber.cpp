@@ -6,9 +6,11 @@
 #include "rejected_field.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/layer_model.hpp"
 
 namespace fogradar::propagation {
@@ -85,6 +87,47 @@ TEST(Chamber, BackscatterIsTheVolumeIntegral) {
   EXPECT_NEAR(chamber.backscatter_cross_section_m2(r0, r1, omega, active) / midpoint, 1.0, 1e-8);
   EXPECT_EQ(chamber.backscatter_cross_section_m2(0.0, 2.0, omega, active), 0.0);
   EXPECT_EQ(chamber.backscatter_cross_section_m2(0.0, 10.0, omega, first_layers_active(0, 4)), 0.0);
+}
+
+// Layers of the same fog share one resolution of it (chamber.cpp); each layer must still carry what
+// its own fog gives alone, so a fog differing from an earlier one in any field is resolved anew.
+// Reference: Fog constructed from each layer's spec on its own; the same arithmetic, so equal bits.
+TEST(Chamber, EachLayerHasItsOwnFogsOptics) {
+  FogSpec thin;
+  thin.density = OpticalExtinction{300.0};
+  FogSpec wider_droplets = thin;
+  wider_droplets.droplets = Lognormal{.median_diameter_m = 1e-6, .geometric_std = 1.6};
+  FogSpec liebe = thin;  // a water model whose index at 77 GHz depends on the temperature
+  liebe.water_model = WaterModel::liebe;
+  FogSpec warmer = liebe;
+  warmer.temperature_c = 30.0;
+  FogSpec by_lwc;
+  by_lwc.density = LiquidWaterContent{0.5};
+  const std::vector<FogSpec> fogs{thin, FogSpec{}, thin, wider_droplets, by_lwc, liebe, FogSpec{}, warmer, by_lwc};
+
+  ChamberSpec spec;
+  spec.layers.clear();
+  for (const FogSpec& fog : fogs) spec.layers.push_back({.length_m = 0.5, .fog = fog});
+  const Chamber chamber(spec, 77e9, table());
+  ASSERT_EQ(chamber.layer_count(), fogs.size());
+  for (std::size_t i = 0; i < fogs.size(); ++i) {
+    SCOPED_TRACE(i);
+    const Fog alone(fogs[i], table());
+    const FogOptics expected = alone.at_frequency(77e9);
+    const LayerOptics& layer = chamber.layer(i);
+    EXPECT_EQ(layer.lwc_g_per_m3, alone.lwc_g_per_m3());
+    EXPECT_EQ(layer.optics.extinction_per_m, expected.extinction_per_m);
+    EXPECT_EQ(layer.optics.absorption_per_m, expected.absorption_per_m);
+    EXPECT_EQ(layer.optics.scattering_per_m, expected.scattering_per_m);
+    EXPECT_EQ(layer.optics.specific_attenuation_db_per_km, expected.specific_attenuation_db_per_km);
+    EXPECT_EQ(layer.optics.volume_backscatter_m2_per_m3, expected.volume_backscatter_m2_per_m3);
+    EXPECT_EQ(layer.optics.refractive_index, expected.refractive_index);
+    EXPECT_DOUBLE_EQ(layer.start_m, spec.sensor_gap_m + 0.5 * static_cast<double>(i));
+  }
+  // The fogs differ where they should: otherwise the test could not tell a wrong reuse.
+  EXPECT_NE(chamber.layer(0).lwc_g_per_m3, chamber.layer(3).lwc_g_per_m3);
+  EXPECT_NE(chamber.layer(5).optics.extinction_per_m, chamber.layer(7).optics.extinction_per_m);
+  EXPECT_NE(chamber.layer(0).lwc_g_per_m3, chamber.layer(1).lwc_g_per_m3);
 }
 
 TEST(Chamber, RejectsInvalidGeometryAndStates) {

@@ -12,12 +12,14 @@ namespace fogradar::propagation {
 // Every droplet has the same diameter.
 struct Monodisperse {
   double diameter_m = 1e-6;
+  bool operator==(const Monodisperse&) const = default;
 };
 
 // ln D ~ Normal(ln median, ln geometric_std^2).
 struct Lognormal {
   double median_diameter_m = 1e-6;
   double geometric_std = 1.5;  // sigma_g > 1
+  bool operator==(const Lognormal&) const = default;
 };
 
 // Modified gamma distribution in radius r (Deirmendjian 1969):
@@ -27,6 +29,7 @@ struct ModifiedGamma {
   double alpha = 3.0;
   double gamma = 1.0;
   double b_per_um_gamma = 0.3;
+  bool operator==(const ModifiedGamma&) const = default;
 };
 
 using DropSizeDistribution = std::variant<Monodisperse, Lognormal, ModifiedGamma>;

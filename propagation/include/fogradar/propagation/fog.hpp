@@ -16,14 +16,17 @@ inline constexpr double visibility_wavelength_m = 550e-9;
 
 struct LiquidWaterContent {
   double g_per_m3 = 0.1;
+  bool operator==(const LiquidWaterContent&) const = default;
 };
 // Optical (550 nm) extinction coefficient beta.
 struct OpticalExtinction {
   double per_km = 900.0;
+  bool operator==(const OpticalExtinction&) const = default;
 };
 // Visual range, eq. 6 (2 % contrast at 550 nm).
 struct Visibility {
   double m = 100.0;
+  bool operator==(const Visibility&) const = default;
 };
 using FogDensity = std::variant<LiquidWaterContent, OpticalExtinction, Visibility>;
 
@@ -33,6 +36,7 @@ struct FogSpec {
   double temperature_c = 20.0;
   WaterModel water_model = WaterModel::segelstein;  // at the radar frequency; optics always use the table
   void validate() const;                            // throws InvalidParameter naming the field
+  bool operator==(const FogSpec&) const = default;
 };
 
 // Bulk properties of a fog at one frequency (sums over the drop size distribution, Mie per droplet).
