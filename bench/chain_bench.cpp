@@ -3,10 +3,12 @@
 // raised to 20 MS/s so the 1024 samples fit the 51.2 us chirp, as in examples/long_chamber.toml).
 // Scene: the paper chamber (propagation::ChamberSpec defaults, all four layers on, default fog of
 // 900/km optical extinction) and the EVT rear (evt_rear_scene, floor multipath on), thermal noise
-// on. Stages: scene_tones, synthesize_frame (with noise), processing (window + range FFT + Doppler
-// FFT, RangeDopplerProcessor::transform), estimate_detections (|.|^2 and CFAR row by row, grouping,
-// interpolation, RCS), the full RadarChain::measure, and the floor: the range and Doppler FFTs alone with the same plans
-// (FFTW_ESTIMATE, as the chain uses). Arg 0: 0 = paper frame, 1 = bench frame. Run:
+// on. Stages as RadarChain::measure runs them: scene_tones, synthesize_frame given the processor's
+// window (with noise, the window is applied in the noise pass; without, after the tones), the range
+// and Doppler FFTs (RangeDopplerProcessor::transform_windowed), estimate_detections (|.|^2 and CFAR
+// row by row, grouping, interpolation, RCS), the full RadarChain::measure, and the floor: the range
+// and Doppler FFTs alone with the same plans (FFTW_ESTIMATE, as the chain uses). Arg 0: 0 = paper
+// frame, 1 = bench frame. Run:
 //   ./build/chain-rel/bench/chain_bench --benchmark_repetitions=9
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
 // The last lines print each stage as a ratio to the FFT-only floor measured in the same run
@@ -117,7 +119,8 @@ void BM_SceneTones(benchmark::State& state) {
   label(state, s);
 }
 
-// Arg 1: thermal noise on (1) or off (0, to attribute the cost: tones vs noise generation).
+// Synthesis given the processor's window, as RadarChain::measure runs it. Arg 1: thermal noise on (1)
+// or off (0, to attribute the cost: tones and window vs noise generation).
 void BM_Synthesize(benchmark::State& state) {
   Setup& s = setup(state.range(0));
   RadarParams params = s.chain.params();
@@ -125,31 +128,33 @@ void BM_Synthesize(benchmark::State& state) {
   std::vector<Tone> tones;
   RandomStream tone_rng(3);
   scene_tones(s.scene, s.chamber, s.active, params, s.chain.derived(), tone_rng, tones);
+  const FrameWindow window = s.chain.processor().window();
   ComplexVector frame(s.workspace.frame.size());
   std::uint64_t i = 0;
   for (auto _ : state) {
     RandomStream rng(4, i++);
-    benchmark::DoNotOptimize(synthesize_frame(tones, params, s.chain.derived(), rng, frame));
+    benchmark::DoNotOptimize(synthesize_frame(tones, params, s.chain.derived(), rng, frame, &window));
     benchmark::DoNotOptimize(frame.data());
   }
   state.counters["noise"] = static_cast<double>(state.range(1));
   label(state, s);
 }
 
-// Window + both FFTs, as RadarChain::measure runs them. The processor works in place, so each
-// iteration first restores the synthesised frame (copy excluded from the timing).
+// The range and Doppler FFTs of a windowed frame, as RadarChain::measure runs them. They work in
+// place, so each iteration first restores the synthesised frame (copy excluded from the timing).
 void BM_Processing(benchmark::State& state) {
   Setup& s = setup(state.range(0));
   std::vector<Tone> tones;
   RandomStream rng(5);
   scene_tones(s.scene, s.chamber, s.active, s.chain.params(), s.chain.derived(), rng, tones);
+  const FrameWindow window = s.chain.processor().window();
   ComplexVector raw(s.workspace.frame.size()), frame(raw.size());
-  synthesize_frame(tones, s.chain.params(), s.chain.derived(), rng, raw);
+  synthesize_frame(tones, s.chain.params(), s.chain.derived(), rng, raw, &window);
   for (auto _ : state) {
     state.PauseTiming();
     std::copy(raw.begin(), raw.end(), frame.begin());
     state.ResumeTiming();
-    s.chain.processor().transform(frame);
+    s.chain.processor().transform_windowed(frame);
     benchmark::DoNotOptimize(frame.data());
   }
   label(state, s);
