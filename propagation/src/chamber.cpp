@@ -67,7 +67,7 @@ Chamber::Chamber(const ChamberSpec& spec, double frequency_hz, const SegelsteinT
     // takes its results: resolving a density given at 550 nm sums a Mie series for every drop size
     // of the quadrature, most of a run's start-up, and would only repeat the same arithmetic.
     std::size_t same = 0;
-    while (same < i && !(spec.layers[same].fog == layer_spec.fog)) ++same;
+    while (same < i && spec.layers[same].fog != layer_spec.fog) ++same;
     if (same < i) {
       layer.lwc_g_per_m3 = layers_[same].lwc_g_per_m3;
       layer.optics = layers_[same].optics;
