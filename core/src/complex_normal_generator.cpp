@@ -4,28 +4,34 @@
 #include <cmath>
 #include <cstring>
 
+#include "fogradar/core/detail/polar.hpp"
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/detail/ziggurat.hpp"
 #include "fogradar/core/error.hpp"
+
+#if defined(FOGRADAR_SIMD_AVX2)
+#include <immintrin.h>
+#endif
 
 namespace fogradar {
 namespace {
 
 using detail::f64x4;
 using detail::u64x4;
+using f32x4 = float __attribute__((vector_size(16)));
 using f32x8 = float __attribute__((vector_size(32)));
 using u32x8 = std::uint32_t __attribute__((vector_size(32)));
 
 constexpr detail::ZigguratTable kZiggurat = detail::make_ziggurat_table();
 
-// Word w of lane l at word[w][l].
+// Word w of every lane: s_w[l] is word w of lane l. The states move between memory and vectors
+// only at the ends of a call and around the rare slow path: four named vectors rather than an
+// array, and copies vector by vector, so that GCC keeps them in registers instead of mirroring
+// them to the stack at every step.
 struct LaneStates {
-  u64x4 word[4];
+  u64x4 s0, s1, s2, s3;
 };
 
-// The lane states move between memory and vectors only at the ends of a call and around the rare
-// slow path; copying the whole struct with memcpy made GCC keep it in memory, so that every step
-// of the generator waited for a store and a reload.
 [[gnu::always_inline]] inline void store_lanes(std::uint64_t* to, u64x4 v) { std::memcpy(to, &v, sizeof v); }
 
 [[gnu::always_inline]] inline u64x4 load_lanes(const std::uint64_t* from) {
@@ -34,129 +40,192 @@ struct LaneStates {
   return v;
 }
 
-// Whether any lane of a comparison result is set: the two halves or-ed, then two 64-bit words
-// (fewer extractions than four).
-[[gnu::always_inline]] inline bool any_lane(u32x8 mask) {
-  using u32x4 = std::uint32_t __attribute__((vector_size(16)));
-  using u64x2 = std::uint64_t __attribute__((vector_size(16)));
-  const u32x4 halves = __builtin_shufflevector(mask, mask, 0, 1, 2, 3) | __builtin_shufflevector(mask, mask, 4, 5, 6, 7);
-  const u64x2 words = detail::lanes_as<u64x2>(halves);
-  return (words[0] | words[1]) != 0;
+// What the kernel does differently per instruction set: whether any lane of a comparison result
+// is set, and four floats to four doubles. GCC 12 compiles __builtin_convertvector from four floats
+// into two-lane conversions and inserts, and from eight floats into 512-bit registers in the
+// AVX-512 version (whose 512-bit instructions then also hold up the 256-bit ones); with either the
+// generator took ~1.25 times as long (alternated in one process) as with AVX's four-lane vcvtps2pd.
+// AvxLanes' target attribute keeps its functions from being always_inline (GCC refuses to inline
+// them into a function without it); the kernels' flatten inlines them.
+struct BaselineLanes {
+  // The two halves or-ed, then two 64-bit words (fewer extractions than four).
+  [[gnu::always_inline]] static bool any(u32x8 mask) {
+    using u32x4 = std::uint32_t __attribute__((vector_size(16)));
+    using u64x2 = std::uint64_t __attribute__((vector_size(16)));
+    const u32x4 halves =
+        __builtin_shufflevector(mask, mask, 0, 1, 2, 3) | __builtin_shufflevector(mask, mask, 4, 5, 6, 7);
+    const u64x2 words = detail::lanes_as<u64x2>(halves);
+    return (words[0] | words[1]) != 0;
+  }
+  [[gnu::always_inline]] static f64x4 to_double(f32x4 x) { return __builtin_convertvector(x, f64x4); }
+};
+
+#if defined(FOGRADAR_SIMD_AVX2)
+struct AvxLanes {
+  [[gnu::target("avx")]] static bool any(u32x8 mask) {
+    const auto bits = detail::lanes_as<__m256i>(mask);
+    return _mm256_testz_si256(bits, bits) == 0;
+  }
+  [[gnu::target("avx")]] static f64x4 to_double(f32x4 x) {
+    return detail::lanes_as<f64x4>(_mm256_cvtps_pd(detail::lanes_as<__m128>(x)));
+  }
+};
+#endif
+
+// The correctly rounded square root of each lane (IEEE, so every instruction set agrees); built
+// with -fno-math-errno (core/CMakeLists.txt), GCC makes the loop one vector square root.
+[[gnu::always_inline]] inline f32x8 sqrt_lanes(f32x8 x) {
+  for (int l = 0; l < 8; ++l) x[l] = std::sqrt(x[l]);
+  return x;
 }
 
 [[gnu::always_inline]] inline u64x4 rotl(u64x4 x, int k) { return (x << k) | (x >> (64 - k)); }
 
 // xoshiro256++ next() in every lane (Blackman & Vigna, ACM TOMS 47(4), 2021).
-[[gnu::always_inline]] inline u64x4 next(LaneStates& state) {
-  u64x4* s = state.word;
-  const u64x4 result = rotl(s[0] + s[3], 23) + s[0];
-  const u64x4 t = s[1] << 17;
-  s[2] ^= s[0];
-  s[3] ^= s[1];
-  s[1] ^= s[2];
-  s[0] ^= s[3];
-  s[2] ^= t;
-  s[3] = rotl(s[3], 45);
+[[gnu::always_inline]] inline u64x4 next(LaneStates& s) {
+  const u64x4 result = rotl(s.s0 + s.s3, 23) + s.s0;
+  const u64x4 t = s.s1 << 17;
+  s.s2 ^= s.s0;
+  s.s3 ^= s.s1;
+  s.s1 ^= s.s2;
+  s.s0 ^= s.s3;
+  s.s2 ^= t;
+  s.s3 = rotl(s.s3, 45);
   return result;
 }
 
-// Samples 0..7 of a group (real and imaginary part of four complex samples; sample h came from
-// the half-word h of the group, lane h / 2) whose fast path failed: finished in order h = 0..7,
-// each drawing its further words from its own lane. Out of line and in memory: it runs for ~2 % of
-// the groups, and the vector clones must not pass vector arguments to it (their ABIs differ).
-[[gnu::noinline]] void finish_slow_samples(std::uint64_t* lane_words, const std::uint32_t* sample_words,
-                                           float* samples) {
-  for (std::size_t h = 0; h < 8; ++h) {
+[[gnu::always_inline]] inline LaneStates load_states(const std::uint64_t* words) {
+  return {load_lanes(words), load_lanes(words + 4), load_lanes(words + 8), load_lanes(words + 12)};
+}
+
+[[gnu::always_inline]] inline void store_states(std::uint64_t* words, const LaneStates& state) {
+  store_lanes(words, state.s0);
+  store_lanes(words + 4, state.s1);
+  store_lanes(words + 8, state.s2);
+  store_lanes(words + 12, state.s3);
+}
+
+// The powers of a group whose fast path failed somewhere, in the vector order of add_eight (element
+// h holds sample 4 (h / 2 mod 2) + 2 (h / 4) + h mod 2, of lane 2 (h / 4) + h mod 2): finished in
+// sample order, each drawing its further words from its own lane. Out of line and in memory:
+// it runs for ~3 % of the groups, and the vector clones must not pass vector arguments to it
+// (their ABIs differ).
+[[gnu::noinline]] void finish_slow_powers(std::uint64_t* lane_words, const std::uint32_t* power_words, float* powers) {
+  for (const std::size_t h : {0, 1, 4, 5, 2, 3, 6, 7}) {
     float x = 0.0F;
-    if (detail::ziggurat_fast(sample_words[h], kZiggurat, x)) continue;
-    const std::size_t lane = h / 2;
+    if (detail::ziggurat_fast(power_words[h], kZiggurat, x)) continue;
+    const std::size_t lane = 2 * (h / 4) + h % 2;
     std::array<std::uint64_t, 4> state{};
     for (std::size_t w = 0; w < 4; ++w) state[w] = lane_words[w * 4 + lane];
-    samples[h] = detail::ziggurat_normal(sample_words[h], kZiggurat, [&] { return xoshiro256pp_next(state); });
+    powers[h] = detail::ziggurat_exponential(power_words[h], kZiggurat, [&] { return xoshiro256pp_next(state); });
     for (std::size_t w = 0; w < 4; ++w) lane_words[w * 4 + lane] = state[w];
   }
 }
 
-// The {x_i, x_{i+1}} floats of sample h's layer, as one 64-bit word.
-[[gnu::always_inline]] inline std::uint64_t layer_bits(const u32x8& words, int h) {
+// The {x_i, x_{i+1}} floats of the layer that a power word picks, as one 64-bit word.
+[[gnu::always_inline]] inline std::uint64_t layer_bits(std::uint32_t power_word) {
   std::uint64_t bits;
-  std::memcpy(&bits, kZiggurat.fast[words[h] & (detail::ziggurat_layers - 1)].data(), sizeof bits);
+  std::memcpy(&bits, kZiggurat.fast[power_word & (detail::ziggurat_layers - 1)].data(), sizeof bits);
   return bits;
 }
 
-// Four complex samples from one word per lane: lane l's low half is the real part of sample l, its
-// high half the imaginary part, so the eight floats come out interleaved (re, im, re, im, ...).
-// Weighted: each sum base + scale x is then multiplied by row_weight * weights[i] (the frame window
+// Eight complex samples from two steps of the four lanes: sample 4s + l from lane l's word of step
+// s, its low half the power word, its high half the phase word; z = scale sqrt(E) e^{i theta}.
+// Weighted: each sum base + z is then multiplied by row_weight * weights[i] (the frame window
 // applied in the same pass, with the products the separate window pass would form).
-template <bool weighted>
-[[gnu::always_inline]] inline void add_four(LaneStates& state, double scale, const double* base, double* out,
-                                            double row_weight, const double* weights) {
-  const u32x8 words = detail::lanes_as<u32x8>(next(state));
-  // Each layer's {width, covered} pair as one 64-bit load per sample, then split into two vectors.
+// The float vectors hold the samples in the order (0, 1, 4, 5 | 2, 3, 6, 7) (step 0 lanes 0-1,
+// step 1 lanes 0-1 | the same for lanes 2-3): every rearrangement below then stays within 128-bit
+// halves, and interleaving (re, im) gives the samples in order.
+template <bool weighted, class Lanes>
+[[gnu::always_inline]] inline void add_eight(LaneStates& state, double scale, const double* base, double* out,
+                                             double row_weight, const double* weights) {
+  const u64x4 first = next(state);
+  const u64x4 second = next(state);
+  const u32x8 first_halves = detail::lanes_as<u32x8>(first);
+  const u32x8 second_halves = detail::lanes_as<u32x8>(second);
+  const u32x8 power_words = __builtin_shufflevector(first_halves, second_halves, 0, 2, 8, 10, 4, 6, 12, 14);
+  const u32x8 phase_words = __builtin_shufflevector(first_halves, second_halves, 1, 3, 9, 11, 5, 7, 13, 15);
+  // Each layer's {width, covered} pair as one 64-bit load per sample (the index from the 64-bit
+  // word, whose low half is the power word), then split into two vectors.
   const f32x8 first_pairs = detail::lanes_as<f32x8>(
-      u64x4{layer_bits(words, 0), layer_bits(words, 1), layer_bits(words, 2), layer_bits(words, 3)});
-  const f32x8 last_pairs = detail::lanes_as<f32x8>(
-      u64x4{layer_bits(words, 4), layer_bits(words, 5), layer_bits(words, 6), layer_bits(words, 7)});
-  const f32x8 width = __builtin_shufflevector(first_pairs, last_pairs, 0, 2, 4, 6, 8, 10, 12, 14);
-  const f32x8 covered = __builtin_shufflevector(first_pairs, last_pairs, 1, 3, 5, 7, 9, 11, 13, 15);
-  const f32x8 magnitude = detail::layer_uniform<f32x8>(words) * width;
-  f32x8 samples = detail::with_sign(magnitude, words);
-  if (any_lane(detail::lanes_as<u32x8>(magnitude >= covered))) [[unlikely]] {
+      u64x4{layer_bits(static_cast<std::uint32_t>(first[0])), layer_bits(static_cast<std::uint32_t>(first[1])),
+            layer_bits(static_cast<std::uint32_t>(first[2])), layer_bits(static_cast<std::uint32_t>(first[3]))});
+  const f32x8 second_pairs = detail::lanes_as<f32x8>(
+      u64x4{layer_bits(static_cast<std::uint32_t>(second[0])), layer_bits(static_cast<std::uint32_t>(second[1])),
+            layer_bits(static_cast<std::uint32_t>(second[2])), layer_bits(static_cast<std::uint32_t>(second[3]))});
+  const f32x8 width = __builtin_shufflevector(first_pairs, second_pairs, 0, 2, 8, 10, 4, 6, 12, 14);
+  const f32x8 covered = __builtin_shufflevector(first_pairs, second_pairs, 1, 3, 9, 11, 5, 7, 13, 15);
+  f32x8 power = detail::layer_uniform<f32x8>(power_words) * width;
+  if (Lanes::any(detail::lanes_as<u32x8>(power >= covered))) [[unlikely]] {
     alignas(32) std::uint64_t lane_words[16];
-    alignas(32) std::uint32_t sample_words[8];
-    alignas(32) float finished[8];
-    for (std::size_t w = 0; w < 4; ++w) store_lanes(lane_words + 4 * w, state.word[w]);
-    std::memcpy(sample_words, &words, sizeof sample_words);
-    std::memcpy(finished, &samples, sizeof finished);
-    finish_slow_samples(lane_words, sample_words, finished);
-    for (std::size_t w = 0; w < 4; ++w) state.word[w] = load_lanes(lane_words + 4 * w);
-    std::memcpy(&samples, finished, sizeof finished);
+    alignas(32) std::uint32_t words[8];
+    alignas(32) float powers[8];
+    store_states(lane_words, state);
+    std::memcpy(words, &power_words, sizeof words);
+    std::memcpy(powers, &power, sizeof powers);
+    finish_slow_powers(lane_words, words, powers);
+    state = load_states(lane_words);
+    std::memcpy(&power, powers, sizeof powers);
   }
-  const f64x4 low = __builtin_convertvector(__builtin_shufflevector(samples, samples, 0, 1, 2, 3), f64x4) * scale;
-  const f64x4 high = __builtin_convertvector(__builtin_shufflevector(samples, samples, 4, 5, 6, 7), f64x4) * scale;
-  f64x4 first = detail::load4(base) + low;
-  f64x4 last = detail::load4(base + 4) + high;
-  if constexpr (weighted) {
-    first *= row_weight * detail::load4(weights);
-    last *= row_weight * detail::load4(weights + 4);
+  f32x8 re, im;
+  detail::polar(sqrt_lanes(power), phase_words, re, im);
+  // (re, im) interleaved within 128-bit halves: samples 0-1 | 2-3 and 4-5 | 6-7.
+  const f32x8 first_four = __builtin_shufflevector(re, im, 0, 8, 1, 9, 4, 12, 5, 13);
+  const f32x8 last_four = __builtin_shufflevector(re, im, 2, 10, 3, 11, 6, 14, 7, 15);
+  const f64x4 parts[4] = {Lanes::to_double(__builtin_shufflevector(first_four, first_four, 0, 1, 2, 3)),
+                          Lanes::to_double(__builtin_shufflevector(first_four, first_four, 4, 5, 6, 7)),
+                          Lanes::to_double(__builtin_shufflevector(last_four, last_four, 0, 1, 2, 3)),
+                          Lanes::to_double(__builtin_shufflevector(last_four, last_four, 4, 5, 6, 7))};
+  for (std::size_t p = 0; p < 4; ++p) {
+    f64x4 sum = detail::load4(base + 4 * p) + parts[p] * scale;
+    if constexpr (weighted) sum *= row_weight * detail::load4(weights + 4 * p);
+    detail::store4(out + 4 * p, sum);
   }
-  detail::store4(out, first);
-  detail::store4(out + 4, last);
 }
 
-template <bool weighted>
+template <bool weighted, class Lanes>
 [[gnu::always_inline]] inline void add_complex_normal_body(std::uint64_t* state_words, const double* base, double* out,
                                                            std::size_t count, double scale, double row_weight,
                                                            const double* weights) {
-  LaneStates state;
-  for (std::size_t w = 0; w < 4; ++w) state.word[w] = load_lanes(state_words + 4 * w);
+  LaneStates state = load_states(state_words);
   std::size_t j = 0;
-  for (; j + 4 <= count; j += 4) {
-    add_four<weighted>(state, scale, base + 2 * j, out + 2 * j, row_weight, weighted ? weights + 2 * j : nullptr);
+  for (; j + 8 <= count; j += 8) {
+    add_eight<weighted, Lanes>(state, scale, base + 2 * j, out + 2 * j, row_weight, weighted ? weights + 2 * j : nullptr);
   }
   if (j < count) {
-    double tail[8] = {};
-    add_four<false>(state, scale, tail, tail, row_weight, nullptr);
+    double tail[16] = {};
+    add_eight<false, Lanes>(state, scale, tail, tail, row_weight, nullptr);
     for (std::size_t i = 0; i < 2 * (count - j); ++i) {
       const double sum = base[2 * j + i] + tail[i];
       out[2 * j + i] = weighted ? sum * (row_weight * weights[2 * j + i]) : sum;
     }
   }
-  for (std::size_t w = 0; w < 4; ++w) store_lanes(state_words + 4 * w, state.word[w]);
+  store_states(state_words, state);
 }
 
-// One body, compiled for AVX-512, AVX2 and the x86-64 baseline (SSE2); the loader picks the clone.
-FOGRADAR_SIMD_CLONES
-void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
-                        double scale) {
-  add_complex_normal_body<false>(state_words, base, out, count, scale, 1.0, nullptr);
-}
+// One body per instruction set, differing only in Lanes (above), as GCC's function multiversioning:
+// the loader picks the version as it picks the clones of detail/simd.hpp.
+#define FOGRADAR_NOISE_KERNELS(attributes, Lanes)                                                                    \
+  attributes void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count, \
+                                     double scale) {                                                                 \
+    add_complex_normal_body<false, Lanes>(state_words, base, out, count, scale, 1.0, nullptr);                      \
+  }                                                                                                                  \
+  attributes void add_weighted_complex_normal(std::uint64_t* state_words, const double* base, double* out,           \
+                                              std::size_t count, double scale, double row_weight,                    \
+                                              const double* weights) {                                               \
+    add_complex_normal_body<true, Lanes>(state_words, base, out, count, scale, row_weight, weights);                \
+  }
 
-FOGRADAR_SIMD_CLONES
-void add_weighted_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count,
-                                 double scale, double row_weight, const double* weights) {
-  add_complex_normal_body<true>(state_words, base, out, count, scale, row_weight, weights);
-}
+#if defined(FOGRADAR_SIMD_AVX2)
+FOGRADAR_NOISE_KERNELS(__attribute__((target("default"), flatten)), BaselineLanes)
+FOGRADAR_NOISE_KERNELS(__attribute__((target("avx2"), flatten)), AvxLanes)
+#if defined(FOGRADAR_SIMD_AVX512)
+FOGRADAR_NOISE_KERNELS(__attribute__((target("arch=x86-64-v4"), flatten)), AvxLanes)
+#endif
+#else
+FOGRADAR_NOISE_KERNELS(, BaselineLanes)
+#endif
+#undef FOGRADAR_NOISE_KERNELS
 
 }  // namespace
 
@@ -176,7 +245,7 @@ void ComplexNormalGenerator::add(std::span<const std::complex<double>> base, std
   FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size());
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   add_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
-                     reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(0.5 * variance));
+                     reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(variance));
 }
 
 void ComplexNormalGenerator::add_weighted(std::span<const std::complex<double>> base,
@@ -184,8 +253,8 @@ void ComplexNormalGenerator::add_weighted(std::span<const std::complex<double>> 
                                           std::span<const double> part_weights) {
   FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size() && part_weights.size() == 2 * out.size());
   add_weighted_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
-                              reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(0.5 * variance),
-                              row_weight, part_weights.data());
+                              reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(variance), row_weight,
+                              part_weights.data());
 }
 
 }  // namespace fogradar

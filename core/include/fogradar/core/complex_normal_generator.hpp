@@ -1,18 +1,20 @@
-// Thermal noise for whole frames: circular complex Gaussian samples, four at a time in SIMD lanes.
+// Thermal noise for whole frames: circular complex Gaussian samples, eight at a time in SIMD lanes.
 // Scalar Box–Muller through libm (RandomStream::complex_normal) costs ~40 ns per sample, five times
 // a frame's FFTs; this generator runs four xoshiro256++ streams side by side (one per SIMD lane, the
 // vectorisation the xoshiro authors describe) and turns each 64-bit word into one complex sample
-// with two single-precision ziggurat draws (detail/ziggurat.hpp): ~2 ns per sample
-// (docs/performance.md).
-// Precision: each part is a float N(0, 1) value times sqrt(variance / 2) in double: x = u x_i with
-// a 20-bit uniform u, rounded to float (relative error < 6e-8, far below any noise statistic the
-// simulator measures). The ziggurat is exact up to that quantisation, tails included: its tail
-// method reaches |x| = 12.7 (its uniforms have 52 bits), beyond which a normal has probability
-// 5e-37.
+// z = sqrt(variance E) e^{i theta} (a circular Gaussian's power is exponential and independent of
+// its uniform phase): E ~ Exp(1) from the low half by a single-precision exponential ziggurat
+// (detail/ziggurat.hpp), theta from the high half by float sine and cosine polynomials
+// (detail/polar.hpp). One table look-up per sample: ~2 ns per sample (docs/performance.md).
+// Precision: each part is a float times sqrt(variance) in double: float(sqrt E) times the float
+// cosine or sine, with E = u x_i from a 21-bit uniform (relative error ~2e-7, the polynomials' 1e-7
+// included; far below any noise statistic the simulator measures); theta takes 2^24 equally spaced
+// values. The ziggurat is exact up to that quantisation, tail included: E reaches r - ln 2^-52 = 46
+// (|z|^2 = 46 variance, probability 1e-20).
 // Reproducibility: the lanes are seeded from the caller's RandomStream, and the arithmetic uses only
-// IEEE-exact operations without FMA or libm, so the samples depend on the seed alone, not on the
-// thread count or on which instruction set (AVX-512, AVX2 or the x86-64 baseline) the library
-// picks at run time.
+// IEEE-exact operations (multiplication, addition, square root, conversion) without FMA or libm, so
+// the samples depend on the seed alone, not on the thread count or on which instruction set
+// (AVX-512, AVX2 or the x86-64 baseline) the library picks at run time.
 #pragma once
 
 #include <array>
@@ -35,10 +37,11 @@ class ComplexNormalGenerator {
   explicit ComplexNormalGenerator(RandomStream& parent);
 
   // samples[j] += z_j with z_j ~ CN(0, variance) independent (E|z|^2 = variance), for all j.
-  // Sample j uses one word of lane j mod 4 (its low half the real part, its high half the imaginary
-  // part; the ~0.2 % of draws that leave the ziggurat's fast path take further words of the same
-  // lane); a call whose length is not a multiple of 4 discards the unused lanes of its last group,
-  // so the samples depend on how a buffer is split into calls. variance >= 0.
+  // Samples come in groups of eight from two steps of the four lanes: sample 8g + 4s + l uses lane
+  // l's word of step s (its low half the power, its high half the phase; the ~0.34 % of powers that
+  // leave the ziggurat's fast path take further words of the same lane, after both steps, in
+  // sample order); a call whose length is not a multiple of 8 discards the unused samples of its
+  // last group, so the samples depend on how a buffer is split into calls. variance >= 0.
   void add(std::span<std::complex<double>> samples, double variance);
 
   // out[j] = base[j] + z_j with the same samples z_j as add(): one pass that writes a noisy copy

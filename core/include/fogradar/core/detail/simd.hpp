@@ -30,11 +30,16 @@ using u64x4 = std::uint64_t __attribute__((vector_size(32)));
 // x86-64-v4 (AVX-512), AVX2 and the baseline. Defining FOGRADAR_SIMD_NO_AVX512 leaves out the
 // first, and defining FOGRADAR_SIMD_CLONES empty builds only the baseline version: that is how the
 // tests check, on an AVX-512 machine, the clones its loader would not pick (docs/architecture.md).
+// FOGRADAR_SIMD_AVX2 and FOGRADAR_SIMD_AVX512 say which clones exist, for the loop that is written
+// out per instruction set instead (complex_normal_generator.cpp).
 #ifndef FOGRADAR_SIMD_CLONES
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(FOGRADAR_SIMD_NO_AVX512)
 #define FOGRADAR_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#define FOGRADAR_SIMD_AVX2 1
 #elif defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define FOGRADAR_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#define FOGRADAR_SIMD_AVX2 1
+#define FOGRADAR_SIMD_AVX512 1
 #else
 #define FOGRADAR_SIMD_CLONES
 #endif

@@ -1,12 +1,13 @@
-// The ziggurat of the normal distribution (Marsaglia & Tsang, "The Ziggurat Method for Generating
-// Random Variables", J. Stat. Softw. 5(8), 2000) used by ComplexNormalGenerator: 2048 layers of
-// equal area v under f(x) = exp(-x^2/2), x >= 0; layer 0 is the base strip [0, r] x [0, f(r)] plus
-// the tail x > r, layer i >= 1 the rectangle [0, x_i] x [f(x_i), f(x_{i+1})].
+// The ziggurat of the exponential distribution (Marsaglia & Tsang, "The Ziggurat Method for
+// Generating Random Variables", J. Stat. Softw. 5(8), 2000) used by ComplexNormalGenerator for the
+// power |z|^2 of each sample: 2048 layers of equal area v under f(x) = exp(-x), x >= 0; layer 0 is
+// the base strip [0, r] x [0, f(r)] plus the tail x > r, layer i >= 1 the rectangle
+// [0, x_i] x [f(x_i), f(x_{i+1})].
 // A 32-bit word draws one sample (Doornik's remedy, "An Improved Ziggurat Method to Generate
-// Normal Random Samples", 2005: the layer, the sign and the uniform come from disjoint bits):
-// bits 0-10 the layer i, bit 11 the sign, bits 12-31 a uniform u = k 2^-20, x = u x_i. With
-// probability 0.9977, x < x_{i+1} and x is the sample (the fast path); otherwise the wedge test or
-// Marsaglia's tail method (Ann. Math. Stat. 35, 1964) decides with further words.
+// Normal Random Samples", 2005: the layer and the uniform come from disjoint bits): bits 0-10 the
+// layer i, bits 11-31 a uniform u = k 2^-21, x = u x_i. With probability 0.99658, x < x_{i+1} and x
+// is the sample (the fast path); otherwise the wedge test or the tail, r + Exp(1) (the exponential
+// is memoryless), decides with further words.
 // Everything is built from IEEE-exact operations and fdlibm's log, never libm or FMA, so the table
 // (computed at compile time) and the samples are the same on every machine. Internal to fogradar;
 // the tests check the table against libm and the published r of the 256-layer ziggurat.
@@ -54,25 +55,16 @@ constexpr double log_positive(double x) {
   return k * ln2_hi - ((half_f_squared - (s * (half_f_squared + r) + k * ln2_lo)) - f);
 }
 
-// sqrt(a) for normal a > 0 within 1 ulp, by Newton's iteration y <- (y + a/y)/2 from the halved
-// exponent (relative error < 6 %, squared at every step): std::sqrt is not constexpr in C++20.
-constexpr double sqrt_newton(double a) {
-  double y = std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) >> 1) + 0x1FF8'0000'0000'0000ULL);
-  for (int step = 0; step < 6; ++step) y = 0.5 * (y + a / y);
-  return y;
-}
-
 inline constexpr int ziggurat_index_bits = 11;
 inline constexpr std::size_t ziggurat_layers = std::size_t{1} << ziggurat_index_bits;
-inline constexpr int ziggurat_uniform_bits = 32 - ziggurat_index_bits - 1;
-// r, f(r) = exp(-r^2/2) and v = r f(r) + sqrt(pi/2) erfc(r/sqrt 2) for 2048 layers: r solves
-// "the recursion x_{i+1} = f^-1(f(x_i) + v/x_i) closes the top layer with area v", found by
-// bisection in 50-digit arithmetic (mpmath); each constant is that root's value correctly rounded
-// (f(r) and v are taken at the exact root, so they sit 1-2 ulp from libm's values at the rounded r).
-// The tests recompute all three with libm.
-inline constexpr double ziggurat_r = 0x1.0dd903462b3f1p+2;     // 4.216370409511897
-inline constexpr double ziggurat_f_r = 0x1.2139508669177p-13;  // 1.37912695390995e-4
-inline constexpr double ziggurat_v = 0x1.412ea7ab08321p-11;    // 6.126065176240461e-4
+inline constexpr int ziggurat_uniform_bits = 32 - ziggurat_index_bits;
+// r, f(r) = exp(-r) and v = r f(r) + exp(-r) for 2048 layers: r solves "the recursion
+// x_{i+1} = f^-1(f(x_i) + v/x_i) closes the top layer with area v", found by bisection in 50-digit
+// arithmetic (mpmath); each constant is that root's value correctly rounded (f(r) and v taken at
+// the exact root). The tests recompute all three with libm.
+inline constexpr double ziggurat_r = 0x1.40bb92a1ff2a6p+3;     // 10.02289706840504
+inline constexpr double ziggurat_f_r = 0x1.74389b46b1a48p-15;  // 4.437221519064789e-5
+inline constexpr double ziggurat_v = 0x1.006f48073a080p-11;    // 4.891103607436303e-4
 
 struct ZigguratTable {
   // {x_i, x_{i+1}} in single precision: the fast path's width of layer i and the part of it that
@@ -83,7 +75,7 @@ struct ZigguratTable {
 };
 
 // x_1 = r, f_{i+1} = f_i + v / x_i (layer i has area x_i (f_{i+1} - f_i) = v),
-// x_{i+1} = sqrt(-2 ln f_{i+1}); the top layer ends at x_2048 = 0, f = 1.
+// x_{i+1} = -ln f_{i+1}; the top layer ends at x_2048 = 0, f = 1.
 constexpr ZigguratTable make_ziggurat_table() {
   ZigguratTable table;
   auto& x = table.x;
@@ -94,7 +86,7 @@ constexpr ZigguratTable make_ziggurat_table() {
   f[1] = ziggurat_f_r;
   for (std::size_t i = 1; i + 1 < ziggurat_layers; ++i) {
     f[i + 1] = f[i] + ziggurat_v / x[i];
-    x[i + 1] = sqrt_newton(-2.0 * log_positive(f[i + 1]));
+    x[i + 1] = -log_positive(f[i + 1]);
   }
   x[ziggurat_layers] = 0.0;
   f[ziggurat_layers] = 1.0;
@@ -104,20 +96,11 @@ constexpr ZigguratTable make_ziggurat_table() {
   return table;
 }
 
-// The bit layout of a sample word, for one word (Float = float, Word = std::uint32_t) or for
-// the lanes of a vector of them (the generator's f32x8, u32x8).
-
-// u in [0, 1) from the top 20 bits of a sample word, exactly (a float has 23 mantissa bits).
+// u in [0, 1) from the top 21 bits of a sample word, exactly (a float has 23 mantissa bits); for
+// one word (Float = float, Word = std::uint32_t) or for the lanes of a vector of them.
 template <class Float, class Word>
 [[gnu::always_inline]] inline Float layer_uniform(Word word) {
-  constexpr int shift = 32 - ziggurat_uniform_bits;
-  return lanes_as<Float>(((word >> shift) << (23 - ziggurat_uniform_bits)) | 0x3F80'0000U) - 1.0F;
-}
-
-// |x| with the sign of bit 11 of the sample word.
-template <class Float, class Word>
-[[gnu::always_inline]] inline Float with_sign(Float magnitude, Word word) {
-  return lanes_as<Float>(lanes_as<Word>(magnitude) ^ ((word << (31 - ziggurat_index_bits)) & 0x8000'0000U));
+  return lanes_as<Float>(((word >> ziggurat_index_bits) << (23 - ziggurat_uniform_bits)) | 0x3F80'0000U) - 1.0F;
 }
 
 // The fast path: x = u x_i, taken when x < x_{i+1}. Returns false (and x) otherwise.
@@ -127,27 +110,21 @@ inline bool ziggurat_fast(std::uint32_t word, const ZigguratTable& table, float&
   return x < layer[1];
 }
 
-// One N(0, 1) sample from `word` and, where the fast path fails, further 64-bit words from
+// One Exp(1) sample from `word` and, where the fast path fails, further 64-bit words from
 // `next_word` (in the order drawn; a new layer is tried with the low 32 bits of a fresh word).
 template <class NextWord>
-float ziggurat_normal(std::uint32_t word, const ZigguratTable& table, NextWord&& next_word) {
-  const auto uniform_open_zero = [&] { return 2.0 - mantissa_in_one_two(next_word()); };  // (0, 1]
+float ziggurat_exponential(std::uint32_t word, const ZigguratTable& table, NextWord&& next_word) {
   for (;;) {
     float x = 0.0F;
-    if (ziggurat_fast(word, table, x)) return with_sign(x, word);
+    if (ziggurat_fast(word, table, x)) return x;
     const std::size_t i = word & (ziggurat_layers - 1);
     if (i == 0) {
-      // Tail x > r: x = r + a with a = -ln(U1)/r, accepted when -2 ln(U2) > a^2.
-      for (;;) {
-        const double a = -log_positive(uniform_open_zero()) / ziggurat_r;
-        const double b = -log_positive(uniform_open_zero());
-        if (b + b > a * a) return with_sign(static_cast<float>(ziggurat_r + a), word);
-      }
+      // Tail x > r: r - ln U with U in (0, 1].
+      return static_cast<float>(ziggurat_r - log_positive(2.0 - mantissa_in_one_two(next_word())));
     }
-    // Wedge: a uniform height y in the layer lies under f at x iff ln y < -x^2/2.
+    // Wedge: a uniform height y in the layer lies under f at x iff ln y < -x.
     const double y = table.f[i] + (mantissa_in_one_two(next_word()) - 1.0) * (table.f[i + 1] - table.f[i]);
-    const double xd = x;
-    if (log_positive(y) < -0.5 * xd * xd) return with_sign(x, word);
+    if (log_positive(y) < -static_cast<double>(x)) return x;
     word = static_cast<std::uint32_t>(next_word());
   }
 }
