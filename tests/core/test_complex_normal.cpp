@@ -848,8 +848,9 @@ TEST(Phase, PolynomialsMatchLibmOverEveryArgument) {
 // (2^22 - 1 - k) (bit 0: pi/2 - phi), 2^23 + k (bit 1: phi + pi), 2^23 + 2^22 + (2^22 - 1 - k)
 // (both), so the four cases tile the circle with 2^24 equally likely angles. Reference: atan2 of
 // the sample against that lattice angle, for 2^16 random k and each case, and the radius
-// (sign and swap exact). Tolerance 3e-7 rad (the polynomials' 2.5e-7, previous test). Measured:
-// 1.08e-7 rad.
+// (sign and swap exact). Tolerance 3e-7 rad (the polynomials' 2.5e-7, previous test), which
+// checks the quarter-turn mapping but cannot see a half-step (1.9e-7 rad) offset of the lattice:
+// the previous test pins t exactly. Measured: 1.08e-7 rad.
 TEST(Phase, QuadrantBitsTileTheCircleWithTheLattice) {
   constexpr double step = 2.0 * std::numbers::pi / 0x1p24;
   constexpr std::uint32_t quarter = std::uint32_t{1} << 22;
