@@ -141,26 +141,38 @@ void accumulate_cells(double* __restrict sums, const double* __restrict terms, s
   for (std::size_t j = 0; j < count; ++j) sums[j] += terms[j];
 }
 
-// Appends every i with power[i] > threshold[i]. Detections are rare: a branch-free vector test of
-// 16 cells at a time leaves the look at single cells to the few blocks that hold one.
+// Appends every i in [begin, end) with power[i] > threshold[i], where four_from(k) gives the
+// thresholds of cells k..k+3 and one_at(i) that of cell i (each writing them to `threshold` where
+// it forms them). Detections are rare: a branch-free vector test of 16 cells at a time leaves the
+// look at single cells to the few blocks that hold one.
+template <class FourFrom, class OneAt>
+[[gnu::always_inline]] inline void append_cells_above(const double* power, const double* threshold, std::size_t begin,
+                                                      std::size_t end, std::vector<std::size_t>& cells,
+                                                      FourFrom four_from, OneAt one_at) {
+  constexpr std::size_t block = 16;
+  std::size_t i = begin;
+  for (; i + block <= end; i += block) {
+    detail::u64x4 above{};
+    for (std::size_t k = i; k < i + block; k += 4) {
+      above |= detail::lanes_as<detail::u64x4>(detail::load4(power + k) > four_from(k));
+    }
+    if ((above[0] | above[1] | above[2] | above[3]) == 0) continue;
+    for (std::size_t k = i; k < i + block; ++k) {
+      if (power[k] > threshold[k]) cells.push_back(k);
+    }
+  }
+  for (; i < end; ++i) {
+    if (power[i] > one_at(i)) cells.push_back(i);
+  }
+}
+
+// The detection scan of OS, whose thresholds are formed beforehand.
 FOGRADAR_SIMD_CLONES
 void append_cells_above(const double* power, const double* threshold, std::size_t length,
                         std::vector<std::size_t>& cells) {
-  using detail::load4;
-  constexpr std::size_t block = 16;
-  for (std::size_t begin = 0; begin < length; begin += block) {
-    const std::size_t end = std::min(length, begin + block);
-    if (end - begin == block) {
-      detail::u64x4 above{};
-      for (std::size_t k = begin; k < end; k += 4) {
-        above |= detail::lanes_as<detail::u64x4>(load4(power + k) > load4(threshold + k));
-      }
-      if ((above[0] | above[1] | above[2] | above[3]) == 0) continue;
-    }
-    for (std::size_t i = begin; i < end; ++i) {
-      if (power[i] > threshold[i]) cells.push_back(i);
-    }
-  }
+  append_cells_above(
+      power, threshold, 0, length, cells, [threshold](std::size_t k) { return detail::load4(threshold + k); },
+      [threshold](std::size_t i) { return threshold[i]; });
 }
 
 // Sums of every n consecutive cells, sums[j] = power[j] + ... + power[j + n - 1] for j in
@@ -198,43 +210,59 @@ std::span<const double> window_sums(std::span<const double> power, std::size_t n
 }
 
 // How the two half sums of the reference cells make the noise estimate: CA adds them, GO takes
-// the greater, SO the smaller.
+// the greater, SO the smaller. One form for scalars and vectors (std::max is (a < b) ? b : a).
 enum class HalfSums { add, greater, smaller };
 
-[[gnu::always_inline]] inline double combine(HalfSums rule, double lead, double lag) {
+template <class T>
+[[gnu::always_inline]] inline T combine(HalfSums rule, T lead, T lag) {
   if (rule == HalfSums::add) return lead + lag;
-  return rule == HalfSums::greater ? std::max(lead, lag) : std::min(lead, lag);
+  return rule == HalfSums::greater ? (lead < lag ? lag : lead) : (lag < lead ? lag : lead);
 }
 
+// threshold[i] = scale * combine(lead[i - begin], lag[i - begin]) for i in [begin, end), and every i
+// with power[i] > threshold[i] appended, in one pass.
 template <HalfSums rule>
-[[gnu::always_inline]] inline void fill_thresholds(const double* lead, const double* lag, double scale,
-                                                   double* threshold, std::size_t count) {
-  for (std::size_t j = 0; j < count; ++j) threshold[j] = scale * combine(rule, lead[j], lag[j]);
+[[gnu::always_inline]] inline void fill_thresholds_and_detect(const double* lead, const double* lag, const double* power,
+                                                              double scale, double* threshold, std::size_t begin,
+                                                              std::size_t end, std::vector<std::size_t>& cells) {
+  const auto four_from = [=](std::size_t k) {
+    const detail::f64x4 four =
+        scale * combine(rule, detail::load4(lead + (k - begin)), detail::load4(lag + (k - begin)));
+    detail::store4(threshold + k, four);
+    return four;
+  };
+  const auto one_at = [=](std::size_t i) {
+    return threshold[i] = scale * combine(rule, lead[i - begin], lag[i - begin]);
+  };
+  append_cells_above(power, threshold, begin, end, cells, four_from, one_at);
 }
 
-// threshold[j] = scale * combine(lead[j], lag[j]) for the interior cells; the rule is fixed
-// outside the loop so that each clone vectorises all three.
+// The interior cells of two_sided_detect; the rule is fixed outside the loop so that each clone
+// vectorises all three.
 FOGRADAR_SIMD_CLONES
-void interior_thresholds(HalfSums rule, const double* lead, const double* lag, double scale, double* threshold,
-                         std::size_t count) {
+void interior_thresholds_and_detect(HalfSums rule, const double* lead, const double* lag, const double* power,
+                                    double scale, double* threshold, std::size_t begin, std::size_t end,
+                                    std::vector<std::size_t>& cells) {
   switch (rule) {
     case HalfSums::add:
-      fill_thresholds<HalfSums::add>(lead, lag, scale, threshold, count);
+      fill_thresholds_and_detect<HalfSums::add>(lead, lag, power, scale, threshold, begin, end, cells);
       break;
     case HalfSums::greater:
-      fill_thresholds<HalfSums::greater>(lead, lag, scale, threshold, count);
+      fill_thresholds_and_detect<HalfSums::greater>(lead, lag, power, scale, threshold, begin, end, cells);
       break;
     case HalfSums::smaller:
-      fill_thresholds<HalfSums::smaller>(lead, lag, scale, threshold, count);
+      fill_thresholds_and_detect<HalfSums::smaller>(lead, lag, power, scale, threshold, begin, end, cells);
       break;
   }
 }
 
-// CA/GO/SO thresholds: scale * combine(S_lead, S_lag), S the sums of the two halves of the
-// reference cells (scale = alpha / N for CA, alpha / n for GO/SO). Interior cells read the two
-// window sums; the 2 (guard + n) edge cells add their reference ranges directly.
-void two_sided_thresholds(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
-                          std::span<const double> sums, std::vector<double>& threshold, HalfSums rule) {
+// CA/GO/SO thresholds, scale * combine(S_lead, S_lag) with S the sums of the two halves of the
+// reference cells (scale = alpha / N for CA, alpha / n for GO/SO), and the cells above them in
+// ascending order. Interior cells read the two window sums; the 2 (guard + n) edge cells add their
+// reference ranges directly.
+void two_sided_detect(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
+                      std::span<const double> sums, HalfSums rule, std::vector<double>& threshold,
+                      std::vector<std::size_t>& cells) {
   const std::size_t length = power.size();
   const auto add = [&power](std::size_t begin, std::size_t end) {
     double total = 0.0;
@@ -255,13 +283,15 @@ void two_sided_thresholds(std::span<const double> power, std::size_t guard, std:
       second = add(r.rb + (n - a), r.re);
     }
     threshold[i] = scale * combine(rule, first, second);
+    if (power[i] > threshold[i]) cells.push_back(i);
   };
   const std::size_t interior_begin = guard + n;
   const std::size_t interior_end = length - guard - n;  // > interior_begin (validated)
   for (std::size_t i = 0; i < interior_begin; ++i) edge_cell(i);
-  const double* lead = sums.data();                // S_lead of cell i = sums[i - guard - n]
+  const double* lead = sums.data();                      // S_lead of cell i = sums[i - guard - n]
   const double* lag = sums.data() + 2 * guard + n + 1;  // S_lag of cell i = sums[i + guard + 1]
-  interior_thresholds(rule, lead, lag, scale, threshold.data() + interior_begin, interior_end - interior_begin);
+  interior_thresholds_and_detect(rule, lead, lag, power.data(), scale, threshold.data(), interior_begin, interior_end,
+                                 cells);
   for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
 }
 
@@ -445,25 +475,26 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
       workspace.threshold[i] = alpha * sorted[k - 1];
       r = next;
     }
+    append_cells_above(power.data(), workspace.threshold.data(), length, workspace.detections);
   } else {
     const std::span<const double> sums = window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
     const double per_half = alpha / static_cast<double>(n);
     switch (config_.kind) {
       case CfarKind::ca:
-        two_sided_thresholds(power, guard, n, alpha / static_cast<double>(big_n), sums, workspace.threshold,
-                             HalfSums::add);
+        two_sided_detect(power, guard, n, alpha / static_cast<double>(big_n), sums, HalfSums::add,
+                         workspace.threshold, workspace.detections);
         break;
       case CfarKind::go:
-        two_sided_thresholds(power, guard, n, per_half, sums, workspace.threshold, HalfSums::greater);
+        two_sided_detect(power, guard, n, per_half, sums, HalfSums::greater, workspace.threshold,
+                         workspace.detections);
         break;
       case CfarKind::so:
       case CfarKind::os:
-        two_sided_thresholds(power, guard, n, per_half, sums, workspace.threshold, HalfSums::smaller);
+        two_sided_detect(power, guard, n, per_half, sums, HalfSums::smaller, workspace.threshold,
+                         workspace.detections);
         break;
     }
   }
-
-  append_cells_above(power.data(), workspace.threshold.data(), length, workspace.detections);
 }
 
 std::vector<std::size_t> cfar_detect(std::span<const double> power, const CfarConfig& config,
