@@ -141,20 +141,21 @@ void accumulate_cells(double* __restrict sums, const double* __restrict terms, s
   for (std::size_t j = 0; j < count; ++j) sums[j] += terms[j];
 }
 
-// Appends every i in [begin, end) with power[i] > threshold[i], where four_from(k) gives the
-// thresholds of cells k..k+3 and one_at(i) that of cell i (each writing them to `threshold` where
-// it forms them). Detections are rare: a branch-free vector test of 16 cells at a time leaves the
-// look at single cells to the few blocks that hold one.
-template <class FourFrom, class OneAt>
+// Appends every i in [begin, end) with power[i] > threshold[i]. `thresholds.four_from(k)` gives
+// the thresholds of cells k..k+3 and `thresholds.one_at(i)` that of cell i, storing them in
+// `threshold` where it forms them (always-inlined members: no call with a vector argument or
+// result crosses the clones' ABIs, docs/architecture.md). Detections are rare: a branch-free vector
+// test of 16 cells at a time leaves the look at single cells to the few blocks that hold one.
+template <class Thresholds>
 [[gnu::always_inline]] inline void append_cells_above(const double* power, const double* threshold, std::size_t begin,
                                                       std::size_t end, std::vector<std::size_t>& cells,
-                                                      FourFrom four_from, OneAt one_at) {
+                                                      const Thresholds& thresholds) {
   constexpr std::size_t block = 16;
   std::size_t i = begin;
   for (; i + block <= end; i += block) {
     detail::u64x4 above{};
     for (std::size_t k = i; k < i + block; k += 4) {
-      above |= detail::lanes_as<detail::u64x4>(detail::load4(power + k) > four_from(k));
+      above |= detail::lanes_as<detail::u64x4>(detail::load4(power + k) > thresholds.four_from(k));
     }
     if ((above[0] | above[1] | above[2] | above[3]) == 0) continue;
     for (std::size_t k = i; k < i + block; ++k) {
@@ -162,17 +163,22 @@ template <class FourFrom, class OneAt>
     }
   }
   for (; i < end; ++i) {
-    if (power[i] > one_at(i)) cells.push_back(i);
+    if (power[i] > thresholds.one_at(i)) cells.push_back(i);
   }
 }
 
-// The detection scan of OS, whose thresholds are formed beforehand.
+// Thresholds formed beforehand (OS).
+struct StoredThresholds {
+  const double* threshold;
+  [[gnu::always_inline]] detail::f64x4 four_from(std::size_t k) const { return detail::load4(threshold + k); }
+  [[gnu::always_inline]] double one_at(std::size_t i) const { return threshold[i]; }
+};
+
+// The detection scan of OS.
 FOGRADAR_SIMD_CLONES
 void append_cells_above(const double* power, const double* threshold, std::size_t length,
                         std::vector<std::size_t>& cells) {
-  append_cells_above(
-      power, threshold, 0, length, cells, [threshold](std::size_t k) { return detail::load4(threshold + k); },
-      [threshold](std::size_t i) { return threshold[i]; });
+  append_cells_above(power, threshold, 0, length, cells, StoredThresholds{threshold});
 }
 
 // Sums of every n consecutive cells, sums[j] = power[j] + ... + power[j + n - 1] for j in
@@ -219,39 +225,44 @@ template <class T>
   return rule == HalfSums::greater ? (lead < lag ? lag : lead) : (lag < lead ? lag : lead);
 }
 
-// threshold[i] = scale * combine(lead[i - begin], lag[i - begin]) for i in [begin, end), and every i
-// with power[i] > threshold[i] appended, in one pass.
+// The interior thresholds threshold[i] = scale * combine(lead[i - begin], lag[i - begin]), stored
+// as they are formed.
 template <HalfSums rule>
-[[gnu::always_inline]] inline void fill_thresholds_and_detect(const double* lead, const double* lag, const double* power,
-                                                              double scale, double* threshold, std::size_t begin,
-                                                              std::size_t end, std::vector<std::size_t>& cells) {
-  const auto four_from = [=](std::size_t k) {
+struct InteriorThresholds {
+  const double* lead;
+  const double* lag;
+  double scale;
+  double* threshold;
+  std::size_t begin;
+  [[gnu::always_inline]] detail::f64x4 four_from(std::size_t k) const {
     const detail::f64x4 four =
         scale * combine(rule, detail::load4(lead + (k - begin)), detail::load4(lag + (k - begin)));
     detail::store4(threshold + k, four);
     return four;
-  };
-  const auto one_at = [=](std::size_t i) {
+  }
+  [[gnu::always_inline]] double one_at(std::size_t i) const {
     return threshold[i] = scale * combine(rule, lead[i - begin], lag[i - begin]);
-  };
-  append_cells_above(power, threshold, begin, end, cells, four_from, one_at);
-}
+  }
+};
 
-// The interior cells of two_sided_detect; the rule is fixed outside the loop so that each clone
-// vectorises all three.
+// The interior cells [begin, end) of two_sided_detect: thresholds and detections in one pass. The
+// rule is fixed outside the loop so that each clone vectorises all three.
 FOGRADAR_SIMD_CLONES
 void interior_thresholds_and_detect(HalfSums rule, const double* lead, const double* lag, const double* power,
                                     double scale, double* threshold, std::size_t begin, std::size_t end,
                                     std::vector<std::size_t>& cells) {
   switch (rule) {
     case HalfSums::add:
-      fill_thresholds_and_detect<HalfSums::add>(lead, lag, power, scale, threshold, begin, end, cells);
+      append_cells_above(power, threshold, begin, end, cells,
+                         InteriorThresholds<HalfSums::add>{lead, lag, scale, threshold, begin});
       break;
     case HalfSums::greater:
-      fill_thresholds_and_detect<HalfSums::greater>(lead, lag, power, scale, threshold, begin, end, cells);
+      append_cells_above(power, threshold, begin, end, cells,
+                         InteriorThresholds<HalfSums::greater>{lead, lag, scale, threshold, begin});
       break;
     case HalfSums::smaller:
-      fill_thresholds_and_detect<HalfSums::smaller>(lead, lag, power, scale, threshold, begin, end, cells);
+      append_cells_above(power, threshold, begin, end, cells,
+                         InteriorThresholds<HalfSums::smaller>{lead, lag, scale, threshold, begin});
       break;
   }
 }
