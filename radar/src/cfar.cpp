@@ -147,9 +147,9 @@ void accumulate_cells(double* __restrict sums, const double* __restrict terms, s
 // result crosses the clones' ABIs, docs/architecture.md). Detections are rare: a branch-free vector
 // test of 16 cells at a time leaves the look at single cells to the few blocks that hold one.
 template <class Thresholds>
-[[gnu::always_inline]] inline void append_cells_above(const double* power, const double* threshold, std::size_t begin,
-                                                      std::size_t end, std::vector<std::size_t>& cells,
-                                                      const Thresholds& thresholds) {
+[[gnu::always_inline]] inline void scan_cells_above(const double* power, const double* threshold, std::size_t begin,
+                                                    std::size_t end, std::vector<std::size_t>& cells,
+                                                    const Thresholds& thresholds) {
   constexpr std::size_t block = 16;
   std::size_t i = begin;
   for (; i + block <= end; i += block) {
@@ -178,7 +178,7 @@ struct StoredThresholds {
 FOGRADAR_SIMD_CLONES
 void append_cells_above(const double* power, const double* threshold, std::size_t length,
                         std::vector<std::size_t>& cells) {
-  append_cells_above(power, threshold, 0, length, cells, StoredThresholds{threshold});
+  scan_cells_above(power, threshold, 0, length, cells, StoredThresholds{threshold});
 }
 
 // Sums of every n consecutive cells, sums[j] = power[j] + ... + power[j + n - 1] for j in
@@ -253,16 +253,16 @@ void interior_thresholds_and_detect(HalfSums rule, const double* lead, const dou
                                     std::vector<std::size_t>& cells) {
   switch (rule) {
     case HalfSums::add:
-      append_cells_above(power, threshold, begin, end, cells,
-                         InteriorThresholds<HalfSums::add>{lead, lag, scale, threshold, begin});
+      scan_cells_above(power, threshold, begin, end, cells,
+                       InteriorThresholds<HalfSums::add>{lead, lag, scale, threshold, begin});
       break;
     case HalfSums::greater:
-      append_cells_above(power, threshold, begin, end, cells,
-                         InteriorThresholds<HalfSums::greater>{lead, lag, scale, threshold, begin});
+      scan_cells_above(power, threshold, begin, end, cells,
+                       InteriorThresholds<HalfSums::greater>{lead, lag, scale, threshold, begin});
       break;
     case HalfSums::smaller:
-      append_cells_above(power, threshold, begin, end, cells,
-                         InteriorThresholds<HalfSums::smaller>{lead, lag, scale, threshold, begin});
+      scan_cells_above(power, threshold, begin, end, cells,
+                       InteriorThresholds<HalfSums::smaller>{lead, lag, scale, threshold, begin});
       break;
   }
 }
