@@ -4,8 +4,11 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
-cmake -S "$root" -B "$root/build/release" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DFOGRADAR_BUILD_TESTS=OFF -DFOGRADAR_BUILD_BENCHMARKS=OFF >/dev/null
+# shellcheck source=scripts/configure.sh
+. "$root/scripts/configure.sh"
+# The same configuration as scripts/test.sh (only the tool is built here), so the two commands can run
+# in either order on one build tree.
+fogradar_configure "$root/build/release" "${release_options[@]}"
 cmake --build "$root/build/release" --target fogradar
 if (($#)); then
   exec "$root/build/release/cli/fogradar" "$@"

@@ -19,25 +19,27 @@ case "$mode" in
 esac
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
-werror=OFF
-[ "${CI:-}" = "true" ] && werror=ON
+# shellcheck source=scripts/configure.sh
+. "$root/scripts/configure.sh"
 case "$mode" in
   "")
     dir="$root/build/release"
-    cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror >/dev/null
+    fogradar_configure "$dir" "${release_options[@]}"
     ;;
   --sanitize)
     dir="$root/build/sanitize"
-    cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_NO_AVX512 \
-      -DFOGRADAR_SANITIZE=ON -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF >/dev/null
+    fogradar_configure "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_NO_AVX512 \
+      -DFOGRADAR_BUILD_TESTS=ON -DFOGRADAR_BUILD_EXAMPLES=ON -DFOGRADAR_SANITIZE=ON \
+      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
     ;;
   --baseline)
     dir="$root/build/baseline"
-    cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_CLONES=" \
-      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF >/dev/null
+    fogradar_configure "$dir" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_CLONES=" \
+      -DFOGRADAR_BUILD_TESTS=ON -DFOGRADAR_BUILD_EXAMPLES=ON -DFOGRADAR_SANITIZE=OFF \
+      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF
     ;;
 esac
 cmake --build "$dir"
-ctest --test-dir "$dir" --output-on-failure -j "$(nproc)"
+# --no-tests=error: a build tree without tests must fail, never pass as "0 tests".
+ctest --test-dir "$dir" --output-on-failure --no-tests=error -j "$(nproc)"
