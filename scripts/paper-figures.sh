@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Regenerates the figures and tables of docs/paper-comparison.md from the current build
+# (scripts/run.sh builds it): the paper scenario's summary and box plot (seed 1) into docs/figures/,
+# the seed 2 and 3 shifts, and the baseline decomposition (the model's parts switched on one at a
+# time, 0 active layers, 200 measurements each). Prints what the page quotes.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+fogradar="$root/build/release/cli/fogradar"
+[ -x "$fogradar" ] || { echo "build the tool first: scripts/run.sh" >&2; exit 2; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$fogradar" run --out "$work/seed1" >"$work/seed1.txt"
+cp "$work/seed1/summary.csv" "$root/docs/figures/paper_summary.csv"
+cp "$work/seed1/rcs_boxplot.svg" "$root/docs/figures/paper_rcs_boxplot.svg"
+grep -v "^results in" "$work/seed1.txt"
+for seed in 2 3; do
+  "$fogradar" run --seed "$seed" --out "$work/seed$seed" >/dev/null
+  printf 'seed %s median shifts (dB), steps 1-4:' "$seed"
+  awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    $1 > 0 { printf " %+.3f", $col["median_shift_db"] } END { print "" }' "$work/seed$seed/summary.csv"
+done
+
+# One baseline variant: `decompose NAME TARGET-KEYS...` runs 200 measurements at 0 layers with the
+# given [target] keys over the paper scenario and prints the median and IQR of the RCS.
+decompose() {
+  local name=$1
+  shift
+  {
+    echo "[target]"
+    printf '%s\n' "$@"
+    echo "[experiment]"
+    echo "max_active_layers = 0"
+  } >"$work/variant.toml"
+  "$fogradar" run --scenario "$work/variant.toml" --out "$work/variant" >/dev/null
+  awk -F, -v name="$name" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    { printf "| %s | %.3f | %.3f |\n", name, $col["median_dbsm"], $col["q3_dbsm"] - $col["q1_dbsm"] }' \
+    "$work/variant/summary.csv"
+}
+echo "| model | median (dBsm) | IQR (dB) |"
+echo "|---|---|---|"
+decompose "point target 10 dBsm, no floor" 'model = "point"' 'floor_multipath = false' 'micro_motion_std_m = 0.0'
+decompose "EVT, no floor, no micro-motion" 'floor_multipath = false' 'micro_motion_std_m = 0.0'
+decompose "EVT, no floor, 0.2 mm micro-motion" 'floor_multipath = false'
+decompose "EVT, floor -0.7, micro-motion (the paper scenario)"
+decompose "EVT, floor +0.7, micro-motion" 'floor_reflection_coefficient = 0.7'
+for h in 0.50 0.55 0.60 0.70; do
+  decompose "point target, floor -0.7, target at $h m" 'model = "point"' 'micro_motion_std_m = 0.0' "height_m = $h"
+done
