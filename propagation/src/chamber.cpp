@@ -10,8 +10,8 @@
 namespace fogradar::propagation {
 namespace {
 
-// A chamber of more layers than this is a typo, not a study (the study has 4; DESIGN §4 asks for
-// "many more" in the long-chamber example).
+// A chamber of more layers than this is a typo, not a study (the study has 4,
+// examples/long_chamber.toml 40).
 constexpr std::size_t max_layers = 1000;
 constexpr double max_length_m = 1e4;
 

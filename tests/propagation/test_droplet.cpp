@@ -461,7 +461,7 @@ TEST(MieCrossSections, AreEfficienciesTimesGeometricArea) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// 7. Every rejected input names its field (STYLE.md §11).
+// 7. Every rejected input names its field.
 
 void ExpectRejected(const std::function<void()>& call, const std::string& field) {
   EXPECT_EQ(test_support::rejected_field(call), field);

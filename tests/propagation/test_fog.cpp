@@ -56,7 +56,7 @@ TEST_F(FogTest, AttenuationAndBackscatterScaleLinearlyWithLwc) {
   EXPECT_NEAR(b.volume_backscatter_m2_per_m3 / a.volume_backscatter_m2_per_m3, 100.0, 1e-9);
 }
 
-// eta = N pi^5 |K|^2 <D^6> / lambda^4 (Rayleigh, DESIGN §2) with the closed-form <D^6>: the Mie sum
+// eta = N pi^5 |K|^2 <D^6> / lambda^4 (Rayleigh, docs/physics.md §2) with the closed-form <D^6>: the Mie sum
 // over quadrature nodes must agree within 1 % at 77 GHz for fog-sized drops (x <= 0.03).
 TEST_F(FogTest, BackscatterMatchesRayleighClosedForm) {
   for (const DropSizeDistribution& dsd :

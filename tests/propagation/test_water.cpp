@@ -1,7 +1,7 @@
 // Tests for the water refractive index models (propagation/water.hpp).
 //
 // References, each restated next to its test with the tolerance it justifies:
-//  - Segelstein 1981 table rows as read from shared/data/segelstein81_index.txt (exact).
+//  - Segelstein 1981 table rows as read from data/segelstein81_index.txt (exact).
 //  - Ellison 2007, J. Phys. Chem. Ref. Data 36(1), 1-18, and Meissner & Wentz 2004, IEEE TGRS
 //    42(9), 1836-1849: two permittivity models fitted to measured data independently of Liebe 1991.
 //    Their values below were evaluated offline (Python, outside fogradar) from the published
@@ -10,7 +10,7 @@
 //    permittivity or K_l value at 77 GHz was found in the searchable literature; these model
 //    values are the best independent reference available.
 //  - The Rayleigh absorption law sigma_a = pi^2 D^3 / lambda * Im K, K = (eps - 1)/(eps + 2)
-//    (Bohren & Huffman 1983 §5.2; DESIGN.md §2), from which P.840's 0.819 constant follows.
+//    (Bohren & Huffman 1983 §5.2; docs/physics.md §1), from which P.840's 0.819 constant follows.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -59,7 +59,7 @@ struct TableRow {
   double k;
 };
 
-// Rows copied by hand from shared/data/segelstein81_index.txt (first row, visible band, lidar band,
+// Rows copied by hand from data/segelstein81_index.txt (first row, visible band, lidar band,
 // the two rows around 77 GHz = 3893.4 um, last row). A lookup at a tabulated wavelength must return
 // the row: tolerance 1e-12 relative (exp(log(x)) round trip).
 TEST(SegelsteinTableTest, ReturnsTabulatedRowsExactly) {
@@ -293,7 +293,7 @@ TEST(WaterModelNamesTest, RoundTripsThroughStrings) {
   EXPECT_EQ(to_string(WaterModel::liebe), "liebe");
 }
 
-// ---- Rejected inputs (STYLE.md §11): each names its field ----------------------------------
+// ---- Rejected inputs: each names its field ----------------------------------
 
 TEST(WaterInputValidationTest, RejectsWavelengthsOutsideTheTable) {
   for (const double wavelength_m :

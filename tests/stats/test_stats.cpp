@@ -602,7 +602,7 @@ TEST(Format, FixedMatchesPrintf) {  // Python "%.2f" etc. as reference
   EXPECT_EQ(format_fixed(720.0, 2), "720.00");
 }
 
-// --- Rejected inputs (STYLE.md §11) -------------------------------------------------------------
+// --- Rejected inputs -------------------------------------------------------------
 
 TEST(StatsConfig, EveryInvalidInputNamesItsField) {
   const std::vector<double> ok = {1, 2, 3};

@@ -1,4 +1,4 @@
-// Two error channels (STYLE.md §7): bad user input throws InvalidParameter naming the field and
+// Two error channels (docs/architecture.md, Conventions): bad user input throws InvalidParameter naming the field and
 // the allowed range; broken invariants (programmer errors) go through FOGRADAR_CHECK.
 #pragma once
 

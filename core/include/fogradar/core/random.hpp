@@ -1,5 +1,5 @@
 // Seeded, reproducible random streams. Every measurement gets its own stream derived from
-// (seed, step, index), so results do not depend on thread count or scheduling (STYLE.md §12).
+// (seed, step, index), so results do not depend on thread count or scheduling.
 // Generator: xoshiro256++ (Blackman & Vigna, ACM TOMS 47(4), 2021); seeding and stream derivation
 // by SplitMix64 (Steele, Lea & Flood, OOPSLA 2014), as the xoshiro authors recommend.
 #pragma once
