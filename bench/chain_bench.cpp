@@ -49,7 +49,7 @@ radar::RadarParams params_for(std::int64_t size) {
 struct Setup {
   explicit Setup(std::int64_t size)
       : chain(params_for(size)),
-        chamber(propagation::ChamberSpec{}, chain.params().carrier_frequency_hz, table()),
+        chamber(propagation::ChamberSpec{}, chain.params().centre_frequency_hz, table()),
         active(propagation::first_layers_active(chamber.layer_count(), chamber.layer_count())),
         scene(make_scene()),
         workspace(chain.make_workspace()) {

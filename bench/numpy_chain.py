@@ -28,9 +28,11 @@ Per frame, as fogradar does it, but written the way one would in NumPy:
             (paper eq. 7); the target is the strongest object within 0.5 m of 10 m.
 
 Amplitudes follow the same physics as fogradar but are simplified (no Segelstein/Mie computation: the
-fog's volume backscatter 3.35e-13 m^2/m^3 and 0.39 dB/km two-way loss are those `fogradar fog
---extinction-per-km 900 --diameter-um 1` prints), so the statistics are only roughly those of
-fogradar; the work per frame is the point.
+fog's volume backscatter 3.27e-13 m^2/m^3 and 0.41 dB/km loss are those `fogradar fog
+--extinction-per-km 900 --diameter-um 1` prints, Liebe water at 20 C), so the statistics are only
+roughly those of fogradar; the work per frame is the point. The sweep is fogradar's default up-chirp
+centred on 77 GHz: each path's phase at the first sample is 2 pi f_0 tau - pi S tau^2,
+f_0 = f_c - B/2 (docs/radar.md §3.2).
 
 Run (Debian's python3-numpy / python3-scipy are installed for /usr/bin/python3):
   /usr/bin/python3 bench/numpy_chain.py [--measurements 200] [--repeats 1]
@@ -64,6 +66,7 @@ FS = 20e6
 N = 1024  # samples per chirp
 NC = 128  # chirps per frame
 SLOPE = BANDWIDTH / CHIRP_S
+F_START = FC - 0.5 * BANDWIDTH  # up-chirp
 LAMBDA = C / FC
 PT = db(10.0) * 1e-3
 G = db(25.0)
@@ -74,8 +77,8 @@ RANGE_BIN_M = C * FS / (2.0 * SLOPE * N)
 
 SENSOR_GAP, LAYERS, LAYER_LEN, TARGET_GAP = 2.0, 4, 1.0, 4.0
 TARGET_RANGE = SENSOR_GAP + LAYERS * LAYER_LEN + TARGET_GAP  # 10 m
-ETA = 3.3489e-13  # volume backscatter of the fog, m^2/m^3
-FOG_DB_PER_M = 0.3927e-3  # specific attenuation, dB/m (one way)
+ETA = 3.2716e-13  # volume backscatter of the fog, m^2/m^3
+FOG_DB_PER_M = 0.4112e-3  # specific attenuation, dB/m (one way)
 CLUTTER_PER_BIN = 4
 SENSOR_HEIGHT = 0.5
 GAMMA = -0.7
@@ -127,7 +130,8 @@ def scene_tones(rng, k):
     power = np.concatenate([received_power(EVT_RCS, direct, direct), received_power(EVT_RCS, direct, floor),
                             received_power(EVT_RCS, floor, floor)])
     power = power * loss_one_way(0.5 * lengths, k) ** 2
-    amplitude = coeff * pattern * np.sqrt(power) * np.exp(-2j * np.pi * lengths / LAMBDA)
+    tau = lengths / C
+    amplitude = coeff * pattern * np.sqrt(power) * np.exp(1j * (2 * np.pi * F_START * tau - np.pi * SLOPE * tau ** 2))
 
     if k > 0:  # fog clutter: CLUTTER_PER_BIN scatterers in every range bin inside the active layers
         a = np.concatenate([np.arange(SENSOR_GAP + i, SENSOR_GAP + i + LAYER_LEN - 1e-12, RANGE_BIN_M)

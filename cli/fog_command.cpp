@@ -6,6 +6,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
+#include <string>
 
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
@@ -21,8 +23,9 @@ struct FogOptions {
   std::optional<double> extinction_per_km;
   std::optional<double> visibility_m;
   std::optional<double> diameter_um;
-  double temperature_c = 20.0;
-  std::string water_model = "segelstein";
+  std::optional<double>
+      temperature_c;  // absent: 20 C under Liebe, the table's own under Segelstein
+  std::string water_model = "liebe";
   bool json = false;
 };
 
@@ -46,9 +49,19 @@ propagation::FogSpec fog_spec_from(const FogOptions& o) {
     require_in_range("--diameter-um", *o.diameter_um, 0.01, 1000.0);
     spec.droplets = propagation::Monodisperse{*o.diameter_um * 1e-6};
   }
-  require_in_range("--temperature-c", o.temperature_c, -20.0, 50.0);
-  spec.temperature_c = o.temperature_c;
   spec.water_model = propagation::parse_water_model(o.water_model, "--water-model");
+  if (spec.water_model == propagation::WaterModel::segelstein) {
+    spec.temperature_c = propagation::segelstein_table_temperature_c;
+    if (o.temperature_c && *o.temperature_c != spec.temperature_c) {
+      throw_invalid(
+          "--temperature-c", *o.temperature_c,
+          "= 25 with --water-model segelstein (a table for about 25 C without temperature "
+          "dependence); --water-model liebe takes [-20, 50]");
+    }
+  } else if (o.temperature_c) {
+    require_in_range("--temperature-c", *o.temperature_c, -20.0, 50.0);
+    spec.temperature_c = *o.temperature_c;
+  }
   return spec;
 }
 
@@ -56,11 +69,24 @@ nlohmann::json number_or_null(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+// The model and temperature that gave a water index, as the user should read them.
+std::string water_source(const propagation::FogOptics& optics) {
+  std::ostringstream text;
+  if (optics.water_model == propagation::WaterModel::segelstein) {
+    text << "Segelstein table, for its own " << optics.water_temperature_c << " C";
+  } else {
+    text << "Liebe 1991, " << optics.water_temperature_c << " C";
+  }
+  return text.str();
+}
+
 void run_fog(const FogOptions& options) {
   const propagation::FogSpec spec = fog_spec_from(options);
   const propagation::SegelsteinTable table;
   const propagation::Fog fog(spec, table);
   const propagation::FogOptics radar = fog.at_frequency(options.frequency_ghz * 1e9);
+  const propagation::FogOptics optical =
+      fog.at_optical_wavelength(propagation::visibility_wavelength_m);
   const double optical_extinction_per_km = fog.optical_extinction_per_km();
   const double visibility_m = fog.visibility_m();
 
@@ -70,8 +96,10 @@ void run_fog(const FogOptions& options) {
         {"wavelength_m", radar.wavelength_m},
         {"refractive_index_n", radar.refractive_index.real()},
         {"refractive_index_k", radar.refractive_index.imag()},
-        {"water_model", propagation::to_string(spec.water_model)},
-        {"temperature_c", spec.temperature_c},
+        {"water_model", propagation::to_string(radar.water_model)},
+        {"temperature_c", radar.water_temperature_c},
+        {"optical_water_model", propagation::to_string(optical.water_model)},
+        {"optical_water_temperature_c", optical.water_temperature_c},
         {"droplets", propagation::distribution_name(spec.droplets)},
         {"lwc_g_per_m3", fog.lwc_g_per_m3()},
         {"number_concentration_per_cm3", fog.number_concentration_per_m3() * 1e-6},
@@ -83,23 +111,17 @@ void run_fog(const FogOptions& options) {
     std::cout << out.dump(2) << '\n';
     return;
   }
-  std::cout << std::setprecision(6)
-            << "frequency                 " << radar.frequency_hz * 1e-9 << " GHz (wavelength "
-            << radar.wavelength_m * 1e3 << " mm)\n"
+  std::cout << std::setprecision(6) << "frequency                 " << radar.frequency_hz * 1e-9
+            << " GHz (wavelength " << radar.wavelength_m * 1e3 << " mm)\n"
             << "water index m = n + ik    " << radar.refractive_index.real() << " + "
-            << radar.refractive_index.imag() << "i (";
-  if (spec.water_model == propagation::WaterModel::segelstein) {
-    std::cout << "Segelstein table, about 25 C";
-  } else {
-    std::cout << "Liebe, " << spec.temperature_c << " C";
-  }
-  std::cout << ")\n"
+            << radar.refractive_index.imag() << "i (" << water_source(radar) << ")\n"
             << "droplets                  " << propagation::distribution_name(spec.droplets) << ", "
             << fog.number_concentration_per_m3() * 1e-6 << " per cm^3\n"
             << "liquid water content      " << fog.lwc_g_per_m3() << " g/m^3\n"
             << "specific attenuation      " << radar.specific_attenuation_db_per_km << " dB/km\n"
             << "volume backscatter eta    " << radar.volume_backscatter_m2_per_m3 << " m^2/m^3\n"
-            << "optical extinction 550 nm " << optical_extinction_per_km << " 1/km\n"
+            << "optical extinction 550 nm " << optical_extinction_per_km << " 1/km (water index "
+            << water_source(optical) << ")\n"
             << "visibility (eq. 6, 2 %)   " << visibility_m << " m\n";
 }
 
@@ -120,9 +142,15 @@ Action add_fog_command(CLI::App& app) {
   ext->excludes(vis);
   fog->add_option("--diameter-um", options->diameter_um,
                   "Monodisperse droplets of this diameter in um (default: lognormal, median 1 um, sigma_g 1.5)");
-  fog->add_option("--temperature-c", options->temperature_c, "Water temperature in C [-20, 50]")
+  fog->add_option(
+      "--temperature-c", options->temperature_c,
+      "Water temperature in C: [-20, 50] with liebe (default 20); segelstein is a table for "
+      "25 C and takes only 25");
+  fog->add_option(
+         "--water-model", options->water_model,
+         "Water index at the radar frequency: liebe (temperature dependent, up to 1000 GHz) | "
+         "segelstein (25 C table); 550 nm always uses segelstein")
       ->capture_default_str();
-  fog->add_option("--water-model", options->water_model, "segelstein | liebe")->capture_default_str();
   fog->add_flag("--json", options->json, "Print one JSON object");
   return [options] { run_fog(*options); };
 }

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   propagation::ChamberSpec chamber_spec;  // four 1 m layers, all off; target at 2 + 4 + 19 = 25 m
   chamber_spec.target_gap_m = 19.0;
   const propagation::SegelsteinTable table;
-  const propagation::Chamber chamber(chamber_spec, params.carrier_frequency_hz, table);
+  const propagation::Chamber chamber(chamber_spec, params.centre_frequency_hz, table);
   const propagation::ActiveLayers no_fog = propagation::first_layers_active(0, chamber.layer_count());
   const radar::Scene scene = radar::point_target_scene(10.0);
   chain.check_compatible(scene, chamber);
@@ -34,10 +34,12 @@ int main(int argc, char** argv) {
   const double expected_snr_db = power_ratio_to_db(
       expected_pr_w * std::pow(chain.processor().coherent_amplitude_gain(), 2) /
       (d.noise_power_w * chain.processor().noise_power_gain()));
-  std::cout << std::fixed << std::setprecision(4) << "radar: " << params.carrier_frequency_hz * 1e-9
-            << " GHz, B = " << params.sweep_bandwidth_hz * 1e-9 << " GHz, " << params.samples_per_chirp << " x "
-            << params.chirps_per_frame << " samples, range bin " << d.range_bin_m << " m, max range "
-            << d.max_range_m << " m\n"
+  std::cout << std::fixed << std::setprecision(4) << "radar: " << params.centre_frequency_hz * 1e-9
+            << " GHz centre, " << radar::to_string(params.sweep_direction)
+            << "-chirp, B = " << params.sweep_bandwidth_hz * 1e-9 << " GHz, "
+            << params.samples_per_chirp << " x " << params.chirps_per_frame
+            << " samples, range bin " << d.range_bin_m << " m, max range " << d.max_range_m
+            << " m\n"
             << "target: 10 dBsm point at " << chamber.target_range_m() << " m; expected SNR "
             << expected_snr_db << " dB\n"
             << "measurement,detected,range_m,rcs_dbsm,snr_db\n";

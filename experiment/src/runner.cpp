@@ -45,7 +45,8 @@ MeasurementRecord record_of(const radar::Measurement& m, const propagation::Cham
 ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
   scenario.validate();
   const propagation::SegelsteinTable table;
-  const propagation::Chamber chamber(scenario.chamber_spec(), scenario.radar.carrier_frequency_hz, table);
+  const propagation::Chamber chamber(scenario.chamber_spec(), scenario.radar.centre_frequency_hz,
+                                     table);
   const radar::Scene scene = scenario.scene();
   const radar::RadarChain chain(scenario.radar);
   chain.check_compatible(scene, chamber);

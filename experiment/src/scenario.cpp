@@ -78,6 +78,14 @@ class Section {
 
   bool has(std::string_view key) const { return table_ != nullptr && table_->contains(key); }
 
+  // Throws if the table holds `old_key`, a key that is no longer read, saying what replaced it.
+  void reject_retired(std::string_view old_key, const std::string& replacement) const {
+    if (table_ == nullptr) return;
+    if (const toml::node* node = table_->get(old_key)) {
+      fail(*node, full(old_key), "'" + full(old_key) + "' is no longer read: " + replacement);
+    }
+  }
+
   // Throws for the first key of this table that was not read and is not an expected sub-table.
   void reject_unknown(std::initializer_list<std::string_view> subtables = {}) const {
     if (table_ == nullptr) return;
@@ -127,7 +135,16 @@ void read_enum(Section& section, std::string_view key, Parse parse, const std::s
 
 void read_radar(const toml::table& root, std::string_view source, KeyLines& lines, radar::RadarParams& r) {
   Section s(root, "radar", source, lines);
-  s.read("carrier_frequency_hz", r.carrier_frequency_hz);
+  // Its value was the start of a down-chirp, which a reader of "carrier" could not know.
+  s.reject_retired("carrier_frequency_hz",
+                   "give the sweep centre as radar.centre_frequency_hz and the direction as "
+                   "radar.sweep_direction = \"up\" | \"down\" (the old 77e9 meant a 77 -> 76 GHz "
+                   "down-chirp: centre_frequency_hz = 76.5e9, sweep_direction = \"down\")");
+  s.read("centre_frequency_hz", r.centre_frequency_hz);
+  std::string direction;
+  s.read("sweep_direction", direction);
+  if (!direction.empty())
+    r.sweep_direction = radar::parse_sweep_direction(direction, "radar.sweep_direction");
   s.read("sweep_bandwidth_hz", r.sweep_bandwidth_hz);
   s.read("chirp_duration_s", r.chirp_duration_s);
   s.read("chirp_interval_s", r.chirp_interval_s);
@@ -413,7 +430,8 @@ std::string to_toml(const Scenario& s) {
   const radar::RadarParams& r = s.radar;
   out << "# fogradar resolved scenario: every key, as used by the run\n\n"
       << "[radar]\n"
-      << "carrier_frequency_hz = " << num(r.carrier_frequency_hz) << '\n'
+      << "centre_frequency_hz = " << num(r.centre_frequency_hz) << '\n'
+      << "sweep_direction = " << str(radar::to_string(r.sweep_direction)) << '\n'
       << "sweep_bandwidth_hz = " << num(r.sweep_bandwidth_hz) << '\n'
       << "chirp_duration_s = " << num(r.chirp_duration_s) << '\n'
       << "chirp_interval_s = " << num(r.chirp_interval_s) << '\n'

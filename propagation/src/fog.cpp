@@ -35,9 +35,15 @@ void FogSpec::validate() const {
   };
   std::visit(CheckDensity{}, density);
   propagation::validate(droplets);
-  // The Liebe model's range (ITU-R P.840), applied to both models so that a temperature study can
-  // switch model without changing its range.
+  // The Liebe model's range (ITU-R P.840).
   require_in_range("fog.temperature_c", temperature_c, -20.0, 50.0);
+  // A table without temperature dependence cannot use any other temperature: refuse rather than
+  // ignore it.
+  if (water_model == WaterModel::segelstein && temperature_c != segelstein_table_temperature_c) {
+    throw_invalid("fog.temperature_c", temperature_c,
+                  "= 25 with fog.water_model = \"segelstein\" (a table for about 25 C without "
+                  "temperature dependence); fog.water_model = \"liebe\" takes [-20, 50]");
+  }
 }
 
 Fog::Fog(const FogSpec& spec, const SegelsteinTable& table) : spec_(spec), table_(&table) {
@@ -69,12 +75,11 @@ double Fog::unit_lwc_optical_extinction_per_m() const {
 FogOptics Fog::at_frequency(double frequency_hz) const {
   require_positive("frequency_hz", frequency_hz);
   const double wavelength_m = wavelength_from_frequency_m(frequency_hz);
-  const WaterOptics water(spec_.water_model, celsius_to_kelvin(spec_.temperature_c), *table_);
-  return bulk_optics(wavelength_m, water.refractive_index(wavelength_m));
+  return bulk_optics(wavelength_m, spec_.water_model, spec_.temperature_c);
 }
 
 FogOptics Fog::at_optical_wavelength(double wavelength_m) const {
-  return bulk_optics(wavelength_m, table_->refractive_index(wavelength_m));
+  return bulk_optics(wavelength_m, WaterModel::segelstein, segelstein_table_temperature_c);
 }
 
 double Fog::optical_extinction_per_km() const {
@@ -106,12 +111,16 @@ CrossSections Fog::sum_cross_sections(double wavelength_m, std::complex<double> 
   return total;
 }
 
-FogOptics Fog::bulk_optics(double wavelength_m, std::complex<double> index) const {
+FogOptics Fog::bulk_optics(double wavelength_m, WaterModel model, double temperature_c) const {
+  const std::complex<double> index =
+      WaterOptics(model, celsius_to_kelvin(temperature_c), *table_).refractive_index(wavelength_m);
   const CrossSections per_volume = sum_cross_sections(wavelength_m, index, lwc_g_per_m3_);
   FogOptics optics;
   optics.wavelength_m = wavelength_m;
   optics.frequency_hz = frequency_from_wavelength_hz(wavelength_m);
   optics.refractive_index = index;
+  optics.water_model = model;
+  optics.water_temperature_c = temperature_c;
   optics.extinction_per_m = per_volume.extinction_m2;
   optics.absorption_per_m = per_volume.absorption_m2;
   optics.scattering_per_m = per_volume.scattering_m2;

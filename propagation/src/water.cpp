@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -217,9 +218,15 @@ double itu_p840_specific_attenuation_coefficient(double frequency_hz, double tem
 
 WaterOptics::WaterOptics(WaterModel model, double temperature_k, const SegelsteinTable& table)
     : model_(model), temperature_k_(temperature_k), table_(&table) {
-  // Checked for both models so that a configuration is valid whichever model it later selects.
   require_in_range("temperature_k", temperature_k, liebe_min_temperature_k,
                    liebe_max_temperature_k);
+  if (model == WaterModel::segelstein &&
+      temperature_k != celsius_to_kelvin(segelstein_table_temperature_c)) {
+    throw_invalid("temperature_k", temperature_k,
+                  "= " + std::to_string(celsius_to_kelvin(segelstein_table_temperature_c)) +
+                      " with the segelstein model (a table for about 25 C without temperature "
+                      "dependence); the liebe model takes [253.15, 323.15]");
+  }
 }
 
 std::complex<double> WaterOptics::refractive_index(double wavelength_m) const {

@@ -498,10 +498,12 @@ void estimate_detections(std::span<const std::complex<double>> map, const RangeD
       Detection det;
       det.range_bin = range_bins[o];
       det.doppler_bin = signed_bin(static_cast<double>(object.doppler_cell) + doppler_offset, rows);
-      det.radial_velocity_m_per_s = -det.doppler_bin * derived.velocity_resolution_m_per_s;
+      // The Doppler bin is f_D N_c T_i with f_D = eps 2 v / lambda.
+      det.radial_velocity_m_per_s =
+          derived.sweep_sign * det.doppler_bin * derived.velocity_resolution_m_per_s;
       // The beat frequency holds the Doppler shift too (range-Doppler coupling): remove it.
       const double beat_hz = det.range_bin * params.sample_rate_hz / static_cast<double>(columns);
-      const double doppler_hz = -2.0 * det.radial_velocity_m_per_s / derived.wavelength_m;
+      const double doppler_hz = doppler_shift_hz(det.radial_velocity_m_per_s, derived);
       det.range_m = (beat_hz - doppler_hz) * speed_of_light_m_per_s / (2.0 * derived.chirp_slope_hz_per_s);
       det.received_power_w = peak_power / (gain * gain);
       det.snr_db = power_ratio_to_db(peak_power / noise_per_cell_w);

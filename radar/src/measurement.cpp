@@ -12,9 +12,11 @@ RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
 
 void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {
   scene.validate();
-  if (std::abs(chamber.frequency_hz() - params_.carrier_frequency_hz) > 1e-6 * params_.carrier_frequency_hz) {
-    throw_invalid("chamber.frequency_hz", chamber.frequency_hz(),
-                  "equal to radar.carrier_frequency_hz = " + std::to_string(params_.carrier_frequency_hz));
+  if (std::abs(chamber.frequency_hz() - params_.centre_frequency_hz) >
+      1e-6 * params_.centre_frequency_hz) {
+    throw_invalid(
+        "chamber.frequency_hz", chamber.frequency_hz(),
+        "equal to radar.centre_frequency_hz = " + std::to_string(params_.centre_frequency_hz));
   }
   // Every path must have its beat frequency inside [0, fs): the farthest is the floor-floor path of
   // the farthest centre; 1 m of margin covers micro-motion and the floor detour at chamber scales.

@@ -1,7 +1,9 @@
 #include "fogradar/radar/params.hpp"
 
+#include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
@@ -16,12 +18,32 @@ void require_count(const char* field, std::size_t value, std::size_t low, std::s
   require_in_range(field, static_cast<double>(value), static_cast<double>(low), static_cast<double>(high));
 }
 
+constexpr std::array<std::pair<SweepDirection, std::string_view>, 2> kDirectionNames{{
+    {SweepDirection::up, "up"},
+    {SweepDirection::down, "down"},
+}};
+
 }  // namespace
+
+std::string_view to_string(SweepDirection direction) noexcept {
+  for (const auto& [value, name] : kDirectionNames) {
+    if (value == direction) return name;
+  }
+  return "?";
+}
+
+SweepDirection parse_sweep_direction(std::string_view text, std::string_view field) {
+  for (const auto& [value, name] : kDirectionNames) {
+    if (name == text) return value;
+  }
+  throw_invalid(field, text, "one of up, down");
+}
 
 void RadarParams::validate() const {
   // 1-300 GHz: the radar bands the water models cover (Liebe ends at 1 THz).
-  require_in_range("radar.carrier_frequency_hz", carrier_frequency_hz, 1e9, 300e9);
-  require_in_range("radar.sweep_bandwidth_hz", sweep_bandwidth_hz, 1e6, 0.5 * carrier_frequency_hz);
+  require_in_range("radar.centre_frequency_hz", centre_frequency_hz, 1e9, 300e9);
+  // B <= f_c / 2 keeps the whole sweep above 3 f_c / 4.
+  require_in_range("radar.sweep_bandwidth_hz", sweep_bandwidth_hz, 1e6, 0.5 * centre_frequency_hz);
   require_in_range("radar.chirp_duration_s", chirp_duration_s, 1e-7, 1e-2);
   require_in_range("radar.chirp_interval_s", chirp_interval_s, chirp_duration_s, 1.0);
   require_count("radar.samples_per_chirp", samples_per_chirp, 16, 1 << 16);
@@ -53,7 +75,9 @@ void RadarParams::validate() const {
 RadarDerived derive(const RadarParams& p) {
   p.validate();
   RadarDerived d{};
-  d.wavelength_m = wavelength_from_frequency_m(p.carrier_frequency_hz);
+  d.wavelength_m = wavelength_from_frequency_m(p.centre_frequency_hz);
+  d.sweep_sign = p.sweep_direction == SweepDirection::up ? 1.0 : -1.0;
+  d.start_frequency_hz = p.centre_frequency_hz - 0.5 * d.sweep_sign * p.sweep_bandwidth_hz;
   d.chirp_slope_hz_per_s = p.sweep_bandwidth_hz / p.chirp_duration_s;
   d.range_resolution_m = speed_of_light_m_per_s / (2.0 * p.sweep_bandwidth_hz);
   d.max_range_m = speed_of_light_m_per_s * p.sample_rate_hz / (2.0 * d.chirp_slope_hz_per_s);
@@ -74,6 +98,16 @@ RadarDerived derive(const RadarParams& p) {
 
 double beat_frequency_hz(double path_length_m, double chirp_slope_hz_per_s) {
   return chirp_slope_hz_per_s * path_length_m / speed_of_light_m_per_s;
+}
+
+double echo_phase_at_chirp_start_rad(double path_length_m, const RadarDerived& derived) {
+  const double delay_s = path_length_m / speed_of_light_m_per_s;
+  return derived.sweep_sign * 2.0 * pi * delay_s * derived.start_frequency_hz -
+         pi * derived.chirp_slope_hz_per_s * delay_s * delay_s;
+}
+
+double doppler_shift_hz(double radial_velocity_m_per_s, const RadarDerived& derived) {
+  return derived.sweep_sign * 2.0 * radial_velocity_m_per_s / derived.wavelength_m;
 }
 
 double received_power_w(double tx_power_w, double tx_gain, double rx_gain, double wavelength_m,

@@ -13,10 +13,10 @@ namespace {
 
 constexpr double degree_rad = pi / 180.0;
 
-// Complex amplitude of a path of length L and power P: sqrt(P) exp(-i 2 pi L / lambda), the carrier
-// phase of the echo delayed by L / c.
-std::complex<double> path_amplitude(double power_w, double path_length_m, double wavelength_m) {
-  return std::polar(std::sqrt(power_w), -2.0 * pi * path_length_m / wavelength_m);
+// Complex amplitude of a path of length L and power P at the start of the frame: sqrt(P) times the
+// phase of its dechirped echo (echo_phase_at_chirp_start_rad).
+std::complex<double> path_amplitude(double power_w, double path_length_m, const RadarDerived& d) {
+  return std::polar(std::sqrt(power_w), echo_phase_at_chirp_start_rad(path_length_m, d));
 }
 
 // RCS of one measurement for the centre's Swerling model (mean preserved).
@@ -81,9 +81,10 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
     const double pattern = path.out.pattern_amplitude * path.back.pattern_amplitude;
     const double length_m = path.out.length_m + path.back.length_m;
     const double transmittance = chamber.two_way_transmittance(0.5 * length_m, active);
-    tones.push_back({length_m,
-                     path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d.wavelength_m),
-                     centre.radial_velocity_m_per_s});
+    tones.push_back(
+        {length_m,
+         path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
+         centre.radial_velocity_m_per_s});
   }
 }
 

@@ -126,7 +126,7 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   // Moving paths: Doppler shift within the chirp and phase progression from chirp to chirp.
   for (const Tone& tone : tones) {
     if (tone.radial_velocity_m_per_s == 0.0) continue;
-    const double doppler_hz = -2.0 * tone.radial_velocity_m_per_s / derived.wavelength_m;
+    const double doppler_hz = doppler_shift_hz(tone.radial_velocity_m_per_s, derived);
     const double frequency_hz = beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s) + doppler_hz;
     for (std::size_t c = 0; c < rows; ++c) {
       const double chirp_phase = 2.0 * pi * doppler_hz * static_cast<double>(c) * params.chirp_interval_s;

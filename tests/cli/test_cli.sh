@@ -51,7 +51,9 @@ printf '[radar]\ntx_power_dbm = "ten"\n' >"$work/type.toml"
 printf '[chamber]\nlayer_count = 0\n' >"$work/zero.toml"
 printf '[experiment]\nmax_active_layers = 9\n' >"$work/many.toml"
 printf '[processing.cfar]\ntraining_cells = 400\n' >"$work/cfar.toml"
-printf '[radar]\ncarrier_frequency_hz = 5e13\n' >"$work/freq.toml"
+printf '[radar]\ncentre_frequency_hz = 5e13\n' >"$work/freq.toml"
+printf '[radar]\ncarrier_frequency_hz = 77e9\n' >"$work/carrier.toml"
+printf '[fog]\nwater_model = "segelstein"\ntemperature_c = 0\n' >"$work/cold-table.toml"
 printf '[fog]\nlwc_g_per_m3 = nan\n' >"$work/nan.toml"
 printf '[radar\n' >"$work/malformed.toml"
 touch "$work/a-file"
@@ -60,7 +62,9 @@ expect_bad wrong-type radar.tx_power_dbm run --scenario "$work/type.toml" --out 
 expect_bad zero-layers chamber.layer_count run --scenario "$work/zero.toml" --out "$work/bad-zero-layers"
 expect_bad too-many-active experiment.max_active_layers run --scenario "$work/many.toml" --out "$work/bad-too-many-active"
 expect_bad cfar-window processing.cfar.training_cells run --scenario "$work/cfar.toml" --out "$work/bad-cfar-window"
-expect_bad frequency radar.carrier_frequency_hz run --scenario "$work/freq.toml" --out "$work/bad-frequency"
+expect_bad frequency radar.centre_frequency_hz run --scenario "$work/freq.toml" --out "$work/bad-frequency"
+expect_bad retired-carrier radar.centre_frequency_hz run --scenario "$work/carrier.toml" --out "$work/bad-retired-carrier"
+expect_bad table-temperature liebe run --scenario "$work/cold-table.toml" --out "$work/bad-table-temperature"
 expect_bad nan-lwc fog.lwc_g_per_m3 run --scenario "$work/nan.toml" --out "$work/bad-nan-lwc"
 expect_bad malformed malformed.toml:1 run --scenario "$work/malformed.toml" --out "$work/bad-malformed"
 expect_bad missing-file --scenario run --scenario "$work/does-not-exist.toml" --out "$work/bad-missing-file"
@@ -74,13 +78,30 @@ expect_bad fog-lwc --lwc fog --lwc -1
 expect_bad fog-model --water-model fog --water-model mie
 expect_bad fog-two-densities --visibility-m fog --lwc 1 --visibility-m 3
 expect_bad fog-frequency --frequency-ghz fog --frequency-ghz 1e9
+expect_bad fog-liebe-frequency --frequency-ghz fog --frequency-ghz 2000
+expect_bad fog-table-temperature --temperature-c fog --water-model segelstein --temperature-c 0
+expect_bad fog-table-temperature-names-liebe liebe fog --water-model segelstein --temperature-c 20
+expect_bad fog-liebe-temperature --temperature-c fog --temperature-c 60
 
 # --- fog --json carries the DESIGN §4 keys ----------------------------------------------------------
 json=$("$fogradar" fog --frequency-ghz 77 --lwc 1 --temperature-c 20 --json)
 for key in frequency_hz wavelength_m refractive_index_n refractive_index_k lwc_g_per_m3 \
-  specific_attenuation_db_per_km volume_backscatter_m2_per_m3 optical_extinction_per_km visibility_m; do
+  specific_attenuation_db_per_km volume_backscatter_m2_per_m3 optical_extinction_per_km visibility_m \
+  water_model temperature_c optical_water_model optical_water_temperature_c; do
   echo "$json" | grep -q "\"$key\"" && pass || fail "fog --json lacks $key"
 done
+# The temperature the output states is the one the index used: 0 C moves the Liebe index; the
+# table states its own 25 C, in JSON and in text.
+cold=$("$fogradar" fog --lwc 1 --temperature-c 0 --json)
+echo "$cold" | grep -q '"temperature_c": 0' && pass || fail "fog --json does not state 0 C: $cold"
+[ "$(echo "$cold" | grep refractive_index_n)" != "$(echo "$json" | grep refractive_index_n)" ] && pass \
+  || fail "0 C and 20 C give the same Liebe index"
+table=$("$fogradar" fog --lwc 1 --water-model segelstein --json)
+echo "$table" | grep -q '"water_model": "segelstein"' && echo "$table" | grep -q '"temperature_c": 25' && pass \
+  || fail "fog --json does not state the table's 25 C: $table"
+echo "$json" | grep -q '"optical_water_temperature_c": 25' && pass || fail "optical index temperature not stated"
+"$fogradar" fog --lwc 1 --water-model segelstein | grep -q 'Segelstein table, for its own 25 C' && pass \
+  || fail "fog text does not state the table's temperature"
 "$fogradar" scenario | grep -q '^\[experiment\]' && pass || fail "fogradar scenario prints no [experiment]"
 
 echo "$passes passed, $failures failed"

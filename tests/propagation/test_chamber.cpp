@@ -97,13 +97,15 @@ TEST(Chamber, EachLayerHasItsOwnFogsOptics) {
   thin.density = OpticalExtinction{300.0};
   FogSpec wider_droplets = thin;
   wider_droplets.droplets = Lognormal{.median_diameter_m = 1e-6, .geometric_std = 1.6};
-  FogSpec liebe = thin;  // a water model whose index at 77 GHz depends on the temperature
-  liebe.water_model = WaterModel::liebe;
-  FogSpec warmer = liebe;
+  FogSpec table_index = thin;  // the other water model, at the only temperature it takes
+  table_index.water_model = WaterModel::segelstein;
+  table_index.temperature_c = segelstein_table_temperature_c;
+  FogSpec warmer = thin;  // Liebe's index at 77 GHz depends on the temperature
   warmer.temperature_c = 30.0;
   FogSpec by_lwc;
   by_lwc.density = LiquidWaterContent{0.5};
-  const std::vector<FogSpec> fogs{thin, FogSpec{}, thin, wider_droplets, by_lwc, liebe, FogSpec{}, warmer, by_lwc};
+  const std::vector<FogSpec> fogs{thin,        FogSpec{}, thin,   wider_droplets, by_lwc,
+                                  table_index, FogSpec{}, warmer, by_lwc};
 
   ChamberSpec spec;
   spec.layers.clear();
@@ -126,7 +128,8 @@ TEST(Chamber, EachLayerHasItsOwnFogsOptics) {
   }
   // The fogs differ where they should: otherwise the test could not tell a wrong reuse.
   EXPECT_NE(chamber.layer(0).lwc_g_per_m3, chamber.layer(3).lwc_g_per_m3);
-  EXPECT_NE(chamber.layer(5).optics.extinction_per_m, chamber.layer(7).optics.extinction_per_m);
+  EXPECT_NE(chamber.layer(0).optics.extinction_per_m, chamber.layer(5).optics.extinction_per_m);
+  EXPECT_NE(chamber.layer(0).optics.extinction_per_m, chamber.layer(7).optics.extinction_per_m);
   EXPECT_NE(chamber.layer(0).lwc_g_per_m3, chamber.layer(1).lwc_g_per_m3);
 }
 

@@ -4,17 +4,17 @@
 // eq. 6 for the LWC <-> extinction <-> visibility round trips.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 #include "fogradar/propagation/droplet.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/visibility.hpp"
+#include "rejected_field.hpp"
 
 namespace fogradar::propagation {
 namespace {
@@ -27,7 +27,8 @@ class FogTest : public ::testing::Test {
   }
 };
 
-FogSpec lwc_fog(double lwc, DropSizeDistribution droplets, double temperature_c = 20.0,
+FogSpec lwc_fog(double lwc, DropSizeDistribution droplets,
+                double temperature_c = segelstein_table_temperature_c,
                 WaterModel model = WaterModel::segelstein) {
   return {.density = LiquidWaterContent{lwc}, .droplets = droplets, .temperature_c = temperature_c,
           .water_model = model};
@@ -45,6 +46,52 @@ TEST_F(FogTest, LiebeAttenuationMatchesItuP840) {
       EXPECT_NEAR(ours / itu, 1.0, 0.03) << f_ghz << " GHz, " << t_c << " C";
     }
   }
+}
+
+// P.840's K_l written out here from ITU-R P.840-8 eqs. (2)-(9) (theta = 300/T; eps0 = 77.66 +
+// 103.3 (theta - 1), eps1 = 0.0671 eps0, eps2 = 3.52; f_p = 20.20 - 146 (theta - 1) + 316 (theta -
+// 1)^2, f_s = 39.8 f_p; eps', eps'' of the double Debye sum; eta = (2 + eps')/eps'';
+// K_l = 0.819 f / (eps'' (1 + eta^2))), independently of water.cpp. At 77 GHz it gives
+// 3.5374 (dB/km)/(g/m^3) at 0 C and 2.7130 at 20 C (evaluated in Python from the same formulas).
+double p840_k_l(double frequency_ghz, double temperature_c) {
+  const double theta = 300.0 / (temperature_c + 273.15);
+  const double eps0 = 77.66 + 103.3 * (theta - 1.0), eps1 = 0.0671 * eps0, eps2 = 3.52;
+  const double fp = 20.20 - 146.0 * (theta - 1.0) + 316.0 * (theta - 1.0) * (theta - 1.0),
+               fs = 39.8 * fp;
+  const double f = frequency_ghz;
+  const double eps_im = f * (eps0 - eps1) / (fp * (1.0 + (f / fp) * (f / fp))) +
+                        f * (eps1 - eps2) / (fs * (1.0 + (f / fs) * (f / fs)));
+  const double eps_re = (eps0 - eps1) / (1.0 + (f / fp) * (f / fp)) +
+                        (eps1 - eps2) / (1.0 + (f / fs) * (f / fs)) + eps2;
+  const double eta = (2.0 + eps_re) / eps_im;
+  return 0.819 * f / (eps_im * (1.0 + eta * eta));
+}
+
+// The water temperature reaches the radar attenuation: the study's fog droplets at 1 g/m^3 under
+// the default (Liebe) model, 0 C against 20 C at 77 GHz. P.840 (above) says K_l rises by the factor
+// 3.5374 / 2.7130 = 1.3039; the Mie sum must follow within 0.5 % (the droplets are Rayleigh-small:
+// absorption ~ K_l within 3e-4, scattering ~1e-5 of it), and each value within 1 % of K_l. The
+// optics state the temperature they used; the 550 nm optics state the table's 25 C.
+TEST_F(FogTest, WaterTemperatureMovesThe77GHzAttenuationAsP840) {
+  EXPECT_NEAR(p840_k_l(77.0, 0.0), 3.5374, 1e-4);  // the values quoted above
+  EXPECT_NEAR(p840_k_l(77.0, 20.0), 2.7130, 1e-4);
+  FogSpec cold{.density = LiquidWaterContent{1.0}, .temperature_c = 0.0};
+  FogSpec mild = cold;
+  mild.temperature_c = 20.0;
+  ASSERT_EQ(cold.water_model, WaterModel::liebe);
+  const FogOptics at_0 = Fog(cold, table()).at_frequency(77e9);
+  const FogOptics at_20 = Fog(mild, table()).at_frequency(77e9);
+  EXPECT_NEAR(at_0.specific_attenuation_db_per_km / p840_k_l(77.0, 0.0), 1.0, 0.01);
+  EXPECT_NEAR(at_20.specific_attenuation_db_per_km / p840_k_l(77.0, 20.0), 1.0, 0.01);
+  EXPECT_NEAR((at_0.specific_attenuation_db_per_km / at_20.specific_attenuation_db_per_km) /
+                  (p840_k_l(77.0, 0.0) / p840_k_l(77.0, 20.0)),
+              1.0, 0.005);
+  EXPECT_EQ(at_0.water_model, WaterModel::liebe);
+  EXPECT_EQ(at_0.water_temperature_c, 0.0);
+  EXPECT_EQ(at_20.water_temperature_c, 20.0);
+  const FogOptics optical = Fog(cold, table()).at_optical_wavelength(visibility_wavelength_m);
+  EXPECT_EQ(optical.water_model, WaterModel::segelstein);
+  EXPECT_EQ(optical.water_temperature_c, segelstein_table_temperature_c);
 }
 
 TEST_F(FogTest, AttenuationAndBackscatterScaleLinearlyWithLwc) {
@@ -146,15 +193,26 @@ TEST_F(FogTest, RejectsInvalidSpecs) {
   EXPECT_EQ(field_of({.density = Visibility{0.0}}), "fog.visibility_m");
   EXPECT_EQ(field_of({.density = Visibility{INFINITY}}), "fog.visibility_m");
   EXPECT_EQ(field_of({.temperature_c = 80.0}), "fog.temperature_c");
+  // The table has no temperature dependence: any temperature but its own is refused, and the
+  // message names the model that takes one.
+  EXPECT_EQ(field_of({.temperature_c = 20.0, .water_model = WaterModel::segelstein}),
+            "fog.temperature_c");
+  EXPECT_EQ(field_of({.temperature_c = 25.0, .water_model = WaterModel::segelstein}), "accepted");
+  try {
+    FogSpec{.temperature_c = 0.0, .water_model = WaterModel::segelstein}.validate();
+    ADD_FAILURE() << "segelstein at 0 C accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("liebe"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(field_of({.droplets = Monodisperse{0.0}}), "fog.droplets.diameter_m");
   EXPECT_EQ(field_of({}), "accepted");
 }
 
 TEST_F(FogTest, RejectsFrequencyOutsideTheWaterModels) {
-  const Fog fog(FogSpec{}, table());
+  const Fog fog(lwc_fog(0.1, default_fog_droplets()), table());
   EXPECT_THROW(fog.at_frequency(0.0), InvalidParameter);
   EXPECT_THROW(fog.at_frequency(1e6), InvalidParameter);  // 300 m: beyond the 10 m table end
-  const Fog liebe(lwc_fog(0.1, default_fog_droplets(), 20.0, WaterModel::liebe), table());
+  const Fog liebe(FogSpec{}, table());
   EXPECT_THROW(liebe.at_frequency(2e12), InvalidParameter);  // Liebe ends at 1 THz
 }
 

@@ -267,14 +267,19 @@ TEST(WaterOpticsTest, RefractiveIndexSquaresToPermittivity) {
   }
 }
 
-// The table model ignores temperature (the table has none); the Liebe model is sqrt(eps) at the
-// stored temperature. Both are exact identities: tolerance 0.
+// The table model is the table at its own 25 C and refuses any other temperature (it could not use
+// it); the Liebe model is sqrt(eps) at the stored temperature. Exact identities: tolerance 0.
 TEST(WaterOpticsTest, DispatchesToTheChosenModel) {
   const double wavelength_m = wavelength_from_frequency_m(kCarrierFrequencyHz);
-  const WaterOptics cold_table(WaterModel::segelstein, celsius_to_kelvin(0.0), table());
-  const WaterOptics warm_table(WaterModel::segelstein, celsius_to_kelvin(30.0), table());
-  EXPECT_EQ(cold_table.refractive_index(wavelength_m), table().refractive_index(wavelength_m));
-  EXPECT_EQ(warm_table.refractive_index(wavelength_m), table().refractive_index(wavelength_m));
+  const WaterOptics own_table(WaterModel::segelstein,
+                              celsius_to_kelvin(segelstein_table_temperature_c), table());
+  EXPECT_EQ(own_table.refractive_index(wavelength_m), table().refractive_index(wavelength_m));
+  for (const double temperature_c : {0.0, 20.0, 30.0}) {
+    EXPECT_TRUE(throws_invalid_naming(
+        [&] { WaterOptics(WaterModel::segelstein, celsius_to_kelvin(temperature_c), table()); },
+        "temperature_k"))
+        << temperature_c;
+  }
 
   const double temperature_k = celsius_to_kelvin(10.0);
   const WaterOptics liebe(WaterModel::liebe, temperature_k, table());
@@ -301,7 +306,8 @@ TEST(WaterInputValidationTest, RejectsWavelengthsOutsideTheTable) {
     EXPECT_TRUE(
         throws_invalid_naming([&] { table().refractive_index(wavelength_m); }, "wavelength_m"))
         << wavelength_m;
-    const WaterOptics optics(WaterModel::segelstein, 290.0, table());
+    const WaterOptics optics(WaterModel::segelstein,
+                             celsius_to_kelvin(segelstein_table_temperature_c), table());
     EXPECT_TRUE(
         throws_invalid_naming([&] { optics.refractive_index(wavelength_m); }, "wavelength_m"))
         << wavelength_m;

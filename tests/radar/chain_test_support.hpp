@@ -62,7 +62,7 @@ inline double reference_received_power_w(const RadarParams& p, double rcs_m2, do
   const double pt_w = 1e-3 * std::pow(10.0, p.tx_power_dbm / 10.0);
   const double gt = std::pow(10.0, p.tx_gain_dbi / 10.0);
   const double gr = std::pow(10.0, p.rx_gain_dbi / 10.0);
-  const double lambda_m = 299'792'458.0 / p.carrier_frequency_hz;
+  const double lambda_m = 299'792'458.0 / p.centre_frequency_hz;
   const double four_pi = 4.0 * std::numbers::pi;
   return pt_w * gt * gr * lambda_m * lambda_m * rcs_m2 /
          (four_pi * four_pi * four_pi * std::pow(range_m, 4));

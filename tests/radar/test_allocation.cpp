@@ -50,7 +50,7 @@ TEST(Allocation, SteadyStateMeasurementDoesNotAllocate) {
   p.adc_bits = 14;
   const RadarChain chain(p);
   const propagation::Chamber chamber =
-      test::make_chamber(test::paper_chamber_spec(), p.carrier_frequency_hz);
+      test::make_chamber(test::paper_chamber_spec(), p.centre_frequency_hz);
   const auto all_on =
       propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
   Scene scene = evt_rear_scene();

@@ -52,7 +52,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
     double too_high;
   };
   const DoubleField fields[] = {
-      {"radar.carrier_frequency_hz", &RadarParams::carrier_frequency_hz, 0.5e9, 400e9},
+      {"radar.centre_frequency_hz", &RadarParams::centre_frequency_hz, 0.5e9, 400e9},
       {"radar.sweep_bandwidth_hz", &RadarParams::sweep_bandwidth_hz, 0.0, 50e9},
       {"radar.chirp_duration_s", &RadarParams::chirp_duration_s, 0.0, 1.0},
       {"radar.chirp_interval_s", &RadarParams::chirp_interval_s, 50e-6, 2.0},  // < duration
@@ -109,6 +109,15 @@ TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
   const double max_range = kC * 10e6 / (2.0 * slope);
   const double deg = std::numbers::pi / 180.0;
   EXPECT_NEAR(d.wavelength_m / lambda, 1.0, 1e-12);
+  // Default up-chirp centred on 77 GHz: 76.5 -> 77.5 GHz.
+  EXPECT_EQ(p.sweep_direction, SweepDirection::up);
+  EXPECT_EQ(d.sweep_sign, 1.0);
+  EXPECT_NEAR(d.start_frequency_hz / 76.5e9, 1.0, 1e-12);
+  RadarParams down = p;
+  down.sweep_direction = SweepDirection::down;
+  EXPECT_EQ(derive(down).sweep_sign, -1.0);
+  EXPECT_NEAR(derive(down).start_frequency_hz / 77.5e9, 1.0, 1e-12);
+  EXPECT_NEAR(derive(down).wavelength_m / lambda, 1.0, 1e-12);
   EXPECT_NEAR(d.chirp_slope_hz_per_s / slope, 1.0, 1e-12);
   EXPECT_NEAR(d.range_resolution_m / (kC / 2e9), 1.0, 1e-12);
   EXPECT_NEAR(d.max_range_m / max_range, 1.0, 1e-12);
@@ -133,13 +142,26 @@ TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
       10.0 * std::log10(d.noise_power_w / 1e-3), d.beam_solid_angle_sr);
 }
 
+// The sweep direction's names round-trip; anything else is refused naming the field.
+TEST(RadarParams, SweepDirectionNames) {
+  for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down}) {
+    EXPECT_EQ(parse_sweep_direction(to_string(direction)), direction);
+  }
+  EXPECT_EQ(to_string(SweepDirection::up), "up");
+  EXPECT_EQ(to_string(SweepDirection::down), "down");
+  EXPECT_EQ(test_support::rejected_field([] { parse_sweep_direction("Up"); }),
+            "radar.sweep_direction");
+  EXPECT_EQ(test_support::rejected_field([] { parse_sweep_direction("sawtooth", "x.dir"); }),
+            "x.dir");
+}
+
 // Radar equation round trip and against the reference form (Skolnik eq. 2.1): 1e-12 relative.
 TEST(RadarParams, RadarEquationAndEq7AreInverse) {
   RadarParams p;
   p.tx_power_dbm = 3.0;
   p.tx_gain_dbi = 21.0;
   p.rx_gain_dbi = 14.0;
-  p.carrier_frequency_hz = 79e9;
+  p.centre_frequency_hz = 79e9;
   const RadarDerived d = derive(p);
   for (const double r : {1.0, 10.0, 55.5}) {
     const double pr = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, 3.3, r);

@@ -30,10 +30,23 @@ constexpr double kC = 299'792'458.0;
 
 double wrap_phase(double x) { return std::remainder(x, 2.0 * std::numbers::pi); }
 
+// Phase of the dechirped echo of two-way path L at the first sample of a chirp, written out from
+// the transmit phase 2 pi (f_0 t + s t^2 / 2), s = eps B / T, f_0 = f_c - eps B / 2: the receiver
+// forms rx conj(tx) for a down-chirp and its conjugate for an up-chirp (the product whose beat
+// frequency is +|s| tau), so the phase at t = 0 is eps 2 pi (f_0 tau - s tau^2 / 2) (docs/radar.md
+// §3.2).
+double reference_echo_phase_rad(const RadarParams& p, double path_length_m) {
+  const double eps = p.sweep_direction == SweepDirection::up ? 1.0 : -1.0;
+  const double f0 = p.centre_frequency_hz - eps * 0.5 * p.sweep_bandwidth_hz;
+  const double s = eps * p.sweep_bandwidth_hz / p.chirp_duration_s;
+  const double tau = path_length_m / kC;
+  return eps * 2.0 * std::numbers::pi * (f0 * tau - 0.5 * s * tau * tau);
+}
+
 struct Fixture {
   RadarParams params;
   RadarDerived derived = derive(params);
-  propagation::Chamber chamber = make_chamber(paper_chamber_spec(), params.carrier_frequency_hz);
+  propagation::Chamber chamber = make_chamber(paper_chamber_spec(), params.centre_frequency_hz);
   propagation::ActiveLayers no_fog = propagation::first_layers_active(0, 4);
   std::vector<Tone> tones;
 };
@@ -65,21 +78,27 @@ TEST(SceneFactories, PointTargetAndEvt) {
 }
 
 // A centre on boresight: one tone, path 2R, power by the radar equation [Sk eq. 2.1] (1e-12
-// relative), carrier phase -2 pi (2R) / lambda. Off boresight (lateral 1 m at 10 m) the power
-// falls by the two-way Gaussian pattern g(az)^2 (g one-way power, 3 dB at half the beamwidth).
+// relative), phase reference_echo_phase_rad for both sweep directions (1e-6 rad: the phase is
+// ~3e4 rad, so 1e-6 allows ~1e4 eps of argument reduction). Off boresight (lateral 1 m at 10 m)
+// the power falls by the two-way Gaussian pattern g(az)^2 (g one-way power, 3 dB at half the
+// beamwidth).
 TEST(SceneTones, DirectPathPowerPhaseAndPattern) {
   Fixture f;
   Scene scene = point_target_scene(10.0);
   RandomStream rng(1);
-  scene_tones(scene, f.chamber, f.no_fog, f.params, f.derived, rng, f.tones);
-  ASSERT_EQ(f.tones.size(), 1u);
-  const double lambda = kC / f.params.carrier_frequency_hz;
-  EXPECT_NEAR(f.tones[0].path_length_m, 20.0, 1e-12);
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / reference_received_power_w(f.params, 10.0, 10.0),
-              1.0, 1e-12);
-  EXPECT_NEAR(wrap_phase(std::arg(f.tones[0].amplitude) + 2.0 * std::numbers::pi * 20.0 / lambda),
-              0.0, 1e-6);
-  EXPECT_EQ(f.tones[0].radial_velocity_m_per_s, 0.0);
+  for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down}) {
+    RadarParams p = f.params;
+    p.sweep_direction = direction;
+    scene_tones(scene, f.chamber, f.no_fog, p, derive(p), rng, f.tones);
+    ASSERT_EQ(f.tones.size(), 1u);
+    EXPECT_NEAR(f.tones[0].path_length_m, 20.0, 1e-12);
+    EXPECT_NEAR(std::norm(f.tones[0].amplitude) / reference_received_power_w(p, 10.0, 10.0), 1.0,
+                1e-12);
+    EXPECT_NEAR(wrap_phase(std::arg(f.tones[0].amplitude) - reference_echo_phase_rad(p, 20.0)), 0.0,
+                1e-6)
+        << to_string(direction);
+    EXPECT_EQ(f.tones[0].radial_velocity_m_per_s, 0.0);
+  }
 
   scene.centres[0].lateral_m = 1.0;
   scene_tones(scene, f.chamber, f.no_fog, f.params, f.derived, rng, f.tones);
@@ -94,41 +113,47 @@ TEST(SceneTones, DirectPathPowerPhaseAndPattern) {
       1.0, 1e-12);
 }
 
-// Floor on: three tones, lengths 2 r_d, r_d + r_f, 2 r_f; relative complex amplitudes of the
-// expansion of (g_d e^{-jk r_d} / r_d + Gamma g_f e^{-jk r_f} / r_f)^2 (1e-9 relative).
+// Floor on: three tones, lengths 2 r_d, r_d + r_f, 2 r_f; relative amplitudes of the expansion
+// of (g_d / r_d + Gamma g_f / r_f)^2 into its three delays, each with the echo phase of its path
+// length (reference_echo_phase_rad), for both sweep directions (1e-9 relative).
 TEST(SceneTones, FloorPathsAreTheTwoRayExpansion) {
   Fixture f;
   Scene scene = point_target_scene(10.0);
   scene.sensor_height_m = 0.5;
   scene.centres[0].height_m = 0.8;
   scene.floor = {.enabled = true, .reflection_coefficient = -0.6};
-  RandomStream rng(1);
-  scene_tones(scene, f.chamber, f.no_fog, f.params, f.derived, rng, f.tones);
-  ASSERT_EQ(f.tones.size(), 3u);
-  const double k = 2.0 * std::numbers::pi * f.params.carrier_frequency_hz / kC;
   const double beam = 10.0 * std::numbers::pi / 180.0;
   const auto amp = [&](double angle) {
     return std::exp(-2.0 * std::log(2.0) * (angle / beam) * (angle / beam));
   };
   const double r_d = std::hypot(10.0, 0.3), r_f = std::hypot(10.0, 1.3);
   const double g_d = amp(std::atan2(0.3, 10.0)), g_f = amp(std::atan2(1.3, 10.0));
-  const std::complex<double> e_d = g_d / r_d * std::polar(1.0, -k * r_d);
-  const std::complex<double> e_f = -0.6 * g_f / r_f * std::polar(1.0, -k * r_f);
-  const std::complex<double> expected[] = {e_d * e_d, 2.0 * e_d * e_f, e_f * e_f};
+  const double e_d = g_d / r_d, e_f = -0.6 * g_f / r_f;
+  const double magnitudes[] = {e_d * e_d, 2.0 * e_d * e_f, e_f * e_f};
   const double lengths[] = {2.0 * r_d, r_d + r_f, 2.0 * r_f};
-  for (int i = 0; i < 3; ++i) {
-    EXPECT_NEAR(f.tones[i].path_length_m, lengths[i], 1e-12);
-    const std::complex<double> ratio =
-        (f.tones[i].amplitude / f.tones[0].amplitude) / (expected[i] / expected[0]);
-    EXPECT_NEAR(std::abs(ratio - 1.0), 0.0, 1e-9) << "path " << i;
+  for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down}) {
+    RadarParams p = f.params;
+    p.sweep_direction = direction;
+    RandomStream rng(1);
+    scene_tones(scene, f.chamber, f.no_fog, p, derive(p), rng, f.tones);
+    ASSERT_EQ(f.tones.size(), 3u);
+    const auto expected = [&](int i) {
+      return magnitudes[i] * std::polar(1.0, reference_echo_phase_rad(p, lengths[i]));
+    };
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(f.tones[i].path_length_m, lengths[i], 1e-12);
+      const std::complex<double> ratio =
+          (f.tones[i].amplitude / f.tones[0].amplitude) / (expected(i) / expected(0));
+      EXPECT_NEAR(std::abs(ratio - 1.0), 0.0, 1e-9) << "path " << i << ", " << to_string(direction);
+    }
+    EXPECT_NEAR(std::norm(f.tones[0].amplitude) /
+                    (reference_received_power_w(p, 10.0, r_d) * std::pow(g_d, 4)),
+                1.0, 1e-12);
   }
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) /
-                  (reference_received_power_w(f.params, 10.0, r_d) * std::pow(g_d, 4)),
-              1.0, 1e-12);
 }
 
 // Micro-motion: each centre's line-of-sight displacement ~ N(0, s^2), s = 0.2 mm, so the
-// two-way path length has standard deviation 2 s and the carrier phase 4 pi s / lambda =
+// two-way path length has standard deviation 2 s and the echo phase 4 pi s / lambda =
 // 0.65 rad at 77 GHz. 4000 draws: sample std of the path within 5 % of 2 s (1-sigma 1.1 %), mean
 // within 4 sigma of 2R.
 TEST(SceneTones, MicroMotionMovesThePathByTwiceTheJitter) {
@@ -146,7 +171,7 @@ TEST(SceneTones, MicroMotionMovesThePathByTwiceTheJitter) {
   }
   const double mean = sum / kDraws;
   const double std = std::sqrt(sum2 / kDraws - mean * mean);
-  const double lambda = kC / f.params.carrier_frequency_hz;
+  const double lambda = kC / f.params.centre_frequency_hz;
   std::printf(
       "[ measured ] micro-motion 0.2 mm: path std %.4f mm (expected 0.4), phase std %.3f rad (4 pi "
       "s / lambda = %.3f)\n",
@@ -202,7 +227,7 @@ TEST(SceneTones, FogClutterPowerIsTheVolumeIntegral) {
   fog.density = propagation::LiquidWaterContent{20.0};
   fog.droplets = propagation::Monodisperse{50e-6};
   const propagation::Chamber chamber =
-      make_chamber(paper_chamber_spec(fog), f.params.carrier_frequency_hz);
+      make_chamber(paper_chamber_spec(fog), f.params.centre_frequency_hz);
   const auto all_on = propagation::first_layers_active(4, 4);
   const double eta = chamber.layer(0).optics.volume_backscatter_m2_per_m3;
   const double a_db_per_m = chamber.layer(0).optics.specific_attenuation_db_per_km * 1e-3;

@@ -9,7 +9,7 @@
 namespace fogradar {
 
 // Bad input: a parameter outside its allowed range. `field()` names it ("Fog.lwc_g_per_m3",
-// "--frequency-ghz", "radar.carrier_frequency_hz"), `what()` is the full one-line message.
+// "--frequency-ghz", "radar.centre_frequency_hz"), `what()` is the full one-line message.
 class InvalidParameter : public std::invalid_argument {
  public:
   InvalidParameter(std::string field, const std::string& message);

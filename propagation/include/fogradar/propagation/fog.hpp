@@ -33,9 +33,13 @@ using FogDensity = std::variant<LiquidWaterContent, OpticalExtinction, Visibilit
 struct FogSpec {
   FogDensity density = OpticalExtinction{};
   DropSizeDistribution droplets = default_fog_droplets();
+  // Water temperature of the index at radar frequencies: the study's 20 C (DESIGN §4) under Liebe,
+  // the temperature-dependent model of ITU-R P.840. With the Segelstein table only its own 25 C is
+  // accepted. Optical wavelengths always use the table at 25 C (Liebe ends at 1 THz;
+  // docs/physics.md §2 quantifies what the optical temperature dependence would change).
   double temperature_c = 20.0;
-  WaterModel water_model = WaterModel::segelstein;  // at the radar frequency; optics always use the table
-  void validate() const;                            // throws InvalidParameter naming the field
+  WaterModel water_model = WaterModel::liebe;
+  void validate() const;  // throws InvalidParameter naming the field
   bool operator==(const FogSpec&) const = default;
 };
 
@@ -44,6 +48,8 @@ struct FogOptics {
   double frequency_hz = 0.0;
   double wavelength_m = 0.0;
   std::complex<double> refractive_index;      // of water at this frequency
+  WaterModel water_model = WaterModel::segelstein;  // the model and temperature that gave the index
+  double water_temperature_c = segelstein_table_temperature_c;
   double extinction_per_m = 0.0;             // power extinction coefficient
   double absorption_per_m = 0.0;
   double scattering_per_m = 0.0;
@@ -63,14 +69,15 @@ class Fog {
 
   // Bulk properties at a frequency, water index from the spec's water model and temperature.
   FogOptics at_frequency(double frequency_hz) const;
-  // Bulk properties at an optical wavelength (always the Segelstein table).
+  // Bulk properties at an optical wavelength (always the Segelstein table, at its own 25 C).
   FogOptics at_optical_wavelength(double wavelength_m) const;
 
   double optical_extinction_per_km() const;  // beta at 550 nm
   double visibility_m() const;               // eq. 6; infinite without water
 
  private:
-  FogOptics bulk_optics(double wavelength_m, std::complex<double> index) const;
+  // Water index from `model` at `temperature_c`.
+  FogOptics bulk_optics(double wavelength_m, WaterModel model, double temperature_c) const;
   // Per-volume cross sections (1/m) of the distribution holding lwc_g_per_m3 of water.
   CrossSections sum_cross_sections(double wavelength_m, std::complex<double> index,
                                    double lwc_g_per_m3) const;

@@ -12,6 +12,10 @@ namespace fogradar::propagation {
 
 enum class WaterModel { segelstein, liebe };
 
+// The Segelstein table is for room temperature, about 25 C (data/PROVENANCE.md), with no
+// temperature dependence: a water temperature is accepted with it only at this value.
+inline constexpr double segelstein_table_temperature_c = 25.0;
+
 std::string_view to_string(WaterModel model);
 // Parses "segelstein" or "liebe"; throws InvalidParameter naming `field` otherwise.
 WaterModel parse_water_model(std::string_view text, std::string_view field = "water_model");
@@ -52,8 +56,10 @@ std::complex<double> refractive_index_from_permittivity(std::complex<double> per
 // K_l = 0.819 f / (eps'' (1 + eta^2)), eta = (2 + eps') / eps'', in (dB/km)/(g/m^3), f in GHz.
 double itu_p840_specific_attenuation_coefficient(double frequency_hz, double temperature_k);
 
-// The refractive index of water under a chosen model at one temperature. The Segelstein table has no
-// temperature dependence (about 25 C); Liebe is valid only up to 1 THz (wavelength >= 0.2998 mm).
+// The refractive index of water under a chosen model at one temperature. The Segelstein table takes
+// only its own temperature (segelstein_table_temperature_c); Liebe takes -20..50 C and is valid
+// only up to 1 THz (wavelength >= 0.2998 mm). Any other temperature throws InvalidParameter
+// ("temperature_k"), so that no temperature is accepted that the index does not use.
 class WaterOptics {
  public:
   WaterOptics(WaterModel model, double temperature_k, const SegelsteinTable& table);

@@ -40,8 +40,8 @@ class RadarChain {
   const CfarDetector& cfar() const { return cfar_; }
 
   // Validates the scene, then throws InvalidParameter if the chamber was resolved at another
-  // frequency than the radar's carrier ("chamber.frequency_hz"), a centre lies at or behind the
-  // radar ("target.centres[i].range_offset_m"), or the scene reaches beyond the radar's
+  // frequency than the radar's sweep centre ("chamber.frequency_hz"), a centre lies at or behind
+  // the radar ("target.centres[i].range_offset_m"), or the scene reaches beyond the radar's
   // unambiguous range minus 1 m ("chamber.target_range_m").
   void check_compatible(const Scene& scene, const propagation::Chamber& chamber) const;
 

@@ -4,17 +4,27 @@
 #pragma once
 
 #include <cstddef>
+#include <string_view>
 
 #include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/window.hpp"
 
 namespace fogradar::radar {
 
+// Direction of the linear frequency sweep of each chirp: up from f_c - B/2 to f_c + B/2, or down
+// from f_c + B/2 to f_c - B/2 (docs/radar.md §3.2).
+enum class SweepDirection { up, down };
+std::string_view to_string(SweepDirection direction) noexcept;
+// Inverse of to_string ("up", "down"); throws InvalidParameter naming `field` otherwise.
+SweepDirection parse_sweep_direction(std::string_view text,
+                                     std::string_view field = "radar.sweep_direction");
+
 struct RadarParams {
-  // Frequency at the start of each chirp. The chain's sign conventions (beat e^{+i 2 pi f_b t},
-  // echo phase e^{-i 2 pi f_c tau}) make the sweep run down to f_c - B (77 -> 76 GHz, the long-range
-  // band), so echoes that share a range cell interfere at the phase of f_c - B/2 (docs/radar.md).
-  double carrier_frequency_hz = 77e9;
+  // Centre f_c of the swept band: lambda = c / f_c in the radar equation (paper eq. 7) and the
+  // Doppler scale, and the phase with which echoes in one range cell interfere (docs/radar.md).
+  double centre_frequency_hz = 77e9;
+  // Up: most automotive FMCW front ends ramp up (docs/radar.md §3.2). Conjugates the beat signal.
+  SweepDirection sweep_direction = SweepDirection::up;
   double sweep_bandwidth_hz = 1e9;
   double chirp_duration_s = 51.2e-6;
   double chirp_interval_s = 51.2e-6;  // chirp start to chirp start (>= duration)
@@ -43,8 +53,10 @@ struct RadarParams {
 
 // Everything the chain derives from RadarParams.
 struct RadarDerived {
-  double wavelength_m;                  // c / f_c
-  double chirp_slope_hz_per_s;          // S = B / T_c
+  double wavelength_m;                  // c / f_c, f_c the sweep centre
+  double start_frequency_hz;            // f_0 = f_c - eps B / 2
+  double sweep_sign;                    // eps: +1 up, -1 down
+  double chirp_slope_hz_per_s;          // S = B / T_c (magnitude; the sweep runs at eps S)
   double range_resolution_m;            // c / (2 B)
   double range_bin_m;                   // c fs / (2 S N): one range-FFT bin
   double max_range_m;                   // c fs / (2 S): complex sampling, beat in [0, fs)
@@ -61,6 +73,16 @@ RadarDerived derive(const RadarParams& params);
 
 // Beat frequency of a path of two-way length L (m): f_b = S L / c (= 2 S R / c monostatic).
 double beat_frequency_hz(double path_length_m, double chirp_slope_hz_per_s);
+
+// Phase of the dechirped echo of a path of two-way length L at the first sample of a chirp,
+// tau = L / c: eps 2 pi tau f_0 - pi S tau^2 (the echo phase at the transmit frequency of t =
+// -tau/2, i.e. eps 2 pi tau f_tx(t - tau/2) at t = 0; derivation and mixing convention in
+// docs/radar.md §3.2).
+double echo_phase_at_chirp_start_rad(double path_length_m, const RadarDerived& derived);
+
+// Beat-frequency shift of a path of radial velocity v (+ receding): f_D = eps 2 v / lambda (a
+// receding target raises the beat frequency of an up-chirp and lowers that of a down-chirp).
+double doppler_shift_hz(double radial_velocity_m_per_s, const RadarDerived& derived);
 
 // Radar equation (paper eq. 7 solved for P_r): P_r = P_t G_t G_r lambda^2 sigma / ((4 pi)^3 R^4).
 double received_power_w(double tx_power_w, double tx_gain, double rx_gain, double wavelength_m,

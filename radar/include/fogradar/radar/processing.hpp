@@ -24,8 +24,9 @@ class RangeDopplerProcessor {
   std::size_t samples() const { return samples_; }
 
   // In place: frame (chirps x samples, chirp-major, FFTW-aligned) becomes the range-Doppler map
-  // Y[d][k] = sum_c sum_n w_d[c] w_r[n] x_c[n] exp(-i 2 pi (n k / N + c d / N_c)). Doppler bin
-  // d < N_c/2 is velocity d, d >= N_c/2 is d - N_c.
+  // Y[d][k] = sum_c sum_n w_d[c] w_r[n] x_c[n] exp(-i 2 pi (n k / N + c d / N_c)). Row d < N_c/2
+  // is Doppler bin d, d >= N_c/2 is d - N_c; velocity is eps (RadarDerived::sweep_sign) times the
+  // bin times the velocity resolution.
   void transform(std::span<std::complex<double>> frame) const;
   // The range and Doppler FFTs of transform, for a frame that already carries window() (as
   // synthesize_frame leaves it when given the window).
