@@ -1,6 +1,6 @@
-// Ground truth per detection (attribution.hpp): the window spectrum table against the direct DTFT sum,
-// the per-origin cell contributions against FFT-processed frames of each origin's tones alone (a
-// second method), and the origin of CFAR detections on constructed frames: target alone, fog
+// Ground truth per detection (attribution.hpp): the window spectrum table against the direct DTFT
+// sum, the per-origin cell contributions against FFT-processed frames of each origin's tones alone
+// (a second method), and the origin of CFAR detections on constructed frames: target alone, fog
 // alone, noise alone, a target inside fog, and a target side lobe.
 #include <gtest/gtest.h>
 
@@ -44,33 +44,35 @@ RadarParams small_radar(WindowType window = WindowType::hann) {
   return p;
 }
 
-// Two-way path length whose beat frequency S L / c sits at fractional range bin nu (fs / N per bin),
-// written out from the FMCW relation (not from the library).
+// Two-way path length whose beat frequency S L / c sits at fractional range bin nu (fs / N per
+// bin), written out from the FMCW relation (not from the library).
 double path_at_bin_m(const RadarParams& p, double nu) {
   const double slope_hz_per_s = p.sweep_bandwidth_hz / p.chirp_duration_s;
-  return nu * p.sample_rate_hz / static_cast<double>(p.samples_per_chirp) * kSpeedOfLight / slope_hz_per_s;
+  return nu * p.sample_rate_hz / static_cast<double>(p.samples_per_chirp) * kSpeedOfLight /
+         slope_hz_per_s;
 }
 
-// Amplitude of a tone whose map peak on a bin centre has the given SNR against the thermal noise per
-// cell: |a| (sum w_r)(sum w_d) = sqrt(snr k T0 F fs sum w_r^2 sum w_d^2).
+// Amplitude of a tone whose map peak on a bin centre has the given SNR against the thermal noise
+// per cell: |a| (sum w_r)(sum w_d) = sqrt(snr k T0 F fs sum w_r^2 sum w_d^2).
 double amplitude_for_snr(const RadarParams& p, double snr_db) {
   const auto w_r = make_window(p.window, p.samples_per_chirp);
   const auto w_d = make_window(p.window, p.chirps_per_frame);
-  const double noise_per_cell = reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d);
+  const double noise_per_cell =
+      reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d);
   return std::sqrt(std::pow(10.0, snr_db / 10.0) * noise_per_cell) / (sum_of(w_r) * sum_of(w_d));
 }
 
 // The chain's own stages on a constructed list of tones: windowed synthesis (with thermal noise as
 // the params say), range and Doppler FFTs, CFAR and estimation, then attribution.
-std::vector<Detection> detect(const RadarChain& chain, const std::vector<Tone>& tones, std::uint64_t seed,
-                              MeasurementWorkspace& ws) {
+std::vector<Detection> detect(const RadarChain& chain, const std::vector<Tone>& tones,
+                              std::uint64_t seed, MeasurementWorkspace& ws) {
   RandomStream rng(seed);
   const FrameWindow window = chain.processor().window();
   synthesize_frame(tones, chain.params(), chain.derived(), rng, ws.frame, &window);
   chain.processor().transform_windowed(ws.frame);
   std::vector<Detection> detections;
-  estimate_detections(ws.frame, chain.processor(), chain.cfar(), chain.params(), chain.derived(), ws.estimation,
-                      detections);
+  estimate_detections(ws.frame, chain.processor(), chain.cfar(), chain.params(), chain.derived(),
+                      ws.estimation, detections);
   chain.origin_classifier().attribute(tones, detections);
   return detections;
 }
@@ -87,13 +89,14 @@ ComplexVector noise_free_map(const RadarChain& chain, const std::vector<Tone>& t
 
 // Static fog scatterers, `per_bin` in each range bin of [first_bin, last_bin), each with a complex
 // Gaussian amplitude of the given mean SNR (as the scene's clutter model draws them).
-std::vector<Tone> fog_tones(const RadarParams& p, int first_bin, int last_bin, double snr_db, RandomStream& rng,
-                            int per_bin = 4) {
+std::vector<Tone> fog_tones(const RadarParams& p, int first_bin, int last_bin, double snr_db,
+                            RandomStream& rng, int per_bin = 4) {
   std::vector<Tone> tones;
   const double a = amplitude_for_snr(p, snr_db);
   for (int k = first_bin; k < last_bin; ++k) {
     for (int s = 0; s < per_bin; ++s) {
-      tones.push_back({path_at_bin_m(p, k + rng.uniform()), rng.complex_normal(a * a), 0.0, Origin::fog});
+      tones.push_back(
+          {path_at_bin_m(p, k + rng.uniform()), rng.complex_normal(a * a), 0.0, Origin::fog});
     }
   }
   return tones;
@@ -128,7 +131,8 @@ TEST_P(Spectrum, TableMatchesTheDirectDtftSum) {
       const double u = (rng.uniform() * 3.0 - 1.5) * static_cast<double>(n);
       std::complex<double> direct{};
       for (std::size_t m = 0; m < n; ++m) {
-        direct += w[m] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(m) * u / static_cast<double>(n));
+        direct += w[m] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(m) * u /
+                                             static_cast<double>(n));
       }
       worst = std::max(worst, std::abs(spectrum.at(u) - direct) / sum_abs);
     }
@@ -154,8 +158,9 @@ TEST_P(Contributions, EqualTheProcessedFrameOfEachOriginsTones) {
   const RadarChain chain(p);
   RandomStream rng(11);
   const double a = amplitude_for_snr(p, 40.0);
-  const std::vector<Tone> target{{path_at_bin_m(p, 20.37), {a, 0.3 * a}, 1.3, Origin::target},
-                                 {path_at_bin_m(p, 21.9), {-0.2 * a, 0.5 * a}, -0.4, Origin::target}};
+  const std::vector<Tone> target{
+      {path_at_bin_m(p, 20.37), {a, 0.3 * a}, 1.3, Origin::target},
+      {path_at_bin_m(p, 21.9), {-0.2 * a, 0.5 * a}, -0.4, Origin::target}};
   const std::vector<Tone> fog = fog_tones(p, 40, 46, 20.0, rng);
   std::vector<Tone> all = target;
   all.insert(all.end(), fog.begin(), fog.end());
@@ -169,8 +174,8 @@ TEST_P(Contributions, EqualTheProcessedFrameOfEachOriginsTones) {
   const auto bound = [&](const std::vector<Tone>& tones) {
     double amplitude_sum = 0.0;
     for (const Tone& t : tones) amplitude_sum += std::abs(t.amplitude);
-    return (2.0 * kInterpolationEps + kInterpolationEps * kInterpolationEps) * amplitude_sum * sum_of(w_r) *
-           sum_of(w_d);
+    return (2.0 * kInterpolationEps + kInterpolationEps * kInterpolationEps) * amplitude_sum *
+           sum_of(w_r) * sum_of(w_d);
   };
   const double target_tol = bound(target), fog_tol = bound(fog);
   double worst_target = 0.0, worst_fog = 0.0;
@@ -183,11 +188,13 @@ TEST_P(Contributions, EqualTheProcessedFrameOfEachOriginsTones) {
     }
   }
   std::printf("[ measured ] %s: worst |T - map| %.2e of bound %.2e, |F - map| %.2e of bound %.2e\n",
-              std::string(to_string(p.window)).c_str(), worst_target, target_tol, worst_fog, fog_tol);
+              std::string(to_string(p.window)).c_str(), worst_target, target_tol, worst_fog,
+              fog_tol);
   EXPECT_LE(worst_target, target_tol);
   EXPECT_LE(worst_fog, fog_tol);
   const double noise = chain.origin_classifier().contributions(all, 0, 0).noise_power;
-  EXPECT_NEAR(noise / (reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d)), 1.0, 1e-12);
+  EXPECT_NEAR(noise / (reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d)), 1.0,
+              1e-12);
   EXPECT_EQ(noise_free.origin_classifier().contributions(all, 0, 0).noise_power, 0.0);
 }
 
@@ -206,7 +213,8 @@ TEST(OriginOfDetections, TargetAlone) {
     std::size_t at_target = 0;
     for (const Detection& det : detections) {
       const bool near = std::abs(static_cast<double>(det.range_cell) - 20.3) <= 1.0;
-      EXPECT_EQ(det.origin, near ? Origin::target : Origin::noise) << det.range_cell << ' ' << det.doppler_cell;
+      EXPECT_EQ(det.origin, near ? Origin::target : Origin::noise)
+          << det.range_cell << ' ' << det.doppler_cell;
       at_target += near ? 1 : 0;
     }
     EXPECT_EQ(at_target, 1u) << seed;
@@ -293,21 +301,26 @@ TEST(OriginOfDetections, TargetSideLobe) {
   const RadarChain chain(p);
   const double nu_r = 20.4, nu_d = 5.3;  // Doppler bin 5.3: v = -nu_d lambda / (2 N_c T_i)
   const double lambda_m = kSpeedOfLight / p.carrier_frequency_hz;
-  const double v = -nu_d * lambda_m / (2.0 * static_cast<double>(p.chirps_per_frame) * p.chirp_interval_s);
+  const double v =
+      -nu_d * lambda_m / (2.0 * static_cast<double>(p.chirps_per_frame) * p.chirp_interval_s);
   // Range bin of the beat including the Doppler shift within the chirp (-2 v / lambda).
-  const double doppler_range_bins = -2.0 * v / lambda_m * static_cast<double>(p.samples_per_chirp) / p.sample_rate_hz;
+  const double doppler_range_bins =
+      -2.0 * v / lambda_m * static_cast<double>(p.samples_per_chirp) / p.sample_rate_hz;
   const std::size_t d = 8, k = 26;  // 2.7 Doppler and ~5.6 range bins away
   const auto w_r = make_window(p.window, p.samples_per_chirp);
   const auto w_d = make_window(p.window, p.chirps_per_frame);
   std::complex<double> direct_r{}, direct_d{};
   const double u_r = static_cast<double>(k) - nu_r - doppler_range_bins;
   for (std::size_t n = 0; n < w_r.size(); ++n) {
-    direct_r += w_r[n] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(n) * u_r / 128.0);
+    direct_r +=
+        w_r[n] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(n) * u_r / 128.0);
   }
   for (std::size_t c = 0; c < w_d.size(); ++c) {
-    direct_d += w_d[c] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(c) * (8.0 - nu_d) / 16.0);
+    direct_d += w_d[c] * std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(c) *
+                                             (8.0 - nu_d) / 16.0);
   }
-  const double side_lobe_db = 20.0 * std::log10(std::abs(direct_r * direct_d) / (sum_of(w_r) * sum_of(w_d)));
+  const double side_lobe_db =
+      20.0 * std::log10(std::abs(direct_r * direct_d) / (sum_of(w_r) * sum_of(w_d)));
   std::printf("[ measured ] side lobe at (%zu, %zu): %.1f dB re the peak\n", d, k, side_lobe_db);
   ASSERT_LT(side_lobe_db, -60.0);
   ASSERT_GT(side_lobe_db + 120.0, 10.0);
