@@ -46,17 +46,19 @@ std::complex<double> WindowSpectrum::at(double offset_bins) const noexcept {
   return table_[j] + t * (table_[j + 1] - table_[j]);
 }
 
-OriginClassifier::OriginClassifier(const RangeDopplerProcessor& processor, const RadarParams& params,
-                                   const RadarDerived& derived)
+OriginClassifier::OriginClassifier(const RangeDopplerProcessor& processor,
+                                   const RadarParams& params, const RadarDerived& derived)
     : range_spectrum_(processor.range_window()),
       doppler_spectrum_(processor.doppler_window()),
       range_bins_per_hz_(static_cast<double>(processor.samples()) / params.sample_rate_hz),
       doppler_bins_per_hz_(params.chirp_interval_s * static_cast<double>(processor.chirps())),
       chirp_slope_hz_per_s_(derived.chirp_slope_hz_per_s),
       wavelength_m_(derived.wavelength_m),
-      noise_power_(params.thermal_noise ? derived.noise_power_w * processor.noise_power_gain() : 0.0) {}
+      noise_power_(params.thermal_noise ? derived.noise_power_w * processor.noise_power_gain()
+                                        : 0.0) {}
 
-CellContributions OriginClassifier::contributions(std::span<const Tone> tones, std::size_t doppler_cell,
+CellContributions OriginClassifier::contributions(std::span<const Tone> tones,
+                                                  std::size_t doppler_cell,
                                                   std::size_t range_cell) const {
   CellContributions out;
   out.noise_power = noise_power_;
@@ -66,8 +68,10 @@ CellContributions OriginClassifier::contributions(std::span<const Tone> tones, s
     // The frequencies synthesize_frame gives the tone: beat plus Doppler within a chirp, Doppler
     // from chirp to chirp.
     const double doppler_hz = -2.0 * tone.radial_velocity_m_per_s / wavelength_m_;
-    const double beat_hz = beat_frequency_hz(tone.path_length_m, chirp_slope_hz_per_s_) + doppler_hz;
-    const std::complex<double> value = tone.amplitude * range_spectrum_.at(k - beat_hz * range_bins_per_hz_) *
+    const double beat_hz =
+        beat_frequency_hz(tone.path_length_m, chirp_slope_hz_per_s_) + doppler_hz;
+    const std::complex<double> value = tone.amplitude *
+                                       range_spectrum_.at(k - beat_hz * range_bins_per_hz_) *
                                        doppler_spectrum_.at(d - doppler_hz * doppler_bins_per_hz_);
     (tone.origin == Origin::target ? out.target : out.fog) += value;
   }
@@ -80,7 +84,8 @@ Origin OriginClassifier::classify(std::span<const Tone> tones, std::size_t doppl
   return dominant_origin(std::norm(c.target), std::norm(c.fog), c.noise_power);
 }
 
-void OriginClassifier::attribute(std::span<const Tone> tones, std::span<Detection> detections) const {
+void OriginClassifier::attribute(std::span<const Tone> tones,
+                                 std::span<Detection> detections) const {
   for (Detection& detection : detections) {
     detection.origin = classify(tones, detection.doppler_cell, detection.range_cell);
   }

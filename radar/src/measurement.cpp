@@ -8,7 +8,9 @@
 namespace fogradar::radar {
 
 RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
-    : params_(params), derived_(derive(params)), processor_(params, planner),
+    : params_(params),
+      derived_(derive(params)),
+      processor_(params, planner),
       cfar_(params.cfar),
       origin_classifier_(processor_, params_, derived_) {}
 

@@ -82,7 +82,8 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
     const double length_m = path.out.length_m + path.back.length_m;
     const double transmittance = chamber.two_way_transmittance(0.5 * length_m, active);
     tones.push_back({length_m,
-                     path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d.wavelength_m),
+                     path.coefficient * pattern *
+                         path_amplitude(power_w * transmittance, length_m, d.wavelength_m),
                      centre.radial_velocity_m_per_s, Origin::target});
   }
 }

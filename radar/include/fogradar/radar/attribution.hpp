@@ -32,7 +32,8 @@ class WindowSpectrum {
 
  private:
   std::size_t n_;
-  std::vector<std::complex<double>> table_;  // W(j / oversampling), j = 0 .. N oversampling (first repeated)
+  std::vector<std::complex<double>>
+      table_;  // W(j / oversampling), j = 0 .. N oversampling (first repeated)
 };
 
 // Noise-free complex contributions of the target paths and of the fog clutter to one cell of the
@@ -48,16 +49,18 @@ struct CellContributions {
 //   Y_p[d][k] = a W_r(k - f N / fs) W_d(d - f_D T_i N_c)
 // (the windowed 2-D DFT of the tone synthesize_frame makes; W_r, W_d the range and Doppler windows'
 // DTFTs); T and F sum this over the target and the fog tones; the noise's expected power is
-// k T0 F fs sum(w_r^2) sum(w_d^2) (zero without thermal noise). Phase noise and ADC quantisation are
-// not counted. Immutable: one classifier serves every thread.
+// k T0 F fs sum(w_r^2) sum(w_d^2) (zero without thermal noise). Phase noise and ADC quantisation
+// are not counted. Immutable: one classifier serves every thread.
 class OriginClassifier {
  public:
-  OriginClassifier(const RangeDopplerProcessor& processor, const RadarParams& params, const RadarDerived& derived);
+  OriginClassifier(const RangeDopplerProcessor& processor, const RadarParams& params,
+                   const RadarDerived& derived);
 
   CellContributions contributions(std::span<const Tone> tones, std::size_t doppler_cell,
                                   std::size_t range_cell) const;
   // dominant_origin of the contributions at the cell.
-  Origin classify(std::span<const Tone> tones, std::size_t doppler_cell, std::size_t range_cell) const;
+  Origin classify(std::span<const Tone> tones, std::size_t doppler_cell,
+                  std::size_t range_cell) const;
   // Sets every detection's origin from its peak cell.
   void attribute(std::span<const Tone> tones, std::span<Detection> detections) const;
 
