@@ -23,11 +23,14 @@ nlohmann::json number_or_null(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+// Shortest text that reads back to exactly `value` (std::to_chars); NaN -> "" (docs/scenario.md).
+std::string exact(double value) { return stats::format_number(value, 0); }
+
 std::string joined_outliers(const std::vector<double>& outliers) {
   std::string text;
   for (double v : outliers) {
     if (!text.empty()) text += ';';
-    text += stats::format_fixed(v, 4);
+    text += exact(v);
   }
   return text;
 }
@@ -42,14 +45,21 @@ void write_file(const fs::path& path, const std::string& content) {
 }  // namespace
 
 std::string samples_csv(const ExperimentResult& result) {
-  std::string out = "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db\n";
+  std::string out =
+      "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,"
+      "origin,fog_detections,false_alarms\n";
   for (const StepResult& step : result.steps) {
     for (std::size_t i = 0; i < step.records.size(); ++i) {
       const MeasurementRecord& r = step.records[i];
-      out += std::to_string(step.active_layers) + ',' + std::to_string(i) + ',' + (r.detected ? "1" : "0") + ',';
-      if (r.detected) out += stats::format_fixed(r.range_m, 4) + ',' + stats::format_fixed(r.rcs_dbsm, 4) + ',' + stats::format_fixed(r.snr_db, 3);
-      else out += ",,";
-      out += '\n';
+      out += std::to_string(step.active_layers) + ',' + std::to_string(i) + ',' +
+             (r.detected ? "1," : "0,");
+      if (r.associated) {
+        out += exact(r.range_m) + ',' + exact(r.rcs_dbsm) + ',' + exact(r.snr_db) + ',' +
+               std::string(radar::to_string(r.associated_origin));
+      } else {
+        out += ",,,";
+      }
+      out += ',' + std::to_string(r.fog_detections) + ',' + std::to_string(r.false_alarms) + '\n';
     }
   }
   return out;
@@ -57,16 +67,25 @@ std::string samples_csv(const ExperimentResult& result) {
 
 std::string summary_csv(const ExperimentSummary& summary) {
   std::string out =
-      "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,"
-      "max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value\n";
+      "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,"
+      "q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,"
+      "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
+      "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame\n";
   for (const StepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.rcs;
-    out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' + std::to_string(s.detections) + ',' +
-           stats::format_fixed(s.detection_rate, 4) + ',' + stats::format_fixed(b.mean, 4) + ',' + stats::format_fixed(b.std_dev, 4) + ',' + stats::format_fixed(b.min, 4) +
-           ',' + stats::format_fixed(b.q1, 4) + ',' + stats::format_fixed(b.median, 4) + ',' + stats::format_fixed(b.q3, 4) + ',' + stats::format_fixed(b.max, 4) + ',' +
-           stats::format_fixed(b.whisker_low, 4) + ',' + stats::format_fixed(b.whisker_high, 4) + ',' + joined_outliers(b.outliers) + ',' +
-           stats::format_fixed(s.median_shift_db, 4) + ',' + (std::isnan(s.p_value) ? "" : stats::format_number(s.p_value, 6)) +
-           '\n';
+    const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
+                              b.median,         b.q3,   b.max,     b.whisker_low, b.whisker_high};
+    const double after_outliers[] = {s.median_shift_db,        s.p_value,
+                                     s.median_shift_ci95.low,  s.median_shift_ci95.high,
+                                     s.median_snr_db,          s.two_way_attenuation_db,
+                                     s.confusion_rate,         s.false_association_rate,
+                                     s.false_alarms_per_frame, s.fog_detections_per_frame};
+    out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
+           std::to_string(s.detections);
+    for (double v : numbers) out += ',' + exact(v);
+    out += ',' + joined_outliers(b.outliers);
+    for (double v : after_outliers) out += ',' + exact(v);
+    out += '\n';
   }
   return out;
 }
@@ -77,39 +96,53 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
   nlohmann::json steps = nlohmann::json::array();
   for (const StepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.rcs;
-    steps.push_back({{"active_layers", s.active_layers},
-                     {"n", s.n},
-                     {"detections", s.detections},
-                     {"detection_rate", s.detection_rate},
-                     {"mean_dbsm", number_or_null(b.mean)},
-                     {"std_db", number_or_null(b.std_dev)},
-                     {"min_dbsm", number_or_null(b.min)},
-                     {"q1_dbsm", number_or_null(b.q1)},
-                     {"median_dbsm", number_or_null(b.median)},
-                     {"q3_dbsm", number_or_null(b.q3)},
-                     {"max_dbsm", number_or_null(b.max)},
-                     {"whisker_low_dbsm", number_or_null(b.whisker_low)},
-                     {"whisker_high_dbsm", number_or_null(b.whisker_high)},
-                     {"outliers", b.outliers},
-                     {"median_shift_db", number_or_null(s.median_shift_db)},
-                     {"median_shift_ci95_db", {number_or_null(s.median_shift_ci95.low), number_or_null(s.median_shift_ci95.high)}},
-                     {"p_value", number_or_null(s.p_value)},
-                     {"median_snr_db", number_or_null(s.median_snr_db)},
-                     {"two_way_attenuation_db", s.two_way_attenuation_db},
-                     {"confusion_rate", s.confusion_rate}});
+    steps.push_back(
+        {{"active_layers", s.active_layers},
+         {"n", s.n},
+         {"detections", s.detections},
+         {"detection_rate", s.detection_rate},
+         {"mean_dbsm", number_or_null(b.mean)},
+         {"std_db", number_or_null(b.std_dev)},
+         {"min_dbsm", number_or_null(b.min)},
+         {"q1_dbsm", number_or_null(b.q1)},
+         {"median_dbsm", number_or_null(b.median)},
+         {"q3_dbsm", number_or_null(b.q3)},
+         {"max_dbsm", number_or_null(b.max)},
+         {"whisker_low_dbsm", number_or_null(b.whisker_low)},
+         {"whisker_high_dbsm", number_or_null(b.whisker_high)},
+         {"outliers", b.outliers},
+         {"median_shift_db", number_or_null(s.median_shift_db)},
+         {"median_shift_ci95_db",
+          {number_or_null(s.median_shift_ci95.low), number_or_null(s.median_shift_ci95.high)}},
+         {"p_value", number_or_null(s.p_value)},
+         {"median_snr_db", number_or_null(s.median_snr_db)},
+         {"two_way_attenuation_db", s.two_way_attenuation_db},
+         {"confusion_rate", s.confusion_rate},
+         {"false_association_rate", s.false_association_rate},
+         {"false_alarms_per_frame", s.false_alarms_per_frame},
+         {"fog_detections_per_frame", s.fog_detections_per_frame}});
   }
   const nlohmann::json out = {
       {"scenario", nlohmann::json::parse(scenario_json.str())},
       {"steps", steps},
-      {"sensor_limit_layers",
-       summary.sensor_limit_layers ? nlohmann::json(*summary.sensor_limit_layers) : nlohmann::json(nullptr)},
+      {"sensor_limit_layers", summary.sensor_limit_layers
+                                  ? nlohmann::json(*summary.sensor_limit_layers)
+                                  : nlohmann::json(nullptr)},
       {"sensor_limit_criterion", sensor_limit_criterion},
-      {"attenuation_margin_db",
-       summary.attenuation_margin_db ? number_or_null(*summary.attenuation_margin_db) : nlohmann::json(nullptr)},
+      {"expected_false_alarm_cells_per_frame", summary.expected_false_alarm_cells_per_frame},
+      {"attenuation_margin_db", summary.attenuation_margin_db
+                                    ? number_or_null(*summary.attenuation_margin_db)
+                                    : nlohmann::json(nullptr)},
       {"statistics",
        {{"quantiles", "Hyndman & Fan (1996) type 7 (R's default)"},
         {"whiskers", "Tukey: most extreme values within 1.5 IQR of the quartiles"},
-        {"shift_test", "Mann-Whitney U (two-sided) against the 0-layer series"}}},
+        {"shift", "Hodges-Lehmann: median of all pairwise differences against the 0-layer series"},
+        {"shift_interval",
+         "distribution-free 95 %: order statistics of the pairwise differences from the "
+         "Mann-Whitney U null distribution (Bauer 1972)"},
+        {"shift_test", "Mann-Whitney U (two-sided) against the 0-layer series"},
+        {"detections",
+         "target detections only: a fog- or noise-origin detection in the gate is a miss"}}},
   };
   return out.dump(2) + '\n';
 }
@@ -128,19 +161,28 @@ std::string rcs_boxplot_svg(const ExperimentSummary& summary) {
 
 std::string summary_table(const ExperimentSummary& summary) {
   std::ostringstream out;
-  char line[256];
-  std::snprintf(line, sizeof line, "%6s %5s %8s %9s %9s %9s %9s %10s %9s %8s\n", "layers", "n", "detected",
-                "median", "IQR", "mean", "std", "shift", "p", "loss");
+  char line[320];
+  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
+  std::snprintf(line, sizeof line, header, "layers", "n", "target", "false", "false", "design",
+                "median", "IQR", "mean", "std", "shift", "95 % interval", "p", "loss");
   out << line;
-  std::snprintf(line, sizeof line, "%6s %5s %8s %9s %9s %9s %9s %10s %9s %8s\n", "", "", "%", "dBsm", "dB", "dBsm",
-                "dB", "dB", "", "dB 2-way");
+  std::snprintf(line, sizeof line, header, "", "", "det. %", "assoc %", "alarms/f", "/frame",
+                "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
   out << line;
   for (const StepSummary& s : summary.steps) {
-    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %9.3f %9.3f %9.3f %9.3f %10.4f %9.3g %8.4f\n", s.active_layers,
-                  s.n, 100.0 * s.detection_rate, s.rcs.median, s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev,
-                  s.median_shift_db, s.p_value, s.two_way_attenuation_db);
+    std::snprintf(
+        line, sizeof line,
+        "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3g %8.4f\n",
+        s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
+        s.false_alarms_per_frame, summary.expected_false_alarm_cells_per_frame, s.rcs.median,
+        s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev, s.median_shift_db, s.median_shift_ci95.low,
+        s.median_shift_ci95.high, s.p_value, s.two_way_attenuation_db);
     out << line;
   }
+  out << "target det. %: a target-origin detection in the gate; false assoc. %: a fog or noise\n"
+         "detection there instead (a miss); false alarms/f: noise-origin detections per frame;\n"
+         "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
+         "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
   out << "sensor limit: ";
   if (summary.sensor_limit_layers) out << *summary.sensor_limit_layers << " active layers\n";
   else out << "not reached\n";

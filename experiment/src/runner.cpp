@@ -13,30 +13,25 @@
 namespace fogradar::experiment {
 namespace {
 
-bool inside_active_layer(double range_m, const propagation::Chamber& chamber,
-                         const propagation::ActiveLayers& active) {
-  for (std::size_t i = 0; i < chamber.layer_count(); ++i) {
-    if (active[i] && range_m >= chamber.layer(i).start_m && range_m < chamber.layer(i).end_m) return true;
-  }
-  return false;
-}
-
-MeasurementRecord record_of(const radar::Measurement& m, const propagation::Chamber& chamber,
-                            const propagation::ActiveLayers& active) {
+MeasurementRecord record_of(const radar::Measurement& m) {
   MeasurementRecord record;
   double strongest_fog_w = 0.0;
   for (const radar::Detection& d : m.detections) {
-    if (!inside_active_layer(d.range_m, chamber, active)) continue;
+    if (d.origin == radar::Origin::noise) ++record.false_alarms;
+    if (d.origin != radar::Origin::fog) continue;
     ++record.fog_detections;
     strongest_fog_w = std::max(strongest_fog_w, d.received_power_w);
   }
   if (m.target) {
-    record.detected = true;
+    record.associated = true;
+    record.associated_origin = m.target->origin;
+    record.detected = m.target->origin == radar::Origin::target;
     record.range_m = m.target->range_m;
     record.rcs_dbsm = m.target->rcs_dbsm;
     record.snr_db = m.target->snr_db;
   }
-  record.fog_rivals_target = record.fog_detections > 0 && (!m.target || strongest_fog_w >= m.target->received_power_w);
+  record.fog_rivals_target = record.fog_detections > 0 &&
+                             (!record.detected || strongest_fog_w >= m.target->received_power_w);
   return record;
 }
 
@@ -55,6 +50,9 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   const std::size_t per_step = scenario.experiment.measurements_per_step;
   ExperimentResult result;
   result.cfar_threshold_db = power_ratio_to_db(chain.cfar().threshold_factor());
+  result.expected_false_alarm_cells_per_frame =
+      chain.cfar().config().false_alarm_probability *
+      static_cast<double>(scenario.radar.chirps_per_frame * scenario.radar.samples_per_chirp);
   std::vector<propagation::ActiveLayers> active(steps);
   result.steps.resize(steps);
   for (std::size_t k = 0; k < steps; ++k) {
@@ -80,7 +78,7 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
         const std::size_t k = item / per_step, i = item % per_step;
         RandomStream rng(scenario.experiment.seed, k, i);
         chain.measure(scene, chamber, active[k], rng, workspace, measurement);
-        result.steps[k].records[i] = record_of(measurement, chamber, active[k]);
+        result.steps[k].records[i] = record_of(measurement);
         const std::size_t finished = ++done;
         if (options.progress) options.progress(finished, total);
       }

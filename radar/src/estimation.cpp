@@ -511,6 +511,8 @@ void estimate_detections(std::span<const std::complex<double>> map, const RangeD
                                               derived.rx_gain, derived.wavelength_m, det.range_m);
       det.rcs_dbsm = power_ratio_to_db(det.rcs_m2);
       det.cells = object.cells;
+      det.range_cell = object.range_cell;
+      det.doppler_cell = object.doppler_cell;
       detections.push_back(det);
     }
   }

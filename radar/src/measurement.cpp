@@ -8,7 +8,11 @@
 namespace fogradar::radar {
 
 RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
-    : params_(params), derived_(derive(params)), processor_(params, planner), cfar_(params.cfar) {}
+    : params_(params),
+      derived_(derive(params)),
+      processor_(params, planner),
+      cfar_(params.cfar),
+      origin_classifier_(processor_, params_, derived_) {}
 
 void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {
   scene.validate();
@@ -70,6 +74,7 @@ void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber
                          Measurement& out) const {
   out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws);
   estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation, out.detections);
+  origin_classifier_.attribute(ws.tones, out.detections);
   out.target.reset();
   for (const Detection& detection : out.detections) {
     if (std::abs(detection.range_m - chamber.target_range_m()) > params_.association_gate_m) continue;

@@ -81,10 +81,9 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
     const double pattern = path.out.pattern_amplitude * path.back.pattern_amplitude;
     const double length_m = path.out.length_m + path.back.length_m;
     const double transmittance = chamber.two_way_transmittance(0.5 * length_m, active);
-    tones.push_back(
-        {length_m,
-         path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
-         centre.radial_velocity_m_per_s});
+    tones.push_back({length_m,
+                     path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
+                     centre.radial_velocity_m_per_s, Origin::target});
   }
 }
 
@@ -109,7 +108,7 @@ void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
             received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, sigma_m2 / per_bin, range_m) *
             chamber.two_way_transmittance(range_m, active);
         // The phase of a random scatterer is uniform anyway: the complex normal carries it.
-        tones.push_back({2.0 * range_m, rng.complex_normal(mean_power_w), 0.0});
+        tones.push_back({2.0 * range_m, rng.complex_normal(mean_power_w), 0.0, Origin::fog});
       }
     }
   }

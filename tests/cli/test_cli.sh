@@ -20,9 +20,9 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 for f in samples.csv summary.csv summary.json rcs_boxplot.svg scenario.toml; do
   if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
 done
-head -1 "$work/t1/samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db' && pass \
+head -1 "$work/t1/samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms' && pass \
   || fail "samples.csv header"
-head -1 "$work/t1/summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value' \
+head -1 "$work/t1/summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame' \
   && pass || fail "summary.csv header"
 [ "$(wc -l <"$work/t1/samples.csv")" -eq 31 ] && pass || fail "samples.csv should have 5 x 6 rows"
 grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary.json lacks sensor_limit_layers"

@@ -29,6 +29,10 @@ TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
       const MeasurementRecord& a = one.steps[k].records[i];
       const MeasurementRecord& b = three.steps[k].records[i];
       EXPECT_EQ(a.detected, b.detected);
+      EXPECT_EQ(a.associated, b.associated);
+      EXPECT_EQ(a.associated_origin, b.associated_origin);
+      EXPECT_EQ(a.fog_detections, b.fog_detections);
+      EXPECT_EQ(a.false_alarms, b.false_alarms);
       EXPECT_EQ(a.rcs_dbsm, b.rcs_dbsm);  // bit-identical, not merely close
       EXPECT_EQ(a.range_m, b.range_m);
       EXPECT_EQ(a.snr_db, b.snr_db);
@@ -79,6 +83,58 @@ TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
   for (std::size_t k = 1; k < summary.steps.size(); ++k) {
     EXPECT_GT(summary.steps[k].two_way_attenuation_db, summary.steps[k - 1].two_way_attenuation_db);
   }
+}
+
+// A lost target: a -60 dBsm point target seen with 1 uW (-30 dBm) transmit power, about 35 dB under
+// the noise per cell (the 10 dBsm, 10 dBm target of PointTargetReadsBack... has about 75 dB: minus
+// 70 dB RCS and 40 dB power), and P_fa = 1e-2, so that about one noise cell in a hundred crosses
+// the threshold and the association gate (+-0.5 m, ~7 range bins x 16 Doppler bins) often holds
+// one. Every gate association is noise; none is a target detection: detection rate 0, the
+// associations counted as false associations, no statistics of a target, the sensor limit at 0
+// layers.
+TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
+  Scenario s = small_scenario();
+  s.target.model = TargetModel::point;
+  s.target.floor_multipath = false;
+  s.target.rcs_dbsm = -60.0;
+  s.radar.tx_power_dbm = -30.0;
+  s.radar.cfar.false_alarm_probability = 1e-2;
+  const ExperimentResult result = run_experiment(s, {.threads = 2, .progress = {}});
+  EXPECT_DOUBLE_EQ(result.expected_false_alarm_cells_per_frame, 1e-2 * 16 * 512);
+  std::size_t associations = 0, false_alarms = 0;
+  for (const StepResult& step : result.steps) {
+    for (const MeasurementRecord& r : step.records) {
+      EXPECT_FALSE(r.detected);
+      if (r.associated) {
+        EXPECT_EQ(r.associated_origin, radar::Origin::noise);
+      }
+      associations += r.associated ? 1 : 0;
+      false_alarms += r.false_alarms;
+    }
+  }
+  EXPECT_GT(associations, 0u);
+  EXPECT_GE(false_alarms, associations);  // every association is one of the frame's false alarms
+  const ExperimentSummary summary = summarize(result);
+  double false_association_sum = 0.0;
+  for (std::size_t k = 0; k < summary.steps.size(); ++k) {
+    const StepSummary& step = summary.steps[k];
+    std::size_t associated = 0;
+    for (const MeasurementRecord& r : result.steps[k].records) associated += r.associated ? 1 : 0;
+    EXPECT_EQ(step.detections, 0u);
+    EXPECT_EQ(step.detection_rate, 0.0);
+    EXPECT_EQ(step.false_association_rate,
+              static_cast<double>(associated) / static_cast<double>(step.n));
+    EXPECT_GT(step.false_alarms_per_frame, 0.0);
+    EXPECT_EQ(step.confusion_rate, 1.0);
+    EXPECT_TRUE(std::isnan(step.rcs.median));
+    EXPECT_TRUE(std::isnan(step.median_snr_db));
+    EXPECT_TRUE(std::isnan(step.median_shift_db));
+    false_association_sum += step.false_association_rate;
+  }
+  EXPECT_GT(false_association_sum, 0.0);
+  ASSERT_TRUE(summary.sensor_limit_layers.has_value());
+  EXPECT_EQ(*summary.sensor_limit_layers, 0u);
+  EXPECT_FALSE(summary.attenuation_margin_db.has_value());
 }
 
 }  // namespace

@@ -898,10 +898,11 @@ TEST(Synthesis, WindowInTheNoisePassEqualsTheWindowAfterwards) {
   base.chirps_per_frame = 16;
   base.samples_per_chirp = 250;  // not a multiple of 4: the generator's tail
   const double amplitude = 30.0 * std::sqrt(reference_noise_power_w(base));
-  const std::vector<Tone> static_tones{{20.0, {amplitude, -0.5 * amplitude}, 0.0},
-                                       {31.3, {0.2 * amplitude, 0.7 * amplitude}, 0.0}};
+  const std::vector<Tone> static_tones{
+      {20.0, {amplitude, -0.5 * amplitude}, 0.0, Origin::target},
+      {31.3, {0.2 * amplitude, 0.7 * amplitude}, 0.0, Origin::fog}};
   std::vector<Tone> with_moving = static_tones;
-  with_moving.push_back({25.0, {0.0, amplitude}, 2.5});
+  with_moving.push_back({25.0, {0.0, amplitude}, 2.5, Origin::target});
   struct Case {
     const char* name;
     std::vector<Tone> tones;

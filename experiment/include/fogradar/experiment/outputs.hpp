@@ -14,8 +14,8 @@ namespace fogradar::experiment {
 
 inline constexpr const char* sensor_limit_criterion =
     "first active-layer count at which fewer than 50 % of the measurements detect the target "
-    "(within the association gate) with no detection inside an active fog layer echoing at least "
-    "as strongly";
+    "(a target-origin detection within the association gate) with no fog-origin detection echoing "
+    "at least as strongly";
 
 std::string samples_csv(const ExperimentResult& result);
 std::string summary_csv(const ExperimentSummary& summary);

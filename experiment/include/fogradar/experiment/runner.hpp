@@ -10,19 +10,26 @@
 #include <vector>
 
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/radar/origin.hpp"
 
 namespace fogradar::experiment {
 
-// What the tracker reports for one measurement.
+// What the tracker reports for one measurement, with the simulation's ground truth beside it.
 struct MeasurementRecord {
-  bool detected = false;  // a detection inside the association gate
-  double range_m = 0.0;   // only meaningful when detected
+  // A detection inside the association gate (the strongest there): what a tracker associates.
+  bool associated = false;
+  radar::Origin associated_origin = radar::Origin::noise;  // only meaningful when associated
+  // A target detection: associated, and the associated detection's origin is target. A fog or
+  // noise detection in the gate is a false association and counts as a miss.
+  bool detected = false;
+  double range_m = 0.0;  // of the associated detection; only meaningful when associated
   double rcs_dbsm = 0.0;
   double snr_db = 0.0;
-  // A detection inside an active fog layer echoes at least as strongly (received power) as the
-  // tracked target, or there is no target detection at all: the sensor cannot tell target from fog.
+  // A fog-origin detection echoes at least as strongly (received power) as the target detection,
+  // or there is no target detection at all: the sensor cannot tell target from fog.
   bool fog_rivals_target = false;
-  std::size_t fog_detections = 0;  // detections inside active fog layers
+  std::size_t fog_detections = 0;  // fog-origin detections anywhere in the map
+  std::size_t false_alarms = 0;    // noise-origin detections anywhere in the map
 };
 
 struct StepResult {
@@ -34,6 +41,10 @@ struct StepResult {
 struct ExperimentResult {
   std::vector<StepResult> steps;
   double cfar_threshold_db = 0.0;  // 10 log10(alpha): detection needs SNR above about this
+  // The CFAR's design: P_fa times the cells it tests per frame (every cell of the map). Counts
+  // cells; a detection is an 8-connected object of cells, so noise detections per frame come out
+  // at most this (fewer where the window correlates neighbouring cells).
+  double expected_false_alarm_cells_per_frame = 0.0;
 };
 
 struct RunOptions {

@@ -1,6 +1,6 @@
-// Per-step statistics of an experiment (Tukey box plot of the detected RCS values, shift against the
-// 0-layer series) and the sensor limit: the study's assessment criterion, the number of active
-// layers at which the sensor can no longer tell the target from the fog.
+// Per-step statistics of an experiment (Tukey box plot of the target detections' RCS values, shift
+// against the 0-layer series) and the sensor limit: the study's assessment criterion, the number of
+// active layers at which the sensor can no longer tell the target from the fog.
 #pragma once
 
 #include <cstddef>
@@ -16,27 +16,34 @@ namespace fogradar::experiment {
 struct StepSummary {
   std::size_t active_layers = 0;
   std::size_t n = 0;           // measurements
-  std::size_t detections = 0;  // with a target detection
+  std::size_t detections = 0;  // with a target detection (target origin, in the gate)
   double detection_rate = 0.0;
-  stats::BoxPlot rcs;          // of the detected rcs_dbsm values
-  // Against the 0-layer series: median(this) - median(baseline) and the Mann-Whitney U p-value;
-  // NaN for the baseline itself or when either series has no detection.
+  // Measurements whose gate association is a fog or a noise detection (counted as misses).
+  double false_association_rate = 0.0;
+  double false_alarms_per_frame = 0.0;    // mean noise-origin detections per measurement
+  double fog_detections_per_frame = 0.0;  // mean fog-origin detections per measurement
+  stats::BoxPlot rcs;                     // of the target detections' rcs_dbsm values
+  // Against the 0-layer series: the Hodges-Lehmann shift (median of all pairwise differences
+  // x_i - y_j), its distribution-free 95 % interval (the inverted Mann-Whitney test) and the
+  // Mann-Whitney U p-value; shift 0 and interval and p NaN for the baseline itself, all NaN when
+  // either series has no target detection.
   double median_shift_db = 0.0;
+  stats::Interval median_shift_ci95;
   double p_value = 0.0;
-  stats::Interval median_shift_ci95;  // distribution-free 95 % interval of the shift
-  double median_snr_db = 0.0;
+  double median_snr_db = 0.0;  // of the target detections
   double two_way_attenuation_db = 0.0;
-  double confusion_rate = 0.0;  // measurements without a target or with fog rivalling it
+  double confusion_rate = 0.0;  // measurements without a target detection or with fog rivalling it
 };
 
 struct ExperimentSummary {
   std::vector<StepSummary> steps;
-  // First layer count at which fewer than half the measurements detect the target with no fog
-  // detection at least as strong (docs/experiment.md); empty if the chamber never gets there.
+  // First layer count at which fewer than half the measurements detect the target (target origin)
+  // with no fog-origin detection at least as strong (docs/scenario.md); empty if never reached.
   std::optional<std::size_t> sensor_limit_layers;
   // At the last step: median target SNR minus the CFAR threshold factor (dB), i.e. roughly how
   // much more two-way attenuation the median echo could take before it drops below the threshold.
   std::optional<double> attenuation_margin_db;
+  double expected_false_alarm_cells_per_frame = 0.0;  // ExperimentResult's design figure
 };
 
 inline constexpr double sensor_limit_success_fraction = 0.5;

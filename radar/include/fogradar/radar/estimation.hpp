@@ -12,6 +12,7 @@
 
 #include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/fft.hpp"
+#include "fogradar/radar/origin.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/processing.hpp"
 
@@ -27,6 +28,11 @@ struct Detection {
   double rcs_dbsm = 0.0;
   double snr_db = 0.0;                    // peak power over the chain's thermal-noise power per cell
   std::size_t cells = 0;                  // detected cells in the object
+  std::size_t range_cell = 0;             // the object's strongest cell: range bin in [0, N)
+  std::size_t doppler_cell = 0;           // and Doppler bin in [0, N_c) (unsigned, as in the map)
+  // What dominates the strongest cell (OriginClassifier, attribution.hpp); estimate_detections
+  // leaves noise, RadarChain::measure sets it.
+  Origin origin = Origin::noise;
 };
 
 // cos(pi j / N) and sin(pi j / N) for j = 0 .. 2N-1, the rotations from which the Dirichlet

@@ -8,6 +8,7 @@
 
 #include "fogradar/core/random.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/radar/attribution.hpp"
 #include "fogradar/radar/estimation.hpp"
 #include "fogradar/radar/processing.hpp"
 #include "fogradar/radar/scene.hpp"
@@ -16,9 +17,11 @@
 namespace fogradar::radar {
 
 struct Measurement {
-  std::vector<Detection> detections;
+  std::vector<Detection> detections;  // each with its origin (target, fog or noise)
   // The strongest detection within the association gate around the chamber's target range, or
-  // nothing: a missed detection is reported as such, never as a made-up value (DESIGN §3.6).
+  // nothing: a missed detection is reported as such, never as a made-up value (DESIGN §3.6). This
+  // is what a tracker associates, whatever its origin: a noise or fog detection in the gate is a
+  // false association, which the caller tells from target->origin.
   std::optional<Detection> target;
   SynthesisReport synthesis;
 };
@@ -38,6 +41,7 @@ class RadarChain {
   const RadarDerived& derived() const { return derived_; }
   const RangeDopplerProcessor& processor() const { return processor_; }
   const CfarDetector& cfar() const { return cfar_; }
+  const OriginClassifier& origin_classifier() const { return origin_classifier_; }
 
   // Validates the scene, then throws InvalidParameter if the chamber was resolved at another
   // frequency than the radar's sweep centre ("chamber.frequency_hz"), a centre lies at or behind
@@ -47,7 +51,8 @@ class RadarChain {
 
   MeasurementWorkspace make_workspace() const;
 
-  // Synthesise, process and estimate one frame; `out` is overwritten (its buffers reused).
+  // Synthesise, process and estimate one frame, and attribute each detection to its origin from the
+  // frame's tones (OriginClassifier); `out` is overwritten (its buffers reused).
   void measure(const Scene& scene, const propagation::Chamber& chamber,
                const propagation::ActiveLayers& active, RandomStream& rng, MeasurementWorkspace& workspace,
                Measurement& out) const;
@@ -68,6 +73,7 @@ class RadarChain {
   RadarDerived derived_;
   RangeDopplerProcessor processor_;
   CfarDetector cfar_;
+  OriginClassifier origin_classifier_;
 };
 
 }  // namespace fogradar::radar

@@ -10,6 +10,7 @@
 
 #include "fogradar/core/random.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/radar/origin.hpp"
 #include "fogradar/radar/params.hpp"
 
 namespace fogradar::radar {
@@ -67,11 +68,12 @@ Scene point_target_scene(double rcs_dbsm);
 Scene evt_rear_scene(double rcs_dbsm = 10.0);
 
 // A propagation path as the receiver sees it: two-way path length, complex amplitude (sqrt(W)) at
-// the start of the frame, radial velocity.
+// the start of the frame, radial velocity, and what it comes from (target or fog, never noise).
 struct Tone {
   double path_length_m;
   std::complex<double> amplitude;
   double radial_velocity_m_per_s;
+  Origin origin;
 };
 
 // The paths of one measurement: every scattering centre (direct, and with the floor the
