@@ -20,10 +20,10 @@ constexpr double legend_column = 240.0;
 constexpr double title_baseline = 28.0;
 constexpr double plot_top = 52.0;
 constexpr double min_plot_height = 100.0;
-constexpr double strip_gap = 28.0;     // plot bottom to strip top, holds the strip's title
-constexpr double strip_height = 56.0;  // 0..100 %
+constexpr double strip_gap = 28.0;          // plot bottom to strip top, holds the strip's title
+constexpr double strip_height = 56.0;       // 0..100 %
 constexpr double category_baseline = 18.0;  // below the lowest panel
-constexpr double x_label_baseline = 42.0;    // below the lowest panel
+constexpr double x_label_baseline = 42.0;   // below the lowest panel
 constexpr double caption_gap = 8.0;
 constexpr double caption_line = 16.0;
 constexpr double bottom_padding = 12.0;
@@ -90,7 +90,8 @@ std::size_t utf8_length(std::string_view text) {
   }));
 }
 
-void line(std::string& svg, double x1, double y1, double x2, double y2, std::string_view attributes) {
+void line(std::string& svg, double x1, double y1, double x2, double y2,
+          std::string_view attributes) {
   svg += "<line x1=\"" + px(x1) + "\" y1=\"" + px(y1) + "\" x2=\"" + px(x2) + "\" y2=\"" + px(y2) +
          "\" " + std::string(attributes) + "/>\n";
 }
@@ -102,8 +103,8 @@ void rect(std::string& svg, double x, double y, double w, double h, std::string_
   svg += tooltip.empty() ? "/>\n" : "><title>" + escape_xml(tooltip) + "</title></rect>\n";
 }
 
-void text(std::string& svg, double x, double y, std::string_view anchor, std::string_view attributes,
-          std::string_view content) {
+void text(std::string& svg, double x, double y, std::string_view anchor,
+          std::string_view attributes, std::string_view content) {
   svg += "<text x=\"" + px(x) + "\" y=\"" + px(y) + "\" text-anchor=\"" + std::string(anchor) +
          "\" " + std::string(attributes) + ">" + escape_xml(content) + "</text>\n";
 }
@@ -116,7 +117,8 @@ void diamond(std::string& svg, double x, double y, std::string_view class_name,
 }
 
 void cross(std::string& svg, double x, double y, double half, std::string_view class_name) {
-  const std::string attributes = "class=\"" + std::string(class_name) + "\" " + std::string(cross_style);
+  const std::string attributes =
+      "class=\"" + std::string(class_name) + "\" " + std::string(cross_style);
   line(svg, x - half, y - half, x + half, y + half, attributes);
   line(svg, x - half, y + half, x + half, y - half, attributes);
 }
@@ -321,10 +323,12 @@ AxisTicks nice_axis_ticks(double low, double high, int max_intervals) {
 }
 
 std::size_t category_label_stride(std::span<const BoxPlotSeries> series, double band_px) {
-  if (!(std::isfinite(band_px) && band_px > 0.0)) throw_invalid("band_px", band_px, "finite and > 0");
+  if (!(std::isfinite(band_px) && band_px > 0.0))
+    throw_invalid("band_px", band_px, "finite and > 0");
   std::size_t widest = 0;
   for (const BoxPlotSeries& s : series) widest = std::max(widest, utf8_length(s.label));
-  const double needed = static_cast<double>(widest) * label_em_per_char * category_font_px + label_gap_px;
+  const double needed =
+      static_cast<double>(widest) * label_em_per_char * category_font_px + label_gap_px;
   // 1, 2, 5, 10, 20, 50, ...; a stride beyond the series count writes only the first label.
   for (std::size_t decade = 1;; decade *= 10) {
     for (const std::size_t factor : {1u, 2u, 5u}) {
@@ -339,7 +343,8 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
   if (series.empty()) {
     throw InvalidParameter("series", "series is empty: must contain at least one series");
   }
-  for (std::size_t i = 0; i < series.size(); ++i) require_drawable(series[i], i, has_strip(options));
+  for (std::size_t i = 0; i < series.size(); ++i)
+    require_drawable(series[i], i, has_strip(options));
   if (options.marked_category && *options.marked_category >= series.size()) {
     throw_invalid("marked_category", std::to_string(*options.marked_category),
                   "an index of the series, < " + std::to_string(series.size()));
@@ -399,7 +404,8 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
   for (long i = 0; i <= tick_count; ++i) {
     const double value = ticks.first + static_cast<double>(i) * ticks.step;
     const double y = to_y(value);
-    line(svg, at.plot_left, y, at.plot_right, y, "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
+    line(svg, at.plot_left, y, at.plot_right, y,
+         "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
     line(svg, at.plot_left - 5.0, y, at.plot_left, y, "stroke=\"#333333\" stroke-width=\"1\"");
     text(svg, at.plot_left - 8.0, y + 4.0, "end", "class=\"tick\"",
          format_fixed(value, ticks.decimals));
@@ -408,12 +414,15 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
        "class=\"frame\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1\"");
 
   if (has_strip(options)) {
-    text(svg, at.plot_left, at.strip_top - 8.0, "start", "class=\"rate-title\"", options.rate_label);
+    text(svg, at.plot_left, at.strip_top - 8.0, "start", "class=\"rate-title\"",
+         options.rate_label);
     for (const int percent : {0, 50, 100}) {
       const double y = at.strip_bottom - 0.01 * percent * strip_height;
-      line(svg, at.plot_left, y, at.plot_right, y, "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
+      line(svg, at.plot_left, y, at.plot_right, y,
+           "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
       line(svg, at.plot_left - 5.0, y, at.plot_left, y, "stroke=\"#333333\" stroke-width=\"1\"");
-      text(svg, at.plot_left - 8.0, y + 4.0, "end", "class=\"rate-tick\"", std::to_string(percent) + " %");
+      text(svg, at.plot_left - 8.0, y + 4.0, "end", "class=\"rate-tick\"",
+           std::to_string(percent) + " %");
     }
     rect(svg, at.plot_left, at.strip_top, at.plot_right - at.plot_left, strip_height,
          "class=\"frame\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1\"");
@@ -422,11 +431,13 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
   if (options.marked_category) {
     const double x = at.center(*options.marked_category);
     line(svg, x, plot_top, x, at.plot_bottom, with_class("mark", mark_style));
-    if (has_strip(options)) line(svg, x, at.strip_top, x, at.strip_bottom, with_class("mark", mark_style));
+    if (has_strip(options))
+      line(svg, x, at.strip_top, x, at.strip_bottom, with_class("mark", mark_style));
     mark_triangle(svg, x, plot_top - 2.0, "mark-head");
   }
 
-  for (std::size_t i = 0; i < series.size(); ++i) draw_series(svg, series[i], at.center(i), at, options, to_y);
+  for (std::size_t i = 0; i < series.size(); ++i)
+    draw_series(svg, series[i], at.center(i), at, options, to_y);
 
   // Category ticks on the lowest panel; labels on every stride-th, which gets a longer tick.
   const std::size_t stride = category_label_stride(series, at.band);
@@ -436,7 +447,8 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
     line(svg, x, at.axis_bottom, x, at.axis_bottom + (labelled ? 6.0 : 3.0),
          "class=\"category-tick\" stroke=\"#333333\" stroke-width=\"1\"");
     if (labelled) {
-      text(svg, x, at.axis_bottom + category_baseline, "middle", "class=\"category\"", series[i].label);
+      text(svg, x, at.axis_bottom + category_baseline, "middle", "class=\"category\"",
+           series[i].label);
     }
   }
 
@@ -447,9 +459,10 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
        "class=\"y-label\" font-size=\"14\" transform=\"rotate(-90 22.00 " + px(y_mid) + ")\"",
        options.y_label);
   for (std::size_t i = 0; i < options.caption.size(); ++i) {
-    text(svg, 16.0,
-         at.axis_bottom + x_label_baseline + caption_gap + caption_line * static_cast<double>(i + 1),
-         "start", "class=\"caption\" fill=\"#333333\"", options.caption[i]);
+    text(
+        svg, 16.0,
+        at.axis_bottom + x_label_baseline + caption_gap + caption_line * static_cast<double>(i + 1),
+        "start", "class=\"caption\" fill=\"#333333\"", options.caption[i]);
   }
   draw_legend(svg, at, options, any_data, any_empty);
   svg += "</svg>\n";

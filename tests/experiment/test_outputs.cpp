@@ -5,13 +5,12 @@
 // 101-step chamber that do not overlap.
 #include <gtest/gtest.h>
 
-#include "svg_check.hpp"
-
 #include <string>
 #include <vector>
 
 #include "fogradar/experiment/outputs.hpp"
 #include "fogradar/stats/box_plot.hpp"
+#include "svg_check.hpp"
 
 namespace fogradar::experiment {
 namespace {
@@ -32,7 +31,8 @@ ExperimentSummary summary_of(std::size_t steps, Detections&& detections) {
     s.detections = detections(k);
     s.detection_rate = static_cast<double>(s.detections) / static_cast<double>(s.n);
     std::vector<double> rcs;
-    for (std::size_t j = 0; j < s.detections; ++j) rcs.push_back(10.0 - static_cast<double>(k) + 0.01 * static_cast<double>(j));
+    for (std::size_t j = 0; j < s.detections; ++j)
+      rcs.push_back(10.0 - static_cast<double>(k) + 0.01 * static_cast<double>(j));
     s.rcs = stats::box_plot(rcs);
     summary.steps.push_back(s);
   }
@@ -54,12 +54,18 @@ TEST(RcsBoxplot, WellFormedWithScenarioTitleAndCaption) {
   const auto title = texts_of_class(svg, "title");
   ASSERT_EQ(title.size(), 1u);
   EXPECT_NE(title[0].content.find("EVT rear 10 dBsm"), std::string::npos) << title[0].content;
-  EXPECT_NE(title[0].content.find("\u03b2(550 nm) = 900 /km"), std::string::npos) << title[0].content;
+  EXPECT_NE(title[0].content.find("\u03b2(550 nm) = 900 /km"), std::string::npos)
+      << title[0].content;
   std::string caption;
-  for (const auto& line : texts_of_class(svg, "caption")) caption += line.content + "\n";
-  for (const char* part : {"4 \u00d7 1 m fog layers", "lognormal droplets, median diameter 1 \u00b5m",
-                           "\u03c3g = 1.5", "CFAR CA", "P_fa = 1e-06", "n = 200 measurements per step",
-                           "seed 1", "detection rate = detections / n", "2 active layers."}) {
+  for (const auto& line : texts_of_class(svg, "caption")) {
+    // Long paragraphs are broken at spaces into lines that fit the plot's width.
+    EXPECT_LE(line.content.size(), 140u + 20u) << line.content;  // UTF-8: up to 20 extra bytes
+    caption += line.content + " ";
+  }
+  for (const char* part :
+       {"4 \u00d7 1 m fog layers", "lognormal droplets, median diameter 1 \u00b5m", "\u03c3g = 1.5",
+        "CFAR CA", "P_fa = 1e-06", "n = 200 measurements per step", "seed 1",
+        "detection rate = detections / n", "Sensor limit: 2 active layers; criterion: first"}) {
     EXPECT_NE(caption.find(part), std::string::npos) << part << " not in\n" << caption;
   }
 
@@ -76,11 +82,15 @@ TEST(RcsBoxplot, WellFormedWithScenarioTitleAndCaption) {
 // n is the number of measurements (200), as in the printed table, not the number of detections.
 TEST(RcsBoxplot, NCountsMeasurementsAndDetectionsAreSeparate) {
   const std::string svg = rcs_boxplot_svg(paper_scenario(), losing_summary());
-  EXPECT_NE(svg.find("<title>1 active layer: n = 200 measurements, 150 with an associated target detection "
-                     "(75.0 %)"),
-            std::string::npos);
-  EXPECT_NE(svg.find("<title>3 active layers: n = 200 measurements, 0 with an associated target detection"),
-            std::string::npos);
+  EXPECT_NE(
+      svg.find(
+          "<title>1 active layer: n = 200 measurements, 150 with an associated target detection "
+          "(75.0 %)"),
+      std::string::npos);
+  EXPECT_NE(
+      svg.find(
+          "<title>3 active layers: n = 200 measurements, 0 with an associated target detection"),
+      std::string::npos);
   EXPECT_EQ(svg.find("n = 150"), std::string::npos);
   EXPECT_EQ(svg.find("n = 50"), std::string::npos);
   EXPECT_NE(summary_table(losing_summary()).find("     1   200     75.0"), std::string::npos);
@@ -138,7 +148,8 @@ TEST(RcsBoxplot, StepsWithoutDetectionAreMarked) {
 
 TEST(RcsBoxplot, LongChambersKeepLabelsApart) {
   for (const std::size_t steps : {41u, 101u}) {
-    const ExperimentSummary summary = summary_of(steps, [&](std::size_t k) { return k < steps / 2 ? 20u : 0u; });
+    const ExperimentSummary summary =
+        summary_of(steps, [&](std::size_t k) { return k < steps / 2 ? 20u : 0u; });
     Scenario s = paper_scenario();
     s.chamber.layer_count = steps - 1;
     s.experiment.max_active_layers = steps - 1;

@@ -5,9 +5,6 @@
 // axis ticks (hand-worked cases of Heckbert's rule, exact).
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-#include "svg_check.hpp"
-
 #include <cmath>
 #include <limits>
 #include <string>
@@ -18,6 +15,8 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/svg_plot.hpp"
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
 
 namespace fogradar::stats {
 namespace {
@@ -34,14 +33,16 @@ std::vector<double> rcs_sample(std::uint64_t seed, std::size_t n, double median_
   return v;
 }
 
-BoxPlotSeries series_of(std::string label, BoxPlot box, double rate = std::numeric_limits<double>::quiet_NaN()) {
+BoxPlotSeries series_of(std::string label, BoxPlot box,
+                        double rate = std::numeric_limits<double>::quiet_NaN()) {
   return {std::move(label), std::move(box), rate, ""};
 }
 
 std::vector<BoxPlotSeries> paper_like_series() {
   std::vector<BoxPlotSeries> series;
   for (int layers = 0; layers < 4; ++layers) {
-    series.push_back(series_of(std::to_string(layers), box_plot(rcs_sample(100 + layers, 200, 15.0)), 1.0));
+    series.push_back(
+        series_of(std::to_string(layers), box_plot(rcs_sample(100 + layers, 200, 15.0)), 1.0));
   }
   series.push_back(series_of("4", box_plot(std::vector<double>{}), 0.0));
   return series;
@@ -73,8 +74,9 @@ TEST(SvgPlot, WellFormedStandaloneSvg) {
     const std::string svg = box_plot_svg(paper_like_series(), options);
     EXPECT_EQ(xml_error(svg), "");
     EXPECT_TRUE(svg.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\""));
-    EXPECT_NE(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"960.00\""),
-              std::string::npos);
+    EXPECT_NE(
+        svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"960.00\""),
+        std::string::npos);
     EXPECT_TRUE(svg.ends_with("</svg>\n"));
   }
 }
@@ -117,24 +119,26 @@ TEST(SvgPlot, OneBoxPerSeriesWithData) {
 TEST(SvgPlot, LegendNamesEverySymbolDrawn) {
   const std::string svg = box_plot_svg(paper_like_series(), full_options());
   EXPECT_EQ(count(svg, "<g class=\"legend\">"), 1u);
-  for (const char* symbol : {"class=\"legend-box\"", "class=\"legend-median\"", "class=\"legend-outlier\"",
-                             "class=\"legend-mean\"", "class=\"legend-empty\"", "class=\"legend-mark\"",
-                             "class=\"legend-rate\""}) {
+  for (const char* symbol :
+       {"class=\"legend-box\"", "class=\"legend-median\"", "class=\"legend-outlier\"",
+        "class=\"legend-mean\"", "class=\"legend-empty\"", "class=\"legend-mark\"",
+        "class=\"legend-rate\""}) {
     EXPECT_EQ(count(svg, symbol), 1u) << symbol;
   }
   EXPECT_EQ(count(svg, "class=\"legend-whisker\""), 3u);  // stem and two caps
   std::vector<std::string> texts;
   for (const auto& t : texts_of_class(svg, "legend-text")) texts.push_back(t.content);
-  EXPECT_EQ(texts, (std::vector<std::string>{"box: quartiles Q1 to Q3", "median", "whiskers: Tukey, 1.5 IQR",
-                                              "outlier beyond a whisker", "mean", "nothing here", "the mark",
-                                              "rate"}));
+  EXPECT_EQ(texts, (std::vector<std::string>{"box: quartiles Q1 to Q3", "median",
+                                             "whiskers: Tukey, 1.5 IQR", "outlier beyond a whisker",
+                                             "mean", "nothing here", "the mark", "rate"}));
 
   // No empty series, no mark, no strip: no legend entries for them.
   std::vector<BoxPlotSeries> full = paper_like_series();
   full.pop_back();
   const std::string plain = box_plot_svg(full, paper_options());
   EXPECT_EQ(texts_of_class(plain, "legend-text").size(), 5u);
-  for (const char* symbol : {"legend-empty", "legend-mark", "legend-rate"}) EXPECT_EQ(count(plain, symbol), 0u);
+  for (const char* symbol : {"legend-empty", "legend-mark", "legend-rate"})
+    EXPECT_EQ(count(plain, symbol), 0u);
 }
 
 TEST(SvgPlot, EmptySeriesAreShadedAndCrossed) {
@@ -146,7 +150,8 @@ TEST(SvgPlot, EmptySeriesAreShadedAndCrossed) {
   ASSERT_EQ(labels.size(), 5u);
   const std::size_t band = elements_of_class(svg, "rect", "no-values-band").at(0);
   const double band_width = labels[4].x - labels[3].x;
-  EXPECT_NEAR(number(test_support::attribute(svg, band, "x")), labels[4].x - 0.5 * band_width, 0.01);
+  EXPECT_NEAR(number(test_support::attribute(svg, band, "x")), labels[4].x - 0.5 * band_width,
+              0.01);
   EXPECT_NEAR(number(test_support::attribute(svg, band, "width")), band_width, 0.01);
   // A band of 127 px holds the written label; 100 bands of 6.36 px only the cross.
   EXPECT_EQ(count(svg, ">nothing here</text>"), 2u);  // in the plot and in the legend
@@ -161,15 +166,16 @@ TEST(SvgPlot, EmptySeriesAreShadedAndCrossed) {
 
 TEST(SvgPlot, BoxGeometryFollowsTheQuartiles) {
   // One series 10..20 dBsm: axis 10..20 in steps of 2. A 960 x 640 plot without strip and caption
-  // spans y = 52 (top) to 640 - 42 - 12 = 586 (bottom), x = 84 to 960 - 240 = 720; q3 = 17.5 maps to
-  // 586 - 0.75 * 534 = 185.50, the box height is (17.5 - 12.5) / 10 * 534 = 267, its half width is
-  // 40 (the maximum) about the centre 402.
+  // spans y = 52 (top) to 640 - 42 - 12 = 586 (bottom), x = 84 to 960 - 240 = 720; q3 = 17.5 maps
+  // to 586 - 0.75 * 534 = 185.50, the box height is (17.5 - 12.5) / 10 * 534 = 267, its half width
+  // is 40 (the maximum) about the centre 402.
   std::vector<double> v;
   for (int i = 0; i <= 20; ++i) v.push_back(10.0 + 0.5 * i);
   const std::vector<BoxPlotSeries> series = {series_of("a", box_plot(v))};
   const std::string svg = box_plot_svg(series, paper_options());
-  EXPECT_NE(svg.find("<rect x=\"362.00\" y=\"185.50\" width=\"80.00\" height=\"267.00\" class=\"box\""),
-            std::string::npos)
+  EXPECT_NE(
+      svg.find("<rect x=\"362.00\" y=\"185.50\" width=\"80.00\" height=\"267.00\" class=\"box\""),
+      std::string::npos)
       << svg;
   for (const char* tick : {">10<", ">12<", ">14<", ">16<", ">18<", ">20<"}) {
     EXPECT_EQ(count(svg, tick), 1u) << tick;
@@ -241,13 +247,14 @@ TEST(SvgPlot, LabelStrideFromTheWidestLabel) {
   EXPECT_EQ(category_label_stride(three, 20.0), 2u);  // 2 x 20 >= 31.2 > 20
   EXPECT_EQ(category_label_stride(three, 10.0), 5u);  // 5 >= the count: only the first label
   std::vector<BoxPlotSeries> many(100, series_of("99", BoxPlot{}));  // 22.8 px needed
-  EXPECT_EQ(category_label_stride(many, 6.36), 5u);                   // 2 x 6.36 < 22.8 <= 5 x 6.36
-  EXPECT_EQ(category_label_stride(many, 2.0), 20u);                   // 10 x 2 < 22.8 <= 20 x 2
+  EXPECT_EQ(category_label_stride(many, 6.36), 5u);                  // 2 x 6.36 < 22.8 <= 5 x 6.36
+  EXPECT_EQ(category_label_stride(many, 2.0), 20u);                  // 10 x 2 < 22.8 <= 20 x 2
   EXPECT_EQ(test_support::rejected_field([&] { category_label_stride(many, 0.0); }), "band_px");
 }
 
 TEST(SvgPlot, EscapesText) {
-  std::vector<BoxPlotSeries> series = {series_of("A & B <1>", box_plot(std::vector<double>{1, 2, 3}))};
+  std::vector<BoxPlotSeries> series = {
+      series_of("A & B <1>", box_plot(std::vector<double>{1, 2, 3}))};
   series[0].note = "note & <more>";
   SvgPlotOptions options = paper_options();
   options.title = "x < y & \"quoted\"";
@@ -293,7 +300,9 @@ TEST(NiceAxisTicks, OneTwoFiveSteps) {  // hand-worked: smallest 1-2-5 step with
 
 TEST(SvgConfig, EveryInvalidInputNamesItsField) {
   const std::vector<BoxPlotSeries> series = paper_like_series();
-  const auto expect_field = [](auto&& f, const std::string& field) { EXPECT_EQ(test_support::rejected_field(f), field); };
+  const auto expect_field = [](auto&& f, const std::string& field) {
+    EXPECT_EQ(test_support::rejected_field(f), field);
+  };
   expect_field([&] { box_plot_svg(std::span<const BoxPlotSeries>{}, paper_options()); }, "series");
   SvgPlotOptions narrow = paper_options();
   narrow.width_px = 10;
@@ -302,7 +311,8 @@ TEST(SvgConfig, EveryInvalidInputNamesItsField) {
   flat.height_px = std::numeric_limits<double>::quiet_NaN();
   expect_field([&] { box_plot_svg(series, flat); }, "svg.height_px");
   SvgPlotOptions wordy = full_options();
-  wordy.caption.assign(30, "a caption line");  // 30 x 16 px of caption leave no 100 px plot in 640 px
+  wordy.caption.assign(30,
+                       "a caption line");  // 30 x 16 px of caption leave no 100 px plot in 640 px
   expect_field([&] { box_plot_svg(series, wordy); }, "svg.height_px");
   std::vector<BoxPlotSeries> broken = series;
   broken[1].box.median = std::numeric_limits<double>::infinity();

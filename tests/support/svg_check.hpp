@@ -122,7 +122,8 @@ struct SvgText {
 // Every <text> element whose class attribute is `class_name`, in document order.
 inline std::vector<SvgText> texts_of_class(std::string_view doc, std::string_view class_name) {
   std::vector<SvgText> texts;
-  for (auto tag = doc.find("<text "); tag != std::string_view::npos; tag = doc.find("<text ", tag + 1)) {
+  for (auto tag = doc.find("<text "); tag != std::string_view::npos;
+       tag = doc.find("<text ", tag + 1)) {
     if (attribute(doc, tag, "class") != class_name) continue;
     const std::size_t open_end = doc.find('>', tag) + 1;
     texts.push_back({std::strtod(attribute(doc, tag, "x").c_str(), nullptr),
@@ -147,8 +148,8 @@ inline std::vector<std::size_t> elements_of_class(std::string_view doc, std::str
 
 // "" when no two consecutive texts of `class_name` (centred at x, 12 px font) overlap with at least
 // 2 px between them, else a description. A text's width is taken as 0.64 em per character: DejaVu
-// Sans, Debian's default sans-serif face, advances its digits by 1303/2048 = 0.636 em, more than the
-// other common faces (Liberation Sans and Arial 0.556 em).
+// Sans, Debian's default sans-serif face, advances its digits by 1303/2048 = 0.636 em, more than
+// the other common faces (Liberation Sans and Arial 0.556 em).
 inline std::string text_overlap(std::string_view doc, std::string_view class_name) {
   const auto width = [](const std::string& text) {
     std::size_t chars = 0;
@@ -157,10 +158,12 @@ inline std::string text_overlap(std::string_view doc, std::string_view class_nam
   };
   const std::vector<SvgText> texts = texts_of_class(doc, class_name);
   for (std::size_t i = 1; i < texts.size(); ++i) {
-    const double space = texts[i].x - texts[i - 1].x - 0.5 * (width(texts[i].content) + width(texts[i - 1].content));
+    const double space =
+        texts[i].x - texts[i - 1].x - 0.5 * (width(texts[i].content) + width(texts[i - 1].content));
     if (space < 2.0) {
-      return "'" + texts[i - 1].content + "' at x = " + std::to_string(texts[i - 1].x) + " and '" + texts[i].content +
-             "' at x = " + std::to_string(texts[i].x) + " are " + std::to_string(space) + " px apart";
+      return "'" + texts[i - 1].content + "' at x = " + std::to_string(texts[i - 1].x) + " and '" +
+             texts[i].content + "' at x = " + std::to_string(texts[i].x) + " are " +
+             std::to_string(space) + " px apart";
     }
   }
   return "";

@@ -34,9 +34,9 @@ struct SvgPlotOptions {
   std::string y_label;               // e.g. "RCS (dBsm)"
   double width_px = 960;
   double height_px = 640;
-  bool show_mean = true;                  // mean as a diamond marker
-  std::string empty_label = "no values";  // legend text of the empty-category symbol
-  std::string rate_label;                 // title of the rate strip (0-100 %); empty: no strip
+  bool show_mean = true;                       // mean as a diamond marker
+  std::string empty_label = "no values";       // legend text of the empty-category symbol
+  std::string rate_label;                      // title of the rate strip (0-100 %); empty: no strip
   std::optional<std::size_t> marked_category;  // index of a category marked by a dashed line
   std::string mark_label;                      // legend text of that mark
 
