@@ -225,8 +225,7 @@ void draw_series(std::string& svg, const BoxPlotSeries& s, double cx, const Layo
       // Inside a tall bar, above a short one.
       const bool inside = bar >= 18.0;
       text(svg, cx, inside ? at.strip_bottom - bar + 13.0 : at.strip_bottom - bar - 3.0, "middle",
-           inside ? "class=\"rate-value\" font-size=\"11\" fill=\"#1a1a1a\""
-                  : "class=\"rate-value\" font-size=\"11\" fill=\"#333333\"",
+           "class=\"rate-value\" font-size=\"11\" fill=\"#1a1a1a\"",
            format_fixed(100.0 * s.rate, 0) + " %");
     }
   }
