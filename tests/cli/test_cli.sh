@@ -27,6 +27,11 @@ head -1 "$work/t1/summary.csv" | grep -qx 'active_layers,n,detections,detection_
 [ "$(wc -l <"$work/t1/samples.csv")" -eq 31 ] && pass || fail "samples.csv should have 5 x 6 rows"
 grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary.json lacks sensor_limit_layers"
 grep -q '<svg' "$work/t1/rcs_boxplot.svg" && pass || fail "no svg element"
+# An XML parser independent of the C++ tests' checker, where Python is installed.
+if command -v python3 >/dev/null; then
+  python3 -c 'import sys, xml.etree.ElementTree as ET; ET.parse(sys.argv[1])' "$work/t1/rcs_boxplot.svg" && pass \
+    || fail "rcs_boxplot.svg is not well-formed XML"
+fi
 # The resolved scenario reproduces the run exactly.
 "$fogradar" run --scenario "$work/t1/scenario.toml" --out "$work/t3" >/dev/null 2>&1 || fail "rerun from scenario.toml"
 cmp -s "$work/t1/samples.csv" "$work/t3/samples.csv" && pass || fail "scenario.toml does not reproduce the run"

@@ -1,12 +1,12 @@
-// SVG box plot tests: well-formed standalone SVG 1.1 (checked by a small XML tokenizer written
-// here: balanced tags, quoted attributes, only predefined entities), one box per series with
-// data, escaping, byte-identical output, the "no detections" series, and 1-2-5 axis ticks
-// (hand-worked cases of Heckbert's rule, exact).
+// SVG box plot tests: well-formed standalone SVG 1.1 (checked by the small XML tokenizer of
+// svg_check.hpp), one box per series with data, a legend entry for every symbol drawn, empty series
+// shaded and crossed, the rate strip and the marked category at their categories, category labels
+// thinned so that none overlap for up to 150 categories, escaping, byte-identical output, and 1-2-5
+// axis ticks (hand-worked cases of Heckbert's rule, exact).
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
-#include <cctype>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,98 +15,16 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/svg_plot.hpp"
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
 
 namespace fogradar::stats {
 namespace {
 
-std::size_t count(std::string_view haystack, std::string_view needle) {
-  std::size_t n = 0;
-  for (auto pos = haystack.find(needle); pos != std::string_view::npos;
-       pos = haystack.find(needle, pos + needle.size())) {
-    ++n;
-  }
-  return n;
-}
-
-// Character data or an attribute value: no '<', every '&' starts a predefined entity.
-bool valid_text(std::string_view text) {
-  if (text.find('<') != std::string_view::npos) return false;
-  for (auto pos = text.find('&'); pos != std::string_view::npos; pos = text.find('&', pos + 1)) {
-    const std::string_view rest = text.substr(pos);
-    bool known = false;
-    for (const std::string_view entity : {"&amp;", "&lt;", "&gt;", "&quot;", "&apos;"}) {
-      known = known || rest.starts_with(entity);
-    }
-    if (!known) return false;
-  }
-  return true;
-}
-
-bool is_name_char(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == ':' || c == '_';
-}
-
-// Minimal XML well-formedness check: one root element, balanced and properly nested tags,
-// double-quoted unique attributes, valid character data. Returns "" or a description.
-std::string xml_error(std::string_view doc) {
-  std::size_t pos = 0;
-  if (doc.starts_with("<?xml")) pos = doc.find("?>") + 2;
-  std::vector<std::string> open;
-  int roots = 0;
-  while (true) {
-    const std::size_t lt = doc.find('<', pos);
-    const std::string_view text =
-        doc.substr(pos, lt == std::string_view::npos ? doc.npos : lt - pos);
-    if (!valid_text(text)) return "bad character data near " + std::to_string(pos);
-    if (open.empty() && text.find_first_not_of(" \n\t\r") != std::string_view::npos) {
-      return "text outside the root element";
-    }
-    if (lt == std::string_view::npos) break;
-    pos = lt + 1;
-    if (doc.substr(pos).starts_with("/")) {  // end tag
-      const std::size_t gt = doc.find('>', pos);
-      const std::string name(doc.substr(pos + 1, gt - pos - 1));
-      if (open.empty() || open.back() != name) return "mismatched </" + name + ">";
-      open.pop_back();
-      pos = gt + 1;
-      continue;
-    }
-    std::size_t end = pos;
-    while (end < doc.size() && is_name_char(doc[end])) ++end;
-    if (end == pos) return "missing element name at " + std::to_string(pos);
-    const std::string name(doc.substr(pos, end - pos));
-    if (open.empty() && ++roots > 1) return "second root element <" + name + ">";
-    std::vector<std::string> attributes;
-    pos = end;
-    while (true) {
-      while (pos < doc.size() && std::isspace(static_cast<unsigned char>(doc[pos]))) ++pos;
-      if (doc.substr(pos).starts_with("/>")) {
-        pos += 2;
-        break;
-      }
-      if (doc.substr(pos).starts_with(">")) {
-        open.push_back(name);
-        pos += 1;
-        break;
-      }
-      end = pos;
-      while (end < doc.size() && is_name_char(doc[end])) ++end;
-      const std::string attribute(doc.substr(pos, end - pos));
-      if (attribute.empty() || doc.substr(end, 2) != "=\"")
-        return "bad attribute in <" + name + ">";
-      for (const std::string& seen : attributes) {
-        if (seen == attribute) return "duplicate attribute " + attribute;
-      }
-      attributes.push_back(attribute);
-      const std::size_t close = doc.find('"', end + 2);
-      if (close == std::string_view::npos) return "unterminated attribute " + attribute;
-      if (!valid_text(doc.substr(end + 2, close - end - 2))) return "bad value of " + attribute;
-      pos = close + 1;
-    }
-  }
-  if (!open.empty()) return "unclosed <" + open.back() + ">";
-  return roots == 1 ? "" : "no root element";
-}
+using test_support::count;
+using test_support::elements_of_class;
+using test_support::texts_of_class;
+using test_support::xml_error;
 
 std::vector<double> rcs_sample(std::uint64_t seed, std::size_t n, double median_dbsm) {
   RandomStream rng(seed);
@@ -115,12 +33,18 @@ std::vector<double> rcs_sample(std::uint64_t seed, std::size_t n, double median_
   return v;
 }
 
+BoxPlotSeries series_of(std::string label, BoxPlot box,
+                        double rate = std::numeric_limits<double>::quiet_NaN()) {
+  return {std::move(label), std::move(box), rate, ""};
+}
+
 std::vector<BoxPlotSeries> paper_like_series() {
   std::vector<BoxPlotSeries> series;
   for (int layers = 0; layers < 4; ++layers) {
-    series.push_back({std::to_string(layers), box_plot(rcs_sample(100 + layers, 200, 15.0))});
+    series.push_back(
+        series_of(std::to_string(layers), box_plot(rcs_sample(100 + layers, 200, 15.0)), 1.0));
   }
-  series.push_back({"4", box_plot(std::vector<double>{})});
+  series.push_back(series_of("4", box_plot(std::vector<double>{}), 0.0));
   return series;
 }
 
@@ -132,13 +56,29 @@ SvgPlotOptions paper_options() {
   return options;
 }
 
+// Every optional part on: caption, rate strip, a marked category, an empty-category label.
+SvgPlotOptions full_options() {
+  SvgPlotOptions options = paper_options();
+  options.caption = {"first caption line", "second caption line"};
+  options.rate_label = "rate";
+  options.marked_category = 3;
+  options.mark_label = "the mark";
+  options.empty_label = "nothing here";
+  return options;
+}
+
+double number(const std::string& text) { return std::stod(text); }
+
 TEST(SvgPlot, WellFormedStandaloneSvg) {
-  const std::string svg = box_plot_svg(paper_like_series(), paper_options());
-  EXPECT_EQ(xml_error(svg), "");
-  EXPECT_TRUE(svg.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\""));
-  EXPECT_NE(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"720.00\""),
-            std::string::npos);
-  EXPECT_TRUE(svg.ends_with("</svg>\n"));
+  for (const SvgPlotOptions& options : {paper_options(), full_options()}) {
+    const std::string svg = box_plot_svg(paper_like_series(), options);
+    EXPECT_EQ(xml_error(svg), "");
+    EXPECT_TRUE(svg.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\""));
+    EXPECT_NE(
+        svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"960.00\""),
+        std::string::npos);
+    EXPECT_TRUE(svg.ends_with("</svg>\n"));
+  }
 }
 
 TEST(SvgPlot, TheCheckerRejectsBrokenXml) {  // the well-formedness check can fail
@@ -163,8 +103,6 @@ TEST(SvgPlot, OneBoxPerSeriesWithData) {
   EXPECT_EQ(count(svg, "class=\"whisker\""), 16u);  // two whiskers and two caps per box
   EXPECT_EQ(count(svg, "class=\"outlier\""), outliers);
   EXPECT_EQ(count(svg, "class=\"mean\""), 4u);
-  EXPECT_EQ(count(svg, "class=\"legend-mean\""), 1u);
-  EXPECT_EQ(count(svg, ">n = 200</text>"), 4u);
   for (const char* text :
        {">RCS (dBsm)</text>", ">active fog layers</text>", ">RCS per active fog layers</text>"}) {
     EXPECT_EQ(count(svg, text), 1u) << text;
@@ -177,49 +115,163 @@ TEST(SvgPlot, OneBoxPerSeriesWithData) {
   EXPECT_EQ(count(plain, "class=\"legend-mean\""), 0u);
 }
 
-TEST(SvgPlot, NoDetectionsSeries) {
-  const std::string svg = box_plot_svg(paper_like_series(), paper_options());
-  EXPECT_EQ(count(svg, ">no detections</text>"), 1u);
-  EXPECT_EQ(count(svg, ">n = 0</text>"), 1u);
+// Each symbol drawn has one legend entry with its meaning; symbols not drawn have none.
+TEST(SvgPlot, LegendNamesEverySymbolDrawn) {
+  const std::string svg = box_plot_svg(paper_like_series(), full_options());
+  EXPECT_EQ(count(svg, "<g class=\"legend\">"), 1u);
+  for (const char* symbol :
+       {"class=\"legend-box\"", "class=\"legend-median\"", "class=\"legend-outlier\"",
+        "class=\"legend-mean\"", "class=\"legend-empty\"", "class=\"legend-mark\"",
+        "class=\"legend-rate\""}) {
+    EXPECT_EQ(count(svg, symbol), 1u) << symbol;
+  }
+  EXPECT_EQ(count(svg, "class=\"legend-whisker\""), 3u);  // stem and two caps
+  std::vector<std::string> texts;
+  for (const auto& t : texts_of_class(svg, "legend-text")) texts.push_back(t.content);
+  EXPECT_EQ(texts, (std::vector<std::string>{"box: quartiles Q1 to Q3", "median",
+                                             "whiskers: Tukey, 1.5 IQR", "outlier beyond a whisker",
+                                             "mean", "nothing here", "the mark", "rate"}));
+
+  // No empty series, no mark, no strip: no legend entries for them.
+  std::vector<BoxPlotSeries> full = paper_like_series();
+  full.pop_back();
+  const std::string plain = box_plot_svg(full, paper_options());
+  EXPECT_EQ(texts_of_class(plain, "legend-text").size(), 5u);
+  for (const char* symbol : {"legend-empty", "legend-mark", "legend-rate"})
+    EXPECT_EQ(count(plain, symbol), 0u);
+}
+
+TEST(SvgPlot, EmptySeriesAreShadedAndCrossed) {
+  const std::string svg = box_plot_svg(paper_like_series(), full_options());
+  EXPECT_EQ(count(svg, "class=\"no-values-band\""), 1u);
+  EXPECT_EQ(count(svg, "class=\"no-values\""), 2u);  // the two strokes of one cross
+  // The band is the last category's: from the centre of category 3 plus half a band onwards.
+  const auto labels = texts_of_class(svg, "category");
+  ASSERT_EQ(labels.size(), 5u);
+  const std::size_t band = elements_of_class(svg, "rect", "no-values-band").at(0);
+  const double band_width = labels[4].x - labels[3].x;
+  EXPECT_NEAR(number(test_support::attribute(svg, band, "x")), labels[4].x - 0.5 * band_width,
+              0.01);
+  EXPECT_NEAR(number(test_support::attribute(svg, band, "width")), band_width, 0.01);
+  // A band of 127 px holds the written label; 100 bands of 6.36 px only the cross.
+  EXPECT_EQ(count(svg, ">nothing here</text>"), 2u);  // in the plot and in the legend
 
   // Only empty series: still a valid plot with a default axis.
-  const std::vector<BoxPlotSeries> none = {{"0", BoxPlot{}}, {"1", BoxPlot{}}};
+  const std::vector<BoxPlotSeries> none = {series_of("0", BoxPlot{}), series_of("1", BoxPlot{})};
   const std::string empty_svg = box_plot_svg(none, paper_options());
   EXPECT_EQ(xml_error(empty_svg), "");
-  EXPECT_EQ(count(empty_svg, ">no detections</text>"), 2u);
+  EXPECT_EQ(count(empty_svg, "class=\"no-values-band\""), 2u);
   EXPECT_EQ(count(empty_svg, "class=\"box\""), 0u);
 }
 
 TEST(SvgPlot, BoxGeometryFollowsTheQuartiles) {
-  // One series 10..20 dBsm: axis 10..20 in steps of 2, plot from y = 60 (top) to 390 (bottom);
-  // q3 = 17.5 maps to 390 - 0.75 * 330 = 142.50 and the box height is (17.5 - 12.5) * 33 = 165.
+  // One series 10..20 dBsm: axis 10..20 in steps of 2. A 960 x 640 plot without strip and caption
+  // spans y = 52 (top) to 640 - 42 - 12 = 586 (bottom), x = 84 to 960 - 240 = 720; q3 = 17.5 maps
+  // to 586 - 0.75 * 534 = 185.50, the box height is (17.5 - 12.5) / 10 * 534 = 267, its half width
+  // is 40 (the maximum) about the centre 402.
   std::vector<double> v;
   for (int i = 0; i <= 20; ++i) v.push_back(10.0 + 0.5 * i);
-  const std::vector<BoxPlotSeries> series = {{"a", box_plot(v)}};
+  const std::vector<BoxPlotSeries> series = {series_of("a", box_plot(v))};
   const std::string svg = box_plot_svg(series, paper_options());
-  EXPECT_NE(svg.find("class=\"box\" x=\"348.00\" y=\"142.50\" width=\"80.00\" height=\"165.00\""),
-            std::string::npos)
+  EXPECT_NE(
+      svg.find("<rect x=\"362.00\" y=\"185.50\" width=\"80.00\" height=\"267.00\" class=\"box\""),
+      std::string::npos)
       << svg;
   for (const char* tick : {">10<", ">12<", ">14<", ">16<", ">18<", ">20<"}) {
     EXPECT_EQ(count(svg, tick), 1u) << tick;
   }
 }
 
+// Bars of the rate strip: height rate x 56 px (the strip's height), one per series with a rate.
+TEST(SvgPlot, RateStripBars) {
+  std::vector<BoxPlotSeries> series = paper_like_series();
+  series[1].rate = 0.25;
+  series[2].rate = std::numeric_limits<double>::quiet_NaN();
+  const std::string svg = box_plot_svg(series, full_options());
+  const auto bars = elements_of_class(svg, "rect", "rate");
+  ASSERT_EQ(bars.size(), 4u);
+  EXPECT_EQ(test_support::attribute(svg, bars[0], "height"), "56.00");
+  EXPECT_EQ(test_support::attribute(svg, bars[1], "height"), "14.00");
+  EXPECT_EQ(test_support::attribute(svg, bars[3], "height"), "0.00");
+  const auto values = texts_of_class(svg, "rate-value");  // bands of 127 px are wide enough
+  ASSERT_EQ(values.size(), 4u);
+  EXPECT_EQ(values[1].content, "25 %");
+  // Without a rate label there is no strip.
+  EXPECT_EQ(count(box_plot_svg(series, paper_options()), "class=\"rate\""), 0u);
+}
+
+TEST(SvgPlot, MarkSitsAtTheMarkedCategory) {
+  const std::string svg = box_plot_svg(paper_like_series(), full_options());
+  const auto marks = elements_of_class(svg, "line", "mark");
+  ASSERT_EQ(marks.size(), 2u);  // through the plot and through the rate strip
+  const auto labels = texts_of_class(svg, "category");
+  ASSERT_EQ(labels.size(), 5u);
+  ASSERT_EQ(labels[3].content, "3");
+  for (const std::size_t mark : marks) {
+    EXPECT_NEAR(number(test_support::attribute(svg, mark, "x1")), labels[3].x, 0.005);
+    EXPECT_NEAR(number(test_support::attribute(svg, mark, "x2")), labels[3].x, 0.005);
+  }
+  EXPECT_EQ(count(svg, "class=\"mark-head\""), 1u);
+  EXPECT_EQ(count(box_plot_svg(paper_like_series(), paper_options()), "class=\"mark\""), 0u);
+}
+
+// Labels 0 .. n-1 for n up to 150 categories: never two overlapping, the first one written, every
+// category within 10 of a labelled one (stride <= 10 up to 150 categories of 4.24 px and more).
+TEST(SvgPlot, CategoryLabelsNeverOverlap) {
+  for (const std::size_t n : {1u, 2u, 5u, 12u, 41u, 60u, 100u, 101u, 150u}) {
+    std::vector<BoxPlotSeries> series;
+    for (std::size_t i = 0; i < n; ++i) {
+      series.push_back(series_of(std::to_string(i), box_plot(rcs_sample(i, 20, 10.0)), 0.5));
+    }
+    SvgPlotOptions options = full_options();
+    options.marked_category = n / 2;
+    const std::string svg = box_plot_svg(series, options);
+    EXPECT_EQ(xml_error(svg), "") << n;
+    EXPECT_EQ(test_support::text_overlap(svg, "category"), "") << n << " categories";
+    const auto labels = texts_of_class(svg, "category");
+    ASSERT_FALSE(labels.empty()) << n;
+    EXPECT_EQ(labels.front().content, "0");
+    const std::size_t stride = n == 1 ? 1 : std::stoul(labels[1].content);
+    EXPECT_LE(stride, 10u) << n;
+    EXPECT_EQ(labels.size(), (n + stride - 1) / stride) << n;
+    EXPECT_EQ(count(svg, "class=\"category-tick\""), n);  // every category keeps its tick
+  }
+}
+
+// Hand-worked: a label of c characters needs 0.7 x 12 c + 6 px (8.4 c + 6); the stride is the
+// smallest 1-2-5 multiple of the band covering it.
+TEST(SvgPlot, LabelStrideFromTheWidestLabel) {
+  const std::vector<BoxPlotSeries> three = {series_of("0", BoxPlot{}), series_of("1", BoxPlot{}),
+                                            series_of("100", BoxPlot{})};
+  EXPECT_EQ(category_label_stride(three, 40.0), 1u);  // 31.2 px needed
+  EXPECT_EQ(category_label_stride(three, 20.0), 2u);  // 2 x 20 >= 31.2 > 20
+  EXPECT_EQ(category_label_stride(three, 10.0), 5u);  // 5 >= the count: only the first label
+  std::vector<BoxPlotSeries> many(100, series_of("99", BoxPlot{}));  // 22.8 px needed
+  EXPECT_EQ(category_label_stride(many, 6.36), 5u);                  // 2 x 6.36 < 22.8 <= 5 x 6.36
+  EXPECT_EQ(category_label_stride(many, 2.0), 20u);                  // 10 x 2 < 22.8 <= 20 x 2
+  EXPECT_EQ(test_support::rejected_field([&] { category_label_stride(many, 0.0); }), "band_px");
+}
+
 TEST(SvgPlot, EscapesText) {
-  std::vector<BoxPlotSeries> series = {{"A & B <1>", box_plot(std::vector<double>{1, 2, 3})}};
+  std::vector<BoxPlotSeries> series = {
+      series_of("A & B <1>", box_plot(std::vector<double>{1, 2, 3}))};
+  series[0].note = "note & <more>";
   SvgPlotOptions options = paper_options();
   options.title = "x < y & \"quoted\"";
+  options.caption = {"caption's \u03b2 & co"};
   const std::string svg = box_plot_svg(series, options);
   EXPECT_EQ(xml_error(svg), "");
   EXPECT_NE(svg.find(">A &amp; B &lt;1&gt;</text>"), std::string::npos);
   EXPECT_NE(svg.find(">x &lt; y &amp; &quot;quoted&quot;</text>"), std::string::npos);
+  EXPECT_NE(svg.find("<title>note &amp; &lt;more&gt;</title>"), std::string::npos);
+  EXPECT_NE(svg.find(">caption&apos;s \u03b2 &amp; co</text>"), std::string::npos);
   EXPECT_EQ(svg.find("A & B"), std::string::npos);
 }
 
 TEST(SvgPlot, DeterministicBytes) {
   const std::vector<BoxPlotSeries> series = paper_like_series();
   const std::vector<BoxPlotSeries> copy = series;
-  EXPECT_EQ(box_plot_svg(series, paper_options()), box_plot_svg(copy, paper_options()));
+  EXPECT_EQ(box_plot_svg(series, full_options()), box_plot_svg(copy, full_options()));
 }
 
 TEST(NiceAxisTicks, OneTwoFiveSteps) {  // hand-worked: smallest 1-2-5 step with <= 6 intervals
@@ -248,7 +300,9 @@ TEST(NiceAxisTicks, OneTwoFiveSteps) {  // hand-worked: smallest 1-2-5 step with
 
 TEST(SvgConfig, EveryInvalidInputNamesItsField) {
   const std::vector<BoxPlotSeries> series = paper_like_series();
-  const auto expect_field = [](auto&& f, const std::string& field) { EXPECT_EQ(test_support::rejected_field(f), field); };
+  const auto expect_field = [](auto&& f, const std::string& field) {
+    EXPECT_EQ(test_support::rejected_field(f), field);
+  };
   expect_field([&] { box_plot_svg(std::span<const BoxPlotSeries>{}, paper_options()); }, "series");
   SvgPlotOptions narrow = paper_options();
   narrow.width_px = 10;
@@ -256,9 +310,19 @@ TEST(SvgConfig, EveryInvalidInputNamesItsField) {
   SvgPlotOptions flat = paper_options();
   flat.height_px = std::numeric_limits<double>::quiet_NaN();
   expect_field([&] { box_plot_svg(series, flat); }, "svg.height_px");
+  SvgPlotOptions wordy = full_options();
+  wordy.caption.assign(30,
+                       "a caption line");  // 30 x 16 px of caption leave no 100 px plot in 640 px
+  expect_field([&] { box_plot_svg(series, wordy); }, "svg.height_px");
   std::vector<BoxPlotSeries> broken = series;
   broken[1].box.median = std::numeric_limits<double>::infinity();
   expect_field([&] { box_plot_svg(broken, paper_options()); }, "series[1].box");
+  std::vector<BoxPlotSeries> above_one = series;
+  above_one[2].rate = 1.5;
+  expect_field([&] { box_plot_svg(above_one, full_options()); }, "series[2].rate");
+  SvgPlotOptions off_the_end = full_options();
+  off_the_end.marked_category = series.size();
+  expect_field([&] { box_plot_svg(series, off_the_end); }, "marked_category");
   expect_field([] { nice_axis_ticks(2.0, 1.0); }, "high");
   expect_field([] { nice_axis_ticks(std::numeric_limits<double>::quiet_NaN(), 1.0); }, "low");
   expect_field([] { nice_axis_ticks(0.0, 1.0, 1); }, "max_intervals");

@@ -20,7 +20,9 @@ inline constexpr const char* sensor_limit_criterion =
 std::string samples_csv(const ExperimentResult& result);
 std::string summary_csv(const ExperimentSummary& summary);
 std::string summary_json(const Scenario& scenario, const ExperimentSummary& summary);
-std::string rcs_boxplot_svg(const ExperimentSummary& summary);
+// RCS box plots per step with the detection rate under them, the sensor limit marked, and title and
+// caption from the scenario (target, chamber, fog as given, droplets, CFAR, n, seed).
+std::string rcs_boxplot_svg(const Scenario& scenario, const ExperimentSummary& summary);
 // The per-layer table printed by `fogradar run`.
 std::string summary_table(const ExperimentSummary& summary);
 

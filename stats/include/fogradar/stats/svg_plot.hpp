@@ -1,12 +1,19 @@
-// Box plots as standalone SVG 1.1 documents: one box per series (q1..q3 box, median line,
-// whiskers with caps, outliers as circles, optional mean marker), category labels with the
-// series size ("n = 200"), a y axis with 1-2-5 ticks and gridlines, axis labels and a title.
-// A series with n = 0 is drawn as a "no detections" label. Output is deterministic: the same
-// input gives byte-identical SVG (fixed-precision, locale-independent numbers).
+// Box plots as standalone SVG 1.1 documents, for reports: one box per category (q1..q3 box, median
+// line, whiskers with caps, outliers as circles, optional mean marker), a y axis with 1-2-5 ticks
+// and gridlines, an optional strip of per-category rates (0..1) under the boxes, an optional marked
+// category (dashed line), a legend naming every symbol drawn, a title and caption lines. Category
+// labels are thinned (every 1st, 2nd, 5th, 10th, ... label) so that they never overlap, for any
+// number of categories. A category without values is shaded and crossed, not left as a gap.
+// Output is deterministic: the same input gives byte-identical SVG (fixed-precision,
+// locale-independent numbers). Text is written as given (UTF-8), XML-escaped.
 #pragma once
 
+#include <cstddef>
+#include <limits>
+#include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "fogradar/stats/box_plot.hpp"
 
@@ -14,18 +21,27 @@ namespace fogradar::stats {
 
 struct BoxPlotSeries {
   std::string label;  // category label under the box, e.g. "2"
-  BoxPlot box;
+  BoxPlot box;        // n = 0: drawn as an empty category (SvgPlotOptions::empty_label)
+  // Drawn as a bar in the rate strip when SvgPlotOptions::rate_label is set; NaN: no bar.
+  double rate = std::numeric_limits<double>::quiet_NaN();
+  std::string note;  // the category's tooltip (SVG <title>); empty: the label
 };
 
 struct SvgPlotOptions {
   std::string title;
-  std::string x_label;  // with units where they apply, e.g. "active fog layers"
-  std::string y_label;  // e.g. "RCS (dBsm)"
-  double width_px = 720;
-  double height_px = 480;
-  bool show_mean = true;  // mean as a diamond marker, with a legend entry
+  std::vector<std::string> caption;  // lines under the x label, e.g. what the data are
+  std::string x_label;               // with units where they apply, e.g. "active fog layers"
+  std::string y_label;               // e.g. "RCS (dBsm)"
+  double width_px = 960;
+  double height_px = 640;
+  bool show_mean = true;                       // mean as a diamond marker
+  std::string empty_label = "no values";       // legend text of the empty-category symbol
+  std::string rate_label;                      // title of the rate strip (0-100 %); empty: no strip
+  std::optional<std::size_t> marked_category;  // index of a category marked by a dashed line
+  std::string mark_label;                      // legend text of that mark
 
-  // Throws InvalidParameter naming "svg.width_px" or "svg.height_px" (finite, >= 200).
+  // Throws InvalidParameter naming "svg.width_px" (finite, >= 480) or "svg.height_px" (finite and
+  // tall enough for a 100 px plot area besides title, strip, labels and caption).
   void validate() const;
 };
 
@@ -42,8 +58,14 @@ struct AxisTicks {
 // (finite, high >= low) or "max_intervals" (>= 2).
 AxisTicks nice_axis_ticks(double low, double high, int max_intervals = 6);
 
+// Every how many categories a label is written: the smallest stride in 1, 2, 5, 10, 20, 50, ...
+// with stride * band_px >= the widest label's estimated width plus a gap. Throws InvalidParameter
+// naming "band_px" (finite, > 0).
+std::size_t category_label_stride(std::span<const BoxPlotSeries> series, double band_px);
+
 // Throws InvalidParameter naming "series" (empty list), "series[i].box" (n > 0 with a non-finite
-// statistic other than std_dev) or an options field.
+// statistic other than std_dev), "series[i].rate" (not NaN and outside [0, 1] while the strip is
+// drawn), "marked_category" (not an index of `series`) or an options field.
 std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOptions& options);
 
 }  // namespace fogradar::stats

@@ -1,0 +1,165 @@
+// The RCS box plot of a run (rcs_boxplot.svg) from a hand-made summary: well-formed XML, scenario
+// text in the title and caption, "n" the measurements per step as in the printed table (detections
+// stated separately), the detection-rate strip, the sensor-limit mark at its step, steps without a
+// target detection marked, legend entries, no "tracked" wording, and labels of a 41-step and a
+// 101-step chamber that do not overlap.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "fogradar/experiment/outputs.hpp"
+#include "fogradar/stats/box_plot.hpp"
+#include "svg_check.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+using test_support::count;
+using test_support::elements_of_class;
+using test_support::texts_of_class;
+
+// Steps 0 .. steps-1 with 200 measurements each; `detections(k)` of them detect the target with the
+// RCS values 10 - k + 0.01 j, j = 0 .. detections - 1.
+template <class Detections>
+ExperimentSummary summary_of(std::size_t steps, Detections&& detections) {
+  ExperimentSummary summary;
+  for (std::size_t k = 0; k < steps; ++k) {
+    StepSummary s{};
+    s.active_layers = k;
+    s.n = 200;
+    s.detections = detections(k);
+    s.detection_rate = static_cast<double>(s.detections) / static_cast<double>(s.n);
+    std::vector<double> rcs;
+    for (std::size_t j = 0; j < s.detections; ++j)
+      rcs.push_back(10.0 - static_cast<double>(k) + 0.01 * static_cast<double>(j));
+    s.rcs = stats::box_plot(rcs);
+    summary.steps.push_back(s);
+  }
+  return summary;
+}
+
+// The paper scenario's five steps: detections 200, 150, 50, 0, 0; the limit at 2 layers.
+ExperimentSummary losing_summary() {
+  const std::size_t detections[] = {200, 150, 50, 0, 0};
+  ExperimentSummary summary = summary_of(5, [&](std::size_t k) { return detections[k]; });
+  summary.sensor_limit_layers = 2;
+  return summary;
+}
+
+TEST(RcsBoxplot, WellFormedWithScenarioTitleAndCaption) {
+  const std::string svg = rcs_boxplot_svg(paper_scenario(), losing_summary());
+  EXPECT_EQ(test_support::xml_error(svg), "");
+  EXPECT_EQ(svg.find("tracked"), std::string::npos);
+  const auto title = texts_of_class(svg, "title");
+  ASSERT_EQ(title.size(), 1u);
+  EXPECT_NE(title[0].content.find("EVT rear 10 dBsm"), std::string::npos) << title[0].content;
+  EXPECT_NE(title[0].content.find("\u03b2(550 nm) = 900 /km"), std::string::npos)
+      << title[0].content;
+  std::string caption;
+  for (const auto& line : texts_of_class(svg, "caption")) {
+    // Long paragraphs are broken at spaces into lines that fit the plot's width.
+    EXPECT_LE(line.content.size(), 140u + 20u) << line.content;  // UTF-8: up to 20 extra bytes
+    caption += line.content + " ";
+  }
+  for (const char* part :
+       {"4 \u00d7 1 m fog layers", "lognormal droplets, median diameter 1 \u00b5m", "\u03c3g = 1.5",
+        "CFAR CA", "P_fa = 1e-06", "n = 200 measurements per step", "seed 1",
+        "detection rate = detections / n", "Sensor limit: 2 active layers; criterion: first"}) {
+    EXPECT_NE(caption.find(part), std::string::npos) << part << " not in\n" << caption;
+  }
+
+  // The fog density as given: LWC or visibility instead of beta_550.
+  Scenario lwc = paper_scenario();
+  lwc.fog.density = propagation::LiquidWaterContent{0.25};
+  lwc.fog.droplets = propagation::Monodisperse{200e-6};
+  const std::string lwc_svg = rcs_boxplot_svg(lwc, losing_summary());
+  EXPECT_NE(lwc_svg.find("LWC = 0.25 g/m\u00b3"), std::string::npos);
+  EXPECT_NE(lwc_svg.find("monodisperse droplets of 200 \u00b5m"), std::string::npos);
+  EXPECT_EQ(lwc_svg.find("\u03b2(550 nm)"), std::string::npos);
+}
+
+// n is the number of measurements (200), as in the printed table, not the number of detections.
+TEST(RcsBoxplot, NCountsMeasurementsAndDetectionsAreSeparate) {
+  const std::string svg = rcs_boxplot_svg(paper_scenario(), losing_summary());
+  EXPECT_NE(
+      svg.find(
+          "<title>1 active layer: n = 200 measurements, 150 with an associated target detection "
+          "(75.0 %)"),
+      std::string::npos);
+  EXPECT_NE(
+      svg.find(
+          "<title>3 active layers: n = 200 measurements, 0 with an associated target detection"),
+      std::string::npos);
+  EXPECT_EQ(svg.find("n = 150"), std::string::npos);
+  EXPECT_EQ(svg.find("n = 50"), std::string::npos);
+  EXPECT_NE(summary_table(losing_summary()).find("     1   200     75.0"), std::string::npos);
+}
+
+// Rate bars of 56 px full height: 200/200, 150/200, 50/200, 0, 0 -> 56, 42, 14, 0, 0 px.
+TEST(RcsBoxplot, DetectionRateStrip) {
+  const std::string svg = rcs_boxplot_svg(paper_scenario(), losing_summary());
+  const auto bars = elements_of_class(svg, "rect", "rate");
+  ASSERT_EQ(bars.size(), 5u);
+  const char* heights[] = {"56.00", "42.00", "14.00", "0.00", "0.00"};
+  for (std::size_t k = 0; k < bars.size(); ++k) {
+    EXPECT_EQ(test_support::attribute(svg, bars[k], "height"), heights[k]) << k;
+  }
+  EXPECT_EQ(count(svg, ">detection rate</text>"), 2u);  // strip title and legend
+}
+
+TEST(RcsBoxplot, SensorLimitMarkedAtItsStep) {
+  const std::string svg = rcs_boxplot_svg(paper_scenario(), losing_summary());
+  const auto labels = texts_of_class(svg, "category");
+  ASSERT_EQ(labels.size(), 5u);
+  ASSERT_EQ(labels[2].content, "2");
+  const auto marks = elements_of_class(svg, "line", "mark");
+  ASSERT_FALSE(marks.empty());
+  for (const std::size_t mark : marks) {
+    EXPECT_NEAR(std::stod(test_support::attribute(svg, mark, "x1")), labels[2].x, 0.005);
+  }
+  EXPECT_EQ(count(svg, ">sensor limit: 2 layers</text>"), 1u);
+
+  ExperimentSummary unlimited = losing_summary();
+  unlimited.sensor_limit_layers.reset();
+  const std::string plain = rcs_boxplot_svg(paper_scenario(), unlimited);
+  EXPECT_EQ(count(plain, "class=\"mark\""), 0u);
+  EXPECT_NE(plain.find("not reached within 4 active layers"), std::string::npos);
+}
+
+TEST(RcsBoxplot, StepsWithoutDetectionAreMarked) {
+  const std::string svg = rcs_boxplot_svg(paper_scenario(), losing_summary());
+  const auto bands = elements_of_class(svg, "rect", "no-values-band");
+  ASSERT_EQ(bands.size(), 2u);  // steps 3 and 4
+  const auto labels = texts_of_class(svg, "category");
+  ASSERT_EQ(labels.size(), 5u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double x = std::stod(test_support::attribute(svg, bands[i], "x"));
+    const double width = std::stod(test_support::attribute(svg, bands[i], "width"));
+    EXPECT_NEAR(x + 0.5 * width, labels[3 + i].x, 0.01);
+  }
+  EXPECT_EQ(count(svg, "class=\"box\""), 3u);
+  EXPECT_EQ(count(svg, ">no target detection</text>"), 3u);  // two wide bands and the legend
+  for (const char* symbol : {"legend-box", "legend-median", "legend-whisker", "legend-outlier",
+                             "legend-empty", "legend-mark", "legend-rate"}) {
+    EXPECT_NE(svg.find(symbol), std::string::npos) << symbol;
+  }
+}
+
+TEST(RcsBoxplot, LongChambersKeepLabelsApart) {
+  for (const std::size_t steps : {41u, 101u}) {
+    const ExperimentSummary summary =
+        summary_of(steps, [&](std::size_t k) { return k < steps / 2 ? 20u : 0u; });
+    Scenario s = paper_scenario();
+    s.chamber.layer_count = steps - 1;
+    s.experiment.max_active_layers = steps - 1;
+    const std::string svg = rcs_boxplot_svg(s, summary);
+    EXPECT_EQ(test_support::xml_error(svg), "") << steps;
+    EXPECT_EQ(test_support::text_overlap(svg, "category"), "") << steps;
+    EXPECT_GE(texts_of_class(svg, "category").size(), 11u) << steps;  // every 10th or denser
+    EXPECT_EQ(elements_of_class(svg, "rect", "no-values-band").size(), steps - steps / 2) << steps;
+  }
+}
+
+}  // namespace
+}  // namespace fogradar::experiment
