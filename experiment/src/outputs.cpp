@@ -178,8 +178,9 @@ std::vector<std::string> plot_caption(const Scenario& scenario, const Experiment
       target + ".",
       "Fog in each active layer: " + fog_density(scenario.fog.density) + "; " +
           droplets(scenario.fog.droplets) + "; " + num(scenario.fog.temperature_c) + " \u00b0C.",
-      "Radar: " + num(r.carrier_frequency_hz * 1e-9) + " GHz, " + num(r.sweep_bandwidth_hz * 1e-9) +
-          " GHz sweep, " + window_name(r.window) + " window; " + cfar + ".",
+      "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
+          std::string(radar::to_string(r.sweep_direction)) + "-sweep centred on " +
+          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " + cfar + ".",
       "n = " + std::to_string(scenario.experiment.measurements_per_step) +
           " measurements per step, seed " + std::to_string(scenario.experiment.seed) + ".",
       "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",

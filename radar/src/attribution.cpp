@@ -52,8 +52,7 @@ OriginClassifier::OriginClassifier(const RangeDopplerProcessor& processor,
       doppler_spectrum_(processor.doppler_window()),
       range_bins_per_hz_(static_cast<double>(processor.samples()) / params.sample_rate_hz),
       doppler_bins_per_hz_(params.chirp_interval_s * static_cast<double>(processor.chirps())),
-      chirp_slope_hz_per_s_(derived.chirp_slope_hz_per_s),
-      wavelength_m_(derived.wavelength_m),
+      derived_(derived),
       noise_power_(params.thermal_noise ? derived.noise_power_w * processor.noise_power_gain()
                                         : 0.0) {}
 
@@ -67,9 +66,9 @@ CellContributions OriginClassifier::contributions(std::span<const Tone> tones,
     FOGRADAR_CHECK(tone.origin != Origin::noise);  // a path, never noise
     // The frequencies synthesize_frame gives the tone: beat plus Doppler within a chirp, Doppler
     // from chirp to chirp.
-    const double doppler_hz = -2.0 * tone.radial_velocity_m_per_s / wavelength_m_;
+    const double doppler_hz = doppler_shift_hz(tone.radial_velocity_m_per_s, derived_);
     const double beat_hz =
-        beat_frequency_hz(tone.path_length_m, chirp_slope_hz_per_s_) + doppler_hz;
+        beat_frequency_hz(tone.path_length_m, derived_.chirp_slope_hz_per_s) + doppler_hz;
     const std::complex<double> value = tone.amplitude *
                                        range_spectrum_.at(k - beat_hz * range_bins_per_hz_) *
                                        doppler_spectrum_.at(d - doppler_hz * doppler_bins_per_hz_);

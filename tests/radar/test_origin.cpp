@@ -300,7 +300,7 @@ TEST(OriginOfDetections, TargetSideLobe) {
   const RadarParams p = small_radar();
   const RadarChain chain(p);
   const double nu_r = 20.4, nu_d = 5.3;  // Doppler bin 5.3: v = -nu_d lambda / (2 N_c T_i)
-  const double lambda_m = kSpeedOfLight / p.carrier_frequency_hz;
+  const double lambda_m = kSpeedOfLight / p.centre_frequency_hz;
   const double v =
       -nu_d * lambda_m / (2.0 * static_cast<double>(p.chirps_per_frame) * p.chirp_interval_s);
   // Range bin of the beat including the Doppler shift within the chirp (-2 v / lambda).

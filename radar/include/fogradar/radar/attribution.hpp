@@ -69,8 +69,7 @@ class OriginClassifier {
   WindowSpectrum doppler_spectrum_;
   double range_bins_per_hz_;    // N / fs
   double doppler_bins_per_hz_;  // T_i N_c
-  double chirp_slope_hz_per_s_;
-  double wavelength_m_;
+  RadarDerived derived_;  // the beat and Doppler frequencies synthesize_frame gives each tone
   double noise_power_;
 };
 
