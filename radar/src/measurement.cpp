@@ -7,8 +7,14 @@
 
 namespace fogradar::radar {
 
+// The CFAR runs along range in every Doppler row, so its cells are correlated by the range window
+// (noise_correlation.hpp); the widest reference geometry spans guard + N cells.
 RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
-    : params_(params), derived_(derive(params)), processor_(params, planner), cfar_(params.cfar) {}
+    : params_(params),
+      derived_(derive(params)),
+      processor_(params, planner),
+      cfar_(params.cfar, window_noise_correlation(processor_.range_window(),
+                                                  std::size_t{params.cfar.guard_cells} + params.cfar.reference_cells())) {}
 
 void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {
   scene.validate();
