@@ -48,6 +48,7 @@ TEST(Scenario, ResolvedTomlRoundTrips) {
   s.fog.density = propagation::Visibility{37.5};
   s.target.model = TargetModel::point;
   s.radar.cfar.kind = radar::CfarKind::os;
+  s.radar.cfar.threshold_design = radar::CfarThresholdDesign::independent;
   const std::string text = to_toml(s);
   EXPECT_EQ(to_toml(parse_scenario(text, "resolved.toml")), text);
 }
@@ -102,6 +103,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "radar.carrier_frequency_hz", 2},
         BadInput{"unknown_window", "[processing]\nwindow = \"kaiser\"\n", "processing.window", 2},
         BadInput{"unknown_cfar", "[processing.cfar]\nkind = \"xx\"\n", "processing.cfar.kind", 2},
+        BadInput{"unknown_threshold_design", "[processing.cfar]\nthreshold_design = \"iid\"\n",
+                 "processing.cfar.threshold_design", 2},
         BadInput{"pfa_out_of_range", "[processing.cfar]\nfalse_alarm_probability = 1.5\n",
                  "processing.cfar.false_alarm_probability", 2},
         BadInput{"negative_integer", "[experiment]\nmeasurements_per_step = -3\n",
