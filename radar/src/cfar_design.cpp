@@ -32,12 +32,14 @@ std::vector<std::complex<double>> standard_draws(std::size_t big_n, std::uint64_
 using Matrix = Eigen::MatrixXd;
 
 // R_ij = rho(p_i - p_j) for the cells at `positions`.
-Matrix correlation_matrix(const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> positions) {
+Matrix correlation_matrix(const NoiseCorrelation& noise,
+                          std::span<const std::ptrdiff_t> positions) {
   const auto size = static_cast<Eigen::Index>(positions.size());
   Matrix r(size, size);
   for (Eigen::Index i = 0; i < size; ++i) {
     for (Eigen::Index j = 0; j < size; ++j) {
-      r(i, j) = noise.at(positions[static_cast<std::size_t>(i)] - positions[static_cast<std::size_t>(j)]);
+      r(i, j) =
+          noise.at(positions[static_cast<std::size_t>(i)] - positions[static_cast<std::size_t>(j)]);
     }
   }
   return r;
@@ -52,7 +54,8 @@ Matrix cholesky_factor(const Matrix& r) {
 }
 
 // log P_fa of CA at factor alpha for the cells at `offsets` around a cell under test at 0:
-// log prod_{i>1} 1 / (1 + |lambda_i| / lambda_1), lambda the eigenvalues of L^T Q L (cfar_design.hpp).
+// log prod_{i>1} 1 / (1 + |lambda_i| / lambda_1), lambda the eigenvalues of L^T Q L
+// (cfar_design.hpp).
 double log_pfa_ca_exact(const Matrix& cut_first_factor, double alpha) {
   const Eigen::Index size = cut_first_factor.rows();
   const double a = alpha / static_cast<double>(size - 1);
@@ -69,10 +72,10 @@ double log_pfa_ca_exact(const Matrix& cut_first_factor, double alpha) {
   return log_pfa;
 }
 
-// P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2: Marcum Q_1(sqrt(2 lambda), sqrt(2 y))
-// as sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i! (Poisson mixture of Gamma(j+1) tails), all
-// terms positive. The gamma tails are <= 1, so the sum after term j is below the Poisson tail, which
-// for j > lambda is below p_j r / (1 - r), r = lambda / (j + 1).
+// P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2: Marcum Q_1(sqrt(2 lambda), sqrt(2
+// y)) as sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i! (Poisson mixture of Gamma(j+1) tails),
+// all terms positive. The gamma tails are <= 1, so the sum after term j is below the Poisson tail,
+// which for j > lambda is below p_j r / (1 - r), r = lambda / (j + 1).
 double cut_tail(double lambda, double y) {
   // The series' first-order term lambda (1 + y) e^-y below the rounding of e^-y: a cell under test
   // uncorrelated with its reference cells (lambda at rounding level, ~1e-30).
@@ -95,7 +98,8 @@ double cut_tail(double lambda, double y) {
 
 // The noise estimate Z of the kind (threshold alpha Z) from the N reference powers in range order;
 // `scratch` holds N values.
-double noise_estimate(const CfarConfig& config, std::span<const double> x, std::vector<double>& scratch) {
+double noise_estimate(const CfarConfig& config, std::span<const double> x,
+                      std::vector<double>& scratch) {
   const std::size_t n = config.training_cells;
   double first = 0.0;
   double second = 0.0;
@@ -130,8 +134,9 @@ struct Tilt {
 // weight p/q, its noise estimate over s^2 and lambda = |mu|^2/s^2.
 class SampledPfa {
  public:
-  SampledPfa(const CfarConfig& config, const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> offsets,
-             double tilt_alpha, std::span<const std::complex<double>> draws) {
+  SampledPfa(const CfarConfig& config, const NoiseCorrelation& noise,
+             std::span<const std::ptrdiff_t> offsets, double tilt_alpha,
+             std::span<const std::complex<double>> draws) {
     const std::size_t big_n = offsets.size();
     const auto size = static_cast<Eigen::Index>(big_n);
     std::vector<std::ptrdiff_t> positions(offsets.begin(), offsets.end());
@@ -146,7 +151,8 @@ class SampledPfa {
     const std::size_t n = config.training_cells;
     std::vector<Tilt> tilts;
     if (config.kind == CfarKind::so) {
-      tilts = {{0, n, tilt_alpha / static_cast<double>(n)}, {n, 2 * n, tilt_alpha / static_cast<double>(n)}};
+      tilts = {{0, n, tilt_alpha / static_cast<double>(n)},
+               {n, 2 * n, tilt_alpha / static_cast<double>(n)}};
     } else if (config.kind == CfarKind::os) {
       const double theta = tilt_alpha / static_cast<double>(big_n);
       tilts = {{0, big_n, theta}, {0, big_n, 0.5 * theta}, {0, big_n, 0.25 * theta}};
@@ -160,7 +166,8 @@ class SampledPfa {
     std::vector<double> log_det{0.0};
     for (const Tilt& tilt : tilts) {
       Eigen::VectorXd d = Eigen::VectorXd::Zero(size);
-      for (std::size_t j = tilt.begin; j < tilt.end; ++j) d(static_cast<Eigen::Index>(j)) = tilt.theta;
+      for (std::size_t j = tilt.begin; j < tilt.end; ++j)
+        d(static_cast<Eigen::Index>(j)) = tilt.theta;
       const Matrix a = Matrix::Identity(size, size) + lr.transpose() * d.asDiagonal() * lr;
       const Matrix h = cholesky_factor(a);
       upper.push_back(h.transpose());
@@ -181,7 +188,8 @@ class SampledPfa {
       for (std::size_t jj = big_n; jj-- > 0;) {
         const auto j = static_cast<Eigen::Index>(jj);
         std::complex<double> value = z[jj];
-        for (Eigen::Index k = j + 1; k < size; ++k) value -= ht(j, k) * u[static_cast<std::size_t>(k)];
+        for (Eigen::Index k = j + 1; k < size; ++k)
+          value -= ht(j, k) * u[static_cast<std::size_t>(k)];
         u[jj] = value / ht(j, j);
       }
       std::complex<double> mu = 0.0;
@@ -206,7 +214,8 @@ class SampledPfa {
 
   double operator()(double alpha) const {
     double sum = 0.0;
-    for (std::size_t i = 0; i < kSamples; ++i) sum += weight_[i] * cut_tail(lambda_[i], alpha * scaled_noise_[i]);
+    for (std::size_t i = 0; i < kSamples; ++i)
+      sum += weight_[i] * cut_tail(lambda_[i], alpha * scaled_noise_[i]);
     return sum / static_cast<double>(kSamples);
   }
 
@@ -244,7 +253,8 @@ double solve_factor(const LogPfa& log_pfa, double design, double start) {
   if (f_high == 0.0) return high;
   std::uintmax_t max_iterations = 200;
   const auto [lower, upper] = boost::math::tools::toms748_solve(
-      residual, low, high, f_low, f_high, boost::math::tools::eps_tolerance<double>(50), max_iterations);
+      residual, low, high, f_low, f_high, boost::math::tools::eps_tolerance<double>(50),
+      max_iterations);
   FOGRADAR_CHECK(max_iterations < 200);
   return 0.5 * (lower + upper);
 }
@@ -257,26 +267,27 @@ bool white_within(const NoiseCorrelation& noise, std::size_t span) {
   return true;
 }
 
-double log_pfa_ca_for(const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> offsets, double alpha) {
+double log_pfa_ca_for(const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> offsets,
+                      double alpha) {
   std::vector<std::ptrdiff_t> positions{0};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   return log_pfa_ca_exact(cholesky_factor(correlation_matrix(noise, positions)), alpha);
 }
 
-double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> offsets,
-                 double independent_factor) {
+double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise,
+                 std::span<const std::ptrdiff_t> offsets, double independent_factor) {
   std::vector<std::ptrdiff_t> positions{0};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   const Matrix factor = cholesky_factor(correlation_matrix(noise, positions));
-  return solve_factor([&](double alpha) { return log_pfa_ca_exact(factor, alpha); }, config.false_alarm_probability,
-                      independent_factor);
+  return solve_factor([&](double alpha) { return log_pfa_ca_exact(factor, alpha); },
+                      config.false_alarm_probability, independent_factor);
 }
 
 // The factor whose tilts the sampled estimate uses: the kind's independent-cell factor scaled by
 // what the correlation does to CA's exact factor in the same geometry (the sampled factors land
 // within a few % of it, so the tilts sit where the estimate's mass is).
-double tilt_factor(const CfarConfig& config, const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> offsets,
-                   double independent_factor) {
+double tilt_factor(const CfarConfig& config, const NoiseCorrelation& noise,
+                   std::span<const std::ptrdiff_t> offsets, double independent_factor) {
   CfarConfig ca = config;
   ca.kind = CfarKind::ca;
   const double ca_independent = cfar_threshold_factor(ca);
@@ -289,7 +300,8 @@ double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise
   if (config.kind == CfarKind::ca) return ca_factor(config, noise, offsets, independent_factor);
   const double start = tilt_factor(config, noise, offsets, independent_factor);
   const SampledPfa pfa(config, noise, offsets, start, draws);
-  return solve_factor([&](double alpha) { return std::log(pfa(alpha)); }, config.false_alarm_probability, start);
+  return solve_factor([&](double alpha) { return std::log(pfa(alpha)); },
+                      config.false_alarm_probability, start);
 }
 
 }  // namespace
@@ -308,7 +320,8 @@ double correlated_false_alarm_probability(const CfarConfig& config, const NoiseC
   return SampledPfa(config, noise, offsets, alpha, draws)(alpha);
 }
 
-CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config, const NoiseCorrelation& noise) {
+CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
+                                                   const NoiseCorrelation& noise) {
   config.validate();
   noise.validate();
   const double independent = cfar_threshold_factor(config);

@@ -41,7 +41,8 @@ std::complex<double> cell_correlation(const std::vector<double>& w, long lag) {
   long double re = 0, im = 0, energy = 0;
   const long n = static_cast<long>(w.size());
   for (long j = 0; j < n; ++j) {
-    const long double phase = -2.0L * std::numbers::pi_v<long double> * static_cast<long double>((lag * j) % n) / n;
+    const long double phase =
+        -2.0L * std::numbers::pi_v<long double> * static_cast<long double>((lag * j) % n) / n;
     re += w[j] * w[j] * std::cos(phase);
     im += w[j] * w[j] * std::sin(phase);
     energy += static_cast<long double>(w[j]) * w[j];
@@ -53,8 +54,8 @@ std::complex<double> cell_correlation(const std::vector<double>& w, long lag) {
 // `offsets`) with x0 > alpha Z, Z the kind's noise estimate. Vectors from a complex Cholesky
 // factor of R_ij = rho(p_i - p_j) (rho from cell_correlation), written out here.
 double brute_force_pfa(const CfarConfig& config, const std::vector<double>& window,
-                       const std::vector<std::ptrdiff_t>& offsets, double alpha, std::size_t samples,
-                       std::uint64_t seed) {
+                       const std::vector<std::ptrdiff_t>& offsets, double alpha,
+                       std::size_t samples, std::uint64_t seed) {
   std::vector<long> positions{0};
   for (auto o : offsets) positions.push_back(o);
   const std::size_t m = positions.size();
@@ -84,9 +85,15 @@ double brute_force_pfa(const CfarConfig& config, const std::vector<double>& wind
     for (std::size_t j = n + 1; j <= 2 * n; ++j) second += x[j];
     double z = 0;
     switch (config.kind) {
-      case CfarKind::ca: z = (first + second) / (2.0 * half); break;
-      case CfarKind::go: z = std::max(first, second) / half; break;
-      case CfarKind::so: z = std::min(first, second) / half; break;
+      case CfarKind::ca:
+        z = (first + second) / (2.0 * half);
+        break;
+      case CfarKind::go:
+        z = std::max(first, second) / half;
+        break;
+      case CfarKind::so:
+        z = std::min(first, second) / half;
+        break;
       case CfarKind::os: {
         std::vector<double> refs(x.begin() + 1, x.end());
         std::sort(refs.begin(), refs.end());
@@ -121,11 +128,14 @@ TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
   for (const std::size_t from_end : {std::size_t{10}, std::size_t{0}, std::size_t{5}}) {
     const auto offsets = cfar_reference_offsets(config, from_end);
     const double alpha = from_end == 10 ? factors.interior : factors.edge[from_end];
-    const double measured = brute_force_pfa(config, window, offsets, alpha, kSamples, 77 + from_end);
+    const double measured =
+        brute_force_pfa(config, window, offsets, alpha, kSamples, 77 + from_end);
     const auto [low, high] = binomial_interval(kSamples, 1e-2);
-    std::printf("[ measured ] %s cell %zu from the end: brute-force Pfa %.4e at the designed factor %.4f (accept [%.4e, %.4e])\n",
-                name_of(kind, window_type).c_str(), from_end, measured, alpha,
-                low / kSamples, high / kSamples);
+    std::printf(
+        "[ measured ] %s cell %zu from the end: brute-force Pfa %.4e at the designed factor %.4f "
+        "(accept [%.4e, %.4e])\n",
+        name_of(kind, window_type).c_str(), from_end, measured, alpha, low / kSamples,
+        high / kSamples);
     EXPECT_GE(measured * kSamples, low);
     EXPECT_LE(measured * kSamples, high);
   }
@@ -133,9 +143,11 @@ TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
 
 INSTANTIATE_TEST_SUITE_P(HannAndBlackmanHarris, CorrelatedPfa,
                          testing::Combine(testing::ValuesIn(kKinds),
-                                          testing::Values(WindowType::hann, WindowType::blackman_harris)),
+                                          testing::Values(WindowType::hann,
+                                                          WindowType::blackman_harris)),
                          [](const auto& test_info) {
-                           return name_of(std::get<0>(test_info.param), std::get<1>(test_info.param));
+                           return name_of(std::get<0>(test_info.param),
+                                          std::get<1>(test_info.param));
                          });
 
 // The sampled method (forced for CA too) on white noise against the independent-cell closed forms
@@ -150,7 +162,8 @@ TEST(CorrelatedPfa, SampledMethodOnWhiteNoiseMatchesIndependentFormulas) {
       const double alpha = cfar_threshold_factor(config);
       for (const std::size_t from_end : {std::size_t{10}, std::size_t{0}}) {
         const double sampled = correlated_false_alarm_probability(
-            config, white, cfar_reference_offsets(config, from_end), alpha, CorrelatedPfaMethod::sampled);
+            config, white, cfar_reference_offsets(config, from_end), alpha,
+            CorrelatedPfaMethod::sampled);
         const double tolerance = design > 1e-4 || kind != CfarKind::os ? 0.05 : 0.30;
         std::printf("[ measured ] white %s design %.0e cell %zu: sampled / closed form %.4f\n",
                     std::string(to_string(kind)).c_str(), design, from_end, sampled / design);
@@ -174,7 +187,9 @@ TEST(CorrelatedPfa, CaExactEqualsDeterminantFormWhenCellUnderTestIsUncorrelated)
     std::vector<long double> a(n * n);
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) {
-        a[i * n + j] = (i == j ? 1.0L : 0.0L) + alpha / static_cast<double>(n) * cell_correlation(window, offsets[i] - offsets[j]).real();
+        a[i * n + j] =
+            (i == j ? 1.0L : 0.0L) + alpha / static_cast<double>(n) *
+                                         cell_correlation(window, offsets[i] - offsets[j]).real();
       }
     }
     long double det = 1.0L;
@@ -186,11 +201,13 @@ TEST(CorrelatedPfa, CaExactEqualsDeterminantFormWhenCellUnderTestIsUncorrelated)
       }
     }
     const double expected = static_cast<double>(1.0L / det);
-    EXPECT_NEAR(correlated_false_alarm_probability(config, noise, offsets, alpha) / expected, 1.0, 1e-12);
+    EXPECT_NEAR(correlated_false_alarm_probability(config, noise, offsets, alpha) / expected, 1.0,
+                1e-12);
   }
 }
 
-// --- Realised false-alarm rate through the real chain ---------------------------------------------
+// --- Realised false-alarm rate through the real chain
+// ---------------------------------------------
 
 // Alarm counts of interior and edge cells and the sums of their squared per-frame counts: alarms
 // of neighbouring cells are not independent (they share reference cells and correlated noise; an
@@ -205,9 +222,11 @@ struct RealisedRate {
 // frames whose per-frame counts have the sum of squares `squares`: the CLT on the frames' sum,
 // with the larger of the per-frame variance seen and the binomial one (never narrower than
 // independent cells would give), plus a continuity margin of 1.
-std::pair<double, double> frame_interval(double cells, double p, double total, double squares, double frames) {
+std::pair<double, double> frame_interval(double cells, double p, double total, double squares,
+                                         double frames) {
   const double mean_per_frame = total / frames;
-  const double seen = (squares / frames - mean_per_frame * mean_per_frame) * frames / (frames - 1.0);
+  const double seen =
+      (squares / frames - mean_per_frame * mean_per_frame) * frames / (frames - 1.0);
   const double binomial = cells / frames * p * (1.0 - p);
   const double half = 3.29 * std::sqrt(frames * std::max(seen, binomial)) + 1.0;
   return {cells * p - half, cells * p + half};
@@ -215,7 +234,8 @@ std::pair<double, double> frame_interval(double cells, double p, double total, d
 
 // Noise-only frames of `chirps` x 512 through synthesis (thermal noise, the frame window),
 // range and Doppler FFTs and |X|^2, every Doppler row through each detector.
-std::vector<RealisedRate> realised_rates(const RadarParams& p, const std::vector<const CfarDetector*>& detectors,
+std::vector<RealisedRate> realised_rates(const RadarParams& p,
+                                         const std::vector<const CfarDetector*>& detectors,
                                          std::size_t frames, std::uint64_t stream) {
   const RadarDerived d = derive(p);
   const RangeDopplerProcessor processor(p);
@@ -235,7 +255,8 @@ std::vector<RealisedRate> realised_rates(const RadarParams& p, const std::vector
       double interior = 0, edges = 0;
       for (std::size_t r = 0; r < rows; ++r) {
         detectors[k]->detect(std::span<const double>(power).subspan(r * cols, cols), ws);
-        for (const std::size_t c : ws.detections) (c < edge || c >= cols - edge ? edges : interior) += 1;
+        for (const std::size_t c : ws.detections)
+          (c < edge || c >= cols - edge ? edges : interior) += 1;
       }
       RealisedRate& rate = rates[k];
       rate.interior += interior;
@@ -278,14 +299,21 @@ TEST_P(ChainRealisedPfa, DesignValueAtOneInAThousand) {
   p.cfar.false_alarm_probability = 1e-3;
   const RangeDopplerProcessor processor(p);
   const CfarDetector detector(
-      p.cfar, window_noise_correlation(processor.range_window(), p.cfar.guard_cells + p.cfar.reference_cells()));
-  const RealisedRate rate = realised_rates(p, {&detector}, kFrames, 10 + static_cast<std::uint64_t>(kind))[0];
-  const auto [il, ih] = frame_interval(rate.interior_cells, 1e-3, rate.interior, rate.interior_squares, rate.frames);
-  const auto [el, eh] = frame_interval(rate.edge_cells, 1e-3, rate.edges, rate.edge_squares, rate.frames);
-  std::printf("[ measured ] chain %s: interior %.4e (%.0f of %.0f, accept [%.0f, %.0f]), edge %.4e (%.0f of %.0f, "
-              "accept [%.0f, %.0f])\n",
-              name_of(kind, window_type).c_str(), rate.interior / rate.interior_cells, rate.interior,
-              rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el, eh);
+      p.cfar, window_noise_correlation(processor.range_window(),
+                                       p.cfar.guard_cells + p.cfar.reference_cells()));
+  const RealisedRate rate =
+      realised_rates(p, {&detector}, kFrames, 10 + static_cast<std::uint64_t>(kind))[0];
+  const auto [il, ih] =
+      frame_interval(rate.interior_cells, 1e-3, rate.interior, rate.interior_squares, rate.frames);
+  const auto [el, eh] =
+      frame_interval(rate.edge_cells, 1e-3, rate.edges, rate.edge_squares, rate.frames);
+  std::printf(
+      "[ measured ] chain %s: interior %.4e (%.0f of %.0f, accept [%.0f, %.0f]), edge %.4e (%.0f "
+      "of %.0f, "
+      "accept [%.0f, %.0f])\n",
+      name_of(kind, window_type).c_str(), rate.interior / rate.interior_cells, rate.interior,
+      rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el,
+      eh);
   EXPECT_GE(rate.interior, il);
   EXPECT_LE(rate.interior, ih);
   EXPECT_GE(rate.edges, el);
@@ -295,7 +323,8 @@ TEST_P(ChainRealisedPfa, DesignValueAtOneInAThousand) {
 INSTANTIATE_TEST_SUITE_P(AllKindsAndWindows, ChainRealisedPfa,
                          testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kWindows)),
                          [](const auto& test_info) {
-                           return name_of(std::get<0>(test_info.param), std::get<1>(test_info.param));
+                           return name_of(std::get<0>(test_info.param),
+                                          std::get<1>(test_info.param));
                          });
 
 // The same measurement with the independent-cell factor (threshold_design = independent) FAILS:
@@ -310,19 +339,24 @@ TEST(ChainRealisedPfa, IndependentFactorFailsWithHann) {
     p.cfar.threshold_design = CfarThresholdDesign::independent;
     const RangeDopplerProcessor processor(p);
     const CfarDetector detector(p.cfar, window_noise_correlation(processor.range_window(), 18));
-    const RealisedRate rate = realised_rates(p, {&detector}, kFrames, 20 + static_cast<std::uint64_t>(kind))[0];
-    const auto [il, ih] = frame_interval(rate.interior_cells, 1e-3, rate.interior, rate.interior_squares, rate.frames);
-    std::printf("[ measured ] chain %s with the independent-cell factor: interior %.4e (accept [%.0f, %.0f]: %.0f)\n",
-                std::string(to_string(kind)).c_str(), rate.interior / rate.interior_cells, il, ih, rate.interior);
+    const RealisedRate rate =
+        realised_rates(p, {&detector}, kFrames, 20 + static_cast<std::uint64_t>(kind))[0];
+    const auto [il, ih] = frame_interval(rate.interior_cells, 1e-3, rate.interior,
+                                         rate.interior_squares, rate.frames);
+    std::printf(
+        "[ measured ] chain %s with the independent-cell factor: interior %.4e (accept [%.0f, "
+        "%.0f]: %.0f)\n",
+        std::string(to_string(kind)).c_str(), rate.interior / rate.interior_cells, il, ih,
+        rate.interior);
     EXPECT_GT(rate.interior, ih) << to_string(kind);
   }
 }
 
 // Design P_fa 1e-6, CA and OS, Hann: 30520 frames of 64 x 512 = 1.0e9 cells through the chain,
 // both detectors on every row. Acceptance: the 99.9 % interval of 1e-6 (frame_interval) on the
-// interior cells (~960 expected, at least +-10 %); the edge cells (3.9e7, ~39 expected) within theirs. The
-// independent-cell factor would give 10.0 x (CA) and 6.5 x (OS). ~1e9 cells take tens of seconds
-// in Release, far too long for the Debug sanitizer build: skipped there.
+// interior cells (~960 expected, at least +-10 %); the edge cells (3.9e7, ~39 expected) within
+// theirs. The independent-cell factor would give 10.0 x (CA) and 6.5 x (OS). ~1e9 cells take tens
+// of seconds in Release, far too long for the Debug sanitizer build: skipped there.
 TEST(ChainRealisedPfaSlow, CaAndOsHannAtOneInAMillion) {
 #ifdef FOGRADAR_SANITIZE_BUILD
   GTEST_SKIP() << "1e9 cells through the chain: run by the Release build only";
@@ -343,12 +377,17 @@ TEST(ChainRealisedPfaSlow, CaAndOsHannAtOneInAMillion) {
               rates[0].interior_cells + rates[0].edge_cells);
   for (std::size_t k = 0; k < 2; ++k) {
     const RealisedRate& rate = rates[k];
-    const auto [il, ih] = frame_interval(rate.interior_cells, 1e-6, rate.interior, rate.interior_squares, rate.frames);
-    const auto [el, eh] = frame_interval(rate.edge_cells, 1e-6, rate.edges, rate.edge_squares, rate.frames);
-    std::printf("[ measured ] chain %s Hann design 1e-6: interior %.4e (%.0f of %.3e, accept [%.0f, %.0f]), edge %.4e "
-                "(%.0f of %.3e, accept [%.0f, %.0f])\n",
-                k == 0 ? "ca" : "os", rate.interior / rate.interior_cells, rate.interior, rate.interior_cells, il, ih,
-                rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el, eh);
+    const auto [il, ih] = frame_interval(rate.interior_cells, 1e-6, rate.interior,
+                                         rate.interior_squares, rate.frames);
+    const auto [el, eh] =
+        frame_interval(rate.edge_cells, 1e-6, rate.edges, rate.edge_squares, rate.frames);
+    std::printf(
+        "[ measured ] chain %s Hann design 1e-6: interior %.4e (%.0f of %.3e, accept [%.0f, "
+        "%.0f]), edge %.4e "
+        "(%.0f of %.3e, accept [%.0f, %.0f])\n",
+        k == 0 ? "ca" : "os", rate.interior / rate.interior_cells, rate.interior,
+        rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el,
+        eh);
     EXPECT_GE(rate.interior, il);
     EXPECT_LE(rate.interior, ih);
     EXPECT_GE(rate.edges, std::max(0.0, el));

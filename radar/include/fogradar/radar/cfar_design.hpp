@@ -11,7 +11,8 @@
 //       iid Exp(1) (characteristic function prod_i 1/(1 - i w lambda_i): Turin 1960, Biometrika 47,
 //       199-201). Q has one positive eigenvalue, so (Sylvester's law of inertia) has L^T Q L:
 //       lambda_1 > 0 >= the rest, and
-//         P_fa = P(lambda_1 E_1 > sum_{i>1} |lambda_i| E_i) = E[exp(-sum_{i>1} |lambda_i| E_i / lambda_1)]
+//         P_fa = P(lambda_1 E_1 > sum_{i>1} |lambda_i| E_i) = E[exp(-sum_{i>1} |lambda_i| E_i /
+//         lambda_1)]
 //              = prod_{i>1} 1 / (1 + |lambda_i| / lambda_1),
 //       repeated eigenvalues included. For a cell under test uncorrelated with its reference cells
 //       this is 1 / det(I + a C), C the reference cells' correlation matrix.
@@ -19,9 +20,11 @@
 //       the reference vector is sampled and the cell under test's conditional tail integrated
 //       exactly. Given the reference cells r, Y0 ~ CN(mu, s^2) with mu = l^T u, s the last diagonal
 //       entry of the Cholesky factor of R ordered (reference cells, cell under test), so
-//         P(x0 > alpha Z | r) = Q_1(sqrt(2 lambda), sqrt(2 y)),  lambda = |mu|^2/s^2, y = alpha Z/s^2,
+//         P(x0 > alpha Z | r) = Q_1(sqrt(2 lambda), sqrt(2 y)),  lambda = |mu|^2/s^2, y = alpha
+//         Z/s^2,
 //       (Marcum Q, evaluated as the Poisson mixture of gamma tails
-//        sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, all terms positive). The mean over r uses
+//        sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, all terms positive). The mean over r
+//        uses
 //       importance sampling from a defensive mixture (Hesterberg 1995, Technometrics 37(2),
 //       185-194; balance-heuristic weights, Veach & Guibas 1995): the noise itself and
 //       exponentially tilted versions of it that make the cells of the noise estimate small
@@ -53,7 +56,8 @@ struct CfarThresholdFactors {
 
 // Positions of the reference cells relative to the cell under test of a cell `cells_from_end` cells
 // from a profile end (0 = first cell; >= guard + training: an interior cell), in range order.
-std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config, std::size_t cells_from_end);
+std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config,
+                                                   std::size_t cells_from_end);
 
 // How correlated_false_alarm_probability evaluates: CA exactly and the others by sampling
 // (automatic), or every kind by sampling (to test the sampled method against the exact ones).
@@ -66,14 +70,16 @@ inline constexpr std::uint64_t kCfarDesignSeed = 0xCFA2D351C0FFEEULL;
 // `offsets` (from cfar_reference_offsets) in noise correlated by `noise` (method in the header
 // comment; the sampling mixture is tilted for this alpha, its samples drawn from `seed`'s stream).
 // Validates the config.
-double correlated_false_alarm_probability(const CfarConfig& config, const NoiseCorrelation& noise,
-                                          std::span<const std::ptrdiff_t> offsets, double alpha,
-                                          CorrelatedPfaMethod method = CorrelatedPfaMethod::automatic,
-                                          std::uint64_t seed = kCfarDesignSeed);
+double correlated_false_alarm_probability(
+    const CfarConfig& config, const NoiseCorrelation& noise,
+    std::span<const std::ptrdiff_t> offsets, double alpha,
+    CorrelatedPfaMethod method = CorrelatedPfaMethod::automatic,
+    std::uint64_t seed = kCfarDesignSeed);
 
 // The factors that give the design P_fa in every cell: the independent-cell factor of
 // cfar_threshold_factor everywhere when config.threshold_design is `independent` or the noise is
 // white (then exact for all kinds), else solved per reference geometry (header comment).
-CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config, const NoiseCorrelation& noise);
+CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
+                                                   const NoiseCorrelation& noise);
 
 }  // namespace fogradar::radar

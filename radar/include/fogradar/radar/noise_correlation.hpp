@@ -2,10 +2,11 @@
 // windowed samples of a chirp: white noise of variance s^2 per sample gives cells Y[k] that are
 // circular complex Gaussian with
 //   E[Y[k] conj(Y[k+m])] = s^2 sum_n w[n]^2 e^{-i 2 pi m n / N},
-// so the correlation coefficient rho(m) = sum_n w[n]^2 e^{-i 2 pi m n / N} / sum_n w[n]^2 depends on
-// the range window w alone (the Doppler window, applied across chirps, only scales the variance of
-// every cell of a Doppler row alike). For a DFT-even window (w[n] = w[N-n], the periodic windows the
-// chain uses) rho is real and even. The rectangular window gives rho(m) = 0 for m != 0: white cells.
+// so the correlation coefficient rho(m) = sum_n w[n]^2 e^{-i 2 pi m n / N} / sum_n w[n]^2 depends
+// on the range window w alone (the Doppler window, applied across chirps, only scales the variance
+// of every cell of a Doppler row alike). For a DFT-even window (w[n] = w[N-n], the periodic windows
+// the chain uses) rho is real and even. The rectangular window gives rho(m) = 0 for m != 0: white
+// cells.
 #pragma once
 
 #include <cstddef>
