@@ -180,6 +180,11 @@ void read_processing(const toml::table& root, std::string_view source, KeyLines&
   c.read("training_cells", r.cfar.training_cells);
   c.read("false_alarm_probability", r.cfar.false_alarm_probability);
   c.read("os_rank", r.cfar.os_rank);
+  std::string design;
+  c.read("threshold_design", design);
+  if (!design.empty()) {
+    r.cfar.threshold_design = radar::parse_cfar_threshold_design(design, "processing.cfar.threshold_design");
+  }
   c.reject_unknown();
 }
 
@@ -456,7 +461,8 @@ std::string to_toml(const Scenario& s) {
       << "guard_cells = " << r.cfar.guard_cells << '\n'
       << "training_cells = " << r.cfar.training_cells << '\n'
       << "false_alarm_probability = " << num(r.cfar.false_alarm_probability) << '\n'
-      << "os_rank = " << r.cfar.os_rank << "\n\n";
+      << "os_rank = " << r.cfar.os_rank << '\n'
+      << "threshold_design = " << str(radar::to_string(r.cfar.threshold_design)) << "\n\n";
   const TargetSpec& t = s.target;
   out << "[target]\n"
       << "model = " << str(t.model == TargetModel::evt ? "evt" : "point") << '\n'

@@ -12,6 +12,7 @@
 
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/radar/cfar_design.hpp"
 
 namespace fogradar::radar {
 
@@ -22,6 +23,11 @@ constexpr std::array<std::pair<CfarKind, std::string_view>, 4> kCfarNames{{
     {CfarKind::go, "go"},
     {CfarKind::so, "so"},
     {CfarKind::os, "os"},
+}};
+
+constexpr std::array<std::pair<CfarThresholdDesign, std::string_view>, 2> kDesignNames{{
+    {CfarThresholdDesign::correlated, "correlated"},
+    {CfarThresholdDesign::independent, "independent"},
 }};
 
 // Accumulates sum(exp(log_term)) without overflow or underflow (running log-sum-exp).
@@ -270,10 +276,11 @@ void interior_thresholds_and_detect(HalfSums rule, const double* lead, const dou
 // CA/GO/SO thresholds, scale * combine(S_lead, S_lag) with S the sums of the two halves of the
 // reference cells (scale = alpha / N for CA, alpha / n for GO/SO), and the cells above them in
 // ascending order. Interior cells read the two window sums; the 2 (guard + n) edge cells add their
-// reference ranges directly.
+// reference ranges directly, with the scale of their position (edge_scale[i] for the cells i and
+// L-1-i).
 void two_sided_detect(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
-                      std::span<const double> sums, HalfSums rule, std::vector<double>& threshold,
-                      std::vector<std::size_t>& cells) {
+                      std::span<const double> edge_scale, std::span<const double> sums, HalfSums rule,
+                      std::vector<double>& threshold, std::vector<std::size_t>& cells) {
   const std::size_t length = power.size();
   const auto add = [&power](std::size_t begin, std::size_t end) {
     double total = 0.0;
@@ -293,7 +300,7 @@ void two_sided_detect(std::span<const double> power, std::size_t guard, std::siz
       first = add(r.lb, r.le) + add(r.rb, r.rb + (n - a));
       second = add(r.rb + (n - a), r.re);
     }
-    threshold[i] = scale * combine(rule, first, second);
+    threshold[i] = edge_scale[std::min(i, length - 1 - i)] * combine(rule, first, second);
     if (power[i] > threshold[i]) cells.push_back(i);
   };
   const std::size_t interior_begin = guard + n;
@@ -320,6 +327,34 @@ CfarKind parse_cfar_kind(std::string_view text, std::string_view field) {
     if (name == text) return value;
   }
   throw_invalid(field, text, "one of ca, go, so, os");
+}
+
+std::string_view to_string(CfarThresholdDesign design) noexcept {
+  for (const auto& [value, name] : kDesignNames) {
+    if (value == design) return name;
+  }
+  return "unknown";
+}
+
+CfarThresholdDesign parse_cfar_threshold_design(std::string_view text, std::string_view field) {
+  for (const auto& [value, name] : kDesignNames) {
+    if (name == text) return value;
+  }
+  throw_invalid(field, text, "one of correlated, independent");
+}
+
+std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config, std::size_t cells_from_end) {
+  config.validate();
+  const std::size_t guard = config.guard_cells;
+  const std::size_t n = config.training_cells;
+  const std::size_t i = std::min(cells_from_end, guard + n);
+  // A profile long enough that cell i has its full window on the right.
+  const ReferenceCells r = reference_cells(i, i + guard + 2 * n + 1, guard, n);
+  std::vector<std::ptrdiff_t> offsets;
+  const auto cell = static_cast<std::ptrdiff_t>(i);
+  for (std::size_t j = r.lb; j < r.le; ++j) offsets.push_back(static_cast<std::ptrdiff_t>(j) - cell);
+  for (std::size_t j = r.rb; j < r.re; ++j) offsets.push_back(static_cast<std::ptrdiff_t>(j) - cell);
+  return offsets;
 }
 
 unsigned CfarConfig::effective_os_rank() const noexcept {
@@ -398,8 +433,17 @@ double cfar_threshold_factor(const CfarConfig& config) {
   return 0.5 * (lower + upper);
 }
 
-CfarDetector::CfarDetector(const CfarConfig& config)
-    : config_(config), alpha_(cfar_threshold_factor(config)) {}
+CfarDetector::CfarDetector(const CfarConfig& config) : CfarDetector(config, NoiseCorrelation{}) {}
+
+CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise) : config_(config) {
+  CfarThresholdFactors factors = design_cfar_threshold_factors(config, noise);
+  alpha_ = factors.interior;
+  edge_alpha_ = std::move(factors.edge);
+  // The scale of the sums' thresholds: CA divides by N, GO/SO by n (the sums are of n cells).
+  const double divisor = static_cast<double>(config.kind == CfarKind::ca ? config.reference_cells() : config.training_cells);
+  edge_scale_.resize(edge_alpha_.size());
+  for (std::size_t i = 0; i < edge_alpha_.size(); ++i) edge_scale_[i] = edge_alpha_[i] / divisor;
+}
 
 void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspace) const {
   config_.validate_profile_length(power.size());
@@ -408,6 +452,7 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
   const std::size_t n = config_.training_cells;
   const std::size_t big_n = 2 * n;
   const double alpha = alpha_;
+  const std::size_t reach = guard + n;  // cells i < reach and i >= length - reach are edge cells
 
   workspace.threshold.resize(length);
   workspace.detections.clear();
@@ -466,7 +511,11 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
         into[count++] = j;
       }
     };
-    workspace.threshold[0] = alpha * sorted[k - 1];
+    const auto alpha_at = [&](std::size_t i) {
+      if (i < reach) return edge_alpha_[i];
+      return i >= length - reach ? edge_alpha_[length - 1 - i] : alpha;
+    };
+    workspace.threshold[0] = alpha_at(0) * sorted[k - 1];
     for (std::size_t i = 1; i < length; ++i) {
       const ReferenceCells next = reference_cells(i, length, guard, n);
       leaving_count = 0;
@@ -483,28 +532,18 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
       for (std::size_t m = 0; m < leaving_count; ++m) {
         replace(power[leaving[m]], power[entering[m]]);
       }
-      workspace.threshold[i] = alpha * sorted[k - 1];
+      workspace.threshold[i] = alpha_at(i) * sorted[k - 1];
       r = next;
     }
     append_cells_above(power.data(), workspace.threshold.data(), length, workspace.detections);
   } else {
     const std::span<const double> sums = window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
-    const double per_half = alpha / static_cast<double>(n);
-    switch (config_.kind) {
-      case CfarKind::ca:
-        two_sided_detect(power, guard, n, alpha / static_cast<double>(big_n), sums, HalfSums::add,
-                         workspace.threshold, workspace.detections);
-        break;
-      case CfarKind::go:
-        two_sided_detect(power, guard, n, per_half, sums, HalfSums::greater, workspace.threshold,
-                         workspace.detections);
-        break;
-      case CfarKind::so:
-      case CfarKind::os:
-        two_sided_detect(power, guard, n, per_half, sums, HalfSums::smaller, workspace.threshold,
-                         workspace.detections);
-        break;
-    }
+    // CA divides by N, GO/SO by n (the sums are of n cells).
+    const double scale = alpha / static_cast<double>(config_.kind == CfarKind::ca ? big_n : n);
+    const HalfSums rule = config_.kind == CfarKind::ca   ? HalfSums::add
+                          : config_.kind == CfarKind::go ? HalfSums::greater
+                                                         : HalfSums::smaller;
+    two_sided_detect(power, guard, n, scale, edge_scale_, sums, rule, workspace.threshold, workspace.detections);
   }
 }
 

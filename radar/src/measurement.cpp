@@ -7,11 +7,15 @@
 
 namespace fogradar::radar {
 
+// The CFAR runs along range in every Doppler row, so its cells are correlated by the range window
+// (noise_correlation.hpp); the widest reference geometry spans guard + N cells.
 RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
     : params_(params),
       derived_(derive(params)),
       processor_(params, planner),
-      cfar_(params.cfar),
+      cfar_(params.cfar, window_noise_correlation(processor_.range_window(),
+                                                  std::size_t{params.cfar.guard_cells} +
+                                                      params.cfar.reference_cells())),
       origin_classifier_(processor_, params_, derived_) {}
 
 void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {
@@ -29,10 +33,11 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
     const double along_m = chamber.target_range_m() + scene.centres[i].range_offset_m;
     // A centre at or behind the radar has no meaningful radar equation (R^-4 diverges at 0).
     if (!(along_m > 0.0)) {
-      throw_invalid("target.centres[" + std::to_string(i) + "].range_offset_m",
-                    scene.centres[i].range_offset_m,
-                    "> -" + std::to_string(chamber.target_range_m()) +
-                        " (minus the chamber's target range): the centre must lie in front of the radar");
+      throw_invalid(
+          "target.centres[" + std::to_string(i) + "].range_offset_m",
+          scene.centres[i].range_offset_m,
+          "> -" + std::to_string(chamber.target_range_m()) +
+              " (minus the chamber's target range): the centre must lie in front of the radar");
     }
     farthest_m = std::max(farthest_m, along_m);
   }
@@ -50,18 +55,23 @@ MeasurementWorkspace RadarChain::make_workspace() const {
   return ws;
 }
 
-SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene, const propagation::Chamber& chamber,
-                                                     const propagation::ActiveLayers& active, RandomStream& rng,
+SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
+                                                     const propagation::Chamber& chamber,
+                                                     const propagation::ActiveLayers& active,
+                                                     RandomStream& rng,
                                                      MeasurementWorkspace& ws) const {
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
   const FrameWindow window = processor_.window();
-  const SynthesisReport report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window);
+  const SynthesisReport report =
+      synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window);
   processor_.transform_windowed(ws.frame);
   return report;
 }
 
-SynthesisReport RadarChain::synthesize_and_process(const Scene& scene, const propagation::Chamber& chamber,
-                                                   const propagation::ActiveLayers& active, RandomStream& rng,
+SynthesisReport RadarChain::synthesize_and_process(const Scene& scene,
+                                                   const propagation::Chamber& chamber,
+                                                   const propagation::ActiveLayers& active,
+                                                   RandomStream& rng,
                                                    MeasurementWorkspace& ws) const {
   const SynthesisReport report = synthesize_and_transform(scene, chamber, active, rng, ws);
   ws.power.resize(ws.frame.size());
@@ -70,15 +80,18 @@ SynthesisReport RadarChain::synthesize_and_process(const Scene& scene, const pro
 }
 
 void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber,
-                         const propagation::ActiveLayers& active, RandomStream& rng, MeasurementWorkspace& ws,
-                         Measurement& out) const {
+                         const propagation::ActiveLayers& active, RandomStream& rng,
+                         MeasurementWorkspace& ws, Measurement& out) const {
   out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws);
-  estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation, out.detections);
+  estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation,
+                      out.detections);
   origin_classifier_.attribute(ws.tones, out.detections);
   out.target.reset();
   for (const Detection& detection : out.detections) {
-    if (std::abs(detection.range_m - chamber.target_range_m()) > params_.association_gate_m) continue;
-    if (!out.target || detection.received_power_w > out.target->received_power_w) out.target = detection;
+    if (std::abs(detection.range_m - chamber.target_range_m()) > params_.association_gate_m)
+      continue;
+    if (!out.target || detection.received_power_w > out.target->received_power_w)
+      out.target = detection;
   }
 }
 

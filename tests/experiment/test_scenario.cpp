@@ -55,6 +55,7 @@ TEST(Scenario, ResolvedTomlRoundTrips) {
   s.radar.centre_frequency_hz = 76.5e9;
   s.fog.water_model = propagation::WaterModel::segelstein;
   s.fog.temperature_c = propagation::segelstein_table_temperature_c;
+  s.radar.cfar.threshold_design = radar::CfarThresholdDesign::independent;
   const std::string text = to_toml(s);
   EXPECT_EQ(to_toml(parse_scenario(text, "resolved.toml")), text);
 }
@@ -151,6 +152,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"liebe_below_its_range", "[fog]\ntemperature_c = -25\n", "fog.temperature_c", 2},
         BadInput{"unknown_window", "[processing]\nwindow = \"kaiser\"\n", "processing.window", 2},
         BadInput{"unknown_cfar", "[processing.cfar]\nkind = \"xx\"\n", "processing.cfar.kind", 2},
+        BadInput{"unknown_threshold_design", "[processing.cfar]\nthreshold_design = \"iid\"\n",
+                 "processing.cfar.threshold_design", 2},
         BadInput{"pfa_out_of_range", "[processing.cfar]\nfalse_alarm_probability = 1.5\n",
                  "processing.cfar.false_alarm_probability", 2},
         BadInput{"negative_integer", "[experiment]\nmeasurements_per_step = -3\n",

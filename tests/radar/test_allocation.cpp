@@ -60,9 +60,11 @@ TEST(Allocation, SteadyStateMeasurementDoesNotAllocate) {
   RandomStream warm_up(1);
   chain.measure(scene, chamber, all_on, warm_up, ws, m);
   ASSERT_TRUE(m.target.has_value());
-  // Give the detection list room for more objects than the warm-up had (a measurement with more
-  // detections than any before it may grow the list once; that is amortised, not per frame).
+  // Give the detection lists room for more objects and detected cells than the warm-up had (a
+  // measurement with more detections than any before it may grow a list once; that is amortised,
+  // not per frame).
   m.detections.reserve(64);
+  ws.estimation.detected_cells.reserve(4096);
 
   const long before = g_allocations.load();
   for (std::uint64_t i = 0; i < 5; ++i) {

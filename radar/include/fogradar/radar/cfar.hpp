@@ -1,6 +1,8 @@
 // One-dimensional CFAR detection on a square-law (power) profile: CA, GO, SO and OS, with the
 // threshold factor set from a design false-alarm probability for exponential (square-law
-// detected complex Gaussian) noise.
+// detected complex Gaussian) noise. The formulas below hold for independent cells; a detector
+// given the noise correlation of its profile (CfarDetector(config, noise)) solves its factors for
+// the correlated cells instead (cfar_design.hpp) unless the config asks for `independent`.
 //
 // Conventions (all four kinds): N = 2 * training_cells reference cells, n = training_cells per
 // side, noise level estimate Z, threshold = alpha * Z, detection when power > threshold.
@@ -25,7 +27,9 @@
 // order (in the interior exactly the leading and lagging windows).
 // What holds: in homogeneous iid exponential noise the reference cells of every cell, edge or
 // interior, are N iid samples independent of the cell under test, so the design Pfa holds
-// exactly for all four kinds in every cell. What changes at the edges: the reference cells
+// exactly for all four kinds in every cell. In correlated noise the edge cells' reference windows
+// (one-sided, contiguous) have other correlations than the interior's: the correlated design gives
+// each its own factor (cfar_design.hpp). What changes at the edges: the reference cells
 // are not centred on the cell under test, so in non-homogeneous backgrounds (clutter edges,
 // a strong target near the profile end) edge cells behave like a one-sided CFAR, and GO/SO no
 // longer compare "leading vs lagging" side of the cell under test.
@@ -38,14 +42,25 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/radar/noise_correlation.hpp"
+
 namespace fogradar::radar {
 
 enum class CfarKind { ca, go, so, os };
+
+// How the threshold factor is designed: for the correlated noise cells the detector is given
+// (cfar_design.hpp), or with the independent-cell formulas below whatever the correlation.
+enum class CfarThresholdDesign { correlated, independent };
 
 // "ca", "go", "so", "os".
 std::string_view to_string(CfarKind kind) noexcept;
 // Inverse of to_string (exact, lower case); throws InvalidParameter naming `field`.
 CfarKind parse_cfar_kind(std::string_view text, std::string_view field = "cfar.kind");
+// "correlated", "independent".
+std::string_view to_string(CfarThresholdDesign design) noexcept;
+// Inverse of to_string (exact, lower case); throws InvalidParameter naming `field`.
+CfarThresholdDesign parse_cfar_threshold_design(std::string_view text,
+                                                std::string_view field = "cfar.threshold_design");
 
 struct CfarConfig {
   CfarKind kind = CfarKind::ca;
@@ -53,6 +68,7 @@ struct CfarConfig {
   unsigned training_cells = 8;            // per side, n >= 1; N = 2 n reference cells in total
   double false_alarm_probability = 1e-6;  // design Pfa in (0, 1)
   unsigned os_rank = 0;  // OS: k in [1, N]; 0 selects the default k = round(3N/4) (Rohling 1983)
+  CfarThresholdDesign threshold_design = CfarThresholdDesign::correlated;
 
   // Throws InvalidParameter naming "cfar.training_cells" (must be >= 1),
   // "cfar.false_alarm_probability" (in (0, 1), finite) or "cfar.os_rank" (0 or in [1, N]).
@@ -69,11 +85,11 @@ struct CfarConfig {
   unsigned effective_os_rank() const noexcept;
 };
 
-// Threshold factor alpha for the config's kind, N and design Pfa (see the header comment for
-// the conventions and formulas). Validates the config.
+// Threshold factor alpha for the config's kind, N and design Pfa for independent cells (see the
+// header comment for the conventions and formulas). Validates the config.
 double cfar_threshold_factor(const CfarConfig& config);
 
-// Pfa of the config's detector at threshold factor alpha >= 0 in homogeneous exponential noise
+// Pfa of the config's detector at threshold factor alpha >= 0 in homogeneous iid exponential noise
 // (the inverse of cfar_threshold_factor; false_alarm_probability is not read). GO is evaluated
 // as the positive series 2 sum_{j>=n} C(n-1+j, j) (2+t)^-(n+j) (equal to the published form,
 // without its cancellation).
@@ -88,15 +104,23 @@ struct CfarWorkspace {
   std::vector<double> sum_scratch;       // CA/GO/SO: block sums while forming window_sums (2 profiles)
 };
 
-// A validated configuration with its threshold factor solved once: the hot-path object.
+// A validated configuration with its threshold factors solved once: the hot-path object.
 // Immutable after construction, so one detector may be shared by many threads, each with its
 // own CfarWorkspace.
 class CfarDetector {
  public:
-  explicit CfarDetector(const CfarConfig& config);  // validates
+  // For profiles of independent cells (white noise): the formulas above, exact for every kind.
+  explicit CfarDetector(const CfarConfig& config);
+  // For profiles whose noise cells are correlated as `noise` says (window_noise_correlation of the
+  // range window for a range profile): the factors of design_cfar_threshold_factors, one for the
+  // interior cells and one per edge position. Validates both.
+  CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise);
 
   const CfarConfig& config() const noexcept { return config_; }
+  // The interior cells' factor.
   double threshold_factor() const noexcept { return alpha_; }
+  // The factor of the cells i and L-1-i of a profile of L cells, i < guard + training.
+  double edge_threshold_factor(std::size_t i) const noexcept { return edge_alpha_[i]; }
 
   // Thresholds and detections for one profile into `workspace` (resized to the profile,
   // so no allocation once it has served a profile at least this long). CA/GO/SO read sums of
@@ -110,6 +134,8 @@ class CfarDetector {
  private:
   CfarConfig config_;
   double alpha_;
+  std::vector<double> edge_alpha_;  // guard + training factors
+  std::vector<double> edge_scale_;  // edge_alpha_ / N (CA) or / n (GO, SO): the sums' scale
 };
 
 // Convenience form: indices of detected cells (ascending); optionally the threshold per cell.

@@ -1,0 +1,85 @@
+// Threshold factors of a CFAR detector for the noise cells a detector really sees: circular complex
+// Gaussian cells correlated by the range window (noise_correlation.hpp), not the independent cells
+// of the textbook formulas in cfar.hpp. With the default Hann window the independent-cell factor
+// gives 2.2 x the design P_fa at 1e-3 and 10 x at 1e-6 for CA (docs/radar.md §7).
+//
+// The cell under test x0 = |Y0|^2 and its N reference cells x_j = |Y_j|^2 (Y ~ CN(0, R), R_ij =
+// rho(p_i - p_j) for the cells' positions p) give, per kind:
+//   CA  exact. Detection is q = |Y0|^2 - (alpha/N) sum_j |Y_j|^2 > 0, a Hermitian quadratic form
+//       Y^H Q Y, Q = diag(1, -a, ..., -a), a = alpha/N. With lambda_i the eigenvalues of
+//       L^T Q L (R = L L^T; the eigenvalues of R Q), q has the law of sum_i lambda_i E_i with E_i
+//       iid Exp(1) (characteristic function prod_i 1/(1 - i w lambda_i): Turin 1960, Biometrika 47,
+//       199-201). Q has one positive eigenvalue, so (Sylvester's law of inertia) has L^T Q L:
+//       lambda_1 > 0 >= the rest, and
+//         P_fa = P(lambda_1 E_1 > sum_{i>1} |lambda_i| E_i) = E[exp(-sum_{i>1} |lambda_i| E_i /
+//         lambda_1)]
+//              = prod_{i>1} 1 / (1 + |lambda_i| / lambda_1),
+//       repeated eigenvalues included. For a cell under test uncorrelated with its reference cells
+//       this is 1 / det(I + a C), C the reference cells' correlation matrix.
+//   GO, SO, OS  no closed form for sums' maxima/minima or order statistics of correlated cells:
+//       the reference vector is sampled and the cell under test's conditional tail integrated
+//       exactly. Given the reference cells r, Y0 ~ CN(mu, s^2) with mu = l^T u, s the last diagonal
+//       entry of the Cholesky factor of R ordered (reference cells, cell under test), so
+//         P(x0 > alpha Z | r) = Q_1(sqrt(2 lambda), sqrt(2 y)),  lambda = |mu|^2/s^2, y = alpha
+//         Z/s^2,
+//       (Marcum Q, evaluated as the Poisson mixture of gamma tails
+//        sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, all terms positive). The mean over r
+//        uses
+//       importance sampling from a defensive mixture (Hesterberg 1995, Technometrics 37(2),
+//       185-194; balance-heuristic weights, Veach & Guibas 1995): the noise itself and
+//       exponentially tilted versions of it that make the cells of the noise estimate small
+//       (all cells for GO and OS, each half for SO), 2^14 samples of a fixed seed (the same
+//       samples for every alpha, so the estimate is smooth and decreasing in alpha). Its relative
+//       standard error, measured over independent seeds, is stated in docs/radar.md §7.
+// Every cell's factor is solved for its own reference geometry: the interior cells share one; the
+// edge cells (edge policy in cfar.hpp) have one-sided or shifted reference windows; the cells i and
+// L-1-i from the two ends are mirror images (rho even) and share a factor. All arithmetic is scalar
+// or Eigen at the x86-64 baseline with fixed sample counts and seed: the same factors in every
+// process, for every thread count and instruction-set clone.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "fogradar/radar/cfar.hpp"
+#include "fogradar/radar/noise_correlation.hpp"
+
+namespace fogradar::radar {
+
+struct CfarThresholdFactors {
+  double interior = 0.0;
+  // edge[i]: the cells i and L-1-i (i < guard + training) of a profile of L cells.
+  std::vector<double> edge;
+};
+
+// Positions of the reference cells relative to the cell under test of a cell `cells_from_end` cells
+// from a profile end (0 = first cell; >= guard + training: an interior cell), in range order.
+std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config,
+                                                   std::size_t cells_from_end);
+
+// How correlated_false_alarm_probability evaluates: CA exactly and the others by sampling
+// (automatic), or every kind by sampling (to test the sampled method against the exact ones).
+enum class CorrelatedPfaMethod { automatic, sampled };
+
+// The seed of the design's samples.
+inline constexpr std::uint64_t kCfarDesignSeed = 0xCFA2D351C0FFEEULL;
+
+// P_fa of the config's detector at factor alpha >= 0 for a cell with the reference cells at
+// `offsets` (from cfar_reference_offsets) in noise correlated by `noise` (method in the header
+// comment; the sampling mixture is tilted for this alpha, its samples drawn from `seed`'s stream).
+// Validates the config.
+double correlated_false_alarm_probability(
+    const CfarConfig& config, const NoiseCorrelation& noise,
+    std::span<const std::ptrdiff_t> offsets, double alpha,
+    CorrelatedPfaMethod method = CorrelatedPfaMethod::automatic,
+    std::uint64_t seed = kCfarDesignSeed);
+
+// The factors that give the design P_fa in every cell: the independent-cell factor of
+// cfar_threshold_factor everywhere when config.threshold_design is `independent` or the noise is
+// white (then exact for all kinds), else solved per reference geometry (header comment).
+CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
+                                                   const NoiseCorrelation& noise);
+
+}  // namespace fogradar::radar
