@@ -356,7 +356,7 @@ std::string summary_table(const ExperimentSummary& summary) {
          "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
          "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
   out << "sensor limit: ";
-  if (summary.sensor_limit_layers) out << *summary.sensor_limit_layers << " active layers\n";
+  if (summary.sensor_limit_layers) out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
   else out << "not reached\n";
   if (summary.attenuation_margin_db) {
     std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n", *summary.attenuation_margin_db);
