@@ -1,5 +1,5 @@
 // `fogradar fog`: the fog's water index, radar attenuation and backscatter, optical extinction and
-// visibility (DESIGN §4).
+// visibility (docs/physics.md).
 #include <cmath>
 #include <iomanip>
 #include <iostream>

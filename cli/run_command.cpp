@@ -1,4 +1,4 @@
-// `fogradar run` and `fogradar scenario` (DESIGN §4).
+// `fogradar run` and `fogradar scenario` (docs/scenario.md).
 #include <unistd.h>
 
 #include <atomic>
@@ -26,7 +26,7 @@ struct RunOptions {
   int threads = 0;
 };
 
-// Progress on stderr only when it is a terminal (DESIGN §6); throttled to whole percents.
+// Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to whole percents.
 std::function<void(std::size_t, std::size_t)> terminal_progress() {
   if (!::isatty(STDERR_FILENO)) return {};
   auto last_percent = std::make_shared<std::atomic<int>>(-1);

@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   const int measurements = argc > 1 ? std::atoi(argv[1]) : 5;
   const std::uint64_t seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
 
-  const radar::RadarParams params;  // paper radar (DESIGN §4)
+  const radar::RadarParams params;  // the paper scenario's radar (examples/paper.toml)
   const radar::RadarChain chain(params);
   const radar::RadarDerived& d = chain.derived();
 

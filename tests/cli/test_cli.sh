@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end checks of the fogradar command (DESIGN §4, §6): outputs, byte-identical results for 1 and
+# End-to-end checks of the fogradar command (README, docs/scenario.md, docs/architecture.md Contracts): outputs, byte-identical results for 1 and
 # 2 threads, and bad input -> exit status 2, one message naming the argument or key, no files left.
 # Usage: test_cli.sh FOGRADAR_BINARY SOURCE_DIR
 set -u
@@ -88,7 +88,7 @@ expect_bad fog-table-temperature --temperature-c fog --water-model segelstein --
 expect_bad fog-table-temperature-names-liebe liebe fog --water-model segelstein --temperature-c 20
 expect_bad fog-liebe-temperature --temperature-c fog --temperature-c 60
 
-# --- fog --json carries the DESIGN §4 keys ----------------------------------------------------------
+# --- fog --json carries the documented keys (README) ----------------------------------------------------------
 json=$("$fogradar" fog --frequency-ghz 77 --lwc 1 --temperature-c 20 --json)
 for key in frequency_hz wavelength_m refractive_index_n refractive_index_k lwc_g_per_m3 \
   specific_attenuation_db_per_km volume_backscatter_m2_per_m3 optical_extinction_per_km visibility_m \

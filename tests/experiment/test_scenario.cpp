@@ -1,4 +1,4 @@
-// Scenario files: the embedded paper scenario matches DESIGN §4, round-trips through to_toml, and every
+// Scenario files: the embedded paper scenario has the documented paper values (docs/scenario.md), round-trips through to_toml, and every
 // bad input is rejected with the key (and its line) named.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 namespace fogradar::experiment {
 namespace {
 
-// The paper-scenario values DESIGN §4 fixes, checked against the compiled-in file.
+// The paper-scenario values docs/scenario.md documents, checked against the compiled-in file.
 TEST(Scenario, PaperScenarioIsDesignSection4) {
   const Scenario s = paper_scenario();
   EXPECT_EQ(s.radar.centre_frequency_hz, 77e9);  // "sweep centred on 77 GHz"

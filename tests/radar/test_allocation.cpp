@@ -1,4 +1,4 @@
-// Performance contract (DESIGN.md §5, radar issue): no per-sample (indeed no per-frame) heap
+// Performance contract (docs/architecture.md, Contracts): no per-sample (indeed no per-frame) heap
 // allocation once a workspace has served one frame. This file replaces the global operator
 // new/delete of the test program with counting versions (malloc/free underneath); only the
 // counts taken inside the test below are examined.

@@ -94,7 +94,7 @@ void expect_invalid_field(const CfarConfig& config, const std::string& field) {
   EXPECT_EQ(test_support::rejected_field([&] { config.validate(); }), field);
 }
 
-// Every invalid field is rejected with InvalidParameter naming it (STYLE.md practice 11).
+// Every invalid field is rejected with InvalidParameter naming it.
 // Negative cell counts cannot be represented (unsigned fields); the scenario parser rejects
 // them before a CfarConfig exists.
 TEST(CfarConfig, RejectsEveryInvalidField) {

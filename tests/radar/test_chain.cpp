@@ -9,7 +9,7 @@
 //   [Ri14] M. A. Richards, Fundamentals of Radar Signal Processing, 2nd ed., sec. 6.5: CA-CFAR
 //          Pfa = E[exp(-alpha Z)] = (1 + alpha/N)^-N for iid reference cells; for correlated
 //          Gaussian reference cells the same expectation is 1 / det(I + (alpha/N) C).
-//   [Pap]  The study (shared/paper): eq. 7 (RCS), eq. 4 (virtual layer model).
+//   [Pap]  The study (Hasirlioglu et al., IEEE VTC2017-Spring): eq. 7 (RCS), eq. 4 (virtual layer model).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Radar parameters: every invalid field rejected with its name (STYLE.md practice 11), and the
+// Radar parameters: every invalid field rejected with its name, and the
 // derived quantities against the textbook FMCW relations written out here:
 //   [Ri14] M. A. Richards, Fundamentals of Radar Signal Processing, 2nd ed.: range resolution
 //          c / (2B), Doppler 2v/lambda, velocity resolution lambda / (2 N_c T_i).
@@ -100,7 +100,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
       "cfar.training_cells");
 }
 
-// Paper radar (DESIGN §4): the derived quantities by the textbook relations [Ri14, PJ62].
+// Paper radar (examples/paper.toml): the derived quantities by the textbook relations [Ri14, PJ62].
 TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
   const RadarParams p;
   const RadarDerived d = derive(p);

@@ -1,4 +1,4 @@
-// Result files of `fogradar run` (DESIGN §4): samples.csv, summary.csv, summary.json,
+// Result files of `fogradar run` (docs/scenario.md, Results): samples.csv, summary.csv, summary.json,
 // rcs_boxplot.svg, scenario.toml. All are rendered in memory first, then written to temporary files
 // in the output directory and renamed into place, so a failed run leaves no partial result files.
 #pragma once

@@ -1,5 +1,5 @@
 // A scenario: everything one run of the study's methodology needs, as read from a TOML file with the
-// sections [radar], [processing], [target], [chamber], [fog], [experiment] (DESIGN §4). Keys carry
+// sections [radar], [processing], [target], [chamber], [fog], [experiment] (docs/scenario.md). Keys carry
 // their units in their names; docs/scenario.md lists them with defaults and ranges. The paper
 // scenario (examples/paper.toml) is compiled in and is the base every scenario file overrides.
 #pragma once

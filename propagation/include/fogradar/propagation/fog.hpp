@@ -33,7 +33,7 @@ using FogDensity = std::variant<LiquidWaterContent, OpticalExtinction, Visibilit
 struct FogSpec {
   FogDensity density = OpticalExtinction{};
   DropSizeDistribution droplets = default_fog_droplets();
-  // Water temperature of the index at radar frequencies: the study's 20 C (DESIGN §4) under Liebe,
+  // Water temperature of the index at radar frequencies: 20 C (an assumed indoor hall; the study gives none) under Liebe,
   // the temperature-dependent model of ITU-R P.840. With the Segelstein table only its own 25 C is
   // accepted. Optical wavelengths always use the table at 25 C (Liebe ends at 1 THz;
   // docs/physics.md §2 quantifies what the optical temperature dependence would change).

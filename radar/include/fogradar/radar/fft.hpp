@@ -1,4 +1,4 @@
-// FFTW behind one RAII class (STYLE.md practice 2): complex double 1-D transforms, single or
+// FFTW behind one RAII class: complex double 1-D transforms, single or
 // batched, planned once and executed concurrently by any number of threads on caller buffers.
 //
 // fftw3.h is deliberately not included here: FFTW is linked PRIVATE to fogradar::radar and the

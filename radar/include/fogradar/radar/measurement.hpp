@@ -19,7 +19,7 @@ namespace fogradar::radar {
 struct Measurement {
   std::vector<Detection> detections;  // each with its origin (target, fog or noise)
   // The strongest detection within the association gate around the chamber's target range, or
-  // nothing: a missed detection is reported as such, never as a made-up value (DESIGN §3.6). This
+  // nothing: a missed detection is reported as such, never as a made-up value (docs/scenario.md). This
   // is what a tracker associates, whatever its origin: a noise or fog detection in the gate is a
   // false association, which the caller tells from target->origin.
   std::optional<Detection> target;

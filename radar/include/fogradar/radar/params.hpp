@@ -1,5 +1,5 @@
 // Parameters of the FMCW radar and its processing chain, and the quantities derived from them in
-// one place (STYLE.md §5). Defaults are the paper scenario of DESIGN §4: a typical 77 GHz long-range
+// one place. Defaults are the paper scenario (examples/paper.toml): a typical 77 GHz long-range
 // radar (1 GHz sweep, 512 x 64 samples per frame, 10 dBm, 25 dBi, 12 dB noise figure).
 #pragma once
 
