@@ -52,7 +52,7 @@ class RangeDopplerProcessor {
   std::vector<double> doppler_window_;
   std::vector<double> range_window_pairs_;  // w_r[n] at 2n and 2n + 1
   FftPlan range_fft_;
-  FftPlan doppler_fft_;
+  ColumnBlockFft doppler_fft_;  // along the columns in L1-sized blocks: same bits, no cache cliff
   double coherent_amplitude_gain_;
   double noise_power_gain_;
 };
