@@ -254,11 +254,11 @@ TEST(FftColumnBlocks, SameBitsAsOneStridedEstimatePlan) {
   }
 }
 
-TEST(FftColumnBlocks, DefaultBlockKeepsTheBufferWithin32KiB) {
-  EXPECT_EQ(ColumnBlockFft::default_block_columns(64), 16u);   // 16 KiB
-  EXPECT_EQ(ColumnBlockFft::default_block_columns(128), 16u);  // 32 KiB
-  EXPECT_EQ(ColumnBlockFft::default_block_columns(256), 8u);   // 32 KiB
-  EXPECT_EQ(ColumnBlockFft::default_block_columns(4096), 2u);  // the minimum, 128 KiB
+TEST(FftColumnBlocks, DefaultBlockKeepsTheBufferWithin128KiB) {
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(64), 16u);    // 16 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(512), 16u);   // 128 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(1024), 8u);   // 128 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(16384), 2u);  // the minimum, 512 KiB
   EXPECT_EQ(ColumnBlockFft(64, 512, FftDirection::forward).block_columns(), 16u);
 }
 

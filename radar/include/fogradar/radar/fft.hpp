@@ -167,8 +167,10 @@ class ColumnBlockFft {
   ColumnBlockFft(std::size_t rows, std::size_t columns, FftDirection direction,
                  FftPlanner planner = FftPlanner::estimate, std::size_t block = 0);
 
-  // The block width used when none is given: the widest power of two <= 16 whose block (rows x
-  // block complex doubles) stays within 32 KiB, at least 2 (measured: docs/performance.md).
+  // The block width used when none is given: 16 columns (256 bytes of each row), halved while the
+  // block (rows x block complex doubles) exceeds 128 KiB, at least 2. Measured on the project's
+  // machine (docs/performance.md): 16 was the fastest of 4-64 for 64, 128, 256 and 512 rows, and 32
+  // and more were 2-4 x slower from 256 rows on.
   static std::size_t default_block_columns(std::size_t rows) noexcept;
 
   // Transforms the columns of `data` (rows * columns values, FFTW-aligned) in place.
