@@ -274,6 +274,15 @@ struct Transforms {
   std::unique_ptr<RawPlan> measure_2d_in_place, measure_2d_out_of_place;
   std::vector<Variant> variants;
 
+  void add_variant(std::string name, bool floor_candidate,
+                   std::function<void(ThreadBuffers&)> transform) {
+    Variant v;
+    v.name = std::move(name);
+    v.floor_candidate = floor_candidate;
+    v.transform = std::move(transform);
+    variants.push_back(std::move(v));
+  }
+
   Transforms(std::size_t r, std::size_t c, int rescale)
       : rows(r),
         columns(c),
@@ -301,33 +310,29 @@ struct Transforms {
 
     const std::size_t size = r * c;
     const auto span = [size](Complex* p) { return std::span<Complex>(p, size); };
-    variants.push_back(
-        {"ESTIMATE rows + columns (old floor)", false, [this, span](ThreadBuffers& b) {
-           estimate_rows.execute(span(b.current()));
-           estimate_columns.execute(span(b.current()));
-         }});
-    variants.push_back(
-        {"ESTIMATE rows + blocks (the chain)", false, [this, span](ThreadBuffers& b) {
-           estimate_rows.execute(span(b.current()));
-           estimate_blocks.execute(span(b.current()));
-         }});
-    variants.push_back({"MEASURE rows + columns", true, [this, span](ThreadBuffers& b) {
-                          measure_rows.execute(span(b.current()));
-                          measure_columns.execute(span(b.current()));
-                        }});
-    variants.push_back({"MEASURE rows + blocks", true, [this, span](ThreadBuffers& b) {
-                          measure_rows.execute(span(b.current()));
-                          measure_blocks.execute(span(b.current()));
-                        }});
-    variants.push_back({"MEASURE 2-D in place", true, [this](ThreadBuffers& b) {
-                          fftw_execute_dft(measure_2d_in_place->plan, as_fftw(b.current()),
-                                           as_fftw(b.current()));
-                        }});
-    variants.push_back({"MEASURE 2-D out of place", true, [this](ThreadBuffers& b) {
-                          fftw_execute_dft(measure_2d_out_of_place->plan, as_fftw(b.current()),
-                                           as_fftw(b.other()));
-                          b.in_b = !b.in_b;
-                        }});
+    add_variant("ESTIMATE rows + columns (old floor)", false, [this, span](ThreadBuffers& b) {
+      estimate_rows.execute(span(b.current()));
+      estimate_columns.execute(span(b.current()));
+    });
+    add_variant("ESTIMATE rows + blocks (the chain)", false, [this, span](ThreadBuffers& b) {
+      estimate_rows.execute(span(b.current()));
+      estimate_blocks.execute(span(b.current()));
+    });
+    add_variant("MEASURE rows + columns", true, [this, span](ThreadBuffers& b) {
+      measure_rows.execute(span(b.current()));
+      measure_columns.execute(span(b.current()));
+    });
+    add_variant("MEASURE rows + blocks", true, [this, span](ThreadBuffers& b) {
+      measure_rows.execute(span(b.current()));
+      measure_blocks.execute(span(b.current()));
+    });
+    add_variant("MEASURE 2-D in place", true, [this](ThreadBuffers& b) {
+      fftw_execute_dft(measure_2d_in_place->plan, as_fftw(b.current()), as_fftw(b.current()));
+    });
+    add_variant("MEASURE 2-D out of place", true, [this](ThreadBuffers& b) {
+      fftw_execute_dft(measure_2d_out_of_place->plan, as_fftw(b.current()), as_fftw(b.other()));
+      b.in_b = !b.in_b;
+    });
   }
 };
 
