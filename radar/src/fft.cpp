@@ -172,7 +172,7 @@ void FftPlan::execute(std::span<std::complex<double>> data) const {
 
 namespace {
 
-std::size_t checked_block(std::size_t block, std::size_t rows) {
+std::size_t block_or_default(std::size_t block, std::size_t rows) {
   if (block == 0) return ColumnBlockFft::default_block_columns(rows);
   return block;
 }
@@ -183,7 +183,7 @@ ColumnBlockFft::ColumnBlockFft(std::size_t rows, std::size_t columns, FftDirecti
                                FftPlanner planner, std::size_t block)
     : rows_(rows),
       columns_(columns),
-      block_(checked_block(block, rows)),
+      block_(block_or_default(block, rows)),
       plan_(FftLayout{rows, block_, block_, 1}, direction,
             {.planner = planner,
              .alignment = FftAlignment::aligned,
@@ -200,7 +200,7 @@ std::size_t ColumnBlockFft::default_block_columns(std::size_t rows) noexcept {
 
 void ColumnBlockFft::execute(std::span<std::complex<double>> data) const {
   FOGRADAR_CHECK(data.size() >= rows_ * columns_);
-  ComplexVector buffer(rows_ * block_);  // value-initialised: a narrow last block leaves zeros
+  ComplexVector buffer(rows_ * block_);
   for (std::size_t first = 0; first < columns_; first += block_) {
     const std::size_t width = std::min(block_, columns_ - first);
     const std::size_t bytes = width * sizeof(std::complex<double>);

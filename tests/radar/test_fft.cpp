@@ -204,7 +204,7 @@ TEST(FftBatch, GeneralLayoutTouchesOnlyAddressedElements) {
 // --- Column transforms in blocks -------------------------------------------------------------
 
 // ColumnBlockFft against the long-double DFT of every column, for block widths that divide the
-// column count and ones that leave a narrower last block (zero-padded), forward and inverse.
+// column count and ones that leave a narrower last block, forward and inverse.
 // Tolerance kRelTol per column (FFTW's error is ~1e-16 log2 n relative; header comment).
 TEST(FftColumnBlocks, MatchesNaiveDftOfEveryColumn) {
   struct Case {
@@ -233,7 +233,7 @@ TEST(FftColumnBlocks, MatchesNaiveDftOfEveryColumn) {
 // The blocked Doppler transform gives the same bits as the one strided FFTW_ESTIMATE plan over all
 // columns (FftPlan::along_columns) that the chain used before it, for the frame sizes of the
 // project's scenarios (paper 64 x 512, bench 128 x 1024, long frames 256 x 2048) and a column
-// count the default block does not divide (the zero-padded last block): the plan ESTIMATE applies
+// count the default block does not divide (a narrower last block): the plan ESTIMATE applies
 // to each column is the same, only the loop over columns is split. Exact equality.
 TEST(FftColumnBlocks, SameBitsAsOneStridedEstimatePlan) {
   for (const auto& [rows, columns] : {std::pair<std::size_t, std::size_t>{64, 512},

@@ -149,13 +149,14 @@ class FftPlan {
 //
 // Why: FFTW_ESTIMATE plans the whole strided batch as one codelet (or one Cooley-Tukey plan)
 // looped over all columns, reading `rows` elements `columns` * 16 bytes apart; at 1024 columns
-// every element of a column falls into the same L1 set, and the transform ran 2.3 x (128 chirps) to
-// 20-35 x (256 chirps and more) slower than FFTW_MEASURE's plan (docs/performance.md). The block
-// fits in L1 or L2; the plan applied to each column is the one ESTIMATE chose for the whole batch
-// (the same codelets, looped over `block` columns instead of all), so the results are the same bits
-// as along_columns' (pinned by tests/radar/test_fft.cpp for the frame sizes the project uses).
-// A last block narrower than `block` is gathered into a buffer whose other columns are zero: FFTW
-// transforms each column independently, so they do not change the gathered columns' results.
+// every element of a column falls into the same L1 set, and range + Doppler took 2.0-2.2 x (64 x
+// 512, 128 x 1024) to 14-21 x (256 x 2048) the time of FFTW_MEASURE's best (docs/performance.md).
+// The block fits in L1 or L2; the plan applied to each column is the one ESTIMATE chose for the
+// whole batch (the same codelets, looped over `block` columns instead of all), so the results are
+// the same bits as along_columns' (pinned by tests/radar/test_fft.cpp for the frame sizes the
+// project uses). A last block narrower than `block` uses the same plan; the buffer's other columns
+// still hold the previous block's (finite) results, or zeros, and FFTW transforms each column
+// independently, so they do not change the gathered columns' results.
 //
 // Thread safety as FftPlan: execute() is const and may run on many threads at once; each call
 // uses its own block buffer (one FFTW-aligned allocation of rows * block values per call).
@@ -173,7 +174,8 @@ class ColumnBlockFft {
   // and more were 2-4 x slower from 256 rows on.
   static std::size_t default_block_columns(std::size_t rows) noexcept;
 
-  // Transforms the columns of `data` (rows * columns values, FFTW-aligned) in place.
+  // Transforms the columns of `data` (rows * columns values, row-major; any alignment, since only
+  // the block buffer is handed to FFTW) in place.
   void execute(std::span<std::complex<double>> data) const;
 
   std::size_t rows() const noexcept { return rows_; }
