@@ -192,9 +192,10 @@ ColumnBlockFft::ColumnBlockFft(std::size_t rows, std::size_t columns, FftDirecti
 }
 
 std::size_t ColumnBlockFft::default_block_columns(std::size_t rows) noexcept {
-  constexpr std::size_t max_block_bytes = 128 * 1024;
+  constexpr std::size_t value_bytes = sizeof(std::complex<double>);
+  if (rows * 32 * value_bytes <= 32 * 1024) return 32;
   std::size_t block = 16;
-  while (block > 2 && rows * block * sizeof(std::complex<double>) > max_block_bytes) block /= 2;
+  while (block > 2 && rows * block * value_bytes > 128 * 1024) block /= 2;
   return block;
 }
 

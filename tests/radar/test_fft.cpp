@@ -232,15 +232,17 @@ TEST(FftColumnBlocks, MatchesNaiveDftOfEveryColumn) {
 
 // The blocked Doppler transform gives the same bits as the one strided FFTW_ESTIMATE plan over all
 // columns (FftPlan::along_columns) that the chain used before it, for the frame sizes of the
-// project's scenarios (paper 64 x 512, bench 128 x 1024, long frames 256 x 2048) and a column
-// count the default block does not divide (a narrower last block): the plan ESTIMATE applies
-// to each column is the same, only the loop over columns is split. Exact equality.
+// project's scenarios (paper 64 x 512, bench 128 x 1024, long frames 256 x 2048) and column
+// counts the default block (32 or 16) does not divide (a narrower last block): the plan ESTIMATE
+// applies to each column is the same, only the loop over columns is split. Exact equality.
 TEST(FftColumnBlocks, SameBitsAsOneStridedEstimatePlan) {
   for (const auto& [rows, columns] : {std::pair<std::size_t, std::size_t>{64, 512},
                                       {128, 1024},
                                       {256, 2048},
                                       {128, 1000},
-                                      {96, 300}}) {
+                                      {96, 300},
+                                      {64, 200},
+                                      {32, 256}}) {
     const ComplexVector input = random_signal(rows * columns, rows + columns);
     ComplexVector strided = input;
     FftPlan::along_columns(rows, columns, FftDirection::forward,
@@ -254,12 +256,13 @@ TEST(FftColumnBlocks, SameBitsAsOneStridedEstimatePlan) {
   }
 }
 
-TEST(FftColumnBlocks, DefaultBlockKeepsTheBufferWithin128KiB) {
-  EXPECT_EQ(ColumnBlockFft::default_block_columns(64), 16u);    // 16 KiB
+TEST(FftColumnBlocks, DefaultBlockFollowsTheBufferSize) {
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(64), 32u);    // 32 columns: 32 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(65), 16u);    // 32 would exceed 32 KiB
   EXPECT_EQ(ColumnBlockFft::default_block_columns(512), 16u);   // 128 KiB
   EXPECT_EQ(ColumnBlockFft::default_block_columns(1024), 8u);   // 128 KiB
   EXPECT_EQ(ColumnBlockFft::default_block_columns(16384), 2u);  // the minimum, 512 KiB
-  EXPECT_EQ(ColumnBlockFft(64, 512, FftDirection::forward).block_columns(), 16u);
+  EXPECT_EQ(ColumnBlockFft(128, 1024, FftDirection::forward).block_columns(), 16u);
 }
 
 // One ColumnBlockFft shared by threads, each with its own frame: the same bits as one thread

@@ -168,10 +168,11 @@ class ColumnBlockFft {
   ColumnBlockFft(std::size_t rows, std::size_t columns, FftDirection direction,
                  FftPlanner planner = FftPlanner::estimate, std::size_t block = 0);
 
-  // The block width used when none is given: 16 columns (256 bytes of each row), halved while the
-  // block (rows x block complex doubles) exceeds 128 KiB, at least 2. Measured on the project's
-  // machine (docs/performance.md): 16 was the fastest of 4-64 for 64, 128, 256 and 512 rows, and 32
-  // and more were 2-4 x slower from 256 rows on.
+  // The block width used when none is given: 32 columns while that block (rows x 32 complex
+  // doubles) stays within 32 KiB (up to 64 rows), else 16 (256 bytes of each row) halved while the
+  // block exceeds 128 KiB, at least 2. Measured on the project's machine (docs/performance.md):
+  // 32 was the fastest of 4-64 at 32 and 64 rows (0.75-0.8 of 16's time), 16 at 128-512 rows, and
+  // 32 and more were 2-4 x slower from 256 rows on.
   static std::size_t default_block_columns(std::size_t rows) noexcept;
 
   // Transforms the columns of `data` (rows * columns values, row-major; any alignment, since only
