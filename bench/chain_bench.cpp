@@ -7,8 +7,9 @@
 // window (with noise, the window is applied in the noise pass; without, after the tones), the range
 // and Doppler FFTs (RangeDopplerProcessor::transform_windowed), estimate_detections (|.|^2 and CFAR
 // row by row, grouping, interpolation, RCS), the full RadarChain::measure, and the floor: the range
-// and Doppler FFTs alone with the same plans (FFTW_ESTIMATE, as the chain uses). Arg 0: 0 = paper
-// frame, 1 = bench frame. Run:
+// and Doppler FFTs alone with FFTW_MEASURE plans (range FFT of every chirp, Doppler FFT in column
+// blocks: the candidate bench/throughput most often finds fastest; throughput takes the fastest of
+// four layouts, docs/performance.md). Arg 0: 0 = paper frame, 1 = bench frame. Run:
 //   ./build/chain-rel/bench/chain_bench --benchmark_repetitions=9
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
 // The last lines print each stage as a ratio to the FFT-only floor measured in the same run
@@ -87,14 +88,15 @@ void label(benchmark::State& state, const Setup& s) {
 }
 
 // The floor: range FFT of every chirp (out of place from the raw frame, so every iteration starts
-// from the same data) and the Doppler FFT of every range bin (in place), FFTW_ESTIMATE.
+// from the same data) and the Doppler FFT of every range bin (in place, column blocks), both
+// FFTW_MEASURE, planned before timing.
 void BM_FftOnly(benchmark::State& state) {
   Setup& s = setup(state.range(0));
   const std::size_t rows = s.chain.params().chirps_per_frame,
                     cols = s.chain.params().samples_per_chirp;
-  const FftPlan range_fft = FftPlan::along_rows(rows, cols, FftDirection::forward);
-  const FftPlan doppler_fft = FftPlan::along_columns(rows, cols, FftDirection::forward,
-                                                     {.placement = FftPlacement::in_place});
+  const FftPlan range_fft =
+      FftPlan::along_rows(rows, cols, FftDirection::forward, {.planner = FftPlanner::measure});
+  const ColumnBlockFft doppler_fft(rows, cols, FftDirection::forward, FftPlanner::measure);
   ComplexVector input(rows * cols), frame(rows * cols);
   RandomStream rng(2);
   for (auto& v : input) v = rng.complex_normal(1.0);
@@ -119,8 +121,8 @@ void BM_SceneTones(benchmark::State& state) {
   label(state, s);
 }
 
-// Synthesis given the processor's window, as RadarChain::measure runs it. Arg 1: thermal noise on (1)
-// or off (0, to attribute the cost: tones and window vs noise generation).
+// Synthesis given the processor's window, as RadarChain::measure runs it. Arg 1: thermal noise on
+// (1) or off (0, to attribute the cost: tones and window vs noise generation).
 void BM_Synthesize(benchmark::State& state) {
   Setup& s = setup(state.range(0));
   RadarParams params = s.chain.params();
@@ -133,7 +135,8 @@ void BM_Synthesize(benchmark::State& state) {
   std::uint64_t i = 0;
   for (auto _ : state) {
     RandomStream rng(4, i++);
-    benchmark::DoNotOptimize(synthesize_frame(tones, params, s.chain.derived(), rng, frame, &window));
+    benchmark::DoNotOptimize(
+        synthesize_frame(tones, params, s.chain.derived(), rng, frame, &window));
     benchmark::DoNotOptimize(frame.data());
   }
   state.counters["noise"] = static_cast<double>(state.range(1));
@@ -166,8 +169,8 @@ void BM_Estimation(benchmark::State& state) {
   EstimationWorkspace ws;
   std::vector<Detection> detections;
   for (auto _ : state) {
-    estimate_detections(s.workspace.frame, s.chain.processor(), s.chain.cfar(),
-                        s.chain.params(), s.chain.derived(), ws, detections);
+    estimate_detections(s.workspace.frame, s.chain.processor(), s.chain.cfar(), s.chain.params(),
+                        s.chain.derived(), ws, detections);
     benchmark::DoNotOptimize(detections.data());
   }
   state.counters["detections"] = static_cast<double>(detections.size());

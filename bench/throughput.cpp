@@ -1,25 +1,49 @@
-// Throughput of the bench workload against its FFT floor (DESIGN §5), both measured in one process
-// and one run, so the ratio compares like with like on the same (possibly shared) machine.
+// Throughput of a radar workload (the bench scenario by default) against its FFT floor (DESIGN §5),
+// all measured in one process, interleaved, so the ratios compare like with like on the same
+// (possibly shared) machine.
 //
-//   end to end  experiment::run_experiment (the code path of `fogradar run`: scenario check, chamber,
-//               per frame scene paths, synthesis with noise, window, range and Doppler FFTs, power,
-//               CFAR, grouping, peak interpolation, RCS) followed by experiment::summarize (box plots,
-//               tests, sensor limit). Writing the result files is NOT included.
-//   FFT floor   the same number of frames (one per measurement) and the same transforms: an in-place
-//               range FFT of every chirp and an in-place Doppler FFT of every range bin, with
-//               radar::FftPlan (FFTW, complex double, FFTW_ESTIMATE as the chain plans them) on a
-//               preplanned aligned frame buffer, nothing else. Multi-threaded: the frames are split
-//               into equal contiguous shares, each thread transforms its own buffer, the two plans
-//               are shared (new-array execute).
-//   noise alone the thermal-noise stage, which the floor does not bound: ComplexNormalGenerator over
-//               every sample of the same number of frames, into a buffer per thread.
+//   end to end     experiment::run_experiment (the code path of `fogradar run`: scenario check,
+//                  chamber, per frame scene paths, synthesis with noise and window, range and
+//                  Doppler FFTs, CFAR, grouping, peak interpolation, RCS) followed by
+//                  experiment::summarize. Writing the result files is NOT included.
+//   whole process  (with --fogradar PATH) `PATH run --scenario FILE --out DIR --threads N` as a
+//   child
+//                  process: start-up, the run and the result files, all included.
+//   FFT floor      the fastest range + Doppler transform of the frame that FFTW does on this
+//   machine in
+//                  complex double at the same thread count, over the layouts below, with
+//                  FFTW_MEASURE plans made before any timing (DESIGN §5, docs/performance.md).
+//                  Candidates, all in one FFTW planner (wisdom shared within this process):
+//                    MEASURE rows + columns    range FFT of every chirp, Doppler FFT down the
+//                    columns
+//                                              (one strided batch), both FFTW_MEASURE;
+//                    MEASURE rows + blocks     the same range plan, Doppler by
+//                    radar::ColumnBlockFft
+//                                              with FFTW_MEASURE (columns gathered in L1-sized
+//                                              blocks);
+//                    MEASURE 2-D in place      fftw_plan_dft_2d, in place;
+//                    MEASURE 2-D out of place  fftw_plan_dft_2d from one buffer into another.
+//                  The floor at a thread count is the smallest median of these, and each repeat's
+//                  ratio uses the smallest candidate of that repeat.
+//   ESTIMATE       for reference, not floor candidates: the old floor (FFTW_ESTIMATE rows + one
+//   strided
+//                  column batch, what the chain did before ColumnBlockFft) and the chain's own
+//                  transforms (ESTIMATE rows + ESTIMATE column blocks, RangeDopplerProcessor).
+//   noise alone    the thermal-noise stage, which no FFT bounds: ComplexNormalGenerator over every
+//                  sample of the same number of frames, into a buffer per thread.
 //
-// Both are timed at 1 thread and at all hardware threads; each of the four measurements is repeated
-// --repeats times, interleaved (e2e/1, floor/1, e2e/all, floor/all, then again), and the median is
-// reported, with the median of each repeat's own ratio and the ratio of the fastest runs. Run (Release build):
-//   ./build/perf/bench/throughput [--scenario FILE] [--repeats N] [--measurements N]
-// Default scenario: examples/bench.toml of the source tree (128 chirps x 1024 samples, 5 x 200
-// frames).
+// Multi-threaded transforms: the frames are split into equal contiguous shares, each thread
+// transforms its own buffer, the plans are shared (new-array execute). Every measurement runs at 1
+// thread and at all hardware threads, repeated --repeats times, interleaved (all of them at 1
+// thread, then all at all threads, then again), and medians with their ranges are reported. The
+// transforms are timed per frame over up to --transform-seconds of frames (all frames of the
+// scenario when they fit), so slow reference layouts do not dominate the run. Run (Release build):
+//   ./build/release/bench/throughput [--scenario FILE] [--repeats N] [--measurements N]
+//                                    [--fogradar PATH] [--transform-seconds S]
+// bench/throughput_sizes.sh runs it for the three frame sizes of docs/performance.md.
+#include <fftw3.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,10 +51,13 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,19 +78,24 @@ namespace {
 
 using namespace fogradar;
 using Clock = std::chrono::steady_clock;
+using Complex = std::complex<double>;
 
 struct Options {
   std::string scenario_path = std::string(FOGRADAR_SOURCE_DIR) + "/examples/bench.toml";
   int repeats = 5;
-  long measurements = -1;  // < 0: the scenario's measurements_per_step
+  long measurements = -1;          // < 0: the scenario's measurements_per_step
+  std::string fogradar_path;       // empty: no whole-process timing
+  double transform_seconds = 1.0;  // time budget per transform measurement
 };
 
 [[noreturn]] void usage(const char* message) {
-  std::fprintf(stderr,
-               "throughput: %s\n"
-               "usage: throughput [--scenario FILE] [--repeats N (>= 1, default 5)] "
-               "[--measurements N (measurements per step, >= 1)]\n",
-               message);
+  std::fprintf(
+      stderr,
+      "throughput: %s\n"
+      "usage: throughput [--scenario FILE] [--repeats N (>= 1, default 5)] "
+      "[--measurements N (measurements per step, >= 1)] [--fogradar PATH (time `PATH run` as a "
+      "process too)] [--transform-seconds S (> 0, default 1)]\n",
+      message);
   std::exit(2);
 }
 
@@ -71,7 +103,7 @@ Options parse_options(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") usage("times the bench workload against its FFT floor");
+    if (arg == "--help" || arg == "-h") usage("times a radar workload against its FFT floor");
     if (i + 1 >= argc) usage(("missing value after " + arg).c_str());
     const std::string value = argv[++i];
     char* end = nullptr;
@@ -83,11 +115,22 @@ Options parse_options(int argc, char** argv) {
       o.repeats = static_cast<int>(n);
     } else if (arg == "--measurements") {
       const long n = std::strtol(value.c_str(), &end, 10);
-      if (*end != '\0' || n < 1 || n > 1000000) usage("--measurements must be an integer in [1, 1000000]");
+      if (*end != '\0' || n < 1 || n > 1000000)
+        usage("--measurements must be an integer in [1, 1000000]");
       o.measurements = n;
+    } else if (arg == "--fogradar") {
+      o.fogradar_path = value;
+    } else if (arg == "--transform-seconds") {
+      const double t = std::strtod(value.c_str(), &end);
+      if (*end != '\0' || !(t > 0.0 && t <= 600.0))
+        usage("--transform-seconds must be in (0, 600]");
+      o.transform_seconds = t;
     } else {
       usage(("unknown option " + arg).c_str());
     }
+  }
+  if (!o.fogradar_path.empty() && o.measurements > 0) {
+    usage("--fogradar runs the scenario file as it is: leave out --measurements");
   }
   return o;
 }
@@ -102,14 +145,6 @@ std::string cpu_model() {
     }
   }
   return "unknown";
-}
-
-unsigned cpuinfo_processors() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  unsigned count = 0;
-  while (std::getline(in, line)) count += line.rfind("processor", 0) == 0 ? 1 : 0;
-  return count;
 }
 
 std::string load_average() {
@@ -129,6 +164,22 @@ double median(std::vector<double> values) {
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+// "median (min-max)" of per-frame milliseconds.
+std::string summary_ms(const std::vector<double>& seconds_per_frame) {
+  const auto [low, high] = std::minmax_element(seconds_per_frame.begin(), seconds_per_frame.end());
+  char text[96];
+  std::snprintf(text, sizeof text, "%7.3f ms (%.3f-%.3f)", 1e3 * median(seconds_per_frame),
+                1e3 * *low, 1e3 * *high);
+  return text;
+}
+
+std::string summary_ratio(const std::vector<double>& ratios) {
+  const auto [low, high] = std::minmax_element(ratios.begin(), ratios.end());
+  char text[64];
+  std::snprintf(text, sizeof text, "%5.2f x (%.2f-%.2f)", median(ratios), *low, *high);
+  return text;
+}
+
 // --- End to end -------------------------------------------------------------------------------
 
 struct EndToEnd {
@@ -139,7 +190,8 @@ struct EndToEnd {
 
 EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads) {
   const Clock::time_point start = Clock::now();
-  const experiment::ExperimentResult result = experiment::run_experiment(scenario, {.threads = threads, .progress = {}});
+  const experiment::ExperimentResult result =
+      experiment::run_experiment(scenario, {.threads = threads, .progress = {}});
   const Clock::time_point summary_start = Clock::now();
   const experiment::ExperimentSummary summary = experiment::summarize(result);
   EndToEnd e;
@@ -149,75 +201,177 @@ EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads)
   return e;
 }
 
-// --- FFT floor --------------------------------------------------------------------------------
-
-// The transforms of one frame, planned once like RangeDopplerProcessor plans them.
-struct FloorPlans {
-  FloorPlans(std::size_t chirps, std::size_t samples)
-      : rows(chirps),
-        columns(samples),
-        range(radar::FftPlan::along_rows(chirps, samples, radar::FftDirection::forward,
-                                         {.planner = radar::FftPlanner::estimate,
-                                          .placement = radar::FftPlacement::in_place})),
-        doppler(radar::FftPlan::along_columns(chirps, samples, radar::FftDirection::forward,
-                                              {.planner = radar::FftPlanner::estimate,
-                                               .placement = radar::FftPlacement::in_place})) {}
-  std::size_t rows, columns;
-  radar::FftPlan range;
-  radar::FftPlan doppler;
-};
-
-// One thread's frame buffer, transformed in place frame after frame. The unnormalised 2-D forward
-// DFT F of an n = rows x columns frame satisfies F^4 = n^2 I, so the buffer grows by exactly n^8 every
-// 16 frames; with n a power of two, scaling it back by that power of two (std::ldexp, exact) every 16
-// frames returns the original noise frame up to rounding. It costs one pass over the buffer every 16
-// frames (about 0.2 % of the transform work) and keeps the data finite noise-like values: no inf,
-// NaN or denormals that could make FFTW run at another speed than on real frames.
-constexpr std::size_t rescale_period_frames = 16;
-
-struct FloorBuffer {
-  radar::ComplexVector frame;
-  std::size_t transformed = 0;  // frames so far, over all calls
-};
-
-FloorBuffer make_floor_buffer(const FloorPlans& plans, std::uint64_t seed) {
-  FloorBuffer buffer{radar::ComplexVector(plans.rows * plans.columns), 0};
-  RandomStream rng(seed);
-  for (auto& v : buffer.frame) v = rng.complex_normal(1.0);
-  return buffer;
+// `fogradar run` as a child process writing its files into `out_dir` (replaced each time).
+double time_process(const Options& options, const std::filesystem::path& out_dir,
+                    unsigned threads) {
+  std::filesystem::remove_all(out_dir);
+  const std::string command = "'" + options.fogradar_path + "' run --scenario '" +
+                              options.scenario_path + "' --out '" + out_dir.string() +
+                              "' --threads " + std::to_string(threads) + " > /dev/null 2>&1";
+  const Clock::time_point start = Clock::now();
+  const int status = std::system(command.c_str());
+  const double seconds = seconds_since(start);
+  if (status != 0) {
+    std::fprintf(stderr, "throughput: `%s` failed (status %d)\n", command.c_str(), status);
+    std::exit(1);
+  }
+  return seconds;
 }
 
-void transform_frames(const FloorPlans& plans, FloorBuffer& buffer, std::size_t count, int rescale_exponent) {
+// --- Transforms -------------------------------------------------------------------------------
+
+// One FFTW plan made directly (the 2-D candidates, which radar::FftPlan does not offer).
+struct RawPlan {
+  fftw_plan plan = nullptr;
+  explicit RawPlan(fftw_plan p) : plan(p) {
+    if (plan == nullptr) throw InternalError("FFTW could not create a plan");
+  }
+  RawPlan(const RawPlan&) = delete;
+  RawPlan& operator=(const RawPlan&) = delete;
+  ~RawPlan() { fftw_destroy_plan(plan); }
+};
+
+fftw_complex* as_fftw(Complex* p) { return reinterpret_cast<fftw_complex*>(p); }
+
+// A thread's frame buffers: the frame is in `a` or, after an out-of-place transform, in `b`. The
+// unnormalised 2-D forward DFT F of an n = rows x columns frame satisfies F^4 = n^2 I, so the frame
+// grows by exactly n^8 every 16 frames; with n a power of two, scaling it back by that power of two
+// (std::ldexp, exact) every 16 frames returns the original noise frame up to rounding. It costs one
+// pass every 16 frames and keeps the data finite noise-like values: no inf, NaN or denormals that
+// could make FFTW run at another speed than on real frames. Every variant computes the same F.
+constexpr std::size_t rescale_period_frames = 16;
+
+struct ThreadBuffers {
+  radar::ComplexVector a, b;
+  bool in_b = false;
+  std::size_t transformed = 0;
+  Complex* current() { return in_b ? b.data() : a.data(); }
+  Complex* other() { return in_b ? a.data() : b.data(); }
+};
+
+ThreadBuffers make_buffers(std::size_t size, std::uint64_t seed) {
+  ThreadBuffers buffers{radar::ComplexVector(size), radar::ComplexVector(size)};
+  RandomStream rng(seed);
+  for (auto& v : buffers.a) v = rng.complex_normal(1.0);
+  return buffers;
+}
+
+struct Variant {
+  std::string name;
+  bool floor_candidate = false;
+  std::function<void(ThreadBuffers&)> transform;  // one frame, in place or a -> b
+  std::size_t frames = 0;                         // frames per timing (set by calibration)
+  std::vector<double> seconds_per_frame[2];       // per repeat, per thread-count slot
+};
+
+struct Transforms {
+  std::size_t rows, columns;
+  int rescale_exponent;
+  radar::FftPlan estimate_rows, estimate_columns;
+  radar::ColumnBlockFft estimate_blocks;
+  radar::FftPlan measure_rows, measure_columns;
+  radar::ColumnBlockFft measure_blocks;
+  std::unique_ptr<RawPlan> measure_2d_in_place, measure_2d_out_of_place;
+  std::vector<Variant> variants;
+
+  void add_variant(std::string name, bool floor_candidate,
+                   std::function<void(ThreadBuffers&)> transform) {
+    Variant v;
+    v.name = std::move(name);
+    v.floor_candidate = floor_candidate;
+    v.transform = std::move(transform);
+    variants.push_back(std::move(v));
+  }
+
+  Transforms(std::size_t r, std::size_t c, int rescale)
+      : rows(r),
+        columns(c),
+        rescale_exponent(rescale),
+        estimate_rows(radar::FftPlan::along_rows(r, c, radar::FftDirection::forward,
+                                                 {.placement = radar::FftPlacement::in_place})),
+        estimate_columns(radar::FftPlan::along_columns(
+            r, c, radar::FftDirection::forward, {.placement = radar::FftPlacement::in_place})),
+        estimate_blocks(r, c, radar::FftDirection::forward),
+        measure_rows(radar::FftPlan::along_rows(
+            r, c, radar::FftDirection::forward,
+            {.planner = radar::FftPlanner::measure, .placement = radar::FftPlacement::in_place})),
+        measure_columns(radar::FftPlan::along_columns(
+            r, c, radar::FftDirection::forward,
+            {.planner = radar::FftPlanner::measure, .placement = radar::FftPlacement::in_place})),
+        measure_blocks(r, c, radar::FftDirection::forward, radar::FftPlanner::measure) {
+    // FFTW_MEASURE overwrites the arrays it plans on: plan on scratch, execute on the threads'
+    // buffers.
+    radar::ComplexVector in(r * c), out(r * c);
+    const int n0 = static_cast<int>(r), n1 = static_cast<int>(c);
+    measure_2d_in_place = std::make_unique<RawPlan>(fftw_plan_dft_2d(
+        n0, n1, as_fftw(in.data()), as_fftw(in.data()), FFTW_FORWARD, FFTW_MEASURE));
+    measure_2d_out_of_place = std::make_unique<RawPlan>(fftw_plan_dft_2d(
+        n0, n1, as_fftw(in.data()), as_fftw(out.data()), FFTW_FORWARD, FFTW_MEASURE));
+
+    const std::size_t size = r * c;
+    const auto span = [size](Complex* p) { return std::span<Complex>(p, size); };
+    add_variant("ESTIMATE rows + columns (old floor)", false, [this, span](ThreadBuffers& b) {
+      estimate_rows.execute(span(b.current()));
+      estimate_columns.execute(span(b.current()));
+    });
+    add_variant("ESTIMATE rows + blocks (the chain)", false, [this, span](ThreadBuffers& b) {
+      estimate_rows.execute(span(b.current()));
+      estimate_blocks.execute(span(b.current()));
+    });
+    add_variant("MEASURE rows + columns", true, [this, span](ThreadBuffers& b) {
+      measure_rows.execute(span(b.current()));
+      measure_columns.execute(span(b.current()));
+    });
+    add_variant("MEASURE rows + blocks", true, [this, span](ThreadBuffers& b) {
+      measure_rows.execute(span(b.current()));
+      measure_blocks.execute(span(b.current()));
+    });
+    add_variant("MEASURE 2-D in place", true, [this](ThreadBuffers& b) {
+      fftw_execute_dft(measure_2d_in_place->plan, as_fftw(b.current()), as_fftw(b.current()));
+    });
+    add_variant("MEASURE 2-D out of place", true, [this](ThreadBuffers& b) {
+      fftw_execute_dft(measure_2d_out_of_place->plan, as_fftw(b.current()), as_fftw(b.other()));
+      b.in_b = !b.in_b;
+    });
+  }
+};
+
+void transform_frames(const Transforms& t, const Variant& variant, ThreadBuffers& buffers,
+                      std::size_t count) {
   for (std::size_t f = 0; f < count; ++f) {
-    plans.range.execute(buffer.frame);
-    plans.doppler.execute(buffer.frame);
-    if (++buffer.transformed % rescale_period_frames == 0) {
-      for (auto& v : buffer.frame) {
-        v = {std::ldexp(v.real(), rescale_exponent), std::ldexp(v.imag(), rescale_exponent)};
+    variant.transform(buffers);
+    if (++buffers.transformed % rescale_period_frames == 0) {
+      Complex* frame = buffers.current();
+      for (std::size_t i = 0; i < t.rows * t.columns; ++i) {
+        frame[i] = {std::ldexp(frame[i].real(), t.rescale_exponent),
+                    std::ldexp(frame[i].imag(), t.rescale_exponent)};
       }
     }
   }
 }
 
-// Frames split into `threads` contiguous shares; each thread owns buffers[t].
-double time_fft_floor(const FloorPlans& plans, std::vector<FloorBuffer>& buffers, std::size_t frames,
-                      unsigned threads, int rescale_exponent) {
+// Seconds per frame of `frames` frames split into `threads` contiguous shares; thread i owns
+// buffers[i].
+double time_transform(const Transforms& t, const Variant& variant,
+                      std::vector<ThreadBuffers>& buffers, std::size_t frames, unsigned threads) {
   const Clock::time_point start = Clock::now();
   std::vector<std::thread> pool;
-  const auto share = [&](unsigned t) { return frames * (t + 1) / threads - frames * t / threads; };
-  for (unsigned t = 1; t < threads; ++t) {
-    pool.emplace_back([&, t] { transform_frames(plans, buffers[t], share(t), rescale_exponent); });
+  const auto share = [&](unsigned i) { return frames * (i + 1) / threads - frames * i / threads; };
+  for (unsigned i = 1; i < threads; ++i) {
+    pool.emplace_back([&, i] { transform_frames(t, variant, buffers[i], share(i)); });
   }
-  transform_frames(plans, buffers[0], share(0), rescale_exponent);
+  transform_frames(t, variant, buffers[0], share(0));
   for (std::thread& thread : pool) thread.join();
-  return seconds_since(start);
+  return seconds_since(start) / static_cast<double>(frames);
 }
 
-int rescale_exponent_for(const FloorPlans& plans) {
-  const std::size_t n = plans.rows * plans.columns;
+int rescale_exponent_for(std::size_t rows, std::size_t columns) {
+  const std::size_t n = rows * columns;
   if ((n & (n - 1)) != 0) {
-    std::fprintf(stderr, "throughput: chirps x samples = %zu is not a power of two; the FFT floor's "
-                         "rescaling assumes one\n", n);
+    std::fprintf(stderr,
+                 "throughput: chirps x samples = %zu is not a power of two; the FFT floor's "
+                 "rescaling assumes one\n",
+                 n);
     std::exit(2);
   }
   int log2n = 0;
@@ -230,9 +384,10 @@ int rescale_exponent_for(const FloorPlans& plans) {
 
 // The stage the FFT floor does not bound: per frame, a ComplexNormalGenerator from a fresh stream
 // adds CN(0, 1) samples to the whole frame (what synthesize_frame draws per frame), nothing else.
-// Frames split into shares as for the floor; each thread adds into its own buffer (the values
+// Frames split into shares as for the transforms; each thread adds into its own buffer (the values
 // grow only as the square root of the frame count).
-double time_noise(std::vector<radar::ComplexVector>& buffers, std::size_t frames, unsigned threads) {
+double time_noise(std::vector<radar::ComplexVector>& buffers, std::size_t frames,
+                  unsigned threads) {
   const Clock::time_point start = Clock::now();
   const auto work = [&](unsigned t) {
     const std::size_t first = frames * t / threads, last = frames * (t + 1) / threads;
@@ -248,104 +403,151 @@ double time_noise(std::vector<radar::ComplexVector>& buffers, std::size_t frames
   return seconds_since(start);
 }
 
-// --- Report -----------------------------------------------------------------------------------
+// --- Run --------------------------------------------------------------------------------------
 
 struct Series {
-  std::vector<double> e2e, floor, noise;
+  std::vector<double> e2e, process, noise,
+      floor;  // seconds per frame; floor: best candidate per repeat
 };
-
-void print_row(const char* label, double e2e_s, double floor_s, std::size_t frames) {
-  std::printf("  %-16s %10.3f s %8.1f frames/s   %10.3f s %8.1f frames/s   %7.2f x\n", label, e2e_s,
-              static_cast<double>(frames) / e2e_s, floor_s, static_cast<double>(frames) / floor_s,
-              e2e_s / floor_s);
-}
 
 int run(const Options& options) {
   experiment::Scenario scenario = experiment::load_scenario_file(options.scenario_path);
-  if (options.measurements > 0) scenario.experiment.measurements_per_step = static_cast<std::size_t>(options.measurements);
+  if (options.measurements > 0)
+    scenario.experiment.measurements_per_step = static_cast<std::size_t>(options.measurements);
   scenario.validate();
   const std::size_t steps = scenario.experiment.max_active_layers + 1;
   const std::size_t frames = steps * scenario.experiment.measurements_per_step;
-  const std::size_t rows = scenario.radar.chirps_per_frame, columns = scenario.radar.samples_per_chirp;
+  const std::size_t rows = scenario.radar.chirps_per_frame,
+                    columns = scenario.radar.samples_per_chirp;
   const unsigned all = std::max(1u, std::thread::hardware_concurrency());
+  const auto frames_d = static_cast<double>(frames);
 
-  std::printf("fogradar throughput: bench workload vs FFT floor (DESIGN §5)\n");
+  std::printf("fogradar throughput: workload vs FFT floor (DESIGN §5)\n");
   std::printf("  scenario      %s\n", options.scenario_path.c_str());
-  std::printf("  frame         %zu chirps x %zu samples (complex double), %zu frames = %zu steps x %zu "
-              "measurements\n", rows, columns, frames, steps, scenario.experiment.measurements_per_step);
-  std::printf("  CPU           %s; %u hardware threads (std::thread), %u processors in /proc/cpuinfo\n",
-              cpu_model().c_str(), all, cpuinfo_processors());
+  std::printf(
+      "  frame         %zu chirps x %zu samples (complex double), %zu frames = %zu steps x %zu "
+      "measurements\n",
+      rows, columns, frames, steps, scenario.experiment.measurements_per_step);
+  std::printf("  CPU           %s; %u hardware threads\n", cpu_model().c_str(), all);
   std::printf("  load average  %s (at start)\n", load_average().c_str());
-  std::printf("  repeats       %d, interleaved; medians reported\n", options.repeats);
+  std::printf("  repeats       %d, interleaved; medians (min-max) reported\n", options.repeats);
   std::printf("  end to end    run_experiment + summarize, result files not written\n");
-  std::printf("  FFT floor     in-place range + Doppler FFT per frame, FftPlan FFTW_ESTIMATE, same "
-              "frame count\n");
-  std::printf("  noise alone   ComplexNormalGenerator over every frame's samples, same frame count\n\n");
+  if (!options.fogradar_path.empty())
+    std::printf("  whole process %s run (files written)\n", options.fogradar_path.c_str());
+  std::printf(
+      "  FFT floor     fastest FFTW_MEASURE range + Doppler transform (candidates below)\n");
+  std::printf("  noise alone   ComplexNormalGenerator over every frame's samples\n");
   std::fflush(stdout);
 
-  const FloorPlans plans(rows, columns);
-  const int rescale = rescale_exponent_for(plans);
-  std::vector<FloorBuffer> buffers;
-  for (unsigned t = 0; t < all; ++t) buffers.push_back(make_floor_buffer(plans, 100 + t));
-  time_fft_floor(plans, buffers, std::min<std::size_t>(frames, 2 * all), all, rescale);  // warm-up
+  const Clock::time_point planning = Clock::now();
+  Transforms transforms(rows, columns, rescale_exponent_for(rows, columns));
+  std::printf(
+      "  planning      %.2f s (FFTW_MEASURE, before any timing); Doppler blocks of %zu columns\n\n",
+      seconds_since(planning), transforms.measure_blocks.block_columns());
+  std::vector<ThreadBuffers> buffers;
+  for (unsigned t = 0; t < all; ++t) buffers.push_back(make_buffers(rows * columns, 100 + t));
   std::vector<radar::ComplexVector> noise_buffers(all, radar::ComplexVector(rows * columns));
+  // Calibration (also the warm-up): frames per timing within --transform-seconds, at least 16.
+  for (Variant& v : transforms.variants) {
+    const std::size_t probe = std::min<std::size_t>(frames, 8);
+    const double per_frame = std::min(time_transform(transforms, v, buffers, probe, 1),
+                                      time_transform(transforms, v, buffers, probe, 1));
+    const auto fit = static_cast<std::size_t>(options.transform_seconds / per_frame);
+    v.frames = std::min(frames, std::max<std::size_t>(16, fit));
+  }
 
   const unsigned thread_counts[] = {1u, all};
-  const std::size_t variants = all > 1 ? 2 : 1;
+  const std::size_t slots = all > 1 ? 2 : 1;
   Series series[2];
   std::size_t detections = 0;
   double summarize_s = 0.0;
+  const std::filesystem::path out_dir = std::filesystem::temp_directory_path() /
+                                        ("fogradar-throughput-" + std::to_string(::getpid()));
   for (int r = 0; r < options.repeats; ++r) {
-    for (std::size_t v = 0; v < variants; ++v) {
-      const EndToEnd e = time_end_to_end(scenario, thread_counts[v]);
-      series[v].e2e.push_back(e.seconds);
+    for (std::size_t slot = 0; slot < slots; ++slot) {
+      const unsigned threads = thread_counts[slot];
+      Series& s = series[slot];
+      const EndToEnd e = time_end_to_end(scenario, threads);
+      s.e2e.push_back(e.seconds / frames_d);
       detections = e.detections;
       summarize_s = std::max(summarize_s, e.summarize_seconds);
-      series[v].floor.push_back(time_fft_floor(plans, buffers, frames, thread_counts[v], rescale));
-      series[v].noise.push_back(time_noise(noise_buffers, frames, thread_counts[v]));
-      std::printf("  repeat %d, %u thread%s: end to end %.3f s, FFT floor %.3f s, noise alone %.3f s\n", r + 1,
-                  thread_counts[v], thread_counts[v] == 1 ? "" : "s", series[v].e2e.back(), series[v].floor.back(),
-                  series[v].noise.back());
+      if (!options.fogradar_path.empty())
+        s.process.push_back(time_process(options, out_dir, threads) / frames_d);
+      double best = 0.0;
+      for (Variant& v : transforms.variants) {
+        const double t = time_transform(transforms, v, buffers, v.frames, threads);
+        v.seconds_per_frame[slot].push_back(t);
+        if (v.floor_candidate && (best == 0.0 || t < best)) best = t;
+      }
+      s.floor.push_back(best);
+      s.noise.push_back(time_noise(noise_buffers, frames, threads) / frames_d);
+      char process_text[64] = "";
+      if (!s.process.empty()) {
+        std::snprintf(process_text, sizeof process_text, ", whole process %.3f ms/frame",
+                      1e3 * s.process.back());
+      }
+      std::printf(
+          "  repeat %d, %u thread%s: end to end %.3f ms/frame, floor %.3f ms/frame (%.2f x)%s, "
+          "load %s\n",
+          r + 1, threads, threads == 1 ? "" : "s", 1e3 * s.e2e.back(), 1e3 * best,
+          s.e2e.back() / best, process_text, load_average().c_str());
       std::fflush(stdout);
     }
   }
+  std::filesystem::remove_all(out_dir);
 
-  std::printf("\n  %-16s %-32s %-32s %s\n", "medians", "end to end", "FFT floor", "ratio");
-  double e2e_med[2] = {0, 0}, floor_med[2] = {0, 0};
-  for (std::size_t v = 0; v < variants; ++v) {
-    e2e_med[v] = median(series[v].e2e);
-    floor_med[v] = median(series[v].floor);
-    const std::string label = std::to_string(thread_counts[v]) + (thread_counts[v] == 1 ? " thread" : " threads");
-    print_row(label.c_str(), e2e_med[v], floor_med[v], frames);
-  }
-  // The machine's speed drifts between repeats (other tenants): the ratio of each repeat's end to end
-  // and its floor, timed seconds apart, and the ratio of the fastest of each, both vary less than
-  // the ratio of medians taken at different moments.
-  for (std::size_t v = 0; v < variants; ++v) {
+  double floor_med[2] = {0, 0};
+  for (std::size_t slot = 0; slot < slots; ++slot) {
+    const unsigned threads = thread_counts[slot];
+    const Series& s = series[slot];
+    std::string floor_name;
+    for (const Variant& v : transforms.variants) {
+      const double m = median(v.seconds_per_frame[slot]);
+      if (v.floor_candidate && (floor_med[slot] == 0.0 || m < floor_med[slot])) {
+        floor_med[slot] = m;
+        floor_name = v.name;
+      }
+    }
+    std::printf(
+        "\n  %u thread%s, per frame: median (min-max) over %d repeats; x = median / the floor's "
+        "median\n",
+        threads, threads == 1 ? "" : "s", options.repeats);
+    for (const Variant& v : transforms.variants) {
+      std::printf("    %-38s %s %6.2f x   (%zu frames per timing)%s\n", v.name.c_str(),
+                  summary_ms(v.seconds_per_frame[slot]).c_str(),
+                  median(v.seconds_per_frame[slot]) / floor_med[slot], v.frames,
+                  v.name == floor_name ? "  <- floor" : "");
+    }
+    std::printf("    %-38s %s %6.2f x\n", "noise alone", summary_ms(s.noise).c_str(),
+                median(s.noise) / floor_med[slot]);
+    std::printf("    %-38s %s %6.2f x\n", "end to end (in process)", summary_ms(s.e2e).c_str(),
+                median(s.e2e) / floor_med[slot]);
     std::vector<double> paired;
-    for (std::size_t r = 0; r < series[v].e2e.size(); ++r) paired.push_back(series[v].e2e[r] / series[v].floor[r]);
-    const auto [low, high] = std::minmax_element(paired.begin(), paired.end());
-    std::printf("  %u thread%s: ratio per repeat median %.2f x (%.2f-%.2f), fastest end to end / fastest floor %.2f x\n",
-                thread_counts[v], thread_counts[v] == 1 ? "" : "s", median(paired), *low, *high,
-                *std::min_element(series[v].e2e.begin(), series[v].e2e.end()) /
-                    *std::min_element(series[v].floor.begin(), series[v].floor.end()));
+    for (std::size_t r = 0; r < s.e2e.size(); ++r) paired.push_back(s.e2e[r] / s.floor[r]);
+    std::printf("    end to end / floor per repeat (best candidate of the repeat): %s\n",
+                summary_ratio(paired).c_str());
+    std::printf("    end to end without the noise: %.2f x the floor\n",
+                (median(s.e2e) - median(s.noise)) / floor_med[slot]);
+    if (!s.process.empty()) {
+      std::vector<double> process_ratio;
+      for (std::size_t r = 0; r < s.e2e.size(); ++r)
+        process_ratio.push_back(s.process[r] / s.e2e[r]);
+      std::printf("    %-38s %s %6.2f x; / end to end in process, per repeat: %s\n",
+                  "whole process (fogradar run)", summary_ms(s.process).c_str(),
+                  median(s.process) / floor_med[slot], summary_ratio(process_ratio).c_str());
+    }
   }
-  std::printf("\n  per frame at 1 thread: end to end %.3f ms, FFT floor %.3f ms\n", 1e3 * e2e_med[0] / static_cast<double>(frames),
-              1e3 * floor_med[0] / static_cast<double>(frames));
-  for (std::size_t v = 0; v < variants; ++v) {
-    const double noise_med = median(series[v].noise);
-    std::printf("  %u thread%s: noise alone %.3f s = %.2f x the FFT floor (%.2f ns per complex sample per thread); "
-                "end to end without it %.2f x the floor\n",
-                thread_counts[v], thread_counts[v] == 1 ? "" : "s", noise_med, noise_med / floor_med[v],
-                1e9 * noise_med * thread_counts[v] / static_cast<double>(frames * rows * columns),
-                (e2e_med[v] - noise_med) / floor_med[v]);
-  }
-  if (variants == 2) {
-    std::printf("  speed-up 1 -> %u threads: end to end %.2f x, FFT floor %.2f x\n", all, e2e_med[0] / e2e_med[1],
+  if (slots == 2) {
+    std::vector<double> speedup;
+    for (std::size_t r = 0; r < series[0].e2e.size(); ++r)
+      speedup.push_back(series[0].e2e[r] / series[1].e2e[r]);
+    std::printf("\n  speed-up 1 -> %u threads: end to end %.2f x (per repeat %s), floor %.2f x\n",
+                all, median(series[0].e2e) / median(series[1].e2e), summary_ratio(speedup).c_str(),
                 floor_med[0] / floor_med[1]);
   }
-  std::printf("  summarize (statistics) took at most %.1f ms of a run; target detections %zu of %zu\n",
-              1e3 * summarize_s, detections, frames);
+  std::printf(
+      "  summarize (statistics) took at most %.1f ms of a run; target detections %zu of %zu\n",
+      1e3 * summarize_s, detections, frames);
   std::printf("  load average  %s (at end)\n", load_average().c_str());
   return 0;
 }

@@ -2,7 +2,9 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <climits>
+#include <cstring>
 #include <functional>
 #include <mutex>
 #include <new>
@@ -166,6 +168,49 @@ void FftPlan::execute(std::span<std::complex<double>> data) const {
   FOGRADAR_CHECK(data.size() >= buffer_size_);
   FOGRADAR_CHECK(aligned_for(options_, data.data()));
   fftw_execute_dft(plan_, as_fftw(data.data()), as_fftw(data.data()));
+}
+
+namespace {
+
+std::size_t block_or_default(std::size_t block, std::size_t rows) {
+  if (block == 0) return ColumnBlockFft::default_block_columns(rows);
+  return block;
+}
+
+}  // namespace
+
+ColumnBlockFft::ColumnBlockFft(std::size_t rows, std::size_t columns, FftDirection direction,
+                               FftPlanner planner, std::size_t block)
+    : rows_(rows),
+      columns_(columns),
+      block_(block_or_default(block, rows)),
+      plan_(FftLayout{rows, block_, block_, 1}, direction,
+            {.planner = planner,
+             .alignment = FftAlignment::aligned,
+             .placement = FftPlacement::in_place}) {
+  to_fftw_int("fft.columns", columns);
+}
+
+std::size_t ColumnBlockFft::default_block_columns(std::size_t rows) noexcept {
+  constexpr std::size_t value_bytes = sizeof(std::complex<double>);
+  if (rows * 32 * value_bytes <= 32 * 1024) return 32;
+  std::size_t block = 16;
+  while (block > 2 && rows * block * value_bytes > 128 * 1024) block /= 2;
+  return block;
+}
+
+void ColumnBlockFft::execute(std::span<std::complex<double>> data) const {
+  FOGRADAR_CHECK(data.size() >= rows_ * columns_);
+  ComplexVector buffer(rows_ * block_);
+  for (std::size_t first = 0; first < columns_; first += block_) {
+    const std::size_t width = std::min(block_, columns_ - first);
+    const std::size_t bytes = width * sizeof(std::complex<double>);
+    for (std::size_t r = 0; r < rows_; ++r)
+      std::memcpy(&buffer[r * block_], &data[r * columns_ + first], bytes);
+    plan_.execute(buffer);
+    for (std::size_t r = 0; r < rows_; ++r)
+      std::memcpy(&data[r * columns_ + first], &buffer[r * block_], bytes);
+  }
 }
 
 }  // namespace fogradar::radar

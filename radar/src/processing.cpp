@@ -29,8 +29,7 @@ RangeDopplerProcessor::RangeDopplerProcessor(const RadarParams& params, FftPlann
       range_window_pairs_(doubled(range_window_)),
       range_fft_(FftPlan::along_rows(chirps_, samples_, FftDirection::forward,
                                      {.planner = planner, .placement = FftPlacement::in_place})),
-      doppler_fft_(FftPlan::along_columns(chirps_, samples_, FftDirection::forward,
-                                          {.planner = planner, .placement = FftPlacement::in_place})),
+      doppler_fft_(chirps_, samples_, FftDirection::forward, planner),
       coherent_amplitude_gain_(static_cast<double>(samples_) * coherent_gain(range_window_) *
                                static_cast<double>(chirps_) * coherent_gain(doppler_window_)),
       noise_power_gain_(sum_of_squares(range_window_) * sum_of_squares(doppler_window_)) {}
@@ -43,7 +42,8 @@ void squared_magnitudes(std::span<const std::complex<double>> values, std::span<
   for (std::size_t i = 0; i < values.size(); ++i) power[i] = std::norm(values[i]);
 }
 
-void RangeDopplerProcessor::process(std::span<std::complex<double>> frame, std::span<double> power) const {
+void RangeDopplerProcessor::process(std::span<std::complex<double>> frame,
+                                    std::span<double> power) const {
   FOGRADAR_CHECK(power.size() == frame.size());
   transform(frame);
   squared_magnitudes(frame, power);

@@ -4,8 +4,6 @@
 // needs; FFTW's measured error is ~1e-16 relative times log2 n.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -19,6 +17,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/fft.hpp"
+#include "rejected_field.hpp"
 
 namespace fogradar::radar {
 namespace {
@@ -202,6 +201,104 @@ TEST(FftBatch, GeneralLayoutTouchesOnlyAddressedElements) {
   }
 }
 
+// --- Column transforms in blocks -------------------------------------------------------------
+
+// ColumnBlockFft against the long-double DFT of every column, for block widths that divide the
+// column count and ones that leave a narrower last block, forward and inverse.
+// Tolerance kRelTol per column (FFTW's error is ~1e-16 log2 n relative; header comment).
+TEST(FftColumnBlocks, MatchesNaiveDftOfEveryColumn) {
+  struct Case {
+    std::size_t rows, columns, block;
+  };
+  for (const Case& c :
+       {Case{12, 37, 8}, Case{64, 20, 0}, Case{5, 16, 4}, Case{1, 3, 2}, Case{30, 7, 16}}) {
+    for (const FftDirection direction : {FftDirection::forward, FftDirection::inverse}) {
+      const ComplexVector input = random_signal(c.rows * c.columns, c.rows * 100 + c.columns);
+      ComplexVector data = input;
+      ColumnBlockFft(c.rows, c.columns, direction, FftPlanner::estimate, c.block).execute(data);
+      for (std::size_t col = 0; col < c.columns; ++col) {
+        ComplexVector column(c.rows);
+        ComplexVector got(c.rows);
+        for (std::size_t r = 0; r < c.rows; ++r) {
+          column[r] = input[r * c.columns + col];
+          got[r] = data[r * c.columns + col];
+        }
+        EXPECT_LE(relative_error(got, naive_dft(column, direction), c.rows), kRelTol)
+            << c.rows << "x" << c.columns << " block " << c.block << " column " << col;
+      }
+    }
+  }
+}
+
+// The blocked Doppler transform gives the same bits as the one strided FFTW_ESTIMATE plan over all
+// columns (FftPlan::along_columns) that the chain used before it, for the frame sizes of the
+// project's scenarios (paper 64 x 512, bench 128 x 1024, long frames 256 x 2048) and column
+// counts the default block (32 or 16) does not divide (a narrower last block): the plan ESTIMATE
+// applies to each column is the same, only the loop over columns is split. Exact equality.
+TEST(FftColumnBlocks, SameBitsAsOneStridedEstimatePlan) {
+  for (const auto& [rows, columns] : {std::pair<std::size_t, std::size_t>{64, 512},
+                                      {128, 1024},
+                                      {256, 2048},
+                                      {128, 1000},
+                                      {96, 300},
+                                      {64, 200},
+                                      {32, 256}}) {
+    const ComplexVector input = random_signal(rows * columns, rows + columns);
+    ComplexVector strided = input;
+    FftPlan::along_columns(rows, columns, FftDirection::forward,
+                           {.placement = FftPlacement::in_place})
+        .execute(strided);
+    ComplexVector blocked = input;
+    const ColumnBlockFft blocks(rows, columns, FftDirection::forward);
+    blocks.execute(blocked);
+    EXPECT_TRUE(blocked == strided)
+        << rows << "x" << columns << " block " << blocks.block_columns();
+  }
+}
+
+TEST(FftColumnBlocks, DefaultBlockFollowsTheBufferSize) {
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(64), 32u);    // 32 columns: 32 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(65), 16u);    // 32 would exceed 32 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(512), 16u);   // 128 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(1024), 8u);   // 128 KiB
+  EXPECT_EQ(ColumnBlockFft::default_block_columns(16384), 2u);  // the minimum, 512 KiB
+  EXPECT_EQ(ColumnBlockFft(128, 1024, FftDirection::forward).block_columns(), 16u);
+}
+
+// One ColumnBlockFft shared by threads, each with its own frame: the same bits as one thread
+// (each call has its own block buffer).
+TEST(FftColumnBlocks, SharedByThreadsGivesIdenticalResults) {
+  constexpr std::size_t kRows = 32;
+  constexpr std::size_t kColumns = 200;
+  const ColumnBlockFft blocks(kRows, kColumns, FftDirection::forward);
+  const ComplexVector input = random_signal(kRows * kColumns, 17);
+  ComplexVector reference = input;
+  blocks.execute(reference);
+  std::vector<int> mismatches(4, 0);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < mismatches.size(); ++t) {
+    threads.emplace_back([&, t] {
+      for (int repeat = 0; repeat < 10; ++repeat) {
+        ComplexVector data = input;
+        blocks.execute(data);
+        if (data != reference) ++mismatches[t];
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (std::size_t t = 0; t < mismatches.size(); ++t) EXPECT_EQ(mismatches[t], 0) << t;
+}
+
+TEST(FftColumnBlocks, RejectsInvalidSizes) {
+  const auto field = [](std::size_t rows, std::size_t columns) {
+    return test_support::rejected_field(
+        [&] { const ColumnBlockFft blocks(rows, columns, FftDirection::forward); });
+  };
+  EXPECT_EQ(field(0, 8), "fft.n");
+  EXPECT_EQ(field(8, 0), "fft.columns");
+  EXPECT_EQ(field(8, 8), "accepted");
+}
+
 // --- Sharing and ownership --------------------------------------------------------------------
 
 // One plan shared by several std::threads (each with its own buffers) gives results
@@ -309,7 +406,9 @@ TEST(FftPlanMisuse, WrongPlacementOrShortBufferIsAnInternalError) {
 // Invalid layouts are bad input naming the field.
 TEST(FftPlanConfig, RejectsInvalidLayout) {
   const auto expect_field = [](const FftLayout& layout, const std::string& field) {
-    EXPECT_EQ(test_support::rejected_field([&] { const FftPlan plan(layout, FftDirection::forward); }), field);
+    EXPECT_EQ(
+        test_support::rejected_field([&] { const FftPlan plan(layout, FftDirection::forward); }),
+        field);
   };
   expect_field({.n = 0}, "fft.n");
   expect_field({.n = 8, .howmany = 0}, "fft.howmany");

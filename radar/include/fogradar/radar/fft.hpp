@@ -142,4 +142,52 @@ class FftPlan {
   std::size_t buffer_size_ = 0;
 };
 
+// The `columns` transforms of length `rows` down the columns of a row-major rows x columns matrix
+// (what FftPlan::along_columns does), in place, done block by block: `block` adjacent columns are
+// gathered into a contiguous rows x block buffer, transformed there by one batched FFTW plan
+// (howmany = block, stride = block, distance = 1) and written back.
+//
+// Why: FFTW_ESTIMATE plans the whole strided batch as one codelet (or one Cooley-Tukey plan)
+// looped over all columns, reading `rows` elements `columns` * 16 bytes apart; at 1024 columns
+// every element of a column falls into the same L1 set, and range + Doppler took 2.0-2.2 x (64 x
+// 512, 128 x 1024) to 14-21 x (256 x 2048) the time of FFTW_MEASURE's best (docs/performance.md).
+// The block fits in L1 or L2; the plan applied to each column is the one ESTIMATE chose for the
+// whole batch (the same codelets, looped over `block` columns instead of all), so the results are
+// the same bits as along_columns' (pinned by tests/radar/test_fft.cpp for the frame sizes the
+// project uses). A last block narrower than `block` uses the same plan; the buffer's other columns
+// still hold the previous block's (finite) results, or zeros, and FFTW transforms each column
+// independently, so they do not change the gathered columns' results.
+//
+// Thread safety as FftPlan: execute() is const and may run on many threads at once; each call
+// uses its own block buffer (one FFTW-aligned allocation of rows * block values per call).
+class ColumnBlockFft {
+ public:
+  // block: columns per block; 0 (the default) takes default_block_columns(rows). Throws
+  // InvalidParameter naming "fft.n" (rows), "fft.columns" or "fft.howmany" (block) for sizes FFTW
+  // cannot take, as FftPlan does.
+  ColumnBlockFft(std::size_t rows, std::size_t columns, FftDirection direction,
+                 FftPlanner planner = FftPlanner::estimate, std::size_t block = 0);
+
+  // The block width used when none is given: 32 columns while that block (rows x 32 complex
+  // doubles) stays within 32 KiB (up to 64 rows), else 16 (256 bytes of each row) halved while the
+  // block exceeds 128 KiB, at least 2. Measured on the project's machine (docs/performance.md):
+  // 32 was the fastest of 4-64 at 32 and 64 rows (0.75-0.8 of 16's time), 16 at 128-512 rows, and
+  // 32 and more were 2-4 x slower from 256 rows on.
+  static std::size_t default_block_columns(std::size_t rows) noexcept;
+
+  // Transforms the columns of `data` (rows * columns values, row-major; any alignment, since only
+  // the block buffer is handed to FFTW) in place.
+  void execute(std::span<std::complex<double>> data) const;
+
+  std::size_t rows() const noexcept { return rows_; }
+  std::size_t columns() const noexcept { return columns_; }
+  std::size_t block_columns() const noexcept { return block_; }
+
+ private:
+  std::size_t rows_;
+  std::size_t columns_;
+  std::size_t block_;
+  FftPlan plan_;  // `block` transforms of length `rows` over a packed rows x block buffer
+};
+
 }  // namespace fogradar::radar
