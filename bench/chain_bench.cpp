@@ -1,4 +1,4 @@
-// Per-frame cost of every stage of the radar chain (DESIGN.md §5), for the paper radar (64 chirps x
+// Per-frame cost of every stage of the radar chain (docs/performance.md), for the paper radar (64 chirps x
 // 512 samples at 10 MS/s) and the bench workload (128 chirps x 1024 samples; the sample rate is
 // raised to 20 MS/s so the 1024 samples fit the 51.2 us chirp, as in examples/long_chamber.toml).
 // Scene: the paper chamber (propagation::ChamberSpec defaults, all four layers on, default fog of
@@ -37,7 +37,7 @@ using namespace fogradar;
 using namespace fogradar::radar;
 
 radar::RadarParams params_for(std::int64_t size) {
-  RadarParams p;  // paper radar (DESIGN §4)
+  RadarParams p;  // the paper scenario's radar (examples/paper.toml)
   if (size == 1) {
     p.chirps_per_frame = 128;
     p.samples_per_chirp = 1024;

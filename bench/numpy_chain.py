@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A straightforward vectorised NumPy/SciPy version of fogradar's radar chain, for comparison.
 
-The bench workload of DESIGN §5 (examples/bench.toml): 77 GHz FMCW radar, 1 GHz sweep over 51.2 us,
+The bench workload of docs/performance.md (examples/bench.toml): 77 GHz FMCW radar, 1 GHz sweep over 51.2 us,
 128 chirps x 1024 complex samples at 20 MS/s, the EVT rear 10 m away (2 m gap, four 1 m fog layers,
 4 m gap), 200 measurements for each of 0..4 active layers = 1000 frames, one process, one thread of
 Python (NumPy's FFT, pocketfft, is single-threaded).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Peak memory of the real `fogradar run` on the bench workload (examples/bench.toml, 128 chirps x
 # 1024 samples, 5 layer steps) at two numbers of measurements per step (default 200 and 2000), to
-# check DESIGN §5: memory must not grow with the number of measurements beyond the stored per-
+# check the performance contract (docs/architecture.md): memory must not grow with the number of measurements beyond the stored per-
 # measurement records (frames are streamed, one per worker thread). Each run uses a temporary copy of
 # bench.toml in which only [experiment] measurements_per_step is changed, writes its result files
 # into a temporary directory (removed afterwards), and is measured with GNU time's

@@ -1,4 +1,4 @@
-// Throughput of a radar workload (the bench scenario by default) against its FFT floor (DESIGN §5),
+// Throughput of a radar workload (the bench scenario by default) against its FFT floor (docs/architecture.md, Contracts),
 // all measured in one process, interleaved, so the ratios compare like with like on the same
 // (possibly shared) machine.
 //
@@ -12,7 +12,7 @@
 //   FFT floor      the fastest range + Doppler transform of the frame that FFTW does on this
 //   machine in
 //                  complex double at the same thread count, over the layouts below, with
-//                  FFTW_MEASURE plans made before any timing (DESIGN §5, docs/performance.md).
+//                  FFTW_MEASURE plans made before any timing (docs/performance.md).
 //                  Candidates, all in one FFTW planner (wisdom shared within this process):
 //                    MEASURE rows + columns    range FFT of every chirp, Doppler FFT down the
 //                    columns
@@ -422,7 +422,7 @@ int run(const Options& options) {
   const unsigned all = std::max(1u, std::thread::hardware_concurrency());
   const auto frames_d = static_cast<double>(frames);
 
-  std::printf("fogradar throughput: workload vs FFT floor (DESIGN §5)\n");
+  std::printf("fogradar throughput: workload vs FFT floor (docs/performance.md)\n");
   std::printf("  scenario      %s\n", options.scenario_path.c_str());
   std::printf(
       "  frame         %zu chirps x %zu samples (complex double), %zu frames = %zu steps x %zu "
