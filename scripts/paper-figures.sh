@@ -16,7 +16,7 @@ cp "$work/seed1/rcs_boxplot.svg" "$root/docs/figures/paper_rcs_boxplot.svg"
 grep -v "^results in" "$work/seed1.txt"
 for seed in 2 3; do
   "$fogradar" run --seed "$seed" --out "$work/seed$seed" >/dev/null
-  printf 'seed %s median shifts (dB), steps 1-4:' "$seed"
+  printf 'seed %s Hodges-Lehmann shifts (dB), steps 1-4:' "$seed"
   awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
     $1 > 0 { printf " %+.3f", $col["median_shift_db"] } END { print "" }' "$work/seed$seed/summary.csv"
 done
