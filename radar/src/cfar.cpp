@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +12,7 @@
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/cfar_design.hpp"
+#include "solve_factor.hpp"
 
 namespace fogradar::radar {
 
@@ -408,29 +408,10 @@ double cfar_threshold_factor(const CfarConfig& config) {
     return big_n * std::expm1(-log_pfa / big_n);
   }
 
-  // GO, SO, OS: log Pfa(alpha) is continuous and strictly decreasing from 0 at alpha = 0, so
-  // bracket the root by doubling and refine with TOMS 748 (Alefeld, Potra & Shi 1995).
-  const auto residual = [&](double alpha) {
-    return log_false_alarm_probability(config, alpha) - log_pfa;
-  };
-  double low = 0.0;
-  double high = 1.0;
-  double f_low = residual(low);
-  double f_high = residual(high);
-  while (f_high > 0.0) {
-    low = high;
-    f_low = f_high;
-    high *= 2.0;
-    f_high = residual(high);
-    FOGRADAR_CHECK(std::isfinite(high));
-  }
-  if (f_high == 0.0) return high;
-  std::uintmax_t max_iterations = 200;
-  const auto [lower, upper] = boost::math::tools::toms748_solve(
-      residual, low, high, f_low, f_high, boost::math::tools::eps_tolerance<double>(50),
-      max_iterations);
-  FOGRADAR_CHECK(max_iterations < 200);
-  return 0.5 * (lower + upper);
+  // GO, SO, OS: log Pfa(alpha) is continuous and strictly decreasing from 0 at alpha = 0.
+  return solve_threshold_factor(
+      [&](double alpha) { return log_false_alarm_probability(config, alpha); },
+      config.false_alarm_probability, 1.0);
 }
 
 CfarDetector::CfarDetector(const CfarConfig& config) : CfarDetector(config, NoiseCorrelation{}) {}

@@ -4,7 +4,6 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +11,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
+#include "solve_factor.hpp"
 
 namespace fogradar::radar {
 
@@ -225,39 +225,6 @@ class SampledPfa {
   std::vector<double> lambda_;
 };
 
-// Solves log_pfa(alpha) = log(design) for alpha, starting from the independent-cell factor:
-// log_pfa is continuous and decreasing, bracketed by halving/doubling, refined by TOMS 748.
-template <class LogPfa>
-double solve_factor(const LogPfa& log_pfa, double design, double start) {
-  const double target = std::log(design);
-  const auto residual = [&](double alpha) { return log_pfa(alpha) - target; };
-  double low = start;
-  double high = start;
-  double f_low = residual(low);
-  double f_high = f_low;
-  while (f_low < 0.0) {
-    high = low;
-    f_high = f_low;
-    low *= 0.5;
-    f_low = residual(low);
-    FOGRADAR_CHECK(low > 1e-300);
-  }
-  while (f_high > 0.0) {
-    low = high;
-    f_low = f_high;
-    high *= 2.0;
-    f_high = residual(high);
-    FOGRADAR_CHECK(std::isfinite(high));
-  }
-  if (f_low == 0.0) return low;
-  if (f_high == 0.0) return high;
-  std::uintmax_t max_iterations = 200;
-  const auto [lower, upper] = boost::math::tools::toms748_solve(
-      residual, low, high, f_low, f_high, boost::math::tools::eps_tolerance<double>(50),
-      max_iterations);
-  FOGRADAR_CHECK(max_iterations < 200);
-  return 0.5 * (lower + upper);
-}
 
 // True when no two cells of a geometry spanning `span` cells are correlated.
 bool white_within(const NoiseCorrelation& noise, std::size_t span) {
@@ -279,7 +246,7 @@ double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise,
   std::vector<std::ptrdiff_t> positions{0};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   const Matrix factor = cholesky_factor(correlation_matrix(noise, positions));
-  return solve_factor([&](double alpha) { return log_pfa_ca_exact(factor, alpha); },
+  return solve_threshold_factor([&](double alpha) { return log_pfa_ca_exact(factor, alpha); },
                       config.false_alarm_probability, independent_factor);
 }
 
@@ -300,7 +267,7 @@ double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise
   if (config.kind == CfarKind::ca) return ca_factor(config, noise, offsets, independent_factor);
   const double start = tilt_factor(config, noise, offsets, independent_factor);
   const SampledPfa pfa(config, noise, offsets, start, draws);
-  return solve_factor([&](double alpha) { return std::log(pfa(alpha)); },
+  return solve_threshold_factor([&](double alpha) { return std::log(pfa(alpha)); },
                       config.false_alarm_probability, start);
 }
 
