@@ -1,4 +1,5 @@
-// fogradar: 77 GHz FMCW radar in fog. Exit status 0 ok, 2 bad usage or bad input, 1 internal fault.
+// fogradar: 77 GHz FMCW radar in fog. Exit status 0 ok, 2 bad usage or bad input, 1 internal fault,
+// 130 / 143 `run` stopped by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -30,6 +31,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) run();
     if (app.got_subcommand("scenario")) scenario();
     if (app.got_subcommand("fog")) fog();
+  } catch (const fogradar::cli::Interrupted& e) {
+    std::cerr << "fogradar: " << e.what() << '\n';
+    return 128 + e.signal_number();
   } catch (const fogradar::InvalidParameter& e) {
     std::cerr << "fogradar: " << e.what() << '\n';
     return bad_input;

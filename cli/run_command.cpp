@@ -1,13 +1,16 @@
 // `fogradar run` and `fogradar scenario` (docs/scenario.md).
+#include <pthread.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
@@ -26,7 +29,8 @@ struct RunOptions {
   int threads = 0;
 };
 
-// Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to whole percents.
+// Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to
+// whole percents.
 std::function<void(std::size_t, std::size_t)> terminal_progress() {
   if (!::isatty(STDERR_FILENO)) return {};
   auto last_percent = std::make_shared<std::atomic<int>>(-1);
@@ -43,39 +47,98 @@ std::function<void(std::size_t, std::size_t)> terminal_progress() {
   };
 }
 
+// SIGINT and SIGTERM are blocked in every thread (the workers inherit the mask) and taken by a
+// thread of its own with sigtimedwait, so no code runs in a signal handler. The first one is
+// recorded; the workers stop at their next measurement and the result set is not replaced.
+class SignalWatch {
+ public:
+  SignalWatch() {
+    ::sigemptyset(&signals_);
+    ::sigaddset(&signals_, SIGINT);
+    ::sigaddset(&signals_, SIGTERM);
+    ::pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
+    thread_ = std::thread([this] { watch(); });
+  }
+  // The signals stay blocked: one arriving from here on stays pending, unseen, until the exit.
+  ~SignalWatch() {
+    finished_ = true;
+    thread_.join();
+  }
+  SignalWatch(const SignalWatch&) = delete;
+  SignalWatch& operator=(const SignalWatch&) = delete;
+
+  const std::atomic<bool>& stop() const { return stop_; }
+
+  [[noreturn]] void throw_interrupted(const std::filesystem::path& dir) const {
+    const int signal_number = signal_.load();
+    throw Interrupted(signal_number, std::string("interrupted by ") +
+                                         (signal_number == SIGINT ? "SIGINT" : "SIGTERM") +
+                                         ": no results written, " + dir.string() +
+                                         " left as it was");
+  }
+
+ private:
+  void watch() {
+    const timespec poll{.tv_sec = 0,
+                        .tv_nsec = 50'000'000};  // how soon the destructor's join returns
+    while (!finished_) {
+      const int signal_number = ::sigtimedwait(&signals_, nullptr, &poll);
+      if (signal_number > 0) {
+        signal_ = signal_number;
+        stop_ = true;
+        return;
+      }
+    }
+  }
+
+  sigset_t signals_{};
+  std::atomic<bool> finished_{false}, stop_{false};
+  std::atomic<int> signal_{0};
+  std::thread thread_;
+};
+
 void run(const RunOptions& options) {
-  experiment::Scenario scenario = options.scenario_path ? experiment::load_scenario_file(*options.scenario_path)
-                                                        : experiment::paper_scenario();
+  experiment::Scenario scenario = options.scenario_path
+                                      ? experiment::load_scenario_file(*options.scenario_path)
+                                      : experiment::paper_scenario();
   if (options.seed) {
-    if (*options.seed < 0) throw_invalid("--seed", static_cast<double>(*options.seed), "an integer >= 0");
+    if (*options.seed < 0)
+      throw_invalid("--seed", static_cast<double>(*options.seed), "an integer >= 0");
     scenario.experiment.seed = static_cast<std::uint64_t>(*options.seed);
   }
   require_in_range("--threads", options.threads, 0.0, 4096.0);
   scenario.validate();
 
   const std::filesystem::path dir(options.out_dir);
-  const bool created = experiment::prepare_output_directory(dir);
+  const SignalWatch
+      signals;  // before the output directory: it is released with the signals still held off
+  experiment::OutputDirectory out(dir);
+  experiment::ExperimentResult result;
   try {
-    const experiment::ExperimentResult result =
-        experiment::run_experiment(
-        scenario, {.threads = static_cast<unsigned>(options.threads), .progress = terminal_progress()});
-    const experiment::ExperimentSummary summary = experiment::summarize(result);
-    experiment::write_outputs(dir, scenario, result, summary);
-    std::cout << experiment::summary_table(summary) << "results in " << dir.string() << "/\n";
-  } catch (...) {
-    std::error_code ignored;
-    if (created) std::filesystem::remove(dir, ignored);  // only removes it if still empty
-    throw;
+    result =
+        experiment::run_experiment(scenario, {.threads = static_cast<unsigned>(options.threads),
+                                              .progress = terminal_progress(),
+                                              .stop = &signals.stop()});
+  } catch (const experiment::Interrupted&) {
+    signals.throw_interrupted(dir);
   }
+  const experiment::ExperimentSummary summary = experiment::summarize(result);
+  if (!out.replace(experiment::result_files(scenario, result, summary),
+                   [&] { return signals.stop().load(); })) {
+    signals.throw_interrupted(dir);
+  }
+  std::cout << experiment::summary_table(summary) << "results in " << dir.string() << "/\n";
 }
 
 }  // namespace
 
 Action add_run_command(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
-  CLI::App* run_app = app.add_subcommand(
-      "run", "Run the fog-layer experiment (default: the study's embedded paper scenario) and write its results");
-  run_app->add_option("--scenario", options->scenario_path, "Scenario TOML file (keys override the paper scenario)");
+  CLI::App* run_app = app.add_subcommand("run",
+                                         "Run the fog-layer experiment (default: the study's "
+                                         "embedded paper scenario) and write its results");
+  run_app->add_option("--scenario", options->scenario_path,
+                      "Scenario TOML file (keys override the paper scenario)");
   run_app->add_option("--out", options->out_dir, "Output directory")->capture_default_str();
   run_app->add_option("--seed", options->seed, "Random seed (overrides experiment.seed)");
   run_app->add_option("--threads", options->threads, "Worker threads, 0 = all cores [0, 4096]")

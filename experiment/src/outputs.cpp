@@ -1,16 +1,21 @@
 #include "fogradar/experiment/outputs.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <toml++/toml.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string_view>
-#include <toml++/toml.h>
 #include <variant>
 #include <vector>
 
@@ -39,11 +44,49 @@ std::string joined_outliers(const std::vector<double>& outliers) {
   return text;
 }
 
+[[noreturn]] void refuse(const fs::path& path, const std::string& constraint) {
+  throw_invalid("--out", path.string(), constraint);
+}
+
+std::string errno_text() { return std::strerror(errno); }
+
+// Closes a file descriptor when it goes out of scope.
+struct Descriptor {
+  int fd;
+  explicit Descriptor(int fd_) : fd(fd_) {}
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+};
+
+// Writes `content` to a new file and fsyncs it, so the data is on disk before the rename that
+// publishes it (a crash after the rename must not expose an empty file).
 void write_file(const fs::path& path, const std::string& content) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  file << content;
-  file.close();
-  if (!file) throw_invalid("--out", path.string(), "a writable location (writing failed)");
+  const Descriptor file(::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
+  if (file.fd < 0) refuse(path, "a writable location (" + errno_text() + ")");
+  for (std::size_t written = 0; written < content.size();) {
+    const ssize_t n = ::write(file.fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) refuse(path, "a writable location (" + errno_text() + ")");
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fsync(file.fd) != 0) refuse(path, "a writable location (" + errno_text() + ")");
+}
+
+bool sync_directory(const fs::path& path) {
+  const Descriptor directory(::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  return directory.fd >= 0 && ::fsync(directory.fd) == 0;
+}
+
+constexpr std::array<const char*, 5> result_names = {"samples.csv", "summary.csv", "summary.json",
+                                                     "rcs_boxplot.svg", "scenario.toml"};
+
+bool is_result_file(const fs::directory_entry& entry) {
+  const std::string name = entry.path().filename().string();
+  return std::find(result_names.begin(), result_names.end(), name) != result_names.end() &&
+         entry.symlink_status().type() == fs::file_type::regular;
 }
 
 // Scenario numbers in captions: three significant digits ("0.2", "1e-06").
@@ -180,7 +223,8 @@ std::vector<std::string> plot_caption(const Scenario& scenario, const Experiment
           droplets(scenario.fog.droplets) + "; " + num(scenario.fog.temperature_c) + " \u00b0C.",
       "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
           std::string(radar::to_string(r.sweep_direction)) + "-sweep centred on " +
-          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " + cfar + ".",
+          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
+          cfar + ".",
       "n = " + std::to_string(scenario.experiment.measurements_per_step) +
           " measurements per step, seed " + std::to_string(scenario.experiment.seed) + ".",
       "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
@@ -356,52 +400,126 @@ std::string summary_table(const ExperimentSummary& summary) {
          "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
          "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
   out << "sensor limit: ";
-  if (summary.sensor_limit_layers) out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
-  else out << "not reached\n";
+  if (summary.sensor_limit_layers)
+    out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
+  else
+    out << "not reached\n";
   if (summary.attenuation_margin_db) {
-    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n", *summary.attenuation_margin_db);
+    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n",
+                  *summary.attenuation_margin_db);
     out << line;
   }
   return out.str();
 }
 
-bool prepare_output_directory(const fs::path& dir) {
-  std::error_code error;
-  const bool existed = fs::exists(dir, error);
-  if (existed && !fs::is_directory(dir, error)) throw_invalid("--out", dir.string(), "a directory");
-  if (!existed && !fs::create_directories(dir, error)) {
-    throw_invalid("--out", dir.string(), "a directory that can be created (" + error.message() + ")");
-  }
-  if (::access(dir.c_str(), W_OK | X_OK) != 0) throw_invalid("--out", dir.string(), "a writable directory");
-  return !existed;
+std::vector<std::pair<std::string, std::string>> result_files(const Scenario& scenario,
+                                                              const ExperimentResult& result,
+                                                              const ExperimentSummary& summary) {
+  return {
+      {result_names[0], samples_csv(result)},
+      {result_names[1], summary_csv(summary)},
+      {result_names[2], summary_json(scenario, summary)},
+      {result_names[3], rcs_boxplot_svg(scenario, summary)},
+      {result_names[4], to_toml(scenario)},
+  };
 }
 
-void write_outputs(const fs::path& dir, const Scenario& scenario, const ExperimentResult& result,
-                   const ExperimentSummary& summary) {
-  const std::vector<std::pair<std::string, std::string>> files = {
-      {"samples.csv", samples_csv(result)},
-      {"summary.csv", summary_csv(summary)},
-      {"summary.json", summary_json(scenario, summary)},
-      {"rcs_boxplot.svg", rcs_boxplot_svg(scenario, summary)},
-      {"scenario.toml", to_toml(scenario)},
-  };
-  const std::string suffix = ".tmp-" + std::to_string(::getpid());
-  std::vector<fs::path> written;
+OutputDirectory::OutputDirectory(fs::path dir) {
+  const fs::path given = dir;
+  std::error_code error;
+  dir_ = fs::absolute(dir, error).lexically_normal();
+  if (!dir_.has_filename()) dir_ = dir_.parent_path();  // "out/" names "out"
+  const std::string name = dir_.filename().string();
+  if (error || name.empty() || name == "." || name == "..") refuse(given, "a directory name");
+  parent_ = dir_.parent_path();
+  const fs::file_status status = fs::symlink_status(dir_, error);
+  if (fs::is_symlink(status))
+    refuse(given, "a directory, not a symbolic link (it is replaced whole)");
+  if (fs::exists(status) && !fs::is_directory(status)) refuse(given, "a directory");
+  fs::create_directories(parent_, error);
+  if (error) refuse(given, "a directory that can be created (" + error.message() + ")");
+
+  // The lock file is unlinked by its holder before it lets go, so a run that locked a file someone
+  // has since unlinked holds nothing: it checks that the name still leads to its file, else
+  // retries.
+  lock_path_ = parent_ / ("." + name + ".lock");
+  for (;;) {
+    lock_fd_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0) refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+      const bool busy = errno == EWOULDBLOCK;
+      const std::string why = errno_text();
+      ::close(lock_fd_);
+      lock_fd_ = -1;
+      if (busy)
+        refuse(given, "a directory no other fogradar run is writing to (" + lock_path_.string() +
+                          " is locked)");
+      refuse(given, "a directory that can be locked (" + why + ")");
+    }
+    struct stat held {
+    }, named{};
+    if (::fstat(lock_fd_, &held) == 0 && ::stat(lock_path_.c_str(), &named) == 0 &&
+        held.st_dev == named.st_dev && held.st_ino == named.st_ino) {
+      break;
+    }
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+  }
+
   try {
-    for (const auto& [name, content] : files) {
-      written.push_back(dir / ("." + name + suffix));
-      write_file(written.back(), content);
+    if (fs::is_directory(fs::symlink_status(dir_, error))) {
+      for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
+        if (!is_result_file(entry)) {
+          refuse(given,
+                 "a directory holding only fogradar's result files, as it is replaced whole ('" +
+                     entry.path().filename().string() + "' is not one)");
+        }
+      }
     }
-    for (std::size_t i = 0; i < files.size(); ++i) {
-      std::error_code error;
-      fs::rename(written[i], dir / files[i].first, error);
-      if (error) throw_invalid("--out", (dir / files[i].first).string(), "replaceable (" + error.message() + ")");
+    std::string staging =
+        (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
+    if (::mkdtemp(staging.data()) == nullptr) {
+      refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
     }
+    staging_ = staging;
   } catch (...) {
-    std::error_code ignored;
-    for (const fs::path& path : written) fs::remove(path, ignored);
+    ::unlink(lock_path_.c_str());
+    ::close(lock_fd_);
     throw;
   }
+}
+
+OutputDirectory::~OutputDirectory() {
+  std::error_code ignored;
+  if (!staging_.empty()) fs::remove_all(staging_, ignored);
+  ::unlink(lock_path_.c_str());
+  ::close(lock_fd_);
+}
+
+bool OutputDirectory::replace(const std::vector<std::pair<std::string, std::string>>& files,
+                              const std::function<bool()>& abandon) {
+  for (const auto& [name, content] : files) write_file(staging_ / name, content);
+  if (!sync_directory(staging_))
+    refuse(staging_, "a directory that can be synced (" + errno_text() + ")");
+  if (abandon && abandon()) return false;
+  if (fs::exists(fs::symlink_status(dir_))) {
+    // Readers see the old set or the new one, never a mixture and never no directory at all.
+    if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) != 0) {
+      refuse(dir_, "a directory that can be replaced (renameat2: " + errno_text() + ")");
+    }
+  } else if (::rename(staging_.c_str(), dir_.c_str()) != 0) {
+    refuse(dir_, "a directory that can be created (" + errno_text() + ")");
+  } else {
+    staging_.clear();
+  }
+  // The set is in place; a failed sync of the rename is the kernel's to retry, not the run's
+  // failure.
+  sync_directory(parent_);
+  // The previous set, now under the staging name, goes with the staging directory.
+  std::error_code ignored;
+  if (!staging_.empty()) fs::remove_all(staging_, ignored);
+  staging_.clear();
+  return true;
 }
 
 }  // namespace fogradar::experiment

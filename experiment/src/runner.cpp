@@ -58,7 +58,8 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   for (std::size_t k = 0; k < steps; ++k) {
     active[k] = propagation::first_layers_active(k, chamber.layer_count());
     result.steps[k].active_layers = k;
-    result.steps[k].two_way_attenuation_db = chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
+    result.steps[k].two_way_attenuation_db =
+        chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
     result.steps[k].records.resize(per_step);
   }
 
@@ -75,6 +76,10 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
       radar::MeasurementWorkspace workspace = chain.make_workspace();
       radar::Measurement measurement;
       for (std::size_t item = next++; item < total; item = next++) {
+        if (options.stop != nullptr && options.stop->load()) {
+          next = total;
+          break;
+        }
         const std::size_t k = item / per_step, i = item % per_step;
         RandomStream rng(scenario.experiment.seed, k, i);
         chain.measure(scene, chamber, active[k], rng, workspace, measurement);
@@ -93,6 +98,7 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   worker();
   for (std::thread& thread : pool) thread.join();
   if (failure) std::rethrow_exception(failure);
+  if (done != total) throw Interrupted();
   return result;
 }
 

@@ -37,6 +37,120 @@ fi
 cmp -s "$work/t1/samples.csv" "$work/t3/samples.csv" && pass || fail "scenario.toml does not reproduce the run"
 ls -A "$work/t1" | grep -q '\.tmp' && fail "temporary files left behind" || pass
 
+# --- the result set is replaced whole or not at all (README, docs/scenario.md Results) ---------------
+# Each case works in a parent of its own so that "no temporary files" means an empty listing besides DIR.
+small="$src/tests/cli/small.toml"
+# The paper scenario with 5000 measurements per step runs for many seconds: still going when signalled.
+printf '[experiment]\nmeasurements_per_step = 5000\n' >"$work/long.toml"
+digest() { (cd "$1" && sha256sum -- * 2>&1); }
+leftovers() { ls -A "$1" | grep -v -x "$2"; }  # anything in parent $1 besides the result directory $2
+# wait_for_staging PARENT: until the run has created its staging directory (at most 5 s).
+wait_for_staging() {
+  for _ in $(seq 100); do
+    ls -A "$1" | grep -q '\.tmp-' && return 0
+    sleep 0.05
+  done
+  return 1
+}
+
+# (a) A second run replaces the first's set whole: every file equals a fresh run's byte for byte.
+mkdir -p "$work/a" "$work/a-fresh"
+"$fogradar" run --scenario "$small" --seed 1 --out "$work/a/out" >/dev/null 2>&1 || fail "replace: first run failed"
+"$fogradar" run --scenario "$small" --seed 2 --out "$work/a/out" >/dev/null 2>&1 || fail "replace: second run failed"
+"$fogradar" run --scenario "$small" --seed 2 --out "$work/a-fresh/out" >/dev/null 2>&1 || fail "replace: fresh run failed"
+[ "$(digest "$work/a/out")" = "$(digest "$work/a-fresh/out")" ] && pass || fail "replaced set differs from a fresh run"
+[ -z "$(leftovers "$work/a" out)" ] && pass || fail "replace left $(leftovers "$work/a" out)"
+
+# expect_kept NAME PARENT BEFORE RC STDERR_FILE EXPECTED_RC EXPECTED_TEXT: the run failed as expected and
+# left the previous set byte-identical and nothing else in PARENT.
+expect_kept() {
+  local name=$1 parent=$2 before=$3 rc=$4 err=$5 want_rc=$6 text=$7
+  if [ "$rc" -ne "$want_rc" ]; then fail "$name: exit $rc, expected $want_rc ($(cat "$err"))"; return; fi
+  if ! grep -qF -- "$text" "$err"; then fail "$name: message lacks '$text': $(cat "$err")"; return; fi
+  if [ "$(wc -l <"$err")" -ne 1 ]; then fail "$name: not one message: $(cat "$err")"; return; fi
+  if [ "$(digest "$parent/out")" != "$before" ]; then fail "$name: previous set changed"; return; fi
+  if [ -n "$(leftovers "$parent" out)" ]; then fail "$name: left $(leftovers "$parent" out)"; return; fi
+  pass
+}
+# make_old NAME: PARENT=$work/NAME holding out/, the set of a seed-1 run; BEFORE its digest.
+make_old() {
+  parent="$work/$1"
+  mkdir -p "$parent"
+  "$fogradar" run --scenario "$small" --seed 1 --out "$parent/out" >/dev/null 2>&1 || fail "$1: first run failed"
+  before=$(digest "$parent/out")
+}
+
+# (b) A set fogradar may not replace: a file of the user's (here a non-empty directory under a result
+# file's name, which no one, root included, can replace by a file) is refused before the run, exit 2.
+make_old foreign
+mkdir -p "$work/foreign-extra/samples.csv/keep" && rm -f "$parent/out/samples.csv" && mv "$work/foreign-extra/samples.csv" "$parent/out/"
+before=$(digest "$parent/out")
+"$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err"
+expect_kept foreign-file "$parent" "$before" $? "$work/err" 2 "--out"
+[ -d "$parent/out/samples.csv/keep" ] && pass || fail "the user's directory was touched"
+# Writing fails half-way (the file-size limit, EFBIG, also binds root; SIGXFSZ ignored so write()
+# reports it): the first set stays.
+make_old write-fails
+(ulimit -f 1; trap '' XFSZ; exec "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err")
+expect_kept write-fails "$parent" "$before" $? "$work/err" 2 "--out"
+
+# (c) SIGTERM and SIGINT while measuring: exit 128 + signal, one message, previous set and nothing else.
+# Job control (set -m) keeps bash from starting the background run with SIGINT ignored.
+for sig in TERM INT; do
+  make_old "signal-$sig"
+  set -m
+  "$fogradar" run --scenario "$work/long.toml" --threads 1 --out "$parent/out" >/dev/null 2>"$work/err" &
+  pid=$!
+  set +m
+  if wait_for_staging "$parent"; then
+    sleep 0.2
+    kill -s "$sig" "$pid"
+    wait "$pid"
+    rc=$?
+    want=$([ "$sig" = TERM ] && echo 143 || echo 130)
+    expect_kept "signal-$sig" "$parent" "$before" "$rc" "$work/err" "$want" "interrupted by SIG$sig"
+  else
+    kill -s KILL "$pid"; wait "$pid"
+    fail "signal-$sig: the run never started"
+  fi
+done
+
+# (d) Two runs into one directory: while the first holds it, the second is refused naming --out; the
+# first, stopped, leaves the previous set; run one after the other, both succeed.
+make_old concurrent
+"$fogradar" run --scenario "$work/long.toml" --threads 1 --out "$parent/out" >/dev/null 2>&1 &
+pid=$!
+if wait_for_staging "$parent"; then
+  "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err2"
+  rc=$?
+  kill -s TERM "$pid"
+  wait "$pid"
+  [ "$rc" -eq 2 ] && grep -qF -- "--out" "$work/err2" && grep -q 'locked' "$work/err2" && pass \
+    || fail "concurrent: second run exit $rc: $(cat "$work/err2")"
+  [ "$(digest "$parent/out")" = "$before" ] && [ -z "$(leftovers "$parent" out)" ] && pass \
+    || fail "concurrent: previous set changed or files left: $(leftovers "$parent" out)"
+else
+  kill -s KILL "$pid"; wait "$pid"
+  fail "concurrent: the first run never started"
+fi
+"$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>&1 \
+  && [ "$(digest "$parent/out")" = "$(digest "$work/a-fresh/out")" ] && pass || fail "concurrent: serial rerun"
+
+# (e) A full filesystem: a 64 KiB tmpfs, filled after the first set is in place. Needs mount rights.
+mkdir -p "$work/full"
+if mount -t tmpfs -o size=64k tmpfs "$work/full" 2>/dev/null; then
+  make_old full
+  dd if=/dev/zero of="$parent/filler" bs=1k count=64 2>/dev/null
+  before=$(digest "$parent/out")
+  "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err"
+  rc=$?
+  rm -f "$parent/filler"
+  expect_kept full-disk "$parent" "$before" "$rc" "$work/err" 2 "--out"
+  umount "$work/full"
+else
+  echo "SKIP full-disk case: cannot mount a tmpfs here (needs privileges)"
+fi
+
 # --- bad input -----------------------------------------------------------------------------------
 # expect_bad NAME EXPECTED_TEXT ARGS...: exit 2, stderr names EXPECTED_TEXT, the output dir stays empty.
 expect_bad() {

@@ -1,10 +1,14 @@
-// Result files of `fogradar run` (docs/scenario.md, Results): samples.csv, summary.csv, summary.json,
-// rcs_boxplot.svg, scenario.toml. All are rendered in memory first, then written to temporary files
-// in the output directory and renamed into place, so a failed run leaves no partial result files.
+// Result files of `fogradar run` (docs/scenario.md, Results): samples.csv, summary.csv,
+// summary.json, rcs_boxplot.svg, scenario.toml. The output directory is the run's result set and is
+// replaced whole: the files are written to a sibling staging directory, which then takes the
+// directory's place in one rename (docs/scenario.md, Results; docs/architecture.md, Contracts).
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
@@ -26,12 +30,36 @@ std::string rcs_boxplot_svg(const Scenario& scenario, const ExperimentSummary& s
 // The per-layer table printed by `fogradar run`.
 std::string summary_table(const ExperimentSummary& summary);
 
-// Creates `dir` if needed and checks that files can be created in it; throws InvalidParameter
-// naming "--out" otherwise. Returns whether the directory was created by this call.
-bool prepare_output_directory(const std::filesystem::path& dir);
+// The five result files as {name, content}, in the order above.
+std::vector<std::pair<std::string, std::string>> result_files(const Scenario& scenario,
+                                                              const ExperimentResult& result,
+                                                              const ExperimentSummary& summary);
 
-// Writes the five files atomically (see above); throws InvalidParameter naming "--out" on failure.
-void write_outputs(const std::filesystem::path& dir, const Scenario& scenario, const ExperimentResult& result,
-                   const ExperimentSummary& summary);
+// The output directory of one run, held from before the run until its result set is in place.
+// Construction refuses (InvalidParameter naming "--out") a `dir` that is not a directory, that
+// holds anything but the five result files (so no file of the user's is ever deleted), or that
+// another run holds; it then takes the lock (`.NAME.lock` beside `dir`, flock) and creates the
+// staging directory
+// `.NAME.tmp-<pid>-<random>` beside `dir`. Destruction removes the staging directory (and the lock
+// file) whatever happened: a failed or interrupted run leaves the previous set untouched.
+class OutputDirectory {
+ public:
+  explicit OutputDirectory(std::filesystem::path dir);
+  ~OutputDirectory();
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+
+  // Writes `files` into the staging directory and fsyncs them and it; then, unless `abandon()`
+  // returns true, swaps the staging directory with `dir` in one step (renameat2 RENAME_EXCHANGE; a
+  // plain rename where `dir` does not exist yet), fsyncs the parent and deletes the previous set.
+  // Returns false when abandoned (nothing replaced); throws InvalidParameter naming "--out" when a
+  // step before the swap fails, leaving `dir` as it was.
+  bool replace(const std::vector<std::pair<std::string, std::string>>& files,
+               const std::function<bool()>& abandon = {});
+
+ private:
+  std::filesystem::path dir_, parent_, lock_path_, staging_;
+  int lock_fd_ = -1;
+};
 
 }  // namespace fogradar::experiment

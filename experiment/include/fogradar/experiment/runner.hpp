@@ -1,12 +1,15 @@
 // The study's methodology (paper sec. III-A): for k = 0 .. max_active_layers layers switched on in
-// order from the sensor, a series of measurements, each a full radar frame. Measurement (k, i) draws
-// from its own random stream RandomStream(seed, k, i), and results are stored by index, so a run is
-// bit-identical for any thread count. Frames are streamed: only one per thread exists at a time.
+// order from the sensor, a series of measurements, each a full radar frame. Measurement (k, i)
+// draws from its own random stream RandomStream(seed, k, i), and results are stored by index, so a
+// run is bit-identical for any thread count. Frames are streamed: only one per thread exists at a
+// time.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "fogradar/experiment/scenario.hpp"
@@ -51,9 +54,19 @@ struct RunOptions {
   unsigned threads = 0;  // 0: all hardware threads
   // Called from worker threads with (measurements done, total); may be empty.
   std::function<void(std::size_t, std::size_t)> progress;
+  // When set (by another thread, e.g. one that waits for signals), the workers stop at their next
+  // measurement and run_experiment throws Interrupted. May be null.
+  const std::atomic<bool>* stop = nullptr;
 };
 
-// Runs the whole experiment. Throws InvalidParameter for an invalid or inconsistent scenario.
+// Thrown by run_experiment when RunOptions::stop was set: there is no partial result.
+class Interrupted : public std::runtime_error {
+ public:
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+// Runs the whole experiment. Throws InvalidParameter for an invalid or inconsistent scenario,
+// Interrupted when stopped.
 ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options = {});
 
 }  // namespace fogradar::experiment
