@@ -223,8 +223,7 @@ std::vector<std::string> plot_caption(const Scenario& scenario, const Experiment
           droplets(scenario.fog.droplets) + "; " + num(scenario.fog.temperature_c) + " \u00b0C.",
       "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
           std::string(radar::to_string(r.sweep_direction)) + "-sweep centred on " +
-          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
-          cfar + ".",
+          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " + cfar + ".",
       "n = " + std::to_string(scenario.experiment.measurements_per_step) +
           " measurements per step, seed " + std::to_string(scenario.experiment.seed) + ".",
       "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
@@ -400,13 +399,10 @@ std::string summary_table(const ExperimentSummary& summary) {
          "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
          "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
   out << "sensor limit: ";
-  if (summary.sensor_limit_layers)
-    out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
-  else
-    out << "not reached\n";
+  if (summary.sensor_limit_layers) out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
+  else out << "not reached\n";
   if (summary.attenuation_margin_db) {
-    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n",
-                  *summary.attenuation_margin_db);
+    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n", *summary.attenuation_margin_db);
     out << line;
   }
   return out.str();

@@ -58,8 +58,7 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   for (std::size_t k = 0; k < steps; ++k) {
     active[k] = propagation::first_layers_active(k, chamber.layer_count());
     result.steps[k].active_layers = k;
-    result.steps[k].two_way_attenuation_db =
-        chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
+    result.steps[k].two_way_attenuation_db = chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
     result.steps[k].records.resize(per_step);
   }
 

@@ -1,8 +1,7 @@
 // The study's methodology (paper sec. III-A): for k = 0 .. max_active_layers layers switched on in
-// order from the sensor, a series of measurements, each a full radar frame. Measurement (k, i)
-// draws from its own random stream RandomStream(seed, k, i), and results are stored by index, so a
-// run is bit-identical for any thread count. Frames are streamed: only one per thread exists at a
-// time.
+// order from the sensor, a series of measurements, each a full radar frame. Measurement (k, i) draws
+// from its own random stream RandomStream(seed, k, i), and results are stored by index, so a run is
+// bit-identical for any thread count. Frames are streamed: only one per thread exists at a time.
 #pragma once
 
 #include <atomic>
