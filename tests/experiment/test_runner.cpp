@@ -3,6 +3,7 @@
 // RCS unchanged, and a fog dense enough to reach the sensor limit.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 #include "fogradar/core/units.hpp"
@@ -142,6 +143,35 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   ASSERT_TRUE(summary.sensor_limit_layers.has_value());
   EXPECT_EQ(*summary.sensor_limit_layers, 0u);
   EXPECT_FALSE(summary.attenuation_margin_db.has_value());
+}
+
+// The stop flag: set before the run, no measurement is made; set part-way (here by the progress
+// callback after the 3rd of 60 measurements, one thread), the run ends with Interrupted, never with
+// a partial result; a flag never set changes nothing.
+TEST(Runner, StopFlagEndsTheRunWithoutAResult) {
+  const Scenario s = small_scenario();
+  std::atomic<bool> stop{true};
+  std::size_t calls = 0;
+  EXPECT_THROW(
+      run_experiment(
+          s, {.threads = 1, .progress = [&](std::size_t, std::size_t) { ++calls; }, .stop = &stop}),
+      Interrupted);
+  EXPECT_EQ(calls, 0u);
+
+  stop = false;
+  std::size_t last_done = 0;
+  const auto stop_after_three = [&](std::size_t done, std::size_t) {
+    last_done = done;
+    if (done == 3) stop = true;
+  };
+  EXPECT_THROW(run_experiment(s, {.threads = 1, .progress = stop_after_three, .stop = &stop}),
+               Interrupted);
+  EXPECT_EQ(last_done, 3u);
+
+  stop = false;
+  const ExperimentResult full = run_experiment(s, {.threads = 2, .progress = {}, .stop = &stop});
+  EXPECT_EQ(full.steps.size() * full.steps.front().records.size(),
+            (s.experiment.max_active_layers + 1) * s.experiment.measurements_per_step);
 }
 
 }  // namespace

@@ -1,0 +1,137 @@
+// OutputDirectory (docs/scenario.md, Results): the result set is replaced whole or not at all, a
+// directory holding anything but result files is refused, one run at a time holds a directory, and
+// nothing but the result directory is left beside it. The files are plain strings: the rendering is
+// test_outputs.cpp's subject.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/outputs.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+namespace fs = std::filesystem;
+using Files = std::vector<std::pair<std::string, std::string>>;
+
+Files result_set(const std::string& tag) {
+  return {{"samples.csv", "samples " + tag},
+          {"summary.csv", "summary " + tag},
+          {"summary.json", "{\"" + tag + "\": 1}"},
+          {"rcs_boxplot.svg", "<svg>" + tag + "</svg>"},
+          {"scenario.toml", "# " + tag}};
+}
+
+// Every entry of `dir` with its content ("<dir>" for a directory).
+std::map<std::string, std::string> listing(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    std::ifstream file(entry.path(), std::ios::binary);
+    out[entry.path().filename().string()] =
+        entry.is_directory() ? "<dir>" : std::string(std::istreambuf_iterator<char>(file), {});
+  }
+  return out;
+}
+
+std::map<std::string, std::string> as_listing(const Files& files) {
+  return {files.begin(), files.end()};
+}
+
+class OutputDirectoryTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    parent_ = fs::temp_directory_path() /
+              ("fogradar-output-directory-" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(parent_);
+    fs::create_directories(parent_);
+  }
+  void TearDown() override { fs::remove_all(parent_); }
+  // Only the result directory stands in the parent: no staging directory, no lock file.
+  void expect_only_result_directory() const {
+    const std::map<std::string, std::string> entries = listing(parent_);
+    EXPECT_EQ(entries.size(), 1u);
+    EXPECT_TRUE(entries.contains("out"));
+  }
+  fs::path parent_;
+};
+
+TEST_F(OutputDirectoryTest, CreatesThenReplacesTheWholeSet) {
+  const fs::path dir = parent_ / "out";
+  EXPECT_TRUE(OutputDirectory(dir).replace(result_set("first")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("first")));
+  // A second set with one file fewer: the replacement leaves no file of the first behind.
+  Files second = result_set("second");
+  second.pop_back();
+  EXPECT_TRUE(OutputDirectory(dir).replace(second));
+  EXPECT_EQ(listing(dir), as_listing(second));
+  expect_only_result_directory();
+}
+
+TEST_F(OutputDirectoryTest, AnAbandonedReplacementLeavesThePreviousSet) {
+  const fs::path dir = parent_ / "out";
+  OutputDirectory(dir).replace(result_set("first"));
+  EXPECT_FALSE(OutputDirectory(dir).replace(result_set("second"), [] { return true; }));
+  EXPECT_EQ(listing(dir), as_listing(result_set("first")));
+  expect_only_result_directory();
+}
+
+TEST_F(OutputDirectoryTest, AFailedWriteLeavesThePreviousSet) {
+  const fs::path dir = parent_ / "out";
+  OutputDirectory(dir).replace(result_set("first"));
+  Files bad = result_set("second");
+  bad.emplace_back("missing/sub.csv",
+                   "x");  // a name in a directory that does not exist: open fails
+  EXPECT_THROW(OutputDirectory(dir).replace(bad), InvalidParameter);
+  EXPECT_EQ(listing(dir), as_listing(result_set("first")));
+  expect_only_result_directory();
+}
+
+TEST_F(OutputDirectoryTest, RefusesADirectoryHoldingOtherFiles) {
+  const fs::path dir = parent_ / "out";
+  fs::create_directories(dir / "samples.csv");  // a result file's name, but a directory
+  std::ofstream(dir / "notes.txt") << "mine";
+  try {
+    OutputDirectory refused(dir);
+    FAIL() << "a directory with a user's files was accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), "--out");
+  }
+  EXPECT_EQ(listing(dir),
+            (std::map<std::string, std::string>{{"notes.txt", "mine"}, {"samples.csv", "<dir>"}}));
+  expect_only_result_directory();
+}
+
+TEST_F(OutputDirectoryTest, OneHolderAtATime) {
+  const fs::path dir = parent_ / "out";
+  {
+    OutputDirectory first(dir);
+    try {
+      OutputDirectory second(dir);
+      FAIL() << "two holders of one directory";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.field(), "--out");
+    }
+    EXPECT_TRUE(first.replace(result_set("first")));
+  }
+  // Released: the next one takes it.
+  EXPECT_TRUE(OutputDirectory(dir).replace(result_set("second")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("second")));
+  expect_only_result_directory();
+}
+
+TEST_F(OutputDirectoryTest, RefusesAFile) {
+  std::ofstream(parent_ / "out") << "a file";
+  EXPECT_THROW(OutputDirectory(parent_ / "out"), InvalidParameter);
+  expect_only_result_directory();
+}
+
+}  // namespace
+}  // namespace fogradar::experiment
