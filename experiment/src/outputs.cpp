@@ -53,7 +53,7 @@ std::string errno_text() { return std::strerror(errno); }
 // Closes a file descriptor when it goes out of scope.
 struct Descriptor {
   int fd;
-  explicit Descriptor(int fd_) : fd(fd_) {}
+  explicit Descriptor(int descriptor) : fd(descriptor) {}
   ~Descriptor() {
     if (fd >= 0) ::close(fd);
   }
@@ -426,7 +426,13 @@ OutputDirectory::OutputDirectory(fs::path dir) {
   dir_ = fs::absolute(dir, error).lexically_normal();
   if (!dir_.has_filename()) dir_ = dir_.parent_path();  // "out/" names "out"
   const std::string name = dir_.filename().string();
-  if (error || name.empty() || name == "." || name == "..") refuse(given, "a directory name");
+  if (error || given.empty() || name.empty() || name == "." || name == "..") {
+    refuse(given, "a directory name");
+  }
+  // Swapping the working directory away would leave this process and its shell in a deleted one.
+  if (dir_ == fs::current_path(error).lexically_normal()) {
+    refuse(given, "a directory other than the current one (it is replaced whole)");
+  }
   parent_ = dir_.parent_path();
   const fs::file_status status = fs::symlink_status(dir_, error);
   if (fs::is_symlink(status))

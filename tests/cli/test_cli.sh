@@ -136,6 +136,13 @@ fi
 "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>&1 \
   && [ "$(digest "$parent/out")" = "$(digest "$work/a-fresh/out")" ] && pass || fail "concurrent: serial rerun"
 
+# The working directory is never the result set: swapping it away would strand the caller's shell.
+mkdir -p "$work/cwd"
+(cd "$work/cwd" && exec "$fogradar" run --scenario "$small" --out . >/dev/null 2>"$work/err")
+rc=$?
+[ "$rc" -eq 2 ] && grep -qF -- "--out" "$work/err" && [ -z "$(ls -A "$work/cwd")" ] && pass \
+  || fail "--out . : exit $rc, $(cat "$work/err"), left $(ls -A "$work/cwd")"
+
 # (e) A full filesystem: a 64 KiB tmpfs, filled after the first set is in place. Needs mount rights.
 mkdir -p "$work/full"
 if mount -t tmpfs -o size=64k tmpfs "$work/full" 2>/dev/null; then
