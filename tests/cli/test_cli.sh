@@ -3,8 +3,8 @@
 # 2 threads, and bad input -> exit status 2, one message naming the argument or key, no files left.
 # Usage: test_cli.sh FOGRADAR_BINARY SOURCE_DIR
 set -u
-fogradar=$1
-src=$2
+fogradar=$(realpath "$1")  # absolute: some cases run it from another directory
+src=$(realpath "$2")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
