@@ -3,6 +3,7 @@
 // nothing but the result directory is left beside it. The files are plain strings: the rendering is
 // test_outputs.cpp's subject.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -47,9 +48,10 @@ std::map<std::string, std::string> as_listing(const Files& files) {
 class OutputDirectoryTest : public ::testing::Test {
  protected:
   void SetUp() override {
+    // The process id keeps two builds' test runs on one machine apart.
     parent_ = fs::temp_directory_path() /
-              ("fogradar-output-directory-" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+              ("fogradar-output-directory-" + std::to_string(::getpid()) + "-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(parent_);
     fs::create_directories(parent_);
   }
