@@ -284,6 +284,52 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
   EXPECT_EQ(
       parse_scenario("[processing.cfar]\nguard_cells = 247\n", "guard.toml").radar.cfar.guard_cells,
       247u);
+  // Each number key at both ends of its docs/scenario.md range (the others at their paper values).
+  const char* bounds[] = {
+      "[radar]\ncentre_frequency_hz = 300e9\n",
+      "[radar]\ncentre_frequency_hz = 2e9\nsweep_bandwidth_hz = 1e9\n",
+      "[radar]\nsweep_bandwidth_hz = 1e6\n",
+      "[radar]\nsweep_bandwidth_hz = 38.5e9\nsample_rate_hz = 1e10\n",  // range: c fs Tc / (2 B)
+      "[radar]\nchirp_duration_s = 1e-2\nchirp_interval_s = 1\n",
+      "[radar]\nchirp_interval_s = 51.2e-6\n",
+      "[radar]\nsamples_per_chirp = 16\n[processing.cfar]\nguard_cells = 0\ntraining_cells = 7\n",
+      "[radar]\nsample_rate_hz = 1e10\n",
+      "[radar]\nchirps_per_frame = 1\n",
+      "[radar]\nchirps_per_frame = 16384\n",
+      "[radar]\ntx_power_dbm = -30\ntx_gain_dbi = 0\nrx_gain_dbi = 60\n",
+      "[radar]\ntx_power_dbm = 50\ntx_gain_dbi = 60\nrx_gain_dbi = 0\n",
+      "[radar]\nazimuth_beamwidth_deg = 0.1\nelevation_beamwidth_deg = 180\n",
+      "[radar]\nnoise_figure_db = 0\nreference_temperature_k = 1\n",
+      "[radar]\nnoise_figure_db = 40\nreference_temperature_k = 1000\n",
+      "[radar]\nadc_bits = 24\nadc_full_scale_dbm = -100\nphase_noise_rms_rad = "
+      "3.141592653589793\n",
+      "[radar]\nadc_full_scale_dbm = 30\nphase_noise_rms_rad = 0\n",
+      "[processing]\nassociation_gate_m = 1000\n",
+      "[processing.cfar]\nkind = \"os\"\nos_rank = 16\n",
+      "[target]\nrcs_dbsm = -60\n",
+      "[target]\nrcs_dbsm = 60\n",
+      "[target]\nmodel = \"point\"\nheight_m = 100\nsensor_height_m = 100\n",
+      "[target]\nfloor_reflection_coefficient = -1\nmicro_motion_std_m = 0.1\n",
+      "[target]\nfloor_reflection_coefficient = 1\n",
+      "[chamber]\nsensor_gap_m = 0\ntarget_gap_m = 0\nlayer_count = 1000\nlayer_length_m = 0.05\n",
+      "[fog]\nextinction_per_km = 1e6\n",
+      "[fog]\nlwc_g_per_m3 = 100\n",
+      "[fog]\nvisibility_m = 1e-3\n",
+      "[fog]\nvisibility_m = 1e7\n",
+      "[fog]\nclutter_scatterers_per_bin = 64\n",
+      "[fog.droplets]\nmedian_diameter_m = 1e-8\ngeometric_std = 1.01\n",
+      "[fog.droplets]\nmedian_diameter_m = 1e-3\ngeometric_std = 3\n",
+      "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-8\n",
+      "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-3\n",
+      "[experiment]\nmeasurements_per_step = 1000000\nmax_active_layers = 0\n",
+  };
+  for (const char* text : bounds) {
+    try {
+      parse_scenario(text, "bound.toml");
+    } catch (const InvalidParameter& e) {
+      ADD_FAILURE() << text << " refused: " << e.what();
+    }
+  }
 }
 
 }  // namespace
