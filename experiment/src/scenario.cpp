@@ -65,9 +65,9 @@ class Section {
 
   // An integer key with its documented range (docs/scenario.md); ranges that depend on other keys
   // pass their widest bound here and are checked with those keys by Scenario::validate().
-  template <class Unsigned>
-    requires std::is_unsigned_v<Unsigned>
-  void read(std::string_view key, Unsigned& out, std::int64_t low, std::int64_t high) {
+  template <class Integer>
+    requires std::is_integral_v<Integer>
+  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high) {
     if (const toml::node* node = find(key)) {
       if (!node->is_integer()) {
         fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be an integer in [" +
@@ -78,7 +78,7 @@ class Section {
         fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be an integer in [" +
                                    std::to_string(low) + ", " + std::to_string(high) + "]");
       }
-      out = static_cast<Unsigned>(value);
+      out = static_cast<Integer>(value);
     }
   }
 
@@ -242,8 +242,9 @@ void read_target(const toml::table& root, std::string_view source, KeyLines& lin
     throw_invalid("target.model", *model, "one of 'evt', 'point'");
   }
   s.read("rcs_dbsm", t.rcs_dbsm);
-  unsigned swerling = static_cast<unsigned>(t.swerling);
-  s.read("swerling", swerling, 0, 3);
+  // Any integer reaches the parser, which names the allowed set (0, 1, 3).
+  std::int64_t swerling = static_cast<std::int64_t>(t.swerling);
+  s.read("swerling", swerling, std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max());
   t.swerling = radar::parse_swerling(std::to_string(swerling), "target.swerling");
   s.read("height_m", t.height_m);
   s.read("sensor_height_m", t.sensor_height_m);
