@@ -332,7 +332,8 @@ void read_fog(const toml::table& root, std::string_view source, KeyLines& lines,
 void read_experiment(const toml::table& root, std::string_view source, KeyLines& lines, ExperimentSpec& e) {
   Section s(root, "experiment", source, lines);
   s.read("measurements_per_step", e.measurements_per_step, 1, 1000000);
-  s.read("max_active_layers", e.max_active_layers, 0, 1000);
+  // Its upper bound is chamber.layer_count, checked with that key by Scenario::validate().
+  s.read("max_active_layers", e.max_active_layers, 0, std::numeric_limits<std::int64_t>::max());
   s.read("seed", e.seed, 0, std::numeric_limits<std::int64_t>::max());
   s.reject_unknown();
 }

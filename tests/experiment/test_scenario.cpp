@@ -156,6 +156,9 @@ INSTANTIATE_TEST_SUITE_P(
                  2, "in (0, 10000]"},
         BadInput{"too_many_active", "[experiment]\nmax_active_layers = 5\n",
                  "experiment.max_active_layers", 2, "[0, chamber.layer_count = 4]"},
+        // Not the reader's widest bound: the true one, from chamber.layer_count.
+        BadInput{"far_too_many_active", "[experiment]\nmax_active_layers = 5000000000\n",
+                 "experiment.max_active_layers", 2, "[0, chamber.layer_count = 4]"},
         BadInput{"too_many_active_for_given_layers",
                  "[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n",
                  "experiment.max_active_layers", 4, "[0, chamber.layer_count = 2]",
