@@ -67,16 +67,15 @@ class Section {
   // pass their widest bound here and are checked with those keys by Scenario::validate().
   template <class Integer>
     requires std::is_integral_v<Integer>
-  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high) {
+  // `also` states the bound that other keys set within [low, high].
+  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high, const std::string& also = "") {
     if (const toml::node* node = find(key)) {
-      if (!node->is_integer()) {
-        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be an integer in [" +
-                                   std::to_string(low) + ", " + std::to_string(high) + "]");
-      }
+      const std::string range = "an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]" +
+                                (also.empty() ? "" : " " + also);
+      if (!node->is_integer()) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be " + range);
       const std::int64_t value = *node->value<std::int64_t>();
       if (value < low || value > high) {
-        fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be an integer in [" +
-                                   std::to_string(low) + ", " + std::to_string(high) + "]");
+        fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be " + range);
       }
       out = static_cast<Integer>(value);
     }
@@ -218,10 +217,13 @@ void read_processing(const toml::table& root, std::string_view source, KeyLines&
   std::optional<std::string> kind;
   c.read("kind", kind);
   if (kind) r.cfar.kind = radar::parse_cfar_kind(*kind, "processing.cfar.kind");
-  c.read("guard_cells", r.cfar.guard_cells, 0, 32766);
-  c.read("training_cells", r.cfar.training_cells, 1, 32767);
+  const std::string window_rule = "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
+                                  "radar.samples_per_chirp = " + std::to_string(r.samples_per_chirp);
+  c.read("guard_cells", r.cfar.guard_cells, 0, 32766, window_rule);
+  c.read("training_cells", r.cfar.training_cells, 1, 32767, window_rule);
   c.read("false_alarm_probability", r.cfar.false_alarm_probability);
-  c.read("os_rank", r.cfar.os_rank, 0, 65534);
+  c.read("os_rank", r.cfar.os_rank, 0, 65534,
+         "and 0 or at most 2 x processing.cfar.training_cells = " + std::to_string(2 * r.cfar.training_cells));
   std::optional<std::string> design;
   c.read("threshold_design", design);
   if (design) {
@@ -511,7 +513,10 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     read_experiment(root, source_name, lines, s.experiment);
     s.validate();
   } catch (const InvalidParameter& e) {
-    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) throw;
+    // A reader's error already names its key and line; it may name keys read before it.
+    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) {
+      throw InvalidParameter(e.field(), e.what() + other_key_lines(e.what(), e.field(), lines));
+    }
     // A range or enumeration error: point at the key as the user wrote it, and its line.
     const std::string key = scenario_key(e.field());
     std::string message = e.what();
