@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
@@ -132,20 +133,29 @@ Action add_fog_command(CLI::App& app) {
   CLI::App* fog = app.add_subcommand(
       "fog", "Water index, radar attenuation and backscatter, optical extinction and visibility of a fog");
   fog->add_option("--frequency-ghz", options->frequency_ghz, "Radar frequency in GHz")
-      ->capture_default_str();
-  auto* lwc = fog->add_option("--lwc", options->lwc_g_per_m3, "Liquid water content in g/m^3 [0, 100]");
+      ->capture_default_str()
+      ->check(number_in("--frequency-ghz", 0.03, 2.99e7,
+                        "in [0.03, 1000] with --water-model liebe, [0.03, 2.99e7] with segelstein"));
+  auto* lwc = fog->add_option("--lwc", options->lwc_g_per_m3, "Liquid water content in g/m^3 [0, 100]")
+                  ->check(number_in("--lwc", 0.0, 100.0, "in [0, 100]"));
   auto* ext = fog->add_option("--extinction-per-km", options->extinction_per_km,
-                              "Optical extinction coefficient at 550 nm in 1/km (default 900, the study's fog)");
+                              "Optical extinction coefficient at 550 nm in 1/km [0, 1e6] (default 900, the study's fog)")
+                  ->check(number_in("--extinction-per-km", 0.0, 1e6, "in [0, 1e6]"));
   auto* vis = fog->add_option("--visibility-m", options->visibility_m,
-                              "Visibility (eq. 6, 2 % contrast at 550 nm) in m");
+                              "Visibility (eq. 6, 2 % contrast at 550 nm) in m [1e-3, 1e7]")
+                  ->check(number_in("--visibility-m", 1e-3, 1e7, "in [1e-3, 1e7]"));
   lwc->excludes(ext)->excludes(vis);
   ext->excludes(vis);
   fog->add_option("--diameter-um", options->diameter_um,
-                  "Monodisperse droplets of this diameter in um (default: lognormal, median 1 um, sigma_g 1.5)");
+                  "Monodisperse droplets of this diameter in um [0.01, 1000] (default: lognormal, median 1 um, "
+                  "sigma_g 1.5)")
+      ->check(number_in("--diameter-um", 0.01, 1000.0, "in [0.01, 1000]"));
   fog->add_option(
       "--temperature-c", options->temperature_c,
       "Water temperature in C: [-20, 50] with liebe (default 20); segelstein is a table for "
-      "25 C and takes only 25");
+      "25 C and takes only 25")
+      ->check(number_in("--temperature-c", -20.0, 50.0,
+                        "in [-20, 50] with --water-model liebe, 25 with segelstein"));
   fog->add_option(
          "--water-model", options->water_model,
          "Water index at the radar frequency: liebe (temperature dependent, up to 1000 GHz) | "

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
@@ -15,8 +17,23 @@ int main(int argc, char** argv) {
   const fogradar::cli::Action run = fogradar::cli::add_run_command(app);
   const fogradar::cli::Action scenario = fogradar::cli::add_scenario_command(app);
   const fogradar::cli::Action fog = fogradar::cli::add_fog_command(app);
+  // CLI11 answers a word that is no subcommand with "A subcommand is required", not naming it.
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    const std::vector<CLI::App*> known =
+        app.get_subcommands([&word](CLI::App* sub) { return sub->check_name(word); });
+    if (known.empty()) {
+      std::cerr << "fogradar: unknown subcommand '" << word
+                << "': must be one of run, scenario, fog\n"
+                << "(run 'fogradar --help' for usage)\n";
+      return bad_input;
+    }
+  }
   try {
     app.parse(argc, argv);
+  } catch (const fogradar::InvalidParameter& e) {  // an option's check (cli/checks.hpp)
+    std::cerr << "fogradar: " << e.what() << '\n';
+    return bad_input;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <thread>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/outputs.hpp"
@@ -137,12 +139,21 @@ Action add_run_command(CLI::App& app) {
   CLI::App* run_app = app.add_subcommand("run",
                                          "Run the fog-layer experiment (default: the study's "
                                          "embedded paper scenario) and write its results");
-  run_app->add_option("--scenario", options->scenario_path,
-                      "Scenario TOML file (keys override the paper scenario)");
-  run_app->add_option("--out", options->out_dir, "Output directory")->capture_default_str();
-  run_app->add_option("--seed", options->seed, "Random seed (overrides experiment.seed)");
+  run_app
+      ->add_option("--scenario", options->scenario_path,
+                   "Scenario TOML file, a regular file of at most 1 MiB (keys override the paper "
+                   "scenario)")
+      ->check(non_empty_path("--scenario"));
+  run_app->add_option("--out", options->out_dir, "Output directory")
+      ->capture_default_str()
+      ->check(non_empty_path("--out"));
+  run_app
+      ->add_option("--seed", options->seed,
+                   "Random seed [0, 9223372036854775807] (overrides experiment.seed)")
+      ->check(integer_in("--seed", 0, std::numeric_limits<std::int64_t>::max()));
   run_app->add_option("--threads", options->threads, "Worker threads, 0 = all cores [0, 4096]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(integer_in("--threads", 0, 4096));
   return [options] { run(*options); };
 }
 

@@ -2,12 +2,20 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
+#include <vector>
 #include <toml++/toml.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
@@ -29,6 +37,13 @@ using KeyLines = std::map<std::string, std::size_t>;
   throw InvalidParameter(key, out.str());
 }
 
+// A value as TOML writes it, for messages about a value of the wrong type.
+std::string as_written(const toml::node& node) {
+  std::ostringstream text;
+  node.visit([&text](const auto& value) { text << value; });
+  return text.str();
+}
+
 // Reads the keys of one TOML table into typed fields; anything left unread is an unknown key.
 class Section {
  public:
@@ -43,40 +58,75 @@ class Section {
   void read(std::string_view key, double& out) {
     if (const toml::node* node = find(key)) {
       const std::optional<double> value = node->is_number() ? node->value<double>() : std::nullopt;
-      if (!value) fail(*node, full(key), full(key) + " must be a number");
+      if (!value) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a number");
       out = *value;
     }
   }
 
-  template <class Unsigned>
-    requires std::is_unsigned_v<Unsigned>
-  void read(std::string_view key, Unsigned& out) {
+  // An integer key with its documented range (docs/scenario.md); ranges that depend on other keys
+  // pass their widest bound here and are checked with those keys by Scenario::validate().
+  template <class Integer>
+    requires std::is_integral_v<Integer>
+  // `also` states the bound that other keys set within [low, high].
+  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high, const std::string& also = "") {
     if (const toml::node* node = find(key)) {
-      if (!node->is_integer()) fail(*node, full(key), full(key) + " must be an integer");
+      const std::string range = "an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]" +
+                                (also.empty() ? "" : " " + also);
+      if (!node->is_integer()) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be " + range);
       const std::int64_t value = *node->value<std::int64_t>();
-      if (value < 0 || static_cast<std::uint64_t>(value) > std::numeric_limits<Unsigned>::max()) {
-        fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be in [0, " +
-                                   std::to_string(std::numeric_limits<Unsigned>::max()) + "]");
+      if (value < low || value > high) {
+        fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be " + range);
       }
-      out = static_cast<Unsigned>(value);
+      out = static_cast<Integer>(value);
     }
   }
 
   void read(std::string_view key, bool& out) {
     if (const toml::node* node = find(key)) {
-      if (!node->is_boolean()) fail(*node, full(key), full(key) + " must be true or false");
+      if (!node->is_boolean()) {
+        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be true or false");
+      }
       out = *node->value<bool>();
     }
   }
 
   void read(std::string_view key, std::string& out) {
     if (const toml::node* node = find(key)) {
-      if (!node->is_string()) fail(*node, full(key), full(key) + " must be a string");
+      if (!node->is_string()) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a string");
       out = *node->value<std::string>();
     }
   }
 
+  // An enumeration's name, absent when the key is not given; an empty string is given, and its
+  // parser refuses it with the allowed names.
+  void read(std::string_view key, std::optional<std::string>& out) {
+    std::string text;
+    if (find(key) == nullptr) return;
+    read(key, text);
+    out = text;
+  }
+
   bool has(std::string_view key) const { return table_ != nullptr && table_->contains(key); }
+
+  // Throws at the second of `keys` the table gives, naming each given one and its line.
+  void reject_more_than_one(std::initializer_list<std::string_view> keys, std::string_view what) const {
+    if (table_ == nullptr) return;
+    std::string all;
+    for (std::string_view key : keys) all += (all.empty() ? "" : ", ") + full(key);
+    std::string given;
+    bool seen = false;
+    for (std::string_view key : keys) {
+      const toml::node* node = table_->get(key);
+      if (node == nullptr) continue;
+      given += (given.empty() ? "" : " and ") + full(key) + " (line " +
+               std::to_string(node->source().begin.line) + ")";
+      if (seen) {
+        fail(*node, full(key),
+             given + " are both given: at most one " + std::string(what) + " of " + all + " per scenario");
+      }
+      seen = true;
+    }
+  }
 
   // Throws if the table holds `old_key`, a key that is no longer read, saying what replaced it.
   void reject_retired(std::string_view old_key, const std::string& replacement) const {
@@ -125,14 +175,6 @@ class Section {
   std::set<std::string> read_;
 };
 
-// Enumerations as strings: unknown names name the key and the allowed values.
-template <class Parse>
-void read_enum(Section& section, std::string_view key, Parse parse, const std::string& full_key) {
-  std::string text;
-  section.read(key, text);
-  if (!text.empty()) parse(text, full_key);
-}
-
 void read_radar(const toml::table& root, std::string_view source, KeyLines& lines, radar::RadarParams& r) {
   Section s(root, "radar", source, lines);
   // Its value was the start of a down-chirp, which a reader of "carrier" could not know.
@@ -141,16 +183,15 @@ void read_radar(const toml::table& root, std::string_view source, KeyLines& line
                    "radar.sweep_direction = \"up\" | \"down\" (the old 77e9 meant a 77 -> 76 GHz "
                    "down-chirp: centre_frequency_hz = 76.5e9, sweep_direction = \"down\")");
   s.read("centre_frequency_hz", r.centre_frequency_hz);
-  std::string direction;
+  std::optional<std::string> direction;
   s.read("sweep_direction", direction);
-  if (!direction.empty())
-    r.sweep_direction = radar::parse_sweep_direction(direction, "radar.sweep_direction");
+  if (direction) r.sweep_direction = radar::parse_sweep_direction(*direction, "radar.sweep_direction");
   s.read("sweep_bandwidth_hz", r.sweep_bandwidth_hz);
   s.read("chirp_duration_s", r.chirp_duration_s);
   s.read("chirp_interval_s", r.chirp_interval_s);
-  s.read("samples_per_chirp", r.samples_per_chirp);
+  s.read("samples_per_chirp", r.samples_per_chirp, 16, 65536);
   s.read("sample_rate_hz", r.sample_rate_hz);
-  s.read("chirps_per_frame", r.chirps_per_frame);
+  s.read("chirps_per_frame", r.chirps_per_frame, 1, 16384);
   s.read("tx_power_dbm", r.tx_power_dbm);
   s.read("tx_gain_dbi", r.tx_gain_dbi);
   s.read("rx_gain_dbi", r.rx_gain_dbi);
@@ -158,7 +199,7 @@ void read_radar(const toml::table& root, std::string_view source, KeyLines& line
   s.read("elevation_beamwidth_deg", r.elevation_beamwidth_deg);
   s.read("noise_figure_db", r.noise_figure_db);
   s.read("reference_temperature_k", r.reference_temperature_k);
-  s.read("adc_bits", r.adc_bits);
+  s.read("adc_bits", r.adc_bits, 0, 24);
   s.read("adc_full_scale_dbm", r.adc_full_scale_dbm);
   s.read("phase_noise_rms_rad", r.phase_noise_rms_rad);
   s.reject_unknown();
@@ -166,42 +207,46 @@ void read_radar(const toml::table& root, std::string_view source, KeyLines& line
 
 void read_processing(const toml::table& root, std::string_view source, KeyLines& lines, radar::RadarParams& r) {
   Section s(root, "processing", source, lines);
-  std::string window;
+  std::optional<std::string> window;
   s.read("window", window);
-  if (!window.empty()) r.window = radar::parse_window_type(window, "processing.window");
+  if (window) r.window = radar::parse_window_type(*window, "processing.window");
   s.read("association_gate_m", r.association_gate_m);
   s.reject_unknown({"cfar"});
 
   Section c(root, "processing.cfar", source, lines);
-  std::string kind;
+  std::optional<std::string> kind;
   c.read("kind", kind);
-  if (!kind.empty()) r.cfar.kind = radar::parse_cfar_kind(kind, "processing.cfar.kind");
-  c.read("guard_cells", r.cfar.guard_cells);
-  c.read("training_cells", r.cfar.training_cells);
+  if (kind) r.cfar.kind = radar::parse_cfar_kind(*kind, "processing.cfar.kind");
+  const std::string window_rule = "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
+                                  "radar.samples_per_chirp = " + std::to_string(r.samples_per_chirp);
+  c.read("guard_cells", r.cfar.guard_cells, 0, 32766, window_rule);
+  c.read("training_cells", r.cfar.training_cells, 1, 32767, window_rule);
   c.read("false_alarm_probability", r.cfar.false_alarm_probability);
-  c.read("os_rank", r.cfar.os_rank);
-  std::string design;
+  c.read("os_rank", r.cfar.os_rank, 0, 65534,
+         "and 0 or at most 2 x processing.cfar.training_cells = " + std::to_string(2 * r.cfar.training_cells));
+  std::optional<std::string> design;
   c.read("threshold_design", design);
-  if (!design.empty()) {
-    r.cfar.threshold_design = radar::parse_cfar_threshold_design(design, "processing.cfar.threshold_design");
+  if (design) {
+    r.cfar.threshold_design = radar::parse_cfar_threshold_design(*design, "processing.cfar.threshold_design");
   }
   c.reject_unknown();
 }
 
 void read_target(const toml::table& root, std::string_view source, KeyLines& lines, TargetSpec& t) {
   Section s(root, "target", source, lines);
-  std::string model;
+  std::optional<std::string> model;
   s.read("model", model);
   if (model == "evt") {
     t.model = TargetModel::evt;
   } else if (model == "point") {
     t.model = TargetModel::point;
-  } else if (!model.empty()) {
-    throw_invalid("target.model", model, "one of 'evt', 'point'");
+  } else if (model) {
+    throw_invalid("target.model", *model, "one of 'evt', 'point'");
   }
   s.read("rcs_dbsm", t.rcs_dbsm);
-  unsigned swerling = static_cast<unsigned>(t.swerling);
-  s.read("swerling", swerling);
+  // Any integer reaches the parser, which names the allowed set (0, 1, 3).
+  std::int64_t swerling = static_cast<std::int64_t>(t.swerling);
+  s.read("swerling", swerling, std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max());
   t.swerling = radar::parse_swerling(std::to_string(swerling), "target.swerling");
   s.read("height_m", t.height_m);
   s.read("sensor_height_m", t.sensor_height_m);
@@ -214,7 +259,7 @@ void read_target(const toml::table& root, std::string_view source, KeyLines& lin
 void read_chamber(const toml::table& root, std::string_view source, KeyLines& lines, ChamberLayout& c) {
   Section s(root, "chamber", source, lines);
   s.read("sensor_gap_m", c.sensor_gap_m);
-  s.read("layer_count", c.layer_count);
+  s.read("layer_count", c.layer_count, 1, 1000);
   s.read("layer_length_m", c.layer_length_m);
   s.read("target_gap_m", c.target_gap_m);
   s.reject_unknown();
@@ -258,11 +303,7 @@ void read_droplets(const toml::table& root, std::string_view source, KeyLines& l
 void read_fog(const toml::table& root, std::string_view source, KeyLines& lines, propagation::FogSpec& fog,
               unsigned& clutter_scatterers_per_bin) {
   Section s(root, "fog", source, lines);
-  const int given = int{s.has("lwc_g_per_m3")} + int{s.has("extinction_per_km")} + int{s.has("visibility_m")};
-  if (given > 1) {
-    throw_invalid("fog", "lwc_g_per_m3, extinction_per_km, visibility_m",
-                  "at most one of these fog densities per scenario");
-  }
+  s.reject_more_than_one({"lwc_g_per_m3", "extinction_per_km", "visibility_m"}, "fog density");
   if (s.has("lwc_g_per_m3")) {
     propagation::LiquidWaterContent d;
     s.read("lwc_g_per_m3", d.g_per_m3);
@@ -282,19 +323,20 @@ void read_fog(const toml::table& root, std::string_view source, KeyLines& lines,
   s.read("extinction_per_km", unused);
   s.read("visibility_m", unused);
   s.read("temperature_c", fog.temperature_c);
-  std::string model;
+  std::optional<std::string> model;
   s.read("water_model", model);
-  if (!model.empty()) fog.water_model = propagation::parse_water_model(model, "fog.water_model");
-  s.read("clutter_scatterers_per_bin", clutter_scatterers_per_bin);
+  if (model) fog.water_model = propagation::parse_water_model(*model, "fog.water_model");
+  s.read("clutter_scatterers_per_bin", clutter_scatterers_per_bin, 1, 64);
   s.reject_unknown({"droplets"});
   read_droplets(root, source, lines, fog.droplets);
 }
 
 void read_experiment(const toml::table& root, std::string_view source, KeyLines& lines, ExperimentSpec& e) {
   Section s(root, "experiment", source, lines);
-  s.read("measurements_per_step", e.measurements_per_step);
-  s.read("max_active_layers", e.max_active_layers);
-  s.read("seed", e.seed);
+  s.read("measurements_per_step", e.measurements_per_step, 1, 1000000);
+  // Its upper bound is chamber.layer_count, checked with that key by Scenario::validate().
+  s.read("max_active_layers", e.max_active_layers, 0, std::numeric_limits<std::int64_t>::max());
+  s.read("seed", e.seed, 0, std::numeric_limits<std::int64_t>::max());
   s.reject_unknown();
 }
 
@@ -317,6 +359,57 @@ std::string scenario_key(const std::string& field) {
   return field;
 }
 
+bool is_key_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.'; }
+
+// Positions where `key` occurs in `text` as a whole key, not as part of a longer one.
+std::vector<std::size_t> key_positions(std::string_view text, std::string_view key) {
+  std::vector<std::size_t> found;
+  for (std::size_t at = text.find(key); at != std::string_view::npos; at = text.find(key, at + 1)) {
+    const std::size_t end = at + key.size();
+    const bool starts = at == 0 || !is_key_char(text[at - 1]);
+    const bool ends = end == text.size() || !is_key_char(text[end]) ||
+                      (text[end] == '.' && (end + 1 == text.size() || !is_key_char(text[end + 1])));
+    if (starts && (key.back() == '.' || ends)) found.push_back(at);
+  }
+  return found;
+}
+
+// Library fields that other keys' messages name, as the scenario's keys.
+std::string scenario_keys_in(std::string message) {
+  static const std::pair<std::string_view, std::string_view> renames[] = {
+      {"radar.window", "processing.window"},
+      {"radar.association_gate_m", "processing.association_gate_m"},
+      {"cfar.", "processing.cfar."},
+      {"target.clutter_scatterers_per_bin", "fog.clutter_scatterers_per_bin"},
+  };
+  for (const auto& [from, to] : renames) {
+    const std::vector<std::size_t> positions = key_positions(message, from);
+    for (auto at = positions.rbegin(); at != positions.rend(); ++at) message.replace(*at, from.size(), to);
+  }
+  return message;
+}
+
+// The lines of the other keys a combined check names, so every key involved can be found.
+std::string other_key_lines(const std::string& message, const std::string& key, const KeyLines& lines) {
+  std::string listed;
+  for (const auto& [other, line] : lines) {
+    if (other == key || key_positions(message, other).empty()) continue;
+    listed += (listed.empty() ? " (" : ", ") + other + " at line " + std::to_string(line);
+  }
+  return listed.empty() ? listed : listed + ")";
+}
+
+// Closes the scenario file however reading it ends.
+struct FileDescriptor {
+  int fd;
+  explicit FileDescriptor(int descriptor) : fd(descriptor) {}
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  ~FileDescriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
 std::string format_toml_number(double value) {
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
@@ -336,12 +429,36 @@ void Scenario::validate() const {
   require_in_range("experiment.measurements_per_step", static_cast<double>(experiment.measurements_per_step),
                    1.0, 1e6);
   require_in_range("chamber.layer_count", static_cast<double>(chamber.layer_count), 1.0, 1000.0);
-  require_in_range("experiment.max_active_layers", static_cast<double>(experiment.max_active_layers), 0.0,
-                   static_cast<double>(chamber.layer_count));
+  if (experiment.max_active_layers > chamber.layer_count) {
+    throw_invalid("experiment.max_active_layers", static_cast<double>(experiment.max_active_layers),
+                  "an integer in [0, chamber.layer_count = " + std::to_string(chamber.layer_count) + "]");
+  }
   // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
-  require_in_range("experiment.seed", static_cast<double>(experiment.seed), 0.0, 9.2233720368547e18);
+  constexpr auto max_seed = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+  if (experiment.seed > max_seed) {
+    throw_invalid("experiment.seed", std::to_string(experiment.seed),
+                  "an integer in [0, " + std::to_string(max_seed) + "]");
+  }
   chamber_spec().validate();
-  scene().validate();
+  const radar::Scene target_scene = scene();
+  target_scene.validate();
+  // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps (docs/radar.md).
+  double farthest_m = chamber_spec().target_range_m();
+  for (const radar::ScatteringCentre& centre : target_scene.centres) {
+    farthest_m = std::max(farthest_m, chamber_spec().target_range_m() + centre.range_offset_m);
+  }
+  const double limit_m = radar::derive(radar).max_range_m - 1.0;
+  if (farthest_m > limit_m) {
+    std::ostringstream constraint;
+    constraint.precision(10);
+    constraint << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
+                  "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
+               << farthest_m
+               << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
+                  "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
+               << limit_m << " m";
+    throw_invalid("chamber.target_gap_m", chamber.target_gap_m, constraint.str());
+  }
 }
 
 propagation::ChamberSpec Scenario::chamber_spec() const {
@@ -396,14 +513,28 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     read_experiment(root, source_name, lines, s.experiment);
     s.validate();
   } catch (const InvalidParameter& e) {
-    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) throw;
+    // A reader's error already names its key and line; it may name keys read before it.
+    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) {
+      throw InvalidParameter(e.field(), e.what() + other_key_lines(e.what(), e.field(), lines));
+    }
     // A range or enumeration error: point at the key as the user wrote it, and its line.
     const std::string key = scenario_key(e.field());
     std::string message = e.what();
     if (message.rfind(e.field(), 0) == 0) message = key + message.substr(e.field().size());
-    const auto line = lines.find(key);
-    if (line == lines.end()) throw InvalidParameter(key, std::string(source_name) + ": " + message);
-    throw_at(source_name, line->second, key, message);
+    message = scenario_keys_in(message);
+    message += other_key_lines(message, key, lines);
+    // A key the file does not give keeps its paper value; a check combining it with keys the file
+    // gives points at the first of those.
+    std::size_t line = 0;
+    if (const auto given = lines.find(key); given != lines.end()) {
+      line = given->second;
+    } else {
+      for (const auto& [other, other_line] : lines) {
+        if (!key_positions(message, other).empty() && (line == 0 || other_line < line)) line = other_line;
+      }
+    }
+    if (line == 0) throw InvalidParameter(key, std::string(source_name) + ": " + message);
+    throw_at(source_name, line, key, message);
   }
   return s;
 }
@@ -417,11 +548,37 @@ Scenario parse_scenario(std::string_view toml_text, std::string_view source_name
 }
 
 Scenario load_scenario_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw_invalid("--scenario", path, "a readable TOML file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_scenario(text.str(), path);
+  const std::string wanted = "a readable regular TOML file of at most " +
+                             std::to_string(max_scenario_file_bytes) + " bytes (1 MiB)";
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it unread.
+  const FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  const int fd = file.fd;
+  if (fd < 0) throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
+  if (!S_ISREG(info.st_mode)) {
+    const char* kind = S_ISDIR(info.st_mode)    ? "a directory"
+                       : S_ISFIFO(info.st_mode) ? "a FIFO"
+                       : S_ISCHR(info.st_mode)  ? "a character device"
+                       : S_ISBLK(info.st_mode)  ? "a block device"
+                       : S_ISSOCK(info.st_mode) ? "a socket"
+                                                : "not a regular file";
+    throw_invalid("--scenario", path, wanted + "; it is " + kind);
+  }
+  if (static_cast<std::uintmax_t>(info.st_size) > max_scenario_file_bytes) {
+    throw_invalid("--scenario", path, wanted + "; it holds " + std::to_string(info.st_size) + " bytes");
+  }
+  std::string text(static_cast<std::size_t>(info.st_size), '\0');
+  std::size_t got = 0;
+  while (got < text.size()) {
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
+    if (n == 0) break;
+    got += static_cast<std::size_t>(n);
+  }
+  text.resize(got);
+  return parse_scenario(text, path);
 }
 
 std::string to_toml(const Scenario& s) {

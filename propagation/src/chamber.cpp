@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "fogradar/core/error.hpp"
@@ -32,7 +33,9 @@ void ChamberSpec::validate() const {
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string field = "chamber.layers[" + std::to_string(i) + "].length_m";
     if (!(layers[i].length_m > 0.0 && layers[i].length_m <= max_length_m)) {
-      throw_invalid(field, layers[i].length_m, "in (0, " + std::to_string(max_length_m) + "]");
+      std::ostringstream range;
+      range << "in (0, " << max_length_m << "]";
+      throw_invalid(field, layers[i].length_m, range.str());
     }
     layers[i].fog.validate();
   }

@@ -34,9 +34,11 @@ constexpr std::size_t segelstein_row_count = 1261;
 
 // Validity of the Liebe/P.840 fit: below 1 THz (Liebe et al. 1991 title and abstract); the
 // temperature span is the one water.hpp documents, -20..50 C, supercooled cloud water included.
+// The kelvin bounds are converted as callers convert their Celsius values (-20 + 273.15 rounds
+// below 253.15), so a temperature at a documented bound is accepted.
 constexpr double liebe_max_frequency_hz = 1e12;
-constexpr double liebe_min_temperature_k = 253.15;
-constexpr double liebe_max_temperature_k = 323.15;
+constexpr double liebe_min_temperature_k = celsius_to_kelvin(-20.0);
+constexpr double liebe_max_temperature_k = celsius_to_kelvin(50.0);
 
 // ---- Segelstein table parsing -------------------------------------------------------------
 

@@ -374,7 +374,7 @@ void CfarConfig::validate() const {
   if (os_rank > big_n) {
     throw_invalid("cfar.os_rank", os_rank,
                   "0 (default round(3N/4)) or in [1, " + std::to_string(big_n) +
-                      "] (N = 2 * training_cells)");
+                      "] (N = 2 x cfar.training_cells)");
   }
 }
 
@@ -382,15 +382,21 @@ void CfarConfig::validate_profile_length(std::size_t profile_length) const {
   if (profile_length >= window_length()) return;
   // Largest guard + n with 2 (guard + n) + 1 <= profile_length.
   const std::size_t usable = profile_length >= 1 ? (profile_length - 1) / 2 : 0;
+  const std::string rule = " (2 (guard + training) + 1 <= profile length)";
+  const std::string profile = "a profile of radar.samples_per_chirp = " + std::to_string(profile_length) + " cells";
+  if (usable > guard_cells) {
+    throw_invalid("cfar.training_cells", training_cells,
+                  "in [1, " + std::to_string(usable - guard_cells) +
+                      "] with cfar.guard_cells = " + std::to_string(guard_cells) + " and " + profile + rule);
+  }
+  // The guard cells alone fill the profile: they are what must shrink.
   const std::string constraint =
-      usable > guard_cells
-          ? "in [1, " + std::to_string(usable - guard_cells) + "] for a profile of " +
-                std::to_string(profile_length) + " cells with " + std::to_string(guard_cells) +
-                " guard cells (2 (guard + training) + 1 <= profile length)"
-          : "impossible: a profile of " + std::to_string(profile_length) +
-                " cells cannot hold the guard cells (" + std::to_string(guard_cells) +
-                " per side) and any training cell";
-  throw_invalid("cfar.training_cells", training_cells, constraint);
+      usable > training_cells ? "in [0, " + std::to_string(usable - training_cells) +
+                                    "] with cfar.training_cells = " + std::to_string(training_cells) +
+                                    " and " + profile + rule
+                              : "smaller: with cfar.training_cells = " + std::to_string(training_cells) +
+                                    " not even 0 guard cells fit in " + profile + rule;
+  throw_invalid("cfar.guard_cells", guard_cells, constraint);
 }
 
 double cfar_false_alarm_probability(const CfarConfig& config, double alpha) {

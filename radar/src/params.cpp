@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -43,16 +44,26 @@ void RadarParams::validate() const {
   // 1-300 GHz: the radar bands the water models cover (Liebe ends at 1 THz).
   require_in_range("radar.centre_frequency_hz", centre_frequency_hz, 1e9, 300e9);
   // B <= f_c / 2 keeps the whole sweep above 3 f_c / 4.
-  require_in_range("radar.sweep_bandwidth_hz", sweep_bandwidth_hz, 1e6, 0.5 * centre_frequency_hz);
+  if (!(sweep_bandwidth_hz >= 1e6 && sweep_bandwidth_hz <= 0.5 * centre_frequency_hz)) {
+    std::ostringstream range;
+    range.precision(10);
+    range << "in [1e6, radar.centre_frequency_hz / 2 = " << 0.5 * centre_frequency_hz << "]";
+    throw_invalid("radar.sweep_bandwidth_hz", sweep_bandwidth_hz, range.str());
+  }
   require_in_range("radar.chirp_duration_s", chirp_duration_s, 1e-7, 1e-2);
-  require_in_range("radar.chirp_interval_s", chirp_interval_s, chirp_duration_s, 1.0);
+  if (!(chirp_interval_s >= chirp_duration_s && chirp_interval_s <= 1.0)) {
+    std::ostringstream range;
+    range.precision(10);
+    range << "in [radar.chirp_duration_s = " << chirp_duration_s << ", 1]";
+    throw_invalid("radar.chirp_interval_s", chirp_interval_s, range.str());
+  }
   require_count("radar.samples_per_chirp", samples_per_chirp, 16, 1 << 16);
   require_in_range("radar.sample_rate_hz", sample_rate_hz, 1e5, 1e10);
   // The samples must fit inside the chirp: N / fs <= T_c.
   const double sampling_time_s = static_cast<double>(samples_per_chirp) / sample_rate_hz;
   if (sampling_time_s > chirp_duration_s * (1.0 + 1e-12)) {
     throw_invalid("radar.samples_per_chirp", static_cast<double>(samples_per_chirp),
-                  "<= chirp_duration_s * sample_rate_hz = " +
+                  "an integer <= radar.chirp_duration_s x radar.sample_rate_hz = " +
                       std::to_string(chirp_duration_s * sample_rate_hz) + " (samples fit in the chirp)");
   }
   require_count("radar.chirps_per_frame", chirps_per_frame, 1, 1 << 14);

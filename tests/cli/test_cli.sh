@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end checks of the fogradar command (README, docs/scenario.md, docs/architecture.md Contracts): outputs, byte-identical results for 1 and
-# 2 threads, and bad input -> exit status 2, one message naming the argument or key, no files left.
+# 2 threads, and bad input -> exit status 2, one message naming the argument or key and the allowed
+# range, no fresh output directory created and an earlier result left unchanged.
 # Usage: test_cli.sh FOGRADAR_BINARY SOURCE_DIR
 set -u
 fogradar=$(realpath "$1")  # absolute: some cases run it from another directory
@@ -159,17 +160,41 @@ else
 fi
 
 # --- bad input -----------------------------------------------------------------------------------
-# expect_bad NAME EXPECTED_TEXT ARGS...: exit 2, stderr names EXPECTED_TEXT, the output dir stays empty.
+# One message (a CLI11 usage error adds the "run 'fogradar --help'" line) naming the argument or key,
+# and the allowed range or set.
+check_message() {
+  local name=$1 rc=$2 key=$3 allowed=$4
+  if [ "$rc" -ne 2 ]; then fail "$name: exit $rc, expected 2 ($(cat "$work/stderr"))"; return 1; fi
+  if ! grep -qF -- "$key" "$work/stderr"; then fail "$name: message does not name '$key': $(cat "$work/stderr")"; return 1; fi
+  if ! grep -qF -- "$allowed" "$work/stderr"; then fail "$name: message does not state '$allowed': $(cat "$work/stderr")"; return 1; fi
+  if [ "$(grep -vc "^(run 'fogradar --help' for usage)$" "$work/stderr")" -ne 1 ]; then
+    fail "$name: not exactly one message: $(cat "$work/stderr")"; return 1
+  fi
+  return 0
+}
+# expect_bad NAME KEY ALLOWED ARGS...: a command that writes no results (fog, a bad subcommand, a bad
+# --out).
 expect_bad() {
-  local name=$1 expected=$2
-  shift 2
-  local out="$work/bad-$name"
-  "$fogradar" "$@" >"$work/stdout" 2>"$work/stderr"
-  local rc=$?
-  if [ $rc -ne 2 ]; then fail "$name: exit $rc, expected 2 ($(cat "$work/stderr"))"; return; fi
-  if ! grep -qF -- "$expected" "$work/stderr"; then fail "$name: message does not name '$expected': $(cat "$work/stderr")"; return; fi
-  if [ "$(wc -l <"$work/stderr")" -gt 2 ]; then fail "$name: more than one message: $(cat "$work/stderr")"; return; fi
-  if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then fail "$name: files left in $out"; return; fi
+  local name=$1 key=$2 allowed=$3
+  shift 3
+  timeout 20 "$fogradar" "$@" >"$work/stdout" 2>"$work/stderr"
+  check_message "$name" $? "$key" "$allowed" && pass
+}
+# The result of an earlier run, which a refused run must leave as it is.
+cp -r "$work/t1" "$work/earlier"
+cp -r "$work/t1" "$work/earlier-pristine"
+# expect_bad_run NAME KEY ALLOWED ARGS...: `fogradar run ARGS --out DIR` twice: a fresh DIR is not
+# created, and an existing DIR holding an earlier result is unchanged.
+expect_bad_run() {
+  local name=$1 key=$2 allowed=$3
+  shift 3
+  local fresh="$work/bad-$name"
+  timeout 20 "$fogradar" run "$@" --out "$fresh" >"$work/stdout" 2>"$work/stderr"
+  check_message "$name" $? "$key" "$allowed" || return
+  if [ -e "$fresh" ]; then fail "$name: created $fresh"; return; fi
+  timeout 20 "$fogradar" run "$@" --out "$work/earlier" >"$work/stdout" 2>"$work/stderr"
+  check_message "$name (existing --out)" $? "$key" "$allowed" || return
+  if ! diff -r "$work/earlier-pristine" "$work/earlier" >/dev/null; then fail "$name: changed the earlier result"; return; fi
   pass
 }
 printf '[radar]\ntx_power_w = 1\n' >"$work/unknown.toml"
@@ -182,32 +207,92 @@ printf '[radar]\ncarrier_frequency_hz = 77e9\n' >"$work/carrier.toml"
 printf '[fog]\nwater_model = "segelstein"\ntemperature_c = 0\n' >"$work/cold-table.toml"
 printf '[fog]\nlwc_g_per_m3 = nan\n' >"$work/nan.toml"
 printf '[radar\n' >"$work/malformed.toml"
+printf '[processing]\nwindow = ""\n' >"$work/empty-window.toml"
+printf '[fog]\nwater_model = ""\n' >"$work/empty-water.toml"
+printf '[radar]\nsamples_per_chirp = 5000000000\n' >"$work/huge-samples.toml"
+printf '[fog]\nclutter_scatterers_per_bin = 65\n' >"$work/clutter.toml"
+printf '[experiment]\nseed = -1\n' >"$work/seed.toml"
+printf '[radar]\nsamples_per_chirp = 32\n[processing.cfar]\nguard_cells = 20\n' >"$work/guard.toml"
+printf '[radar]\nsample_rate_hz = 5e6\nsamples_per_chirp = 256\n[chamber]\ntarget_gap_m = 40\n' >"$work/far.toml"
+printf '[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n' >"$work/layers.toml"
+printf '[fog]\nlwc_g_per_m3 = 0.1\nvisibility_m = 20\n' >"$work/two-densities.toml"
+head -c 1048577 /dev/zero | tr '\0' '#' >"$work/too-big.toml"
+mkdir "$work/a-directory"
+mkfifo "$work/a-fifo"
 touch "$work/a-file"
-expect_bad unknown-key radar.tx_power_w run --scenario "$work/unknown.toml" --out "$work/bad-unknown-key"
-expect_bad wrong-type radar.tx_power_dbm run --scenario "$work/type.toml" --out "$work/bad-wrong-type"
-expect_bad zero-layers chamber.layer_count run --scenario "$work/zero.toml" --out "$work/bad-zero-layers"
-expect_bad too-many-active experiment.max_active_layers run --scenario "$work/many.toml" --out "$work/bad-too-many-active"
-expect_bad cfar-window processing.cfar.training_cells run --scenario "$work/cfar.toml" --out "$work/bad-cfar-window"
-expect_bad frequency radar.centre_frequency_hz run --scenario "$work/freq.toml" --out "$work/bad-frequency"
-expect_bad retired-carrier radar.centre_frequency_hz run --scenario "$work/carrier.toml" --out "$work/bad-retired-carrier"
-expect_bad table-temperature liebe run --scenario "$work/cold-table.toml" --out "$work/bad-table-temperature"
-expect_bad nan-lwc fog.lwc_g_per_m3 run --scenario "$work/nan.toml" --out "$work/bad-nan-lwc"
-expect_bad malformed malformed.toml:1 run --scenario "$work/malformed.toml" --out "$work/bad-malformed"
-expect_bad missing-file --scenario run --scenario "$work/does-not-exist.toml" --out "$work/bad-missing-file"
-expect_bad out-is-file --out run --scenario "$src/tests/cli/small.toml" --out "$work/a-file"
-expect_bad out-unwritable --out run --scenario "$src/tests/cli/small.toml" --out /proc/fogradar-out
-expect_bad threads-negative --threads run --threads -1 --out "$work/bad-threads-negative"
-expect_bad threads-text --threads run --threads many --out "$work/bad-threads-text"
-expect_bad seed-negative --seed run --seed -4 --out "$work/bad-seed-negative"
-expect_bad unknown-option --frobnicate run --frobnicate --out "$work/bad-unknown-option"
-expect_bad fog-lwc --lwc fog --lwc -1
-expect_bad fog-model --water-model fog --water-model mie
-expect_bad fog-two-densities --visibility-m fog --lwc 1 --visibility-m 3
-expect_bad fog-frequency --frequency-ghz fog --frequency-ghz 1e9
-expect_bad fog-liebe-frequency --frequency-ghz fog --frequency-ghz 2000
-expect_bad fog-table-temperature --temperature-c fog --water-model segelstein --temperature-c 0
-expect_bad fog-table-temperature-names-liebe liebe fog --water-model segelstein --temperature-c 20
-expect_bad fog-liebe-temperature --temperature-c fog --temperature-c 60
+expect_bad_run unknown-key radar.tx_power_w "known keys of [radar]" --scenario "$work/unknown.toml"
+expect_bad_run wrong-type-value "type.toml:2: radar.tx_power_dbm = 'ten'" "must be a number" --scenario "$work/type.toml"
+expect_bad_run zero-layers "zero.toml:2: chamber.layer_count = 0" "[1, 1000]" --scenario "$work/zero.toml"
+expect_bad_run too-many-active "many.toml:2: experiment.max_active_layers = 9" "[0, chamber.layer_count = 4]" \
+  --scenario "$work/many.toml"
+expect_bad_run too-many-active-given "layers.toml:4: experiment.max_active_layers = 3" \
+  "[0, chamber.layer_count = 2] (chamber.layer_count at line 2)" --scenario "$work/layers.toml"
+expect_bad_run cfar-window "cfar.toml:2: processing.cfar.training_cells = 400" "[1, 253]" --scenario "$work/cfar.toml"
+expect_bad_run guard-fills-profile "guard.toml:4: processing.cfar.guard_cells = 20" \
+  "[0, 7] with processing.cfar.training_cells = 8 and a profile of radar.samples_per_chirp = 32 cells" \
+  --scenario "$work/guard.toml"
+expect_bad_run target-beyond-range "far.toml:5: chamber.target_gap_m = 40" "radar.sample_rate_hz at line 2" \
+  --scenario "$work/far.toml"
+expect_bad_run frequency radar.centre_frequency_hz "[1000000000, 3e+11]" --scenario "$work/freq.toml"
+expect_bad_run retired-carrier radar.centre_frequency_hz radar.sweep_direction --scenario "$work/carrier.toml"
+expect_bad_run table-temperature "cold-table.toml:3: fog.temperature_c = 0" "liebe\" takes [-20, 50]" \
+  --scenario "$work/cold-table.toml"
+expect_bad_run nan-lwc "nan.toml:2: fog.lwc_g_per_m3 = nan" "[0, 100]" --scenario "$work/nan.toml"
+expect_bad_run malformed malformed.toml:1 "malformed TOML" --scenario "$work/malformed.toml"
+expect_bad_run empty-window "empty-window.toml:2: processing.window = ''" "one of rectangular, hann" \
+  --scenario "$work/empty-window.toml"
+expect_bad_run empty-water-model "empty-water.toml:2: fog.water_model = ''" "one of 'segelstein', 'liebe'" \
+  --scenario "$work/empty-water.toml"
+expect_bad_run integer-documented-range "radar.samples_per_chirp = 5000000000" "an integer in [16, 65536]" \
+  --scenario "$work/huge-samples.toml"
+expect_bad_run clutter-range "fog.clutter_scatterers_per_bin = 65" "an integer in [1, 64]" --scenario "$work/clutter.toml"
+expect_bad_run scenario-seed "seed.toml:2: experiment.seed = -1" "an integer in [0, 9223372036854775807]" \
+  --scenario "$work/seed.toml"
+expect_bad_run two-densities "fog.lwc_g_per_m3 (line 2) and fog.visibility_m (line 3)" "at most one fog density" \
+  --scenario "$work/two-densities.toml"
+expect_bad_run missing-file "--scenario = '$work/does-not-exist.toml'" "a readable regular TOML file" \
+  --scenario "$work/does-not-exist.toml"
+expect_bad_run scenario-directory "--scenario = '$work/a-directory'" "it is a directory" --scenario "$work/a-directory"
+expect_bad_run scenario-fifo "--scenario = '$work/a-fifo'" "it is a FIFO" --scenario "$work/a-fifo"
+expect_bad_run scenario-device "--scenario = '/dev/zero'" "it is a character device" --scenario /dev/zero
+expect_bad_run scenario-too-big "--scenario = '$work/too-big.toml'" "at most 1048576 bytes (1 MiB); it holds 1048577" \
+  --scenario "$work/too-big.toml"
+expect_bad_run scenario-empty "--scenario = ''" "a path (not empty)" --scenario ""
+expect_bad_run threads-negative "--threads = '-1'" "an integer in [0, 4096]" --threads -1
+expect_bad_run threads-text "--threads = 'many'" "an integer in [0, 4096]" --threads many
+expect_bad_run threads-empty "--threads = ''" "an integer in [0, 4096]" --threads ""
+expect_bad_run threads-huge "--threads = '5000'" "an integer in [0, 4096]" --threads 5000
+expect_bad_run seed-negative "--seed = '-4'" "an integer in [0, 9223372036854775807]" --seed -4
+expect_bad_run seed-empty "--seed = ''" "an integer in [0, 9223372036854775807]" --seed ""
+expect_bad_run seed-huge "--seed = '99999999999999999999'" "an integer in [0, 9223372036854775807]" \
+  --seed 99999999999999999999
+expect_bad_run seed-fraction "--seed = '1.5'" "an integer in [0, 9223372036854775807]" --seed 1.5
+expect_bad_run unknown-option --frobnicate "not expected" --frobnicate
+expect_bad out-empty "--out = ''" "a path (not empty)" run --scenario "$src/tests/cli/small.toml" --out ""
+expect_bad out-is-file "--out = '$work/a-file'" "must be a directory" run --scenario "$src/tests/cli/small.toml" --out "$work/a-file"
+expect_bad out-unwritable "--out = '/proc/fogradar-out'" "a directory that can be created" run --scenario "$src/tests/cli/small.toml" --out /proc/fogradar-out
+expect_bad unknown-subcommand "unknown subcommand 'frob'" "one of run, scenario, fog" frob
+expect_bad fog-lwc "--lwc = '-1'" "[0, 100]" fog --lwc -1
+expect_bad fog-lwc-empty "--lwc = ''" "[0, 100]" fog --lwc ""
+expect_bad fog-lwc-text "--lwc = 'wet'" "[0, 100]" fog --lwc wet
+expect_bad fog-extinction-empty "--extinction-per-km = ''" "[0, 1e6]" fog --extinction-per-km ""
+expect_bad fog-visibility-inf "--visibility-m = 'inf'" "[1e-3, 1e7]" fog --visibility-m inf
+expect_bad fog-diameter-empty "--diameter-um = ''" "[0.01, 1000]" fog --diameter-um ""
+expect_bad fog-temperature-empty "--temperature-c = ''" "[-20, 50] with --water-model liebe" fog --temperature-c ""
+expect_bad fog-frequency-empty "--frequency-ghz = ''" "[0.03, 1000] with --water-model liebe" fog --frequency-ghz ""
+expect_bad fog-model --water-model "one of 'segelstein', 'liebe'" fog --water-model mie
+expect_bad fog-model-empty "--water-model = ''" "one of 'segelstein', 'liebe'" fog --water-model ""
+expect_bad fog-two-densities --visibility-m "excludes" fog --lwc 1 --visibility-m 3
+expect_bad fog-frequency --frequency-ghz "[0.03, 1000] with --water-model liebe" fog --frequency-ghz 1e9
+expect_bad fog-liebe-frequency "--frequency-ghz = 2000" "[0.03, 1000]" fog --frequency-ghz 2000
+expect_bad fog-table-temperature "--temperature-c = 0" "= 25 with --water-model segelstein" \
+  fog --water-model segelstein --temperature-c 0
+expect_bad fog-table-temperature-names-liebe "--temperature-c" "liebe takes [-20, 50]" \
+  fog --water-model segelstein --temperature-c 20
+expect_bad fog-liebe-temperature "--temperature-c = '60'" "[-20, 50]" fog --temperature-c 60
+# The documented bounds themselves are accepted (checked in C, before the conversion to K).
+"$fogradar" fog --lwc 1 --temperature-c -20 >/dev/null 2>&1 && pass || fail "fog at -20 C refused"
+"$fogradar" fog --lwc 1 --temperature-c 50 >/dev/null 2>&1 && pass || fail "fog at 50 C refused"
 
 # --- fog --json carries the documented keys (README) ----------------------------------------------------------
 json=$("$fogradar" fog --frequency-ghz 77 --lwc 1 --temperature-c 20 --json)

@@ -1,5 +1,5 @@
-// Scenario files: the embedded paper scenario has the documented paper values (docs/scenario.md), round-trips through to_toml, and every
-// bad input is rejected with the key (and its line) named.
+// Scenario files: the embedded paper scenario has the documented paper values (docs/scenario.md),
+// round-trips through to_toml, and every bad input is rejected with the key (and its line) named.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -93,22 +93,28 @@ TEST(Scenario, RetiredCarrierKeyAndUnusedTemperatureAreRefused) {
 }
 
 TEST(Scenario, FileOnlyNeedsTheKeysItChanges) {
-  const Scenario s = parse_scenario("[radar]\ntx_power_dbm = 12\n[experiment]\nseed = 7\n", "mine.toml");
+  const Scenario s =
+      parse_scenario("[radar]\ntx_power_dbm = 12\n[experiment]\nseed = 7\n", "mine.toml");
   EXPECT_EQ(s.radar.tx_power_dbm, 12.0);
   EXPECT_EQ(s.experiment.seed, 7u);
   EXPECT_EQ(s.radar.samples_per_chirp, 512u);  // untouched paper value
 }
 
+// A bad scenario input and what its one message must say: the key as written (the exception's
+// field, with "bad.toml:<line>:" in front when the key has a line), the allowed range or set as
+// docs/scenario.md states it, and for a check that combines keys, the other key with its line.
 struct BadInput {
   const char* name;
   const char* toml;
   const char* key;
-  int line;  // 0: no line expected
+  int line;                     // 0: no line expected
+  const char* allowed;          // text of the allowed range or set
+  const char* other = nullptr;  // another key of a combined check, with its line
 };
 
 class ScenarioRejects : public ::testing::TestWithParam<BadInput> {};
 
-TEST_P(ScenarioRejects, NamesTheKeyAndLine) {
+TEST_P(ScenarioRejects, NamesTheKeyLineAndRange) {
   const BadInput& bad = GetParam();
   try {
     parse_scenario(bad.toml, "bad.toml");
@@ -120,64 +126,222 @@ TEST_P(ScenarioRejects, NamesTheKeyAndLine) {
     if (bad.line > 0) {
       EXPECT_EQ(message.rfind("bad.toml:" + std::to_string(bad.line) + ":", 0), 0u) << message;
     }
+    EXPECT_NE(message.find(bad.allowed), std::string::npos) << message;
+    if (bad.other != nullptr) {
+      EXPECT_NE(message.find(bad.other), std::string::npos) << message;
+    }
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     BadInputs, ScenarioRejects,
     ::testing::Values(
-        BadInput{"malformed", "[radar\ncentre_frequency_hz = 77e9\n", "toml", 1},
-        BadInput{"unknown_section", "[radr]\nx = 1\n", "radr", 1},
-        BadInput{"unknown_key", "[radar]\ntx_power_w = 0.01\n", "radar.tx_power_w", 2},
-        BadInput{"wrong_type", "[radar]\n\ntx_power_dbm = \"ten\"\n", "radar.tx_power_dbm", 3},
-        BadInput{"negative", "[chamber]\nsensor_gap_m = -2\n", "chamber.sensor_gap_m", 2},
-        BadInput{"nan", "[fog]\ntemperature_c = nan\n", "fog.temperature_c", 2},
-        BadInput{"inf", "[radar]\nnoise_figure_db = inf\n", "radar.noise_figure_db", 2},
-        BadInput{"zero_layers", "[chamber]\nlayer_count = 0\n", "chamber.layer_count", 2},
+        BadInput{"malformed", "[radar\ncentre_frequency_hz = 77e9\n", "toml", 1, "malformed TOML"},
+        BadInput{"unknown_section", "[radr]\nx = 1\n", "radr", 1,
+                 "sections: radar, processing, target, chamber, fog, experiment"},
+        BadInput{"unknown_key", "[radar]\ntx_power_w = 0.01\n", "radar.tx_power_w", 2,
+                 "known keys of [radar]: adc_bits"},
+        BadInput{"wrong_type", "[radar]\n\ntx_power_dbm = \"ten\"\n", "radar.tx_power_dbm", 3,
+                 "= 'ten': must be a number"},
+        BadInput{"negative", "[chamber]\nsensor_gap_m = -2\n", "chamber.sensor_gap_m", 2,
+                 "[0, 10000]"},
+        BadInput{"nan", "[fog]\ntemperature_c = nan\n", "fog.temperature_c", 2, "[-20, 50]"},
+        BadInput{"inf", "[radar]\nnoise_figure_db = inf\n", "radar.noise_figure_db", 2, "[0, 40]"},
+        BadInput{"zero_layers", "[chamber]\nlayer_count = 0\n", "chamber.layer_count", 2,
+                 "an integer in [1, 1000]"},
+        BadInput{"too_many_layers", "[chamber]\nlayer_count = 1001\n", "chamber.layer_count", 2,
+                 "an integer in [1, 1000]"},
         BadInput{"zero_length_layer", "[chamber]\nlayer_length_m = 0.0\n", "chamber.layer_length_m",
-                 2},
+                 2, "in (0, 10000]"},
         BadInput{"too_many_active", "[experiment]\nmax_active_layers = 5\n",
-                 "experiment.max_active_layers", 2},
+                 "experiment.max_active_layers", 2, "[0, chamber.layer_count = 4]"},
+        // Not the reader's widest bound: the true one, from chamber.layer_count.
+        BadInput{"far_too_many_active", "[experiment]\nmax_active_layers = 5000000000\n",
+                 "experiment.max_active_layers", 2, "[0, chamber.layer_count = 4]"},
+        BadInput{"too_many_active_for_given_layers",
+                 "[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n",
+                 "experiment.max_active_layers", 4, "[0, chamber.layer_count = 2]",
+                 "chamber.layer_count at line 2"},
         BadInput{"cfar_wider_than_profile", "[processing.cfar]\ntraining_cells = 300\n",
-                 "processing.cfar.training_cells", 2},
+                 "processing.cfar.training_cells", 2, "[1, 253]", "radar.samples_per_chirp = 512"},
+        BadInput{"cfar_wider_than_given_profile",
+                 "[radar]\nsamples_per_chirp = 32\n[processing.cfar]\nguard_cells = "
+                 "4\ntraining_cells = 20\n",
+                 "processing.cfar.training_cells", 5,
+                 "[1, 11] with processing.cfar.guard_cells = 4",
+                 "radar.samples_per_chirp at line 2"},
+        BadInput{"guard_cells_fill_the_profile", "[processing.cfar]\nguard_cells = 300\n",
+                 "processing.cfar.guard_cells", 2,
+                 "[0, 247] with processing.cfar.training_cells = 8",
+                 "radar.samples_per_chirp = 512"},
+        // The key the file gives is named by its line although the other key breaks the rule.
+        BadInput{"paper_guard_cells_in_a_given_profile", "[radar]\nsamples_per_chirp = 16\n",
+                 "processing.cfar.training_cells", 2, "[1, 5]",
+                 "radar.samples_per_chirp at line 2"},
+        BadInput{"huge_guard_cells", "[processing.cfar]\nguard_cells = 4294967296\n",
+                 "processing.cfar.guard_cells", 2,
+                 "an integer in [0, 32766] with 2 (processing.cfar.guard_cells + "
+                 "processing.cfar.training_cells) + 1 <= radar.samples_per_chirp = 512"},
+        BadInput{"huge_os_rank", "[processing.cfar]\ntraining_cells = 4\nos_rank = 70000\n",
+                 "processing.cfar.os_rank", 3,
+                 "an integer in [0, 65534] and 0 or at most 2 x processing.cfar.training_cells = 8",
+                 "processing.cfar.training_cells at line 2"},
+        BadInput{"os_rank_beyond_training", "[processing.cfar]\ntraining_cells = 4\nos_rank = 9\n",
+                 "processing.cfar.os_rank", 3, "[1, 8]",
+                 "processing.cfar.training_cells at line 2"},
+        BadInput{"target_beyond_unambiguous_range", "[chamber]\ntarget_gap_m = 300\n",
+                 "chamber.target_gap_m", 2, "75.74686925 m", "radar.sample_rate_hz"},
+        BadInput{"target_beyond_given_range",
+                 "[radar]\nsample_rate_hz = 5e6\nsamples_per_chirp = 256\n[chamber]\ntarget_gap_m "
+                 "= 40\n",
+                 "chamber.target_gap_m", 5, "unambiguous range minus 1 m",
+                 "radar.sample_rate_hz at line 2"},
+        BadInput{"bandwidth_over_half_the_centre",
+                 "[radar]\ncentre_frequency_hz = 10e9\nsweep_bandwidth_hz = 6e9\n",
+                 "radar.sweep_bandwidth_hz", 3, "radar.centre_frequency_hz / 2 = 5000000000",
+                 "radar.centre_frequency_hz at line 2"},
+        BadInput{"interval_shorter_than_chirp", "[radar]\nchirp_interval_s = 1e-6\n",
+                 "radar.chirp_interval_s", 2, "[radar.chirp_duration_s = 5.12e-05, 1]"},
         BadInput{"frequency_outside_water_models", "[radar]\ncentre_frequency_hz = 5e12\n",
-                 "radar.centre_frequency_hz", 2},
+                 "radar.centre_frequency_hz", 2, "[1000000000, 3e+11]"},
         BadInput{"retired_carrier_key", "[radar]\ncarrier_frequency_hz = 77e9\n",
-                 "radar.carrier_frequency_hz", 2},
+                 "radar.carrier_frequency_hz", 2, "radar.sweep_direction"},
         BadInput{"unknown_sweep_direction", "[radar]\nsweep_direction = \"sawtooth\"\n",
-                 "radar.sweep_direction", 2},
+                 "radar.sweep_direction", 2, "one of up, down"},
         BadInput{"segelstein_at_another_temperature",
-                 "[fog]\nwater_model = \"segelstein\"\ntemperature_c = 0\n", "fog.temperature_c",
-                 3},
-        BadInput{"liebe_below_its_range", "[fog]\ntemperature_c = -25\n", "fog.temperature_c", 2},
-        BadInput{"unknown_window", "[processing]\nwindow = \"kaiser\"\n", "processing.window", 2},
-        BadInput{"unknown_cfar", "[processing.cfar]\nkind = \"xx\"\n", "processing.cfar.kind", 2},
+                 "[fog]\nwater_model = \"segelstein\"\ntemperature_c = 0\n", "fog.temperature_c", 3,
+                 "= 25 with fog.water_model", "fog.water_model at line 2"},
+        BadInput{"liebe_below_its_range", "[fog]\ntemperature_c = -25\n", "fog.temperature_c", 2,
+                 "[-20, 50]"},
+        BadInput{"unknown_window", "[processing]\nwindow = \"kaiser\"\n", "processing.window", 2,
+                 "one of rectangular, hann"},
+        BadInput{"unknown_cfar", "[processing.cfar]\nkind = \"xx\"\n", "processing.cfar.kind", 2,
+                 "one of ca, go, so, os"},
         BadInput{"unknown_threshold_design", "[processing.cfar]\nthreshold_design = \"iid\"\n",
-                 "processing.cfar.threshold_design", 2},
+                 "processing.cfar.threshold_design", 2, "one of correlated, independent"},
+        // An empty name is a given name, refused like any other unknown one (it kept the default).
+        BadInput{"empty_sweep_direction", "[radar]\nsweep_direction = \"\"\n",
+                 "radar.sweep_direction", 2, "'': must be one of up, down"},
+        BadInput{"empty_window", "[processing]\nwindow = \"\"\n", "processing.window", 2,
+                 "'': must be one of rectangular"},
+        BadInput{"empty_cfar_kind", "[processing.cfar]\nkind = \"\"\n", "processing.cfar.kind", 2,
+                 "'': must be one of ca"},
+        BadInput{"empty_threshold_design", "[processing.cfar]\nthreshold_design = \"\"\n",
+                 "processing.cfar.threshold_design", 2, "'': must be one of correlated"},
+        BadInput{"empty_target_model", "[target]\nmodel = \"\"\n", "target.model", 2,
+                 "'': must be one of 'evt', 'point'"},
+        BadInput{"empty_water_model", "[fog]\nwater_model = \"\"\n", "fog.water_model", 2,
+                 "'': must be one of 'segelstein', 'liebe'"},
+        BadInput{"empty_distribution", "[fog.droplets]\ndistribution = \"\"\n",
+                 "fog.droplets.distribution", 2, "'': must be one of 'lognormal'"},
         BadInput{"pfa_out_of_range", "[processing.cfar]\nfalse_alarm_probability = 1.5\n",
-                 "processing.cfar.false_alarm_probability", 2},
+                 "processing.cfar.false_alarm_probability", 2, "(0, 1)"},
         BadInput{"negative_integer", "[experiment]\nmeasurements_per_step = -3\n",
-                 "experiment.measurements_per_step", 2},
+                 "experiment.measurements_per_step", 2, "an integer in [1, 1000000]"},
         BadInput{"zero_measurements", "[experiment]\nmeasurements_per_step = 0\n",
-                 "experiment.measurements_per_step", 2},
-        BadInput{"two_fog_densities", "[fog]\nlwc_g_per_m3 = 0.1\nvisibility_m = 20\n", "fog", 0},
-        BadInput{"negative_lwc", "[fog]\nlwc_g_per_m3 = -0.1\n", "fog.lwc_g_per_m3", 2},
+                 "experiment.measurements_per_step", 2, "an integer in [1, 1000000]"},
+        // Integer keys state their documented range, not the C type's.
+        BadInput{"samples_beyond_unsigned", "[radar]\nsamples_per_chirp = 5000000000\n",
+                 "radar.samples_per_chirp", 2, "= 5000000000: must be an integer in [16, 65536]"},
+        BadInput{"fractional_samples", "[radar]\nsamples_per_chirp = 1.5\n",
+                 "radar.samples_per_chirp", 2, "= 1.5: must be an integer in [16, 65536]"},
+        BadInput{"too_many_chirps", "[radar]\nchirps_per_frame = 16385\n", "radar.chirps_per_frame",
+                 2, "an integer in [1, 16384]"},
+        BadInput{"too_many_adc_bits", "[radar]\nadc_bits = 25\n", "radar.adc_bits", 2,
+                 "an integer in [0, 24]"},
+        BadInput{"no_clutter_scatterers", "[fog]\nclutter_scatterers_per_bin = 0\n",
+                 "fog.clutter_scatterers_per_bin", 2, "an integer in [1, 64]"},
+        BadInput{"negative_seed", "[experiment]\nseed = -1\n", "experiment.seed", 2,
+                 "an integer in [0, 9223372036854775807]"},
+        BadInput{
+            "two_fog_densities", "[fog]\nlwc_g_per_m3 = 0.1\nvisibility_m = 20\n",
+            "fog.visibility_m", 3,
+            "at most one fog density of fog.lwc_g_per_m3, fog.extinction_per_km, fog.visibility_m",
+            "fog.lwc_g_per_m3 (line 2)"},
+        BadInput{"negative_lwc", "[fog]\nlwc_g_per_m3 = -0.1\n", "fog.lwc_g_per_m3", 2, "[0, 100]"},
         BadInput{"unknown_distribution", "[fog.droplets]\ndistribution = \"cloud\"\n",
-                 "fog.droplets.distribution", 2},
-        BadInput{"bad_water_model", "[fog]\nwater_model = \"mie\"\n", "fog.water_model", 2},
+                 "fog.droplets.distribution", 2, "one of 'lognormal', 'monodisperse'"},
+        BadInput{"bad_water_model", "[fog]\nwater_model = \"mie\"\n", "fog.water_model", 2,
+                 "one of 'segelstein', 'liebe'"},
         BadInput{"samples_exceed_chirp", "[radar]\nsamples_per_chirp = 1024\n",
-                 "radar.samples_per_chirp", 2},
+                 "radar.samples_per_chirp", 2,
+                 "<= radar.chirp_duration_s x radar.sample_rate_hz = 512"},
         BadInput{"bad_reflection", "[target]\nfloor_reflection_coefficient = -1.5\n",
-                 "target.floor_reflection_coefficient", 2},
-        BadInput{"bad_swerling", "[target]\nswerling = 2\n", "target.swerling", 2},
-        BadInput{"bad_target_model", "[target]\nmodel = \"truck\"\n", "target.model", 2},
-        BadInput{"bool_as_number", "[target]\nfloor_multipath = 1\n", "target.floor_multipath", 2},
+                 "target.floor_reflection_coefficient", 2, "[-1, 1]"},
+        BadInput{"bad_swerling", "[target]\nswerling = 2\n", "target.swerling", 2,
+                 "one of: 0, 1, 3"},
+        BadInput{"negative_swerling", "[target]\nswerling = -1\n", "target.swerling", 2,
+                 "'-1': must be one of: 0, 1, 3"},
+        BadInput{"bad_target_model", "[target]\nmodel = \"truck\"\n", "target.model", 2,
+                 "one of 'evt', 'point'"},
+        BadInput{"bool_as_number", "[target]\nfloor_multipath = 1\n", "target.floor_multipath", 2,
+                 "= 1: must be true or false"},
         BadInput{"droplet_too_big",
                  "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 0.01\n",
-                 "fog.droplets.diameter_m", 3}),
+                 "fog.droplets.diameter_m", 3, "[1e-08, 0.001]"}),
     [](const ::testing::TestParamInfo<BadInput>& param_info) {
       return std::string(param_info.param.name);
     });
+
+// Documented bounds are accepted exactly (checked in the user's units, before any conversion), and
+// the widest integers the documentation allows are read.
+TEST(Scenario, DocumentedBoundsAreAccepted) {
+  EXPECT_EQ(parse_scenario("[fog]\ntemperature_c = -20\n", "cold.toml").fog.temperature_c, -20.0);
+  EXPECT_EQ(parse_scenario("[fog]\ntemperature_c = 50\n", "warm.toml").fog.temperature_c, 50.0);
+  EXPECT_EQ(
+      parse_scenario("[experiment]\nseed = 9223372036854775807\n", "seed.toml").experiment.seed,
+      9223372036854775807u);
+  EXPECT_EQ(
+      parse_scenario("[processing.cfar]\nguard_cells = 247\n", "guard.toml").radar.cfar.guard_cells,
+      247u);
+  // Each number key at both ends of its docs/scenario.md range (the others at their paper values).
+  const char* bounds[] = {
+      "[radar]\ncentre_frequency_hz = 300e9\n",
+      "[radar]\ncentre_frequency_hz = 2e9\nsweep_bandwidth_hz = 1e9\n",
+      "[radar]\nsweep_bandwidth_hz = 1e6\n",
+      "[radar]\nsweep_bandwidth_hz = 38.5e9\nsample_rate_hz = 1e10\n",  // range: c fs Tc / (2 B)
+      "[radar]\nchirp_duration_s = 1e-2\nchirp_interval_s = 1\n",
+      "[radar]\nchirp_interval_s = 51.2e-6\n",
+      "[radar]\nsamples_per_chirp = 16\n[processing.cfar]\nguard_cells = 0\ntraining_cells = 7\n",
+      "[radar]\nsample_rate_hz = 1e10\n",
+      "[radar]\nchirps_per_frame = 1\n",
+      "[radar]\nchirps_per_frame = 16384\n",
+      "[radar]\ntx_power_dbm = -30\ntx_gain_dbi = 0\nrx_gain_dbi = 60\n",
+      "[radar]\ntx_power_dbm = 50\ntx_gain_dbi = 60\nrx_gain_dbi = 0\n",
+      "[radar]\nazimuth_beamwidth_deg = 0.1\nelevation_beamwidth_deg = 180\n",
+      "[radar]\nnoise_figure_db = 0\nreference_temperature_k = 1\n",
+      "[radar]\nnoise_figure_db = 40\nreference_temperature_k = 1000\n",
+      "[radar]\nadc_bits = 24\nadc_full_scale_dbm = -100\nphase_noise_rms_rad = "
+      "3.141592653589793\n",
+      "[radar]\nadc_full_scale_dbm = 30\nphase_noise_rms_rad = 0\n",
+      "[processing]\nassociation_gate_m = 1000\n",
+      "[processing.cfar]\nkind = \"os\"\nos_rank = 16\n",
+      "[target]\nrcs_dbsm = -60\n",
+      "[target]\nrcs_dbsm = 60\n",
+      "[target]\nmodel = \"point\"\nheight_m = 100\nsensor_height_m = 100\n",
+      "[target]\nfloor_reflection_coefficient = -1\nmicro_motion_std_m = 0.1\n",
+      "[target]\nfloor_reflection_coefficient = 1\n",
+      "[chamber]\nsensor_gap_m = 0\ntarget_gap_m = 0\nlayer_count = 1000\nlayer_length_m = 0.05\n",
+      "[fog]\nextinction_per_km = 1e6\n",
+      "[fog]\nlwc_g_per_m3 = 100\n",
+      "[fog]\nvisibility_m = 1e-3\n",
+      "[fog]\nvisibility_m = 1e7\n",
+      "[fog]\nclutter_scatterers_per_bin = 64\n",
+      "[fog.droplets]\nmedian_diameter_m = 1e-8\ngeometric_std = 1.01\n",
+      "[fog.droplets]\nmedian_diameter_m = 1e-3\ngeometric_std = 3\n",
+      "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-8\n",
+      "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-3\n",
+      "[experiment]\nmeasurements_per_step = 1000000\nmax_active_layers = 0\n",
+  };
+  for (const char* text : bounds) {
+    try {
+      parse_scenario(text, "bound.toml");
+    } catch (const InvalidParameter& e) {
+      ADD_FAILURE() << text << " refused: " << e.what();
+    }
+  }
+}
 
 }  // namespace
 }  // namespace fogradar::experiment

@@ -193,6 +193,12 @@ TEST_F(FogTest, RejectsInvalidSpecs) {
   EXPECT_EQ(field_of({.density = Visibility{0.0}}), "fog.visibility_m");
   EXPECT_EQ(field_of({.density = Visibility{INFINITY}}), "fog.visibility_m");
   EXPECT_EQ(field_of({.temperature_c = 80.0}), "fog.temperature_c");
+  // The documented bounds themselves are accepted: -20 + 273.15 rounds below 253.15 in binary, so
+  // a kelvin bound written as 253.15 refused -20 C after the conversion.
+  EXPECT_EQ(field_of({.temperature_c = -20.0}), "accepted");
+  EXPECT_EQ(field_of({.temperature_c = 50.0}), "accepted");
+  EXPECT_EQ(field_of({.temperature_c = std::nextafter(-20.0, -30.0)}), "fog.temperature_c");
+  EXPECT_EQ(field_of({.temperature_c = std::nextafter(50.0, 60.0)}), "fog.temperature_c");
   // The table has no temperature dependence: any temperature but its own is refused, and the
   // message names the model that takes one.
   EXPECT_EQ(field_of({.temperature_c = 20.0, .water_model = WaterModel::segelstein}),

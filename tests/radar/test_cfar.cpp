@@ -130,12 +130,15 @@ TEST(CfarConfig, RejectsWindowWiderThanProfile) {
   }
   EXPECT_NO_THROW(cfar_detect(std::vector<double>(21, 1.0), config));
 
-  // Guard cells alone fill the profile: still named after training_cells.
+  // Guard cells alone fill the profile: they are named, with the range left by the training cells,
+  // (5 - 1) / 2 - 1 = 1, and the other key of the check.
   try {
     cfar_detect(std::vector<double>(5, 1.0), CfarConfig{.guard_cells = 2, .training_cells = 1});
     ADD_FAILURE() << "a 5-cell profile was accepted for a 7-cell window";
   } catch (const InvalidParameter& error) {
-    EXPECT_EQ(error.field(), "cfar.training_cells") << error.what();
+    EXPECT_EQ(error.field(), "cfar.guard_cells") << error.what();
+    EXPECT_NE(std::string(error.what()).find("[0, 1]"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("cfar.training_cells = 1"), std::string::npos) << error.what();
   }
   EXPECT_THROW(cfar_detect(std::vector<double>{}, CfarConfig{}), InvalidParameter);
 }

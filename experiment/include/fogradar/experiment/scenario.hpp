@@ -65,7 +65,12 @@ Scenario paper_scenario();
 // "<source_name>:<line>: " and names the key; its field() is the key ("radar.tx_power_dbm").
 Scenario parse_scenario(std::string_view toml_text, std::string_view source_name);
 
-// Reads a scenario file; an unreadable file throws InvalidParameter naming "--scenario".
+// Largest scenario file read: a scenario is a few kB; anything larger is refused before it is read.
+inline constexpr std::size_t max_scenario_file_bytes = std::size_t{1} << 20;
+
+// Reads a scenario file. A path that cannot be opened, that is not a regular file (a directory, a
+// FIFO, a device) or that holds more than max_scenario_file_bytes throws InvalidParameter naming
+// "--scenario"; nothing is read from it then, and a FIFO is never waited on.
 Scenario load_scenario_file(const std::string& path);
 
 // The fully resolved scenario as TOML (every key), so that a run can be repeated exactly:
