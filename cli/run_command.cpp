@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/outputs.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
@@ -24,6 +25,7 @@ struct RunOptions {
   std::string out_dir = "fogradar-out";
   std::optional<std::int64_t> seed;  // signed: CLI11 would wrap "-4" into an unsigned
   int threads = 0;
+  std::optional<double> memory_limit_mib;  // default: experiment::default_memory_limit_bytes()
 };
 
 // Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to whole percents.
@@ -52,6 +54,11 @@ void run(const RunOptions& options) {
   }
   require_in_range("--threads", options.threads, 0.0, 4096.0);
   scenario.validate();
+  if (options.memory_limit_mib) require_in_range("--memory-limit-mib", *options.memory_limit_mib, 1.0, 1e9);
+  experiment::require_memory_within(
+      scenario, static_cast<unsigned>(options.threads),
+      options.memory_limit_mib ? static_cast<std::size_t>(*options.memory_limit_mib * 1048576.0)
+                               : experiment::default_memory_limit_bytes());
 
   const std::filesystem::path dir(options.out_dir);
   const bool created = experiment::prepare_output_directory(dir);
@@ -80,6 +87,8 @@ Action add_run_command(CLI::App& app) {
   run_app->add_option("--seed", options->seed, "Random seed (overrides experiment.seed)");
   run_app->add_option("--threads", options->threads, "Worker threads, 0 = all cores [0, 4096]")
       ->capture_default_str();
+  run_app->add_option("--memory-limit-mib", options->memory_limit_mib,
+                      "Refuse a run whose estimated peak memory exceeds this many MiB [1, 1e9] (default: half the physical memory)");
   return [options] { run(*options); };
 }
 
