@@ -37,7 +37,8 @@ TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
   // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560; baseline 16 MiB.
   EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u + 16777216u);
   EXPECT_EQ(e.records_bytes, 15 * sizeof(MeasurementRecord));
-  EXPECT_EQ(e.total_bytes(), 2 * 70656u + 1664u + 20992u + 2560u + 16777216u + 15 * sizeof(MeasurementRecord));
+  EXPECT_EQ(e.total_bytes(),
+            2 * 70656u + 1664u + 20992u + 2560u + 16777216u + 15 * sizeof(MeasurementRecord));
 }
 
 TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {
@@ -65,8 +66,9 @@ TEST(MemoryEstimate, RefusalNamesTheKeysAndTheLimit) {
     FAIL() << "no refusal one byte below the estimate";
   } catch (const InvalidParameter& e) {
     const std::string message = e.what();
-    for (const char* key : {"radar.samples_per_chirp = 64", "radar.chirps_per_frame = 16",
-                            "experiment.measurements_per_step = 3", "--threads 2", "--memory-limit-mib"}) {
+    for (const char* key :
+         {"radar.samples_per_chirp = 64", "radar.chirps_per_frame = 16",
+          "experiment.measurements_per_step = 3", "--threads 2", "--memory-limit-mib"}) {
       EXPECT_NE(message.find(key), std::string::npos) << key << " missing from: " << message;
     }
   }
