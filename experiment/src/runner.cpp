@@ -64,7 +64,8 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   }
 
   const std::size_t total = steps * per_step;
-  const unsigned threads = worker_threads(options.threads, total);  // as estimate_peak_memory counts them
+  // The same count estimate_peak_memory (memory.hpp) sized the run for.
+  const unsigned threads = worker_threads(options.threads, total);
   std::atomic<std::size_t> next{0}, done{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
