@@ -16,6 +16,7 @@
 #include "checks.hpp"
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/outputs.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
@@ -29,6 +30,7 @@ struct RunOptions {
   std::string out_dir = "fogradar-out";
   std::optional<std::int64_t> seed;  // signed: CLI11 would wrap "-4" into an unsigned
   int threads = 0;
+  std::optional<double> memory_limit_mib;  // default: experiment::default_memory_limit_bytes()
 };
 
 // Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to
@@ -110,6 +112,10 @@ void run(const RunOptions& options) {
   }
   require_in_range("--threads", options.threads, 0.0, 4096.0);
   scenario.validate();
+  experiment::require_memory_within(
+      scenario, static_cast<unsigned>(options.threads),
+      options.memory_limit_mib ? static_cast<std::size_t>(*options.memory_limit_mib * 1048576.0)
+                               : experiment::default_memory_limit_bytes());
 
   const std::filesystem::path dir(options.out_dir);
   const SignalWatch
@@ -154,6 +160,11 @@ Action add_run_command(CLI::App& app) {
   run_app->add_option("--threads", options->threads, "Worker threads, 0 = all cores [0, 4096]")
       ->capture_default_str()
       ->check(integer_in("--threads", 0, 4096));
+  run_app
+      ->add_option("--memory-limit-mib", options->memory_limit_mib,
+                   "Refuse a run whose estimated peak memory exceeds this many MiB [1, 1e9] "
+                   "(default: half the physical memory)")
+      ->check(number_in("--memory-limit-mib", 1.0, 1e9, "in [1, 1e9]"));
   return [options] { run(*options); };
 }
 

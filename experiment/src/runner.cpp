@@ -8,6 +8,7 @@
 
 #include "fogradar/core/random.hpp"
 #include "fogradar/core/units.hpp"
+#include "fogradar/experiment/memory.hpp"
 #include "fogradar/radar/measurement.hpp"
 
 namespace fogradar::experiment {
@@ -63,9 +64,8 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   }
 
   const std::size_t total = steps * per_step;
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned threads = static_cast<unsigned>(
-      std::min<std::size_t>(options.threads == 0 ? hardware : options.threads, total));
+  // The same count estimate_peak_memory (memory.hpp) sized the run for.
+  const unsigned threads = worker_threads(options.threads, total);
   std::atomic<std::size_t> next{0}, done{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;

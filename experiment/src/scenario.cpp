@@ -19,6 +19,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
+#include "toml_bytes.hpp"
 
 namespace fogradar::experiment {
 namespace detail {
@@ -488,6 +489,7 @@ namespace {
 
 // Reads `toml_text` over `base`: keys the file gives replace the base's values.
 Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name) {
+  detail::require_toml_safe_bytes(toml_text, source_name);
   toml::table root;
   try {
     root = toml::parse(toml_text, source_name);

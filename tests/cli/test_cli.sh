@@ -315,5 +315,25 @@ echo "$json" | grep -q '"optical_water_temperature_c": 25' && pass || fail "opti
   || fail "fog text does not state the table's temperature"
 "$fogradar" scenario | grep -q '^\[experiment\]' && pass || fail "fogradar scenario prints no [experiment]"
 
+# --- memory limit (docs/scenario.md, "Memory limit"): refused up front, before any frame exists -----
+printf '[radar]\nsamples_per_chirp = 65536\nchirps_per_frame = 16384\nchirp_duration_s = 6.5536e-3\nchirp_interval_s = 6.5536e-3\n' \
+  >"$work/huge.toml"
+for key in radar.samples_per_chirp radar.chirps_per_frame experiment.measurements_per_step --threads; do
+  start=$(date +%s)
+  expect_bad "huge-$key" "$key" run --scenario "$work/huge.toml" --out "$work/bad-huge-$key" --memory-limit-mib 8192
+  [ $(($(date +%s) - start)) -le 5 ] && pass || fail "65536 x 16384 refused only after more than 5 s"
+done
+# The default limit, half the physical memory, where that is below the 17 GiB one frame takes.
+half_mib=$(($(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 2048))
+if [ "$half_mib" -lt 17000 ]; then
+  expect_bad huge-default "radar.chirps_per_frame" run --scenario "$work/huge.toml" --out "$work/bad-huge-default" --threads 1
+fi
+expect_bad small-over-limit "--memory-limit-mib" run --scenario "$src/tests/cli/small.toml" --out "$work/bad-small-over-limit" \
+  --memory-limit-mib 1
+expect_bad memory-limit-range "--memory-limit-mib" run --scenario "$src/tests/cli/small.toml" --out "$work/bad-memory-limit-range" \
+  --memory-limit-mib 0
+"$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t-limit" --memory-limit-mib 64 >/dev/null 2>&1 && pass \
+  || fail "small.toml refused under a 64 MiB limit"
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

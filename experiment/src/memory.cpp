@@ -1,0 +1,107 @@
+#include "fogradar/experiment/memory.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <complex>
+#include <cstdint>
+#include <sstream>
+#include <thread>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/runner.hpp"
+#include "fogradar/radar/scene.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+constexpr std::size_t complex_bytes = sizeof(std::complex<double>);
+constexpr std::size_t double_bytes = sizeof(double);
+// Code, the shared libraries' data, the Segelstein table and thread stacks as touched: the resident
+// size of `fogradar run` on a 16 x 1 frame is about 8 MiB (docs/scenario.md); twice that for
+// margin.
+constexpr std::size_t process_baseline_bytes = std::size_t{16} << 20;
+// Doppler transforms run on blocks of at most this many columns (radar/src/fft.cpp,
+// ColumnBlockFft).
+constexpr std::size_t doppler_block_columns = 32;
+// Objects whose rows the estimator interpolates in one pass (radar/src/estimation.cpp).
+constexpr std::size_t interpolation_batch = 4;
+
+double mib(std::size_t bytes) {
+  return static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 20);
+}
+
+}  // namespace
+
+unsigned worker_threads(unsigned requested, std::size_t measurements) {
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  return static_cast<unsigned>(
+      std::min<std::size_t>(requested == 0 ? hardware : requested, measurements));
+}
+
+MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested_threads) {
+  const std::size_t samples = scenario.radar.samples_per_chirp,
+                    chirps = scenario.radar.chirps_per_frame;
+  const std::size_t cells = samples * chirps;
+  const std::size_t measurements =
+      (scenario.experiment.max_active_layers + 1) * scenario.experiment.measurements_per_step;
+  MemoryEstimate e;
+  e.threads = worker_threads(requested_threads, measurements);
+
+  // Per thread (MeasurementWorkspace): the complex frame and the chirps x samples detection mask.
+  const std::size_t frame = cells * complex_bytes + cells * sizeof(std::uint8_t);
+  // CFAR along one range row: the row's power, threshold, detections, window sums and two profiles
+  // of block sums (CfarWorkspace).
+  const std::size_t cfar = 6 * samples * double_bytes;
+  // Estimation: range kernels (re, im; two values per sample; a batch of objects), the batch's
+  // Doppler columns, the rotated peak-search buffers (4 of the longer axis), and per axis a
+  // Dirichlet table and an inverse DFT with 2n cosines and 2n sines each.
+  const std::size_t estimation = 2 * interpolation_batch * 2 * samples * double_bytes +
+                                 interpolation_batch * chirps * complex_bytes +
+                                 4 * std::max(samples, chirps) * double_bytes +
+                                 2 * 4 * (samples + chirps) * double_bytes;
+  // The Doppler transform's packed block buffer.
+  const std::size_t doppler_block = doppler_block_columns * chirps * complex_bytes;
+  // Tones: every centre's paths plus the fog clutter, at most clutter_scatterers_per_bin per range
+  // bin of the unambiguous range; twice for the vector's growth.
+  const std::size_t tones =
+      2 * sizeof(radar::Tone) * (scenario.clutter_scatterers_per_bin * samples + 64);
+  e.per_thread_bytes = frame + cfar + estimation + doppler_block + tones;
+
+  // Shared: the windows (range, Doppler, range pairs), both window spectra (16 x oversampled
+  // complex tables, OriginClassifier) and the FFT plans (about two complex twiddles per point and
+  // axis).
+  const std::size_t windows = (3 * samples + chirps) * double_bytes;
+  const std::size_t spectra = 16 * (samples + chirps + 2) * complex_bytes;
+  const std::size_t plans = 2 * (samples + chirps) * complex_bytes;
+  e.shared_bytes = windows + spectra + plans + process_baseline_bytes;
+
+  e.records_bytes = measurements * sizeof(MeasurementRecord);
+  return e;
+}
+
+std::size_t default_memory_limit_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_bytes = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page_bytes <= 0) return SIZE_MAX;  // unknown: no default limit
+  return static_cast<std::size_t>(pages) / 2 * static_cast<std::size_t>(page_bytes);
+}
+
+void require_memory_within(const Scenario& scenario, unsigned requested_threads,
+                           std::size_t limit_bytes) {
+  const MemoryEstimate estimate = estimate_peak_memory(scenario, requested_threads);
+  if (estimate.total_bytes() <= limit_bytes) return;
+  std::ostringstream out;
+  out.precision(6);
+  out << "radar.samples_per_chirp = " << scenario.radar.samples_per_chirp
+      << " x radar.chirps_per_frame = " << scenario.radar.chirps_per_frame
+      << " with experiment.measurements_per_step = " << scenario.experiment.measurements_per_step
+      << " and --threads " << requested_threads << " (" << estimate.threads
+      << " workers) needs an estimated " << mib(estimate.total_bytes()) << " MiB ("
+      << estimate.threads << " x " << mib(estimate.per_thread_bytes) << " MiB frame workspace + "
+      << mib(estimate.records_bytes) << " MiB per-measurement records + "
+      << mib(estimate.shared_bytes) << " MiB shared): more than the limit of " << mib(limit_bytes)
+      << " MiB (--memory-limit-mib; default half the physical memory); reduce these";
+  throw InvalidParameter("radar.samples_per_chirp", out.str());
+}
+
+}  // namespace fogradar::experiment

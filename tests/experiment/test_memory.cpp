@@ -1,0 +1,83 @@
+// The peak-memory estimate (experiment/src/memory.cpp) against a byte count done by hand from the
+// buffer sizes the chain keeps, and the refusal message naming the keys.
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <string>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/memory.hpp"
+#include "fogradar/experiment/runner.hpp"
+#include "fogradar/radar/scene.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+Scenario small_frame() {
+  Scenario s = paper_scenario();
+  s.radar.samples_per_chirp = 64;
+  s.radar.chirps_per_frame = 16;
+  s.clutter_scatterers_per_bin = 4;
+  s.experiment.measurements_per_step = 3;
+  s.experiment.max_active_layers = 4;  // 5 steps: 15 measurements
+  return s;
+}
+
+// Hand count for S = 64 samples, C = 16 chirps, 4 scatterers per bin; premises: 16-byte complex,
+// 8-byte double, 40-byte Tone (double, complex, double, 1-byte origin padded to 8).
+TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
+  static_assert(sizeof(std::complex<double>) == 16 && sizeof(double) == 8);
+  ASSERT_EQ(sizeof(radar::Tone), 40u);
+  const MemoryEstimate e = estimate_peak_memory(small_frame(), 2);
+  EXPECT_EQ(e.threads, 2u);
+  // frame 64*16*16 = 16384, mask 1024; CFAR 6*64*8 = 3072; kernels 2*4*2*64*8 = 8192, Doppler
+  // columns 4*16*16 = 1024, peak search 4*64*8 = 2048, tables 8*80*8 = 5120; Doppler block
+  // 32*16*16 = 8192; tones 2*40*(4*64 + 64) = 25600. Sum 70656.
+  EXPECT_EQ(e.per_thread_bytes, 70656u);
+  // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560; baseline 16 MiB.
+  EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u + 16777216u);
+  EXPECT_EQ(e.records_bytes, 15 * sizeof(MeasurementRecord));
+  EXPECT_EQ(e.total_bytes(),
+            2 * 70656u + 1664u + 20992u + 2560u + 16777216u + 15 * sizeof(MeasurementRecord));
+}
+
+TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {
+  EXPECT_EQ(estimate_peak_memory(small_frame(), 100).threads, 15u);  // one per measurement at most
+  EXPECT_EQ(worker_threads(100, 15), 15u);
+  EXPECT_EQ(worker_threads(3, 15), 3u);
+  EXPECT_GE(worker_threads(0, 15), 1u);
+}
+
+TEST(MemoryEstimate, TheFrameDominatesALargeRun) {
+  Scenario s = small_frame();
+  s.radar.samples_per_chirp = 65536;
+  s.radar.chirps_per_frame = 16384;
+  const MemoryEstimate e = estimate_peak_memory(s, 1);
+  const double frame_bytes = 65536.0 * 16384.0 * 17.0;  // complex frame plus 1-byte mask per cell
+  EXPECT_GT(static_cast<double>(e.total_bytes()), frame_bytes);
+  EXPECT_LT(static_cast<double>(e.total_bytes()), 1.01 * frame_bytes);
+}
+
+TEST(MemoryEstimate, RefusalNamesTheKeysAndTheLimit) {
+  const Scenario s = small_frame();
+  EXPECT_NO_THROW(require_memory_within(s, 2, estimate_peak_memory(s, 2).total_bytes()));
+  try {
+    require_memory_within(s, 2, estimate_peak_memory(s, 2).total_bytes() - 1);
+    FAIL() << "no refusal one byte below the estimate";
+  } catch (const InvalidParameter& e) {
+    const std::string message = e.what();
+    for (const char* key :
+         {"radar.samples_per_chirp = 64", "radar.chirps_per_frame = 16",
+          "experiment.measurements_per_step = 3", "--threads 2", "--memory-limit-mib"}) {
+      EXPECT_NE(message.find(key), std::string::npos) << key << " missing from: " << message;
+    }
+  }
+}
+
+TEST(MemoryEstimate, DefaultLimitIsHalfThePhysicalMemory) {
+  const std::size_t limit = default_memory_limit_bytes();
+  EXPECT_GT(limit, std::size_t{64} << 20);  // any machine that builds fogradar has 128 MiB
+}
+
+}  // namespace
+}  // namespace fogradar::experiment
