@@ -105,12 +105,8 @@ void run(const RunOptions& options) {
   experiment::Scenario scenario = options.scenario_path
                                       ? experiment::load_scenario_file(*options.scenario_path)
                                       : experiment::paper_scenario();
-  if (options.seed) {
-    if (*options.seed < 0)
-      throw_invalid("--seed", static_cast<double>(*options.seed), "an integer >= 0");
-    scenario.experiment.seed = static_cast<std::uint64_t>(*options.seed);
-  }
-  require_in_range("--threads", options.threads, 0.0, 4096.0);
+  // --seed and --threads were checked as typed (checks.hpp) before CLI11 converted them.
+  if (options.seed) scenario.experiment.seed = static_cast<std::uint64_t>(*options.seed);
   scenario.validate();
   experiment::require_memory_within(
       scenario, static_cast<unsigned>(options.threads),
@@ -118,8 +114,8 @@ void run(const RunOptions& options) {
                                : experiment::default_memory_limit_bytes());
 
   const std::filesystem::path dir(options.out_dir);
-  const SignalWatch
-      signals;  // before the output directory: it is released with the signals still held off
+  // Before the output directory: the directory is released with the signals still held off.
+  const SignalWatch signals;
   experiment::OutputDirectory out(dir);
   experiment::ExperimentResult result;
   try {

@@ -270,7 +270,7 @@ expect_bad_run seed-fraction "--seed = '1.5'" "an integer in [0, 922337203685477
 expect_bad_run unknown-option --frobnicate "not expected" --frobnicate
 expect_bad out-empty "--out = ''" "a path (not empty)" run --scenario "$src/tests/cli/small.toml" --out ""
 expect_bad out-is-file "--out = '$work/a-file'" "must be a directory" run --scenario "$src/tests/cli/small.toml" --out "$work/a-file"
-expect_bad out-unwritable "--out = '/proc/fogradar-out'" "a directory that can be created" run --scenario "$src/tests/cli/small.toml" --out /proc/fogradar-out
+expect_bad out-unwritable "--out = '/proc/fogradar-out'" "a directory whose parent is writable" run --scenario "$src/tests/cli/small.toml" --out /proc/fogradar-out
 expect_bad unknown-subcommand "unknown subcommand 'frob'" "one of run, scenario, fog" frob
 expect_bad fog-lwc "--lwc = '-1'" "[0, 100]" fog --lwc -1
 expect_bad fog-lwc-empty "--lwc = ''" "[0, 100]" fog --lwc ""
@@ -320,17 +320,18 @@ printf '[radar]\nsamples_per_chirp = 65536\nchirps_per_frame = 16384\nchirp_dura
   >"$work/huge.toml"
 for key in radar.samples_per_chirp radar.chirps_per_frame experiment.measurements_per_step --threads; do
   start=$(date +%s)
-  expect_bad "huge-$key" "$key" run --scenario "$work/huge.toml" --out "$work/bad-huge-$key" --memory-limit-mib 8192
+  expect_bad "huge-$key" "$key" "more than the limit of 8192 MiB" run --scenario "$work/huge.toml" \
+    --out "$work/bad-huge-$key" --memory-limit-mib 8192
   [ $(($(date +%s) - start)) -le 5 ] && pass || fail "65536 x 16384 refused only after more than 5 s"
 done
 # The default limit, half the physical memory, where that is below the 17 GiB one frame takes.
 half_mib=$(($(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 2048))
 if [ "$half_mib" -lt 17000 ]; then
-  expect_bad huge-default "radar.chirps_per_frame" run --scenario "$work/huge.toml" --out "$work/bad-huge-default" --threads 1
+  expect_bad huge-default "radar.chirps_per_frame" "more than the limit of" run --scenario "$work/huge.toml" --out "$work/bad-huge-default" --threads 1
 fi
-expect_bad small-over-limit "--memory-limit-mib" run --scenario "$src/tests/cli/small.toml" --out "$work/bad-small-over-limit" \
+expect_bad small-over-limit "--memory-limit-mib" "more than the limit of 1 MiB" run --scenario "$src/tests/cli/small.toml" --out "$work/bad-small-over-limit" \
   --memory-limit-mib 1
-expect_bad memory-limit-range "--memory-limit-mib" run --scenario "$src/tests/cli/small.toml" --out "$work/bad-memory-limit-range" \
+expect_bad memory-limit-range "--memory-limit-mib" "must be in [1, 1e9]" run --scenario "$src/tests/cli/small.toml" --out "$work/bad-memory-limit-range" \
   --memory-limit-mib 0
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t-limit" --memory-limit-mib 64 >/dev/null 2>&1 && pass \
   || fail "small.toml refused under a 64 MiB limit"
