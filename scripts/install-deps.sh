@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages fogradar builds with, only those that are missing.
+# Installs the Debian 12 packages fogradar builds with, only those that are missing; arguments name
+# further packages a script needs (scripts/fuzz.sh: clang and its fuzzer runtime).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libfftw3-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  "$@"
 )
 missing=()
 for p in "${packages[@]}"; do
