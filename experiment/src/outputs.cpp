@@ -89,6 +89,19 @@ bool is_result_file(const fs::directory_entry& entry) {
          entry.symlink_status().type() == fs::file_type::regular;
 }
 
+// An existing `dir` must hold nothing but result files: it is replaced whole, and no file of the
+// user's may go with it.
+void require_only_result_files(const fs::path& dir, const fs::path& given) {
+  std::error_code error;
+  if (!fs::is_directory(fs::symlink_status(dir, error))) return;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    if (!is_result_file(entry)) {
+      refuse(given, "a directory holding only fogradar's result files, as it is replaced whole ('" +
+                        entry.path().filename().string() + "' is not one)");
+    }
+  }
+}
+
 // Scenario numbers in captions: three significant digits ("0.2", "1e-06").
 std::string num(double value) { return stats::format_number(value, 3); }
 
@@ -469,15 +482,7 @@ OutputDirectory::OutputDirectory(fs::path dir) {
   }
 
   try {
-    if (fs::is_directory(fs::symlink_status(dir_, error))) {
-      for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
-        if (!is_result_file(entry)) {
-          refuse(given,
-                 "a directory holding only fogradar's result files, as it is replaced whole ('" +
-                     entry.path().filename().string() + "' is not one)");
-        }
-      }
-    }
+    require_only_result_files(dir_, given);
     std::string staging =
         (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
     if (::mkdtemp(staging.data()) == nullptr) {
@@ -505,6 +510,8 @@ bool OutputDirectory::replace(const std::vector<std::pair<std::string, std::stri
     refuse(staging_, "a directory that can be synced (" + errno_text() + ")");
   if (abandon && abandon()) return false;
   if (fs::exists(fs::symlink_status(dir_))) {
+    // Checked again: a file put into `dir` while the run measured must not go with the old set.
+    require_only_result_files(dir_, dir_);
     // Readers see the old set or the new one, never a mixture and never no directory at all.
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) != 0) {
       refuse(dir_, "a directory that can be replaced (renameat2: " + errno_text() + ")");
@@ -517,9 +524,13 @@ bool OutputDirectory::replace(const std::vector<std::pair<std::string, std::stri
   // The set is in place; a failed sync of the rename is the kernel's to retry, not the run's
   // failure.
   sync_directory(parent_);
-  // The previous set, now under the staging name, goes with the staging directory.
-  std::error_code ignored;
-  if (!staging_.empty()) fs::remove_all(staging_, ignored);
+  // The previous set, now under the staging name: its result files by name, then the directory if
+  // that left it empty (only a file put into `dir` in the instant of the swap would keep it).
+  if (!staging_.empty()) {
+    std::error_code ignored;
+    for (const char* name : result_names) fs::remove(staging_ / name, ignored);
+    fs::remove(staging_, ignored);
+  }
   staging_.clear();
   return true;
 }

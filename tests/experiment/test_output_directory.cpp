@@ -111,6 +111,19 @@ TEST_F(OutputDirectoryTest, RefusesADirectoryHoldingOtherFiles) {
   expect_only_result_directory();
 }
 
+// A file the user puts into the directory while the run measures is not replaced away with the
+// previous set: the replacement is refused and both stay.
+TEST_F(OutputDirectoryTest, AFileAddedDuringTheRunKeepsThePreviousSet) {
+  const fs::path dir = parent_ / "out";
+  OutputDirectory(dir).replace(result_set("first"));
+  OutputDirectory second(dir);
+  std::ofstream(dir / "notes.txt") << "mine";
+  EXPECT_THROW(second.replace(result_set("second")), InvalidParameter);
+  std::map<std::string, std::string> expected = as_listing(result_set("first"));
+  expected["notes.txt"] = "mine";
+  EXPECT_EQ(listing(dir), expected);
+}
+
 TEST_F(OutputDirectoryTest, OneHolderAtATime) {
   const fs::path dir = parent_ / "out";
   {
