@@ -83,7 +83,8 @@ TEST(Scenario, RetiredCarrierKeyAndUnusedTemperatureAreRefused) {
     EXPECT_EQ(message.rfind("cold.toml:3:", 0), 0u) << message;
     EXPECT_NE(message.find("liebe"), std::string::npos) << message;
   }
-  // The paper's 20 C with the table, temperature not given: refused too (the table cannot use it).
+  // The paper scenario's 20 C (an assumption; the study gives none) with the table, the temperature
+  // not given: refused too (the table cannot use it).
   EXPECT_THROW(parse_scenario("[fog]\nwater_model = \"segelstein\"\n", "table.toml"),
                InvalidParameter);
   // The table at its own temperature, and Liebe at any temperature in its range, are accepted.
