@@ -131,7 +131,8 @@ void run(const RunOptions& options) {
                    [&] { return signals.stop().load(); })) {
     signals.throw_interrupted(dir);
   }
-  std::cout << experiment::summary_table(summary) << "results in " << dir.string() << "/\n";
+  if (scenario.runs(SensorId::radar)) std::cout << "radar\n" << experiment::summary_table(summary) << '\n';
+  std::cout << experiment::benchmark_table(summary) << "results in " << dir.string() << "/\n";
 }
 
 }  // namespace

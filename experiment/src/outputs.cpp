@@ -80,12 +80,10 @@ bool sync_directory(const fs::path& path) {
   return directory.fd >= 0 && ::fsync(directory.fd) == 0;
 }
 
-constexpr std::array<const char*, 5> result_names = {"samples.csv", "summary.csv", "summary.json",
-                                                     "rcs_boxplot.svg", "scenario.toml"};
-
 bool is_result_file(const fs::directory_entry& entry) {
   const std::string name = entry.path().filename().string();
-  return std::find(result_names.begin(), result_names.end(), name) != result_names.end() &&
+  const std::vector<std::string>& names = result_file_names();
+  return std::find(names.begin(), names.end(), name) != names.end() &&
          entry.symlink_status().type() == fs::file_type::regular;
 }
 
@@ -307,6 +305,51 @@ std::string summary_csv(const ExperimentSummary& summary) {
   return out;
 }
 
+const std::vector<std::string>& result_file_names() {
+  static const std::vector<std::string> names = {
+      "samples.csv",       "summary.csv",         "summary.json",
+      "rcs_boxplot.svg",   "scenario.toml",       "lidar_echoes.csv",
+      "lidar_summary.csv", "lidar_summary.json",  "lidar_intensity_boxplot.svg",
+      "lidar_scans.svg",   "camera_histograms.csv", "camera_summary.csv",
+      "camera_summary.json", "camera_histograms.svg", "benchmark.svg"};
+  return names;
+}
+
+std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary) {
+  std::vector<SensorVerdict> verdicts;
+  for (SensorId sensor : summary.sensors) {
+    SensorVerdict v;
+    v.sensor = sensor;
+    if (sensor == SensorId::radar) {
+      v.criterion = radar_criterion_short;
+      v.sensor_limit_layers = summary.sensor_limit_layers;
+      if (v.sensor_limit_layers) {
+        v.margin.clear();
+      } else if (summary.attenuation_margin_db) {
+        v.margin = "median target SNR " + stats::format_fixed(*summary.attenuation_margin_db, 1) +
+                   " dB above the CFAR threshold at " +
+                   counted(summary.steps.empty() ? 0 : summary.steps.back().active_layers, "layer");
+      } else {
+        v.margin = "no target detection at the last step";
+      }
+    }
+    verdicts.push_back(std::move(v));
+  }
+  return verdicts;
+}
+
+std::string benchmark_table(const ExperimentSummary& summary) {
+  std::string out = "benchmark (the study's criterion: active fog layers until the sensor fails)\n";
+  for (const SensorVerdict& v : sensor_verdicts(summary)) {
+    std::string name(sensor_name(v.sensor));
+    name.resize(7, ' ');
+    out += name + "layers to failure: " +
+           (v.sensor_limit_layers ? std::to_string(*v.sensor_limit_layers) : "not reached (" + v.margin + ")") +
+           "\n       criterion: " + v.criterion + "\n";
+  }
+  return out;
+}
+
 std::string summary_json(const Scenario& scenario, const ExperimentSummary& summary) {
   std::ostringstream scenario_json;
   scenario_json << toml::json_formatter{toml::parse(to_toml(scenario))};
@@ -339,7 +382,15 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
          {"false_alarms_per_frame", s.false_alarms_per_frame},
          {"fog_detections_per_frame", s.fog_detections_per_frame}});
   }
-  const nlohmann::json out = {
+  nlohmann::json sensors = nlohmann::json::object();
+  for (const SensorVerdict& v : sensor_verdicts(summary)) {
+    nlohmann::json entry = {
+        {"sensor_limit_layers", v.sensor_limit_layers ? nlohmann::json(*v.sensor_limit_layers) : nlohmann::json(nullptr)},
+        {"criterion", v.criterion},
+        {"margin", v.margin}};
+    sensors[std::string(sensor_name(v.sensor))] = std::move(entry);
+  }
+  nlohmann::json out = {
       {"scenario", nlohmann::json::parse(scenario_json.str())},
       {"steps", steps},
       {"sensor_limit_layers", summary.sensor_limit_layers
@@ -361,6 +412,13 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
         {"detections",
          "target detections only: a fog- or noise-origin detection in the gate is a miss"}}},
   };
+  if (!std::count(summary.sensors.begin(), summary.sensors.end(), SensorId::radar)) {
+    for (const char* radar_key : {"steps", "sensor_limit_layers", "sensor_limit_criterion",
+                                  "expected_false_alarm_cells_per_frame", "attenuation_margin_db", "statistics"}) {
+      out.erase(radar_key);
+    }
+  }
+  out["sensors"] = std::move(sensors);
   return out.dump(2) + '\n';
 }
 
@@ -424,13 +482,15 @@ std::string summary_table(const ExperimentSummary& summary) {
 std::vector<std::pair<std::string, std::string>> result_files(const Scenario& scenario,
                                                               const ExperimentResult& result,
                                                               const ExperimentSummary& summary) {
-  return {
-      {result_names[0], samples_csv(result)},
-      {result_names[1], summary_csv(summary)},
-      {result_names[2], summary_json(scenario, summary)},
-      {result_names[3], rcs_boxplot_svg(scenario, summary)},
-      {result_names[4], to_toml(scenario)},
-  };
+  std::vector<std::pair<std::string, std::string>> files;
+  if (scenario.runs(SensorId::radar)) {
+    files.emplace_back("samples.csv", samples_csv(result));
+    files.emplace_back("summary.csv", summary_csv(summary));
+  }
+  files.emplace_back("summary.json", summary_json(scenario, summary));
+  if (scenario.runs(SensorId::radar)) files.emplace_back("rcs_boxplot.svg", rcs_boxplot_svg(scenario, summary));
+  files.emplace_back("scenario.toml", to_toml(scenario));
+  return files;
 }
 
 OutputDirectory::OutputDirectory(fs::path dir) {
@@ -528,7 +588,7 @@ bool OutputDirectory::replace(const std::vector<std::pair<std::string, std::stri
   // that left it empty (only a file put into `dir` in the instant of the swap would keep it).
   if (!staging_.empty()) {
     std::error_code ignored;
-    for (const char* name : result_names) fs::remove(staging_ / name, ignored);
+    for (const std::string& name : result_file_names()) fs::remove(staging_ / name, ignored);
     fs::remove(staging_, ignored);
   }
   staging_.clear();

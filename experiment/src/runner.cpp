@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <functional>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "fogradar/core/random.hpp"
@@ -36,34 +39,22 @@ MeasurementRecord record_of(const radar::Measurement& m) {
   return record;
 }
 
-}  // namespace
+// One sensor's part of a run: `items_per_step` items (radar measurements, lidar scans, camera
+// frames) at each step. Each worker thread makes its own measuring function with make_worker, which
+// holds that thread's workspace; the function stores item (step, index)'s result at its index.
+struct SensorWork {
+  std::size_t items_per_step = 0;
+  std::function<std::function<void(std::size_t step, std::size_t index)>()> make_worker;
+};
 
-ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
-  scenario.validate();
-  const propagation::SegelsteinTable table;
-  const propagation::Chamber chamber(scenario.chamber_spec(), scenario.radar.centre_frequency_hz,
-                                     table);
-  const radar::Scene scene = scenario.scene();
-  const radar::RadarChain chain(scenario.radar);
-  chain.check_compatible(scene, chamber);
-
-  const std::size_t steps = scenario.experiment.max_active_layers + 1;
-  const std::size_t per_step = scenario.experiment.measurements_per_step;
-  ExperimentResult result;
-  result.cfar_threshold_db = power_ratio_to_db(chain.cfar().threshold_factor());
-  result.expected_false_alarm_cells_per_frame =
-      chain.cfar().config().false_alarm_probability *
-      static_cast<double>(scenario.radar.chirps_per_frame * scenario.radar.samples_per_chirp);
-  std::vector<propagation::ActiveLayers> active(steps);
-  result.steps.resize(steps);
-  for (std::size_t k = 0; k < steps; ++k) {
-    active[k] = propagation::first_layers_active(k, chamber.layer_count());
-    result.steps[k].active_layers = k;
-    result.steps[k].two_way_attenuation_db = chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
-    result.steps[k].records.resize(per_step);
+// Runs every item of every sensor on one pool of threads taking items from a shared counter.
+void run_items(const std::vector<SensorWork>& sensors, std::size_t steps, const RunOptions& options) {
+  std::vector<std::size_t> first_item;  // of each sensor, in the order of `sensors`
+  std::size_t total = 0;
+  for (const SensorWork& sensor : sensors) {
+    first_item.push_back(total);
+    total += steps * sensor.items_per_step;
   }
-
-  const std::size_t total = steps * per_step;
   // The same count estimate_peak_memory (memory.hpp) sized the run for.
   const unsigned threads = worker_threads(options.threads, total);
   std::atomic<std::size_t> next{0}, done{0};
@@ -72,17 +63,17 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
 
   const auto worker = [&] {
     try {
-      radar::MeasurementWorkspace workspace = chain.make_workspace();
-      radar::Measurement measurement;
+      std::vector<std::function<void(std::size_t, std::size_t)>> measure(sensors.size());
       for (std::size_t item = next++; item < total; item = next++) {
         if (options.stop != nullptr && options.stop->load()) {
           next = total;
           break;
         }
-        const std::size_t k = item / per_step, i = item % per_step;
-        RandomStream rng(scenario.experiment.seed, k, i);
-        chain.measure(scene, chamber, active[k], rng, workspace, measurement);
-        result.steps[k].records[i] = record_of(measurement);
+        const std::size_t s = static_cast<std::size_t>(
+            std::upper_bound(first_item.begin(), first_item.end(), item) - first_item.begin() - 1);
+        const std::size_t local = item - first_item[s], per_step = sensors[s].items_per_step;
+        if (!measure[s]) measure[s] = sensors[s].make_worker();
+        measure[s](local / per_step, local % per_step);
         const std::size_t finished = ++done;
         if (options.progress) options.progress(finished, total);
       }
@@ -98,6 +89,54 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   for (std::thread& thread : pool) thread.join();
   if (failure) std::rethrow_exception(failure);
   if (done != total) throw Interrupted();
+}
+
+}  // namespace
+
+ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
+  scenario.validate();
+  const propagation::SegelsteinTable table;
+  const propagation::ChamberSpec chamber_spec = scenario.chamber_spec();
+  const propagation::Chamber chamber(chamber_spec, scenario.radar.centre_frequency_hz, table);
+  const std::size_t steps = scenario.experiment.max_active_layers + 1;
+  std::vector<propagation::ActiveLayers> active(steps);
+  for (std::size_t k = 0; k < steps; ++k) active[k] = propagation::first_layers_active(k, chamber.layer_count());
+
+  ExperimentResult result;
+  result.sensors = scenario.experiment.sensors;
+  std::vector<SensorWork> work;
+
+  std::optional<radar::Scene> scene;
+  std::optional<radar::RadarChain> chain;
+  if (scenario.runs(SensorId::radar)) {
+    scene.emplace(scenario.scene());
+    chain.emplace(scenario.radar);
+    chain->check_compatible(*scene, chamber);
+    const std::size_t per_step = scenario.experiment.measurements_per_step;
+    result.cfar_threshold_db = power_ratio_to_db(chain->cfar().threshold_factor());
+    result.expected_false_alarm_cells_per_frame =
+        chain->cfar().config().false_alarm_probability *
+        static_cast<double>(scenario.radar.chirps_per_frame * scenario.radar.samples_per_chirp);
+    result.steps.resize(steps);
+    for (std::size_t k = 0; k < steps; ++k) {
+      result.steps[k].active_layers = k;
+      result.steps[k].two_way_attenuation_db =
+          chamber.two_way_attenuation_db(chamber.target_range_m(), active[k]);
+      result.steps[k].records.resize(per_step);
+    }
+    work.push_back({per_step, [&] {
+                      // Each thread's frame buffers, made on its first radar measurement.
+                      auto workspace = std::make_shared<radar::MeasurementWorkspace>(chain->make_workspace());
+                      auto measurement = std::make_shared<radar::Measurement>();
+                      return [&, workspace, measurement](std::size_t k, std::size_t i) {
+                        RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::radar, k, i);
+                        chain->measure(*scene, chamber, active[k], rng, *workspace, *measurement);
+                        result.steps[k].records[i] = record_of(*measurement);
+                      };
+                    }});
+  }
+
+  run_items(work, steps, options);
   return result;
 }
 

@@ -109,6 +109,13 @@ class Section {
 
   bool has(std::string_view key) const { return table_ != nullptr && table_->contains(key); }
 
+  // A key's node, marked as read; null when the table does not give it.
+  const toml::node* node(std::string_view key) { return find(key); }
+
+  [[noreturn]] void fail_at(const toml::node& node, std::string_view key, const std::string& message) const {
+    fail(node, full(key), message);
+  }
+
   // Throws at the second of `keys` the table gives, naming each given one and its line.
   void reject_more_than_one(std::initializer_list<std::string_view> keys, std::string_view what) const {
     if (table_ == nullptr) return;
@@ -332,8 +339,34 @@ void read_fog(const toml::table& root, std::string_view source, KeyLines& lines,
   read_droplets(root, source, lines, fog.droplets);
 }
 
+const std::string sensors_allowed = "a non-empty array of distinct names from \"radar\", \"lidar\", \"camera\"";
+
+std::vector<SensorId> read_sensors(Section& s) {
+  const toml::node* node = s.node("sensors");
+  if (node == nullptr) return {};
+  const std::string given = "experiment.sensors = " + as_written(*node) + ": must be " + sensors_allowed;
+  const toml::array* array = node->as_array();
+  if (array == nullptr || array->empty()) s.fail_at(*node, "sensors", given);
+  std::vector<SensorId> sensors;
+  for (const toml::node& element : *array) {
+    const std::optional<std::string> name = element.value<std::string>();
+    if (!element.is_string()) s.fail_at(*node, "sensors", given + " (" + as_written(element) + " is not a string)");
+    const auto known = std::find_if(std::begin(all_sensors), std::end(all_sensors),
+                                    [&](SensorId id) { return sensor_name(id) == *name; });
+    if (known == std::end(all_sensors)) {
+      s.fail_at(*node, "sensors", given + " (\"" + *name + "\" is no sensor)");
+    }
+    if (std::find(sensors.begin(), sensors.end(), *known) != sensors.end()) {
+      s.fail_at(*node, "sensors", given + " (\"" + *name + "\" is named twice)");
+    }
+    sensors.push_back(*known);
+  }
+  return sensors;
+}
+
 void read_experiment(const toml::table& root, std::string_view source, KeyLines& lines, ExperimentSpec& e) {
   Section s(root, "experiment", source, lines);
+  if (std::vector<SensorId> sensors = read_sensors(s); !sensors.empty()) e.sensors = std::move(sensors);
   s.read("measurements_per_step", e.measurements_per_step, 1, 1000000);
   // Its upper bound is chamber.layer_count, checked with that key by Scenario::validate().
   s.read("max_active_layers", e.max_active_layers, 0, std::numeric_limits<std::int64_t>::max());
@@ -423,7 +456,31 @@ std::string format_toml_number(double value) {
 
 std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }
 
+std::string_view sensor_name(SensorId sensor) {
+  switch (sensor) {
+    case SensorId::radar: return "radar";
+    case SensorId::lidar: return "lidar";
+    case SensorId::camera: return "camera";
+  }
+  return "unknown";
+}
+
+bool Scenario::runs(SensorId sensor) const {
+  return std::find(experiment.sensors.begin(), experiment.sensors.end(), sensor) != experiment.sensors.end();
+}
+
 void Scenario::validate() const {
+  std::string names;
+  for (std::size_t i = 0; i < experiment.sensors.size(); ++i) {
+    const SensorId sensor = experiment.sensors[i];
+    names += (names.empty() ? "[" : ", ") + std::string(sensor_name(sensor));
+    if (std::find(experiment.sensors.begin(), experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i), sensor) !=
+            experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i) ||
+        sensor_name(sensor) == "unknown") {
+      throw_invalid("experiment.sensors", names + ", ...]", sensors_allowed);
+    }
+  }
+  if (experiment.sensors.empty()) throw_invalid("experiment.sensors", "[]", sensors_allowed);
   radar.validate();
   require_in_range("target.rcs_dbsm", target.rcs_dbsm, -60.0, 60.0);
   require_in_range("target.height_m", target.height_m, 0.0, 100.0);
@@ -670,6 +727,11 @@ std::string to_toml(const Scenario& s) {
   };
   out << std::visit(Droplets{}, s.fog.droplets) << '\n'
       << "[experiment]\n"
+      << "sensors = [";
+  for (std::size_t i = 0; i < s.experiment.sensors.size(); ++i) {
+    out << (i == 0 ? "" : ", ") << str(sensor_name(s.experiment.sensors[i]));
+  }
+  out << "]\n"
       << "measurements_per_step = " << s.experiment.measurements_per_step << '\n'
       << "max_active_layers = " << s.experiment.max_active_layers << '\n'
       << "seed = " << s.experiment.seed << '\n';

@@ -28,6 +28,7 @@ double fraction(std::size_t count, std::size_t n) {
 
 ExperimentSummary summarize(const ExperimentResult& result) {
   ExperimentSummary summary;
+  summary.sensors = result.sensors;
   summary.expected_false_alarm_cells_per_frame = result.expected_false_alarm_cells_per_frame;
   const std::vector<double> baseline = result.steps.empty() ? std::vector<double>{} : detected_rcs_dbsm(result.steps[0]);
   for (const StepResult& step : result.steps) {

@@ -212,6 +212,9 @@ printf '[fog]\nwater_model = ""\n' >"$work/empty-water.toml"
 printf '[radar]\nsamples_per_chirp = 5000000000\n' >"$work/huge-samples.toml"
 printf '[fog]\nclutter_scatterers_per_bin = 65\n' >"$work/clutter.toml"
 printf '[experiment]\nseed = -1\n' >"$work/seed.toml"
+printf '[experiment]\nsensors = ["radar", "sonar"]\n' >"$work/sonar.toml"
+printf '[experiment]\nsensors = []\n' >"$work/no-sensors.toml"
+printf '[experiment]\nsensors = ["radar", "radar"]\n' >"$work/radar-twice.toml"
 printf '[radar]\nsamples_per_chirp = 32\n[processing.cfar]\nguard_cells = 20\n' >"$work/guard.toml"
 printf '[radar]\nsample_rate_hz = 5e6\nsamples_per_chirp = 256\n[chamber]\ntarget_gap_m = 40\n' >"$work/far.toml"
 printf '[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n' >"$work/layers.toml"
@@ -248,6 +251,11 @@ expect_bad_run integer-documented-range "radar.samples_per_chirp = 5000000000" "
 expect_bad_run clutter-range "fog.clutter_scatterers_per_bin = 65" "an integer in [1, 64]" --scenario "$work/clutter.toml"
 expect_bad_run scenario-seed "seed.toml:2: experiment.seed = -1" "an integer in [0, 9223372036854775807]" \
   --scenario "$work/seed.toml"
+expect_bad_run unknown-sensor 'sonar.toml:2: experiment.sensors' '"sonar" is no sensor' --scenario "$work/sonar.toml"
+expect_bad_run no-sensors 'no-sensors.toml:2: experiment.sensors = []' \
+  'a non-empty array of distinct names from "radar", "lidar", "camera"' --scenario "$work/no-sensors.toml"
+expect_bad_run sensor-twice 'radar-twice.toml:2: experiment.sensors' '"radar" is named twice' \
+  --scenario "$work/radar-twice.toml"
 expect_bad_run two-densities "fog.lwc_g_per_m3 (line 2) and fog.visibility_m (line 3)" "at most one fog density" \
   --scenario "$work/two-densities.toml"
 expect_bad_run missing-file "--scenario = '$work/does-not-exist.toml'" "a readable regular TOML file" \

@@ -142,6 +142,22 @@ TEST_F(OutputDirectoryTest, OneHolderAtATime) {
   expect_only_result_directory();
 }
 
+// A set written by a run of other sensors (every sensor's file names) is an earlier result set: a
+// radar-only run replaces it whole, leaving none of its files; a file of another name is still
+// refused.
+TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
+  const fs::path dir = parent_ / "out";
+  Files every;
+  for (const std::string& name : result_file_names()) every.emplace_back(name, "earlier " + name);
+  EXPECT_EQ(every.size(), 15u);  // the radar's 5, the lidar's 5, the camera's 4, benchmark.svg
+  ASSERT_TRUE(OutputDirectory(dir).replace(every));
+  EXPECT_TRUE(OutputDirectory(dir).replace(result_set("radar only")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("radar only")));
+  std::ofstream(dir / "lidar_notes.csv") << "mine";
+  EXPECT_THROW(OutputDirectory refused(dir), InvalidParameter);
+  expect_only_result_directory();
+}
+
 TEST_F(OutputDirectoryTest, RefusesAFile) {
   std::ofstream(parent_ / "out") << "a file";
   EXPECT_THROW(OutputDirectory(parent_ / "out"), InvalidParameter);

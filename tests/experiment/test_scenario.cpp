@@ -56,8 +56,25 @@ TEST(Scenario, ResolvedTomlRoundTrips) {
   s.fog.water_model = propagation::WaterModel::segelstein;
   s.fog.temperature_c = propagation::segelstein_table_temperature_c;
   s.radar.cfar.threshold_design = radar::CfarThresholdDesign::independent;
+  s.experiment.sensors = {SensorId::camera, SensorId::radar};
   const std::string text = to_toml(s);
   EXPECT_EQ(to_toml(parse_scenario(text, "resolved.toml")), text);
+  EXPECT_EQ(parse_scenario(text, "resolved.toml").experiment.sensors, s.experiment.sensors);
+}
+
+// experiment.sensors selects the sensors in the order given; a run that names only some of them is
+// valid, and a Scenario built in code is checked like a file.
+TEST(Scenario, SensorsAreChosenByName) {
+  const Scenario s = parse_scenario("[experiment]\nsensors = [\"lidar\", \"radar\"]\n", "s.toml");
+  EXPECT_EQ(s.experiment.sensors, (std::vector<SensorId>{SensorId::lidar, SensorId::radar}));
+  EXPECT_TRUE(s.runs(SensorId::radar));
+  EXPECT_FALSE(s.runs(SensorId::camera));
+  Scenario twice = paper_scenario();
+  twice.experiment.sensors = {SensorId::radar, SensorId::radar};
+  EXPECT_THROW(twice.validate(), InvalidParameter);
+  Scenario none = paper_scenario();
+  none.experiment.sensors.clear();
+  EXPECT_THROW(none.validate(), InvalidParameter);
 }
 
 // The retired key that named the start of a down-chirp "carrier" is refused, and the message names
@@ -255,6 +272,16 @@ INSTANTIATE_TEST_SUITE_P(
                  "fog.clutter_scatterers_per_bin", 2, "an integer in [1, 64]"},
         BadInput{"negative_seed", "[experiment]\nseed = -1\n", "experiment.seed", 2,
                  "an integer in [0, 9223372036854775807]"},
+        BadInput{"sensors_not_an_array", "[experiment]\nsensors = \"radar\"\n", "experiment.sensors", 2,
+                 "a non-empty array of distinct names from \"radar\", \"lidar\", \"camera\""},
+        BadInput{"no_sensors", "[experiment]\nsensors = []\n", "experiment.sensors", 2,
+                 "a non-empty array of distinct names"},
+        BadInput{"unknown_sensor", "[experiment]\n\nsensors = [\"radar\", \"sonar\"]\n", "experiment.sensors", 3,
+                 "(\"sonar\" is no sensor)"},
+        BadInput{"sensor_twice", "[experiment]\nsensors = [\"lidar\", \"lidar\"]\n", "experiment.sensors", 2,
+                 "(\"lidar\" is named twice)"},
+        BadInput{"sensor_not_a_name", "[experiment]\nsensors = [\"radar\", 3]\n", "experiment.sensors", 2,
+                 "(3 is not a string)"},
         BadInput{
             "two_fog_densities", "[fog]\nlwc_g_per_m3 = 0.1\nvisibility_m = 20\n",
             "fog.visibility_m", 3,

@@ -1,11 +1,13 @@
-// Result files of `fogradar run` (docs/scenario.md, Results): samples.csv, summary.csv,
-// summary.json, rcs_boxplot.svg, scenario.toml. The output directory is the run's result set and is
+// Result files of `fogradar run` (docs/scenario.md, Results): the radar's samples.csv, summary.csv,
+// rcs_boxplot.svg; summary.json (every sensor's summary and limit) and scenario.toml; each further
+// sensor's files prefixed with its name; benchmark.svg. The output directory is the run's result set and is
 // replaced whole: the files are written to a sibling staging directory, which then takes the
 // directory's place in one rename (docs/scenario.md, Results; docs/architecture.md, Contracts).
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +23,25 @@ inline constexpr const char* sensor_limit_criterion =
     "(a target-origin detection within the association gate) with no fog-origin detection echoing "
     "at least as strongly";
 
+inline constexpr const char* radar_criterion_short =
+    "target detected (no fog detection as strong) in < 50 % of the measurements";
+
+// One sensor's line of the study's benchmark: its criterion and the layers to failure, or how far
+// from failure it stayed.
+struct SensorVerdict {
+  SensorId sensor = SensorId::radar;
+  std::string criterion;
+  std::optional<std::size_t> sensor_limit_layers;
+  std::string margin;  // when the limit is not reached: the sensor's margin at the last step
+};
+std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary);
+// The benchmark lines `fogradar run` prints after the sensors' tables.
+std::string benchmark_table(const ExperimentSummary& summary);
+
+// Every name a result set can hold (of every sensor); an output directory holding only these is an
+// earlier result set.
+const std::vector<std::string>& result_file_names();
+
 std::string samples_csv(const ExperimentResult& result);
 std::string summary_csv(const ExperimentSummary& summary);
 std::string summary_json(const Scenario& scenario, const ExperimentSummary& summary);
@@ -30,14 +51,14 @@ std::string rcs_boxplot_svg(const Scenario& scenario, const ExperimentSummary& s
 // The per-layer table printed by `fogradar run`.
 std::string summary_table(const ExperimentSummary& summary);
 
-// The five result files as {name, content}, in the order above.
+// The result files of the scenario's sensors as {name, content}.
 std::vector<std::pair<std::string, std::string>> result_files(const Scenario& scenario,
                                                               const ExperimentResult& result,
                                                               const ExperimentSummary& summary);
 
 // The output directory of one run, held from before the run until its result set is in place.
 // Construction refuses (InvalidParameter naming "--out") a `dir` that is not a directory, that
-// holds anything but the five result files (so no file of the user's is ever deleted), or that
+// holds anything but result files, result_file_names() (so no file of the user's is ever deleted), or that
 // another run holds; it then takes the lock (`.NAME.lock` beside `dir`, flock) and creates the
 // staging directory
 // `.NAME.tmp-<pid>-<random>` beside `dir`. Destruction removes the staging directory (and the lock

@@ -1,7 +1,10 @@
 // The study's methodology (paper sec. III-A): for k = 0 .. max_active_layers layers switched on in
-// order from the sensor, a series of measurements, each a full radar frame. Measurement (k, i) draws
-// from its own random stream RandomStream(seed, k, i), and results are stored by index, so a run is
-// bit-identical for any thread count. Frames are streamed: only one per thread exists at a time.
+// order from the sensor, a series of items per sensor of the scenario (radar measurements, each a
+// full radar frame; lidar scans; camera frames), all on one chamber. Item (k, i) of a sensor draws
+// from its own random stream sensor_stream(seed, sensor, k, i) (the radar's is RandomStream(seed, k,
+// i)), and results are stored by index, so a run is bit-identical for any thread count and adding a
+// sensor never changes another's numbers. One pool of threads takes the items of every sensor from
+// one counter. Frames are streamed: only one per thread exists at a time.
 #pragma once
 
 #include <atomic>
@@ -41,6 +44,8 @@ struct StepResult {
 };
 
 struct ExperimentResult {
+  std::vector<SensorId> sensors;  // that ran, as experiment.sensors lists them
+  // The radar's part; empty (and the two figures 0) when the radar does not run.
   std::vector<StepResult> steps;
   double cfar_threshold_db = 0.0;  // 10 log10(alpha): detection needs SNR above about this
   // The CFAR's design: P_fa times the cells it tests per frame (every cell of the map). Counts
@@ -51,10 +56,11 @@ struct ExperimentResult {
 
 struct RunOptions {
   unsigned threads = 0;  // 0: all hardware threads
-  // Called from worker threads with (measurements done, total); may be empty.
+  // Called from worker threads with (items done, total), the items of every sensor counted; may be
+  // empty.
   std::function<void(std::size_t, std::size_t)> progress;
   // When set (by another thread, e.g. one that waits for signals), the workers stop at their next
-  // measurement and run_experiment throws Interrupted. May be null.
+  // item and run_experiment throws Interrupted. May be null.
   const std::atomic<bool>* stop = nullptr;
 };
 

@@ -1,5 +1,6 @@
 // A scenario: everything one run of the study's methodology needs, as read from a TOML file with the
-// sections [radar], [processing], [target], [chamber], [fog], [experiment] (docs/scenario.md). Keys carry
+// sections [radar], [processing], [target], [chamber], [fog], [experiment] and one section per further
+// sensor (docs/scenario.md). Keys carry
 // their units in their names; docs/scenario.md lists them with defaults and ranges. The paper
 // scenario (examples/paper.toml) is compiled in and is the base every scenario file overrides.
 #pragma once
@@ -8,7 +9,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "fogradar/core/random.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/scene.hpp"
@@ -36,7 +39,14 @@ struct ChamberLayout {
   double target_gap_m = 4.0;
 };
 
+// The sensors a scenario can run, by their scenario names ("radar", "lidar", "camera"), in the order
+// their results are reported.
+inline constexpr SensorId all_sensors[] = {SensorId::radar, SensorId::lidar, SensorId::camera};
+std::string_view sensor_name(SensorId sensor);
+
 struct ExperimentSpec {
+  // Which sensors run (experiment.sensors): non-empty, no repeats; each sees the same chamber.
+  std::vector<SensorId> sensors = {SensorId::radar};
   std::size_t measurements_per_step = 200;
   std::size_t max_active_layers = 4;  // steps k = 0 .. max_active_layers
   std::uint64_t seed = 1;
@@ -52,6 +62,7 @@ struct Scenario {
 
   // Throws InvalidParameter naming the scenario key (e.g. "processing.cfar.training_cells").
   void validate() const;
+  bool runs(SensorId sensor) const;
   propagation::ChamberSpec chamber_spec() const;
   radar::Scene scene() const;
 };

@@ -36,6 +36,8 @@ struct StepSummary {
 };
 
 struct ExperimentSummary {
+  std::vector<SensorId> sensors;  // that ran
+  // The radar's steps; empty when the radar did not run.
   std::vector<StepSummary> steps;
   // First layer count at which fewer than half the measurements detect the target (target origin)
   // with no fog-origin detection at least as strong (docs/scenario.md); empty if never reached.
