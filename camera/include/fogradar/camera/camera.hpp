@@ -85,6 +85,9 @@ class Camera {
          const propagation::SegelsteinTable& table);
 
   const CameraParams& params() const { return params_; }
+  // The same fog optics (no Mie again) with another scene, exposure and pipeline: `params` may
+  // differ in every key but camera.band and camera.wavelength_nm (calibration, studies).
+  Camera with_scene(const CameraParams& params) const;
   std::size_t layer_count() const { return layer_count_; }
   std::size_t channel_count() const { return channel_count_; }
 
@@ -116,6 +119,8 @@ class Camera {
     double reflectance;
     bool target;
   };
+
+  void build_scene();
 
   CameraParams params_;
   std::size_t layer_count_ = 0;

@@ -1,0 +1,108 @@
+// The camera's part of the paper scenario: its cost, and the study's Fig. 7 means under both of the
+// study's fog readings (docs/camera.md §6-§7). Run by hand (Release build), not a test:
+//
+//   camera_bench [--frames N] [--repeats R]
+//
+// For each fog reading (beta = 900 /km at 550 nm; V = 5.74 m) it calibrates the two keys the 0- and
+// 2-layer means pin down (calibrate_to_means), then runs the 5 steps with noise (seed 1) and prints
+// the per-step table, the noise-free means and the 4-layer prediction. Timing: Camera construction
+// (Mie over the band, once per fog) and the 5 steps x frames at one thread, median of R repeats.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "fogradar/camera/calibration.hpp"
+#include "fogradar/camera/camera.hpp"
+#include "fogradar/propagation/visibility.hpp"
+
+namespace {
+
+using namespace fogradar;
+using Clock = std::chrono::steady_clock;
+
+propagation::ChamberSpec paper_chamber(propagation::FogDensity density) {
+  propagation::ChamberSpec chamber;
+  for (auto& layer : chamber.layers) layer.fog.density = density;
+  return chamber;
+}
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::size_t frames = camera::CameraParams{}.frames_per_step;
+  int repeats = 5;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    if (flag == "--frames") frames = std::strtoul(argv[i + 1], nullptr, 10);
+    if (flag == "--repeats") repeats = std::atoi(argv[i + 1]);
+  }
+  const propagation::SegelsteinTable table;
+
+  struct Reading {
+    const char* name;
+    propagation::FogDensity density;
+  };
+  const std::vector<Reading> readings{
+      {"beta = 900 /km at 550 nm", propagation::OpticalExtinction{900.0}},
+      {"V = 5.74 m (beta = 681.5 /km)", propagation::Visibility{5.74}},
+  };
+  for (const Reading& reading : readings) {
+    const propagation::ChamberSpec chamber = paper_chamber(reading.density);
+    camera::CameraParams params;
+    params.frames_per_step = frames;
+
+    const auto build_start = Clock::now();
+    const camera::Camera uncalibrated(params, chamber, table);
+    const double build_s = seconds_since(build_start);
+
+    const auto calibration_start = Clock::now();
+    const camera::CalibrationResult calibration = camera::calibrate_to_means(uncalibrated, 46.0, 2, 64.0);
+    const double calibration_s = seconds_since(calibration_start);
+    const camera::Camera camera = uncalibrated.with_scene(calibration.params);
+
+    std::printf("== %s\n", reading.name);
+    std::printf("calibrated: exposure.ambient_level = %.6g, roi.target.median_reflectance = %.6g "
+                "(noise-free means %.3f, %.3f)\n",
+                calibration.params.exposure.ambient_level,
+                calibration.params.roi.target.median_reflectance, calibration.clear_mean_grey,
+                calibration.fog_mean_grey);
+    std::printf("band-weighted beta(550 nm node) of one layer: %.1f /km\n",
+                1e3 * camera.layer_extinction_per_m(0)[38]);
+    std::printf("noise-free mean grey per active layers:");
+    for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
+      const auto optics = camera.step_optics(propagation::first_layers_active(n, camera.layer_count()));
+      std::printf("  %zu: %.2f (t = %.4f)", n, camera.expected_mean_grey(optics), optics.transmittance[0]);
+    }
+    std::printf("\n");
+
+    std::vector<double> run_s;
+    std::vector<camera::CameraStepResult> steps;
+    for (int r = 0; r < repeats; ++r) {
+      steps.clear();
+      const auto start = Clock::now();
+      for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
+        steps.push_back(camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), 1));
+      }
+      run_s.push_back(seconds_since(start));
+    }
+    const camera::CameraSummary summary = camera::summarize(camera.params(), steps);
+    std::printf("%s", camera::step_table(summary).c_str());
+    std::printf("timing (1 thread): construction (Mie over %zu band nodes) %.3f s, calibration %.3f s, "
+                "%zu steps x %zu frames of %zux%zu px: median %.4f s over %d repeats\n\n",
+                camera.band_wavelengths_m().size(), build_s, calibration_s, steps.size(), frames,
+                params.roi.width_px, params.roi.height_px, median(run_s), repeats);
+  }
+  return 0;
+}
