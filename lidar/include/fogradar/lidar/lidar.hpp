@@ -120,6 +120,18 @@ class Lidar {
     double extinction_per_m;
     double backscatter_per_m_sr;
   };
+  // The nearest hard surface along a beam, if any within max_range_m.
+  struct Hit {
+    bool found = false;
+    bool is_target = false;
+    double range_m = 0.0;
+    double amplitude = 0.0;  // hard_target_peak with the two-way transmittance to it
+  };
+  // The beam's fog stretches (one per active layer it crosses before its hard surface) and hit.
+  Hit trace(std::size_t beam, const propagation::ActiveLayers& active,
+            std::span<const double> optical_depth_factors, std::vector<FogStretch>& stretches) const;
+  void check_inputs(const propagation::ActiveLayers& active,
+                    std::span<const double> optical_depth_factors) const;
 
   LidarParams params_;
   std::vector<Layer> layers_;

@@ -1,0 +1,316 @@
+#include "fogradar/lidar/lidar.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/math/distributions/normal.hpp>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+
+#include "fogradar/core/complex_normal_generator.hpp"
+#include "fogradar/core/constants.hpp"
+#include "fogradar/core/error.hpp"
+#include "fogradar/propagation/fog.hpp"
+
+namespace fogradar::lidar {
+namespace {
+
+constexpr double degree_rad = pi / 180.0;
+
+double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+struct SegmentHit {
+  double range_m = std::numeric_limits<double>::infinity();
+  double cos_incidence = 0.0;
+};
+
+// Ray (cos, sin) from the origin against the segment p0 -> p1: t u = p0 + lambda d with t > 0,
+// lambda in [0, 1]; cos(incidence) = |u x d| / |d| (the segment's normal is perpendicular to d).
+SegmentHit intersect(double ux, double uy, double x0, double y0, double x1, double y1) {
+  const double dx = x1 - x0;
+  const double dy = y1 - y0;
+  const double denom = cross(ux, uy, dx, dy);
+  if (denom == 0.0) return {};
+  const double t = cross(x0, y0, dx, dy) / denom;
+  const double lambda = cross(x0, y0, ux, uy) / denom;
+  if (!(t > 0.0) || lambda < 0.0 || lambda > 1.0) return {};
+  return {.range_m = t, .cos_incidence = std::abs(denom) / std::hypot(dx, dy)};
+}
+
+}  // namespace
+
+std::string_view to_string(EchoOrigin origin) noexcept {
+  switch (origin) {
+    case EchoOrigin::target: return "target";
+    case EchoOrigin::fog: return "fog";
+    case EchoOrigin::background: return "background";
+    case EchoOrigin::noise: return "noise";
+  }
+  return "?";
+}
+
+std::span<const double> FogFluctuationSeries::scan(std::size_t scan_index) const {
+  FOGRADAR_CHECK((scan_index + 1) * layer_count <= factors.size());
+  return std::span<const double>(factors).subspan(scan_index * layer_count, layer_count);
+}
+
+Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
+             const propagation::SegelsteinTable& table)
+    : params_(params) {
+  params_.validate();
+  chamber.validate();
+  target_range_m_ = chamber.target_range_m();
+  double start_m = chamber.sensor_gap_m;
+  for (std::size_t i = 0; i < chamber.layers.size(); ++i) {
+    const propagation::FogLayerSpec& spec = chamber.layers[i];
+    Layer layer{.start_m = start_m, .end_m = start_m + spec.length_m, .extinction_per_m = 0.0,
+                .backscatter_per_m_sr = 0.0};
+    // A layer of the same fog as an earlier one takes its optics (the Mie sums are the start-up).
+    std::size_t same = 0;
+    while (same < i && chamber.layers[same].fog != spec.fog) ++same;
+    if (same < i) {
+      layer.extinction_per_m = layers_[same].extinction_per_m;
+      layer.backscatter_per_m_sr = layers_[same].backscatter_per_m_sr;
+    } else {
+      const propagation::FogOptics optics =
+          propagation::Fog(spec.fog, table).at_optical_wavelength(params_.wavelength_m);
+      layer.extinction_per_m = optics.extinction_per_m;
+      // beta_pi = N <dsigma/dOmega(180 deg)> = eta / (4 pi), eta = N <sigma_b>.
+      layer.backscatter_per_m_sr = optics.volume_backscatter_m2_per_m3 / (4.0 * pi);
+    }
+    layers_.push_back(layer);
+    start_m = layer.end_m;
+  }
+  beam_count_ = params_.beam_count();
+  const double target_angle_deg =
+      std::atan2(params_.target_offset_m, target_range_m_) / degree_rad;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < beam_count_; ++b) {
+    const double distance = std::abs(beam_angle_deg(b) - target_angle_deg);
+    if (distance < best) {
+      best = distance;
+      target_beam_ = b;
+    }
+  }
+  grid_ = {.sample_interval_s = params_.sample_interval_ns * 1e-9,
+           .pulse_fwhm_s = params_.pulse_width_ns * 1e-9,
+           .full_overlap_range_m = params_.overlap_range_m};
+  samples_ = static_cast<std::size_t>(
+                 std::floor(2.0 * params_.max_range_m / speed_of_light_m_per_s /
+                            grid_.sample_interval_s)) + 1;
+  // The datasheet's detection range: a Lambertian target of threshold_reflectivity at
+  // threshold_range_m, normal incidence, clear air, peaks exactly at the threshold.
+  const double threshold =
+      hard_target_peak(params_.threshold_reflectivity, 1.0, 1.0, params_.threshold_range_m) *
+      overlap(params_.threshold_range_m, params_.overlap_range_m);
+  // Noise alone exceeds the threshold in a sample with probability P_fa: thr = sigma z_(1-P_fa).
+  const boost::math::normal_distribution<double> normal;
+  noise_std_ = threshold / boost::math::quantile(boost::math::complement(
+                               normal, params_.false_alarm_probability));
+  detector_ = {.threshold = threshold,
+               .sample_interval_s = grid_.sample_interval_s,
+               .range_offset_m = speed_of_light_m_per_s * grid_.pulse_fwhm_s / 4.0,
+               .min_range_m = params_.min_range_m,
+               .min_separation_m = params_.min_echo_separation_m,
+               .max_echoes = params_.max_echoes};
+}
+
+double Lidar::beam_angle_deg(std::size_t beam) const {
+  return -0.5 * params_.field_of_view_deg + static_cast<double>(beam) * params_.angular_step_deg;
+}
+
+double Lidar::layer_start_m(std::size_t layer) const { return layers_.at(layer).start_m; }
+double Lidar::layer_end_m(std::size_t layer) const { return layers_.at(layer).end_m; }
+double Lidar::layer_extinction_per_m(std::size_t layer) const {
+  return layers_.at(layer).extinction_per_m;
+}
+double Lidar::layer_backscatter_per_m_sr(std::size_t layer) const {
+  return layers_.at(layer).backscatter_per_m_sr;
+}
+
+FogFluctuationSeries Lidar::fog_fluctuation(RandomStream stream) const {
+  const FogFluctuation& f = params_.fog_fluctuation;
+  const std::size_t n_layers = layers_.size();
+  FogFluctuationSeries series{.layer_count = n_layers,
+                              .factors = std::vector<double>(params_.scans_per_step * n_layers)};
+  // AR(1) in the log with lag-one correlation rho = exp(-scan period / correlation time): a
+  // stationary Gauss-Markov series of unit variance; exp(s z - s^2 / 2) has unit mean.
+  const double rho = std::exp(-1.0 / (params_.scan_rate_hz * f.correlation_time_s));
+  const double innovation = std::sqrt(1.0 - rho * rho);
+  std::vector<double> z(n_layers);
+  for (std::size_t s = 0; s < params_.scans_per_step; ++s) {
+    for (std::size_t i = 0; i < n_layers; ++i) {
+      const double e = stream.normal();
+      z[i] = s == 0 ? e : rho * z[i] + innovation * e;
+      series.factors[s * n_layers + i] = std::exp(f.log_std * z[i] - 0.5 * f.log_std * f.log_std);
+    }
+  }
+  return series;
+}
+
+void Lidar::check_inputs(const propagation::ActiveLayers& active,
+                         std::span<const double> optical_depth_factors) const {
+  if (active.size() != layers_.size()) {
+    throw_invalid("active_layers", static_cast<double>(active.size()),
+                  "one flag per chamber layer (" + std::to_string(layers_.size()) + ")");
+  }
+  if (optical_depth_factors.size() != layers_.size()) {
+    throw_invalid("optical_depth_factors", static_cast<double>(optical_depth_factors.size()),
+                  "one factor per chamber layer (" + std::to_string(layers_.size()) + ")");
+  }
+  for (const double factor : optical_depth_factors) {
+    require_non_negative("optical_depth_factors", factor);
+  }
+}
+
+Lidar::Hit Lidar::trace(std::size_t beam, const propagation::ActiveLayers& active,
+                        std::span<const double> factors, std::vector<FogStretch>& stretches) const {
+  stretches.clear();
+  const double angle = beam_angle_deg(beam) * degree_rad;
+  const double ux = std::cos(angle);
+  const double uy = std::sin(angle);
+  SegmentHit nearest;
+  bool is_target = false;
+  double reflectivity = 0.0;
+  const auto consider = [&](const SegmentHit& hit, bool target, double rho) {
+    if (hit.range_m < nearest.range_m) {
+      nearest = hit;
+      is_target = target;
+      reflectivity = rho;
+    }
+  };
+  if (params_.target_width_m > 0.0) {
+    const double half = 0.5 * params_.target_width_m;
+    consider(intersect(ux, uy, target_range_m_, params_.target_offset_m - half, target_range_m_,
+                       params_.target_offset_m + half),
+             true, params_.target_reflectivity);
+  }
+  for (const BackgroundSegment& s : params_.background) {
+    consider(intersect(ux, uy, s.x0_m, s.y0_m, s.x1_m, s.y1_m), false, s.reflectivity);
+  }
+  const double end_m = std::min(nearest.range_m, params_.max_range_m);
+  double transmittance = 1.0;
+  if (ux > 0.0) {
+    const double lateral_m = uy == 0.0 ? std::numeric_limits<double>::infinity()
+                                       : 0.5 * params_.fog_width_m / std::abs(uy);
+    for (std::size_t i = 0; i < layers_.size(); ++i) {
+      if (!active[i]) continue;
+      const double start = layers_[i].start_m / ux;
+      const double stop = std::min({layers_[i].end_m / ux, lateral_m, end_m});
+      if (!(stop > start)) continue;
+      const double alpha = layers_[i].extinction_per_m * factors[i];
+      stretches.push_back({.start_m = start,
+                           .end_m = stop,
+                           .extinction_per_m = alpha,
+                           .backscatter_per_m_sr = layers_[i].backscatter_per_m_sr * factors[i],
+                           .transmittance_at_start = transmittance});
+      transmittance *= std::exp(-2.0 * alpha * (stop - start));
+    }
+  }
+  Hit hit;
+  if (nearest.range_m <= params_.max_range_m) {
+    hit = {.found = true,
+           .is_target = is_target,
+           .range_m = nearest.range_m,
+           .amplitude = hard_target_peak(reflectivity, nearest.cos_incidence, transmittance,
+                                         nearest.range_m)};
+  }
+  return hit;
+}
+
+BeamWaveform Lidar::waveform(std::size_t beam, const propagation::ActiveLayers& active,
+                             std::span<const double> optical_depth_factors) const {
+  check_inputs(active, optical_depth_factors);
+  FOGRADAR_CHECK(beam < beam_count_);
+  BeamWaveform out{.target = std::vector<double>(samples_),
+                   .fog = std::vector<double>(samples_),
+                   .background = std::vector<double>(samples_)};
+  std::vector<FogStretch> stretches;
+  const Hit hit = trace(beam, active, optical_depth_factors, stretches);
+  out.crosses_fog = !stretches.empty();
+  out.hits = hit.found;
+  for (const FogStretch& stretch : stretches) add_fog_stretch(out.fog, grid_, stretch);
+  if (hit.found) {
+    add_hard_target(hit.is_target ? out.target : out.background, grid_, hit.range_m, hit.amplitude);
+  }
+  return out;
+}
+
+LidarScan Lidar::measure(const propagation::ActiveLayers& active,
+                         std::span<const double> optical_depth_factors,
+                         RandomStream& stream) const {
+  check_inputs(active, optical_depth_factors);
+  LidarScan scan;
+  ComplexNormalGenerator generator(stream);
+  // Two real samples per complex one: each part of CN(0, 2 sigma^2) is N(0, sigma^2).
+  std::vector<std::complex<double>> noise((samples_ + 1) / 2);
+  const double noise_variance = 2.0 * noise_std_ * noise_std_;
+  std::vector<double> target(samples_), fog(samples_), background(samples_), received(samples_);
+  std::vector<FogStretch> stretches;
+  stretches.reserve(layers_.size());
+  const auto noise_at = [&](std::size_t k) {
+    return k % 2 == 0 ? noise[k / 2].real() : noise[k / 2].imag();
+  };
+  for (std::size_t beam = 0; beam < beam_count_; ++beam) {
+    const Hit hit = trace(beam, active, optical_depth_factors, stretches);
+    std::fill(noise.begin(), noise.end(), std::complex<double>{});
+    generator.add(noise, noise_variance);
+    const bool through_fog = !stretches.empty();
+    const bool signal = through_fog || hit.found;
+    std::fill(target.begin(), target.end(), 0.0);
+    std::fill(fog.begin(), fog.end(), 0.0);
+    std::fill(background.begin(), background.end(), 0.0);
+    if (signal) {
+      for (const FogStretch& stretch : stretches) add_fog_stretch(fog, grid_, stretch);
+      if (hit.found) {
+        add_hard_target(hit.is_target ? target : background, grid_, hit.range_m, hit.amplitude);
+      }
+    }
+    bool exceeds = signal;
+    for (std::size_t k = 0; k < samples_; ++k) {
+      received[k] = target[k] + fog[k] + background[k] + noise_at(k);
+      exceeds = exceeds || received[k] >= detector_.threshold;
+    }
+    if (through_fog) ++scan.beams_through_fog;
+    if (!exceeds) continue;
+    const DetectedEchoes echoes = extract_echoes(received, detector_);
+    bool fog_echo = false;
+    double strongest_fog = 0.0;
+    for (std::size_t e = 0; e < echoes.count; ++e) {
+      const DetectedEcho& echo = echoes.echoes[e];
+      const std::size_t k = echo.peak_sample;
+      const std::array<double, 3> parts{target[k], fog[k], background[k]};
+      const auto largest = std::max_element(parts.begin(), parts.end());
+      const EchoOrigin origin = *largest < noise_std_
+                                    ? EchoOrigin::noise
+                                    : static_cast<EchoOrigin>(largest - parts.begin());
+      const double intensity = std::min(params_.intensity_saturation,
+                                        params_.intensity_scale * echo.peak / detector_.threshold);
+      scan.echoes.push_back({.beam = static_cast<std::uint32_t>(beam),
+                             .index = static_cast<std::uint8_t>(e),
+                             .origin = origin,
+                             .range_m = echo.range_m,
+                             .intensity = intensity});
+      if (origin == EchoOrigin::fog) {
+        fog_echo = true;
+        strongest_fog = std::max(strongest_fog, intensity);
+      }
+      if (beam == target_beam_ && origin == EchoOrigin::target) {
+        scan.target_detected = true;
+        scan.target_intensity = std::max(scan.target_intensity, intensity);
+      }
+    }
+    if (through_fog) {
+      if (fog_echo) ++scan.beams_through_fog_with_fog_echo;
+      if (echoes.count > 0) scan.first_echo_range_through_fog_m.push_back(echoes.echoes[0].range_m);
+    }
+    if (beam == target_beam_ && scan.target_detected && fog_echo &&
+        strongest_fog >= scan.target_intensity) {
+      scan.fog_outshines_target = true;
+    }
+  }
+  return scan;
+}
+
+}  // namespace fogradar::lidar

@@ -1,0 +1,338 @@
+#include "fogradar/lidar/outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string_view>
+
+#include "fogradar/core/constants.hpp"
+#include "fogradar/stats/format.hpp"
+#include "fogradar/stats/svg_plot.hpp"
+
+namespace fogradar::lidar {
+namespace {
+
+constexpr double degree_rad = pi / 180.0;
+
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+// Shortest text that reads back to exactly `value`; NaN -> "".
+std::string exact(double value) { return stats::format_number(value, 0); }
+
+std::string joined(const std::vector<double>& values) {
+  std::string text;
+  for (const double v : values) {
+    if (!text.empty()) text += ';';
+    text += exact(v);
+  }
+  return text;
+}
+
+std::string px(double v) { return stats::format_fixed(v, 2); }
+
+std::string layers_label(std::size_t n) {
+  return std::to_string(n) + (n == 1 ? " layer" : " layers");
+}
+
+// Clear-weather peak of the target's centre beam over the threshold: the datasheet margin.
+double clear_margin(const Lidar& lidar) {
+  const LidarParams& p = lidar.params();
+  const double range_m = std::hypot(lidar.target_range_m(), p.target_offset_m);
+  return hard_target_peak(p.target_reflectivity, 1.0, 1.0, range_m) *
+         overlap(range_m, p.overlap_range_m) / lidar.threshold();
+}
+
+}  // namespace
+
+std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResult>& steps) {
+  std::string out = "step,scan,angle_deg,echo,range_m,intensity,origin\n";
+  for (const LidarStepResult& step : steps) {
+    const std::string step_text = std::to_string(step.active_layers) + ',';
+    for (std::size_t s = 0; s < step.scans.size(); ++s) {
+      const std::string prefix = step_text + std::to_string(s) + ',';
+      for (const LidarEcho& e : step.scans[s].echoes) {
+        out += prefix;
+        out += exact(lidar.beam_angle_deg(e.beam));
+        out += ',' + std::to_string(e.index) + ',' + stats::format_fixed(e.range_m, 4) + ',' +
+               stats::format_fixed(e.intensity, 2) + ',';
+        out += to_string(e.origin);
+        out += '\n';
+      }
+    }
+  }
+  return out;
+}
+
+std::string lidar_summary_csv(const LidarSummary& summary) {
+  std::string out =
+      "active_layers,scans,target_detections,target_detection_rate,target_told_rate,"
+      "intensity_mean,intensity_std,intensity_min,intensity_q1,intensity_median,intensity_q3,"
+      "intensity_max,intensity_whisker_low,intensity_whisker_high,intensity_outliers,"
+      "fog_echo_rate,median_first_echo_range_m,beams_through_fog,sensor_limit\n";
+  for (const LidarStepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.target_intensity;
+    const double numbers[] = {s.target_detection_rate, s.target_told_rate, b.mean, b.std_dev,
+                              b.min, b.q1, b.median, b.q3, b.max, b.whisker_low, b.whisker_high};
+    out += std::to_string(s.active_layers) + ',' + std::to_string(s.scans) + ',' +
+           std::to_string(s.target_detections);
+    for (const double v : numbers) out += ',' + exact(v);
+    out += ',' + joined(b.outliers) + ',' + exact(s.fog_echo_rate) + ',' +
+           exact(s.median_first_echo_range_m) + ',' + std::to_string(s.beams_through_fog) + ',' +
+           (summary.sensor_limit_layers == s.active_layers ? "1" : "0") + '\n';
+  }
+  return out;
+}
+
+nlohmann::json lidar_summary_json(const Lidar& lidar, const LidarSummary& summary) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const LidarStepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.target_intensity;
+    steps.push_back({
+        {"active_layers", s.active_layers},
+        {"scans", s.scans},
+        {"target_detections", s.target_detections},
+        {"target_detection_rate", s.target_detection_rate},
+        {"target_told_rate", s.target_told_rate},
+        {"target_intensity",
+         {{"n", b.n},
+          {"mean", number_or_null(b.mean)},
+          {"std", number_or_null(b.std_dev)},
+          {"min", number_or_null(b.min)},
+          {"q1", number_or_null(b.q1)},
+          {"median", number_or_null(b.median)},
+          {"q3", number_or_null(b.q3)},
+          {"max", number_or_null(b.max)},
+          {"whisker_low", number_or_null(b.whisker_low)},
+          {"whisker_high", number_or_null(b.whisker_high)},
+          {"outliers", b.outliers}}},
+        {"fog_echo_rate", number_or_null(s.fog_echo_rate)},
+        {"median_first_echo_range_m", number_or_null(s.median_first_echo_range_m)},
+        {"beams_through_fog", s.beams_through_fog},
+    });
+  }
+  nlohmann::json layers = nlohmann::json::array();
+  for (std::size_t i = 0; i < lidar.layer_count(); ++i) {
+    layers.push_back({{"start_m", lidar.layer_start_m(i)},
+                      {"end_m", lidar.layer_end_m(i)},
+                      {"extinction_per_m", lidar.layer_extinction_per_m(i)},
+                      {"backscatter_per_m_sr", lidar.layer_backscatter_per_m_sr(i)},
+                      {"lidar_ratio_sr", lidar.layer_backscatter_per_m_sr(i) > 0.0
+                                             ? number_or_null(lidar.layer_extinction_per_m(i) /
+                                                              lidar.layer_backscatter_per_m_sr(i))
+                                             : nlohmann::json(nullptr)}});
+  }
+  return {
+      {"sensor", "lidar"},
+      {"wavelength_m", lidar.params().wavelength_m},
+      {"beams_per_scan", lidar.beam_count()},
+      {"target_beam_angle_deg", lidar.beam_angle_deg(lidar.target_beam())},
+      {"threshold", lidar.threshold()},
+      {"noise_std", lidar.noise_std()},
+      {"clear_weather_margin", clear_margin(lidar)},
+      {"layers", layers},
+      {"steps", steps},
+      {"sensor_limit_layers", summary.sensor_limit_layers
+                                  ? nlohmann::json(*summary.sensor_limit_layers)
+                                  : nlohmann::json(nullptr)},
+      {"sensor_limit_criterion", lidar_sensor_limit_criterion},
+  };
+}
+
+std::string lidar_intensity_boxplot_svg(const Lidar& lidar, const LidarSummary& summary) {
+  const LidarParams& p = lidar.params();
+  std::vector<stats::BoxPlotSeries> series;
+  stats::SvgPlotOptions options;
+  for (std::size_t i = 0; i < summary.steps.size(); ++i) {
+    const LidarStepSummary& s = summary.steps[i];
+    series.push_back({std::to_string(s.active_layers), s.target_intensity, s.target_detection_rate,
+                      layers_label(s.active_layers) + ": target in " +
+                          std::to_string(s.target_detections) + " of " + std::to_string(s.scans) +
+                          " scans"});
+    if (summary.sensor_limit_layers == s.active_layers) options.marked_category = i;
+  }
+  options.title = "Lidar: target intensity against active fog layers (the study's Fig. 6)";
+  options.caption = {
+      "One value per scan from the beam through the target's centre (" +
+          stats::format_number(lidar.beam_angle_deg(lidar.target_beam()), 6) +
+          " deg); a scan without a target echo counts as 0, as the study plots it.",
+      stats::format_number(p.wavelength_m * 1e9, 4) + " nm, pulse " +
+          stats::format_number(p.pulse_width_ns, 4) + " ns FWHM, threshold from " +
+          stats::format_number(p.threshold_range_m, 4) + " m at reflectivity " +
+          stats::format_number(p.threshold_reflectivity, 3) + "; target reflectivity " +
+          stats::format_number(p.target_reflectivity, 3) + " at " +
+          stats::format_number(lidar.target_range_m(), 4) + " m; clear-weather margin " +
+          stats::format_number(clear_margin(lidar), 3) + " x threshold.",
+      "Intensity = " + stats::format_number(p.intensity_scale, 6) +
+          " x peak / threshold (a unit choice), saturating at " +
+          stats::format_number(p.intensity_saturation, 6) + "."};
+  options.x_label = "active fog layers";
+  options.y_label = "target intensity (relative)";
+  options.height_px = 604.0 + 16.0 * static_cast<double>(options.caption.size());
+  options.empty_label = "no scans";
+  options.rate_label = "target detection rate";
+  if (summary.sensor_limit_layers) {
+    options.mark_label = "sensor limit: " + layers_label(*summary.sensor_limit_layers);
+  }
+  return stats::box_plot_svg(series, options);
+}
+
+std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResult>& steps) {
+  const LidarParams& p = lidar.params();
+  // Scene extent: the fog, the target and the background near them, plus a metre of margin.
+  double half_width_m = std::max(0.5 * p.fog_width_m,
+                                 std::abs(p.target_offset_m) + 0.5 * p.target_width_m);
+  const double depth_m = lidar.target_range_m() + 2.0;
+  for (const BackgroundSegment& s : p.background) {
+    if (std::min(s.x0_m, s.x1_m) < depth_m) {
+      half_width_m = std::max({half_width_m, std::abs(s.y0_m), std::abs(s.y1_m)});
+    }
+  }
+  half_width_m = std::min(half_width_m + 1.0, depth_m);
+  const double panel_w = 220.0;
+  const double scale = panel_w / (2.0 * half_width_m);  // px per metre
+  const double panel_h = depth_m * scale;
+  const double left = 50.0, top = 60.0, gap = 20.0;
+  const std::size_t n = std::max<std::size_t>(steps.size(), 1);
+  const double width = left + static_cast<double>(n) * (panel_w + gap) + 10.0;
+  const double height = top + panel_h + 90.0;
+
+  std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + px(width) +
+         "\" height=\"" + px(height) + "\" viewBox=\"0 0 " + px(width) + " " + px(height) +
+         "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += "<text x=\"" + px(left) + "\" y=\"22\" font-size=\"15\">Lidar: one scan per step, top "
+         "view, sensor at the bottom (the study's Fig. 5)</text>\n";
+  svg += "<text x=\"" + px(left) + "\" y=\"40\" fill=\"#444\">First scan of each step; echoes by "
+         "ground-truth origin. Blue bands: active fog layers (dashed: off); grey bar: the "
+         "target (EVT).</text>\n";
+  struct Style {
+    EchoOrigin origin;
+    const char* colour;
+    const char* name;
+  };
+  constexpr Style styles[] = {{EchoOrigin::target, "#d62728", "target"},
+                              {EchoOrigin::fog, "#1f77b4", "fog"},
+                              {EchoOrigin::background, "#555555", "background"},
+                              {EchoOrigin::noise, "#ff7f0e", "noise"}};
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const LidarStepResult& step = steps[i];
+    const double x0 = left + static_cast<double>(i) * (panel_w + gap);
+    // Scene (x forward, y right) to panel pixels: y -> right, x -> up from the bottom.
+    const auto sx = [&](double y_m) { return x0 + (y_m + half_width_m) * scale; };
+    const auto sy = [&](double x_m) { return top + panel_h - x_m * scale; };
+    svg += "<g>\n<rect x=\"" + px(x0) + "\" y=\"" + px(top) + "\" width=\"" + px(panel_w) +
+           "\" height=\"" + px(panel_h) + "\" fill=\"#fafafa\" stroke=\"#999\"/>\n";
+    for (std::size_t l = 0; l < lidar.layer_count(); ++l) {
+      const bool on = l < step.active_layers;
+      const double fog_half = std::min(0.5 * p.fog_width_m, half_width_m);
+      svg += "<rect x=\"" + px(sx(-fog_half)) + "\" y=\"" + px(sy(lidar.layer_end_m(l))) +
+             "\" width=\"" + px(2.0 * fog_half * scale) + "\" height=\"" +
+             px((lidar.layer_end_m(l) - lidar.layer_start_m(l)) * scale) + "\" " +
+             (on ? "fill=\"#cfe3f5\" stroke=\"#9cc3e6\""
+                 : "fill=\"none\" stroke=\"#9cc3e6\" stroke-dasharray=\"4 3\"") +
+             "/>\n";
+    }
+    const double half_target = 0.5 * p.target_width_m;
+    svg += "<rect x=\"" + px(sx(p.target_offset_m - half_target)) + "\" y=\"" +
+           px(sy(lidar.target_range_m()) - 10.0) + "\" width=\"" + px(p.target_width_m * scale) +
+           "\" height=\"8\" fill=\"#999\"><title>target region</title></rect>\n";
+    for (const BackgroundSegment& s : p.background) {
+      svg += "<line x1=\"" + px(sx(s.y0_m)) + "\" y1=\"" + px(sy(s.x0_m)) + "\" x2=\"" +
+             px(sx(s.y1_m)) + "\" y2=\"" + px(sy(s.x1_m)) +
+             "\" stroke=\"#ccc\" stroke-width=\"3\"><title>background segment</title></line>\n";
+    }
+    if (!step.scans.empty()) {
+      for (const LidarEcho& e : step.scans.front().echoes) {
+        const double angle = lidar.beam_angle_deg(e.beam) * degree_rad;
+        const double x_m = e.range_m * std::cos(angle);
+        const double y_m = e.range_m * std::sin(angle);
+        if (x_m < 0.0 || x_m > depth_m || std::abs(y_m) > half_width_m) continue;
+        const char* colour = "#000";
+        for (const Style& style : styles) {
+          if (style.origin == e.origin) colour = style.colour;
+        }
+        svg += "<circle cx=\"" + px(sx(y_m)) + "\" cy=\"" + px(sy(x_m)) +
+               "\" r=\"1.6\" fill=\"" + colour + "\"/>\n";
+      }
+    }
+    svg += "<path d=\"M " + px(sx(0.0)) + " " + px(sy(0.0) - 8.0) + " L " + px(sx(0.0) - 6.0) +
+           " " + px(sy(0.0)) + " L " + px(sx(0.0) + 6.0) + " " + px(sy(0.0)) +
+           " Z\" fill=\"#222\"><title>sensor</title></path>\n";
+    svg += "<text x=\"" + px(x0 + panel_w / 2.0) + "\" y=\"" + px(top + panel_h + 18.0) +
+           "\" text-anchor=\"middle\">" + layers_label(step.active_layers) + "</text>\n</g>\n";
+  }
+  // Range axis on the left, 2 m ticks.
+  for (double x_m = 0.0; x_m <= depth_m + 1e-9; x_m += 2.0) {
+    const double y = top + panel_h - x_m * scale;
+    svg += "<line x1=\"" + px(left - 5.0) + "\" y1=\"" + px(y) + "\" x2=\"" + px(left) +
+           "\" y2=\"" + px(y) + "\" stroke=\"#333\"/>\n";
+    svg += "<text x=\"" + px(left - 8.0) + "\" y=\"" + px(y + 4.0) + "\" text-anchor=\"end\">" +
+           stats::format_number(x_m, 4) + "</text>\n";
+  }
+  svg += "<text transform=\"translate(14 " + px(top + panel_h / 2.0) +
+         ") rotate(-90)\" text-anchor=\"middle\">range along boresight (m)</text>\n";
+  double legend_x = left;
+  const double legend_y = top + panel_h + 45.0;
+  for (const Style& style : styles) {
+    svg += "<circle cx=\"" + px(legend_x + 5.0) + "\" cy=\"" + px(legend_y - 4.0) +
+           "\" r=\"4\" fill=\"" + style.colour + "\"/>\n";
+    svg += "<text x=\"" + px(legend_x + 14.0) + "\" y=\"" + px(legend_y) + "\">" + style.name +
+           " echo</text>\n";
+    legend_x += 120.0;
+  }
+  svg += "<text x=\"" + px(left) + "\" y=\"" + px(legend_y + 22.0) +
+         "\" fill=\"#444\">Panel width " + stats::format_number(2.0 * half_width_m, 4) +
+         " m (lateral, sensor's right to the right); scale 1:1.</text>\n";
+  svg += "</svg>\n";
+  return svg;
+}
+
+std::string lidar_summary_table(const LidarSummary& summary) {
+  std::ostringstream out;
+  char line[256];
+  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %10s\n";
+  std::snprintf(line, sizeof line, header, "layers", "scans", "target", "told", "median", "q1",
+                "q3", "max", "fog echo", "1st echo");
+  out << line;
+  std::snprintf(line, sizeof line, header, "", "", "det. %", "%", "intens.", "intens.", "intens.",
+                "intens.", "rate %", "median m");
+  out << line;
+  for (const LidarStepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.target_intensity;
+    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f %9.1f %10.3f\n",
+                  s.active_layers, s.scans, 100.0 * s.target_detection_rate,
+                  100.0 * s.target_told_rate, b.median, b.q1, b.q3, b.max,
+                  100.0 * s.fog_echo_rate, s.median_first_echo_range_m);
+    out << line;
+  }
+  out << "target det. %: scans with a target-origin echo in the beam through the target's centre;\n"
+         "told %: and no fog echo there at least as intense; intensity: that echo's, 0 when\n"
+         "missing (the study's Fig. 6); fog echo rate: beams through the fog with a fog echo;\n"
+         "1st echo: median first-echo range of the beams through the fog\n";
+  out << "lidar sensor limit: ";
+  if (summary.sensor_limit_layers) out << layers_label(*summary.sensor_limit_layers) << "\n";
+  else out << "not reached\n";
+  return out.str();
+}
+
+std::size_t lidar_memory_bytes(const LidarParams& params, std::size_t steps, unsigned threads) {
+  const std::size_t beams = params.beam_count();
+  const std::size_t scans = steps * params.scans_per_step;
+  // Per scan: at most max_echoes echoes and one first-echo range per beam, plus the struct.
+  const std::size_t per_scan = beams * (params.max_echoes * sizeof(LidarEcho) + sizeof(double)) +
+                               sizeof(LidarScan);
+  const std::size_t samples = static_cast<std::size_t>(
+                                  2.0 * params.max_range_m / speed_of_light_m_per_s /
+                                  (params.sample_interval_ns * 1e-9)) + 2;
+  // Per thread: four real waveforms and the complex noise buffer.
+  const std::size_t per_thread = 6 * samples * sizeof(double);
+  // lidar_echoes.csv: at most ~60 characters a row; the SVGs and the summary are small.
+  const std::size_t files = scans * beams * params.max_echoes * 60 + (1u << 20);
+  return scans * per_scan + threads * per_thread + files;
+}
+
+}  // namespace fogradar::lidar
