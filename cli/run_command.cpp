@@ -131,8 +131,7 @@ void run(const RunOptions& options) {
                    [&] { return signals.stop().load(); })) {
     signals.throw_interrupted(dir);
   }
-  if (scenario.runs(SensorId::radar)) std::cout << "radar\n" << experiment::summary_table(summary) << '\n';
-  std::cout << experiment::benchmark_table(summary) << "results in " << dir.string() << "/\n";
+  std::cout << experiment::sensor_tables(summary) << experiment::benchmark_table(summary) << "results in " << dir.string() << "/\n";
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <sstream>
 #include <thread>
 
+#include "fogradar/camera/camera.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/lidar/outputs.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/radar/scene.hpp"
 
@@ -43,10 +45,17 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
   const std::size_t samples = scenario.radar.samples_per_chirp,
                     chirps = scenario.radar.chirps_per_frame;
   const std::size_t cells = samples * chirps;
-  const std::size_t measurements =
-      (scenario.experiment.max_active_layers + 1) * scenario.experiment.measurements_per_step;
+  const std::size_t steps = scenario.experiment.max_active_layers + 1;
+  const bool radar = scenario.runs(SensorId::radar);
+  const std::size_t measurements = radar ? steps * scenario.experiment.measurements_per_step : 0;
+  // One pool takes every sensor's items (runner.cpp): the thread count follows from all of them.
+  std::size_t items = measurements;
+  if (scenario.runs(SensorId::lidar)) items += steps * scenario.lidar.scans_per_step;
+  if (scenario.runs(SensorId::camera)) items += steps * scenario.camera.frames_per_step;
   MemoryEstimate e;
-  e.threads = worker_threads(requested_threads, measurements);
+  e.threads = worker_threads(requested_threads, items);
+  if (scenario.runs(SensorId::lidar)) e.sensor_bytes += lidar::lidar_memory_bytes(scenario.lidar, steps, e.threads);
+  if (scenario.runs(SensorId::camera)) e.sensor_bytes += camera::memory_bytes(scenario.camera, steps);
 
   // Per thread (MeasurementWorkspace): the complex frame and the chirps x samples detection mask.
   const std::size_t frame = cells * complex_bytes + cells * sizeof(std::uint8_t);
@@ -66,7 +75,7 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
   // bin of the unambiguous range; twice for the vector's growth.
   const std::size_t tones =
       2 * sizeof(radar::Tone) * (scenario.clutter_scatterers_per_bin * samples + 64);
-  e.per_thread_bytes = frame + cfar + estimation + doppler_block + tones;
+  e.per_thread_bytes = radar ? frame + cfar + estimation + doppler_block + tones : 0;
 
   // Shared: the windows (range, Doppler, range pairs), both window spectra (16 x oversampled
   // complex tables, OriginClassifier) and the FFT plans (about two complex twiddles per point and
@@ -99,6 +108,7 @@ void require_memory_within(const Scenario& scenario, unsigned requested_threads,
       << " workers) needs an estimated " << mib(estimate.total_bytes()) << " MiB ("
       << estimate.threads << " x " << mib(estimate.per_thread_bytes) << " MiB frame workspace + "
       << mib(estimate.records_bytes) << " MiB per-measurement records + "
+      << mib(estimate.sensor_bytes) << " MiB for the lidar and camera + "
       << mib(estimate.shared_bytes) << " MiB shared): more than the limit of " << mib(limit_bytes)
       << " MiB (--memory-limit-mib; default half the physical memory); reduce these";
   throw InvalidParameter("radar.samples_per_chirp", out.str());

@@ -19,7 +19,9 @@
 #include <variant>
 #include <vector>
 
+#include "fogradar/camera/camera.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/lidar/outputs.hpp"
 #include "fogradar/stats/format.hpp"
 #include "fogradar/stats/svg_plot.hpp"
 
@@ -81,9 +83,7 @@ bool sync_directory(const fs::path& path) {
 }
 
 bool is_result_file(const fs::directory_entry& entry) {
-  const std::string name = entry.path().filename().string();
-  const std::vector<std::string>& names = result_file_names();
-  return std::find(names.begin(), names.end(), name) != names.end() &&
+  return is_result_file_name(entry.path().filename().string()) &&
          entry.symlink_status().type() == fs::file_type::regular;
 }
 
@@ -315,6 +315,21 @@ const std::vector<std::string>& result_file_names() {
   return names;
 }
 
+bool is_result_file_name(const std::string& name) {
+  const std::vector<std::string>& names = result_file_names();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return true;
+  // camera_roi_<step>.pgm, one per step when camera.write_roi_images.
+  const std::string prefix = "camera_roi_", suffix = ".pgm";
+  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return false;
+  }
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return digits.size() <= 7 && std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::string camera_roi_name(std::size_t step) { return "camera_roi_" + std::to_string(step) + ".pgm"; }
+
 std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary) {
   std::vector<SensorVerdict> verdicts;
   for (SensorId sensor : summary.sensors) {
@@ -332,10 +347,39 @@ std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary) {
       } else {
         v.margin = "no target detection at the last step";
       }
+    } else if (sensor == SensorId::lidar && summary.lidar) {
+      v.criterion = lidar::lidar_sensor_limit_criterion;
+      v.sensor_limit_layers = summary.lidar->sensor_limit_layers;
+      if (!v.sensor_limit_layers && !summary.lidar->steps.empty()) {
+        const lidar::LidarStepSummary& last = summary.lidar->steps.back();
+        v.margin = "target told from fog in " + stats::format_fixed(100.0 * last.target_told_rate, 1) +
+                   " % of the scans at " + counted(last.active_layers, "layer") + " (fails below 50 %)";
+      }
+    } else if (sensor == SensorId::camera && summary.camera) {
+      v.criterion = summary.camera->criterion;
+      v.sensor_limit_layers = summary.camera->sensor_limit_layers;
+      if (!v.sensor_limit_layers && !summary.camera->steps.empty()) {
+        const camera::CameraStepSummary& last = summary.camera->steps.back();
+        v.margin = "target contrast " + stats::format_fixed(last.target_contrast, 3) + " (" +
+                   stats::format_fixed(100.0 * last.relative_contrast, 1) + " % of clear weather) at " +
+                   counted(last.active_layers, "layer");
+      }
     }
     verdicts.push_back(std::move(v));
   }
   return verdicts;
+}
+
+std::string sensor_tables(const ExperimentSummary& summary) {
+  std::string out;
+  for (SensorId sensor : summary.sensors) {
+    out += std::string(sensor_name(sensor)) + '\n';
+    if (sensor == SensorId::radar) out += summary_table(summary);
+    if (sensor == SensorId::lidar && summary.lidar) out += lidar::lidar_summary_table(*summary.lidar);
+    if (sensor == SensorId::camera && summary.camera) out += camera::step_table(*summary.camera);
+    out += '\n';
+  }
+  return out;
 }
 
 std::string benchmark_table(const ExperimentSummary& summary) {
@@ -388,6 +432,11 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
         {"sensor_limit_layers", v.sensor_limit_layers ? nlohmann::json(*v.sensor_limit_layers) : nlohmann::json(nullptr)},
         {"criterion", v.criterion},
         {"margin", v.margin}};
+    if (v.sensor == SensorId::lidar && summary.lidar && summary.lidar_sensor) {
+      entry["summary"] = lidar::lidar_summary_json(*summary.lidar_sensor, *summary.lidar);
+    } else if (v.sensor == SensorId::camera && summary.camera) {
+      entry["summary"] = camera::summary_json(*summary.camera);
+    }
     sensors[std::string(sensor_name(v.sensor))] = std::move(entry);
   }
   nlohmann::json out = {
@@ -490,6 +539,28 @@ std::vector<std::pair<std::string, std::string>> result_files(const Scenario& sc
   files.emplace_back("summary.json", summary_json(scenario, summary));
   if (scenario.runs(SensorId::radar)) files.emplace_back("rcs_boxplot.svg", rcs_boxplot_svg(scenario, summary));
   files.emplace_back("scenario.toml", to_toml(scenario));
+  if (result.lidar && summary.lidar) {
+    const lidar::Lidar& sensor = *result.lidar;
+    files.emplace_back("lidar_echoes.csv", lidar::lidar_echoes_csv(sensor, result.lidar_steps));
+    files.emplace_back("lidar_summary.csv", lidar::lidar_summary_csv(*summary.lidar));
+    files.emplace_back("lidar_summary.json", lidar::lidar_summary_json(sensor, *summary.lidar).dump(2) + '\n');
+    files.emplace_back("lidar_intensity_boxplot.svg", lidar::lidar_intensity_boxplot_svg(sensor, *summary.lidar));
+    files.emplace_back("lidar_scans.svg", lidar::lidar_scans_svg(sensor, result.lidar_steps));
+  }
+  if (result.camera && summary.camera) {
+    files.emplace_back("camera_histograms.csv", camera::histograms_csv(*summary.camera));
+    files.emplace_back("camera_summary.csv", camera::summary_csv(*summary.camera));
+    files.emplace_back("camera_summary.json", camera::summary_json(*summary.camera).dump(2) + '\n');
+    files.emplace_back("camera_histograms.svg", camera::histograms_svg(*summary.camera));
+    if (scenario.camera.write_roi_images) {
+      for (const camera::CameraStepResult& step : result.camera_steps) {
+        if (step.frames.empty() || step.frames.front().pixels.empty()) continue;
+        files.emplace_back(camera_roi_name(step.active_layers),
+                           camera::roi_pgm(scenario.camera, step.frames.front()));
+      }
+    }
+  }
+  files.emplace_back("benchmark.svg", benchmark_svg(scenario, summary));
   return files;
 }
 
@@ -588,7 +659,9 @@ bool OutputDirectory::replace(const std::vector<std::pair<std::string, std::stri
   // that left it empty (only a file put into `dir` in the instant of the swap would keep it).
   if (!staging_.empty()) {
     std::error_code ignored;
-    for (const std::string& name : result_file_names()) fs::remove(staging_ / name, ignored);
+    for (const fs::directory_entry& entry : fs::directory_iterator(staging_, ignored)) {
+      if (is_result_file(entry)) fs::remove(entry.path(), ignored);
+    }
     fs::remove(staging_, ignored);
   }
   staging_.clear();

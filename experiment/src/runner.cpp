@@ -136,6 +136,46 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
                     }});
   }
 
+  std::vector<lidar::FogFluctuationSeries> lidar_fog;
+  if (scenario.runs(SensorId::lidar)) {
+    result.lidar = std::make_shared<const lidar::Lidar>(scenario.lidar, chamber_spec, table);
+    const lidar::Lidar& sensor = *result.lidar;
+    const std::size_t per_step = scenario.lidar.scans_per_step;
+    result.lidar_steps.resize(steps);
+    for (std::size_t k = 0; k < steps; ++k) {
+      result.lidar_steps[k].active_layers = k;
+      result.lidar_steps[k].scans.resize(per_step);
+      // The step's scan-to-scan fog series, from the stream index the lidar reserves for it.
+      lidar_fog.push_back(sensor.fog_fluctuation(
+          sensor_stream(scenario.experiment.seed, SensorId::lidar, k, sensor.fog_series_index())));
+    }
+    work.push_back({per_step, [&] {
+                      return [&](std::size_t k, std::size_t i) {
+                        RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::lidar, k, i);
+                        result.lidar_steps[k].scans[i] = sensor.measure(active[k], lidar_fog[k].scan(i), rng);
+                      };
+                    }});
+  }
+
+  if (scenario.runs(SensorId::camera)) {
+    result.camera = std::make_shared<const camera::Camera>(scenario.camera, chamber_spec, table);
+    const camera::Camera& sensor = *result.camera;
+    const std::size_t per_step = scenario.camera.frames_per_step;
+    result.camera_steps.resize(steps);
+    for (std::size_t k = 0; k < steps; ++k) {
+      result.camera_steps[k].active_layers = k;
+      // The band's optics and the exposure: once per step, shared by its frames.
+      result.camera_steps[k].optics = sensor.step_optics(active[k]);
+      result.camera_steps[k].frames.resize(per_step);
+    }
+    work.push_back({per_step, [&] {
+                      return [&](std::size_t k, std::size_t i) {
+                        RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::camera, k, i);
+                        result.camera_steps[k].frames[i] = sensor.frame(result.camera_steps[k].optics, rng);
+                      };
+                    }});
+  }
+
   run_items(work, steps, options);
   return result;
 }

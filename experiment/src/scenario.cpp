@@ -55,6 +55,9 @@ class Section {
     table_ = node->as_table();
     if (table_ == nullptr) fail(*node, path_, "[" + path_ + "] must be a table");
   }
+  // One table of an array of tables, named `path` ("lidar.background[2]").
+  Section(const toml::table* table, std::string path, std::string_view source, KeyLines& lines)
+      : table_(table), path_(std::move(path)), source_(source), lines_(lines) {}
 
   void read(std::string_view key, double& out) {
     if (const toml::node* node = find(key)) {
@@ -374,6 +377,108 @@ void read_experiment(const toml::table& root, std::string_view source, KeyLines&
   s.reject_unknown();
 }
 
+void read_lidar_background(Section& lidar_section, std::string_view source, KeyLines& lines,
+                           std::vector<lidar::BackgroundSegment>& background) {
+  const toml::node* node = lidar_section.node("background");
+  if (node == nullptr) return;
+  const toml::array* array = node->as_array();
+  const std::string wanted = "lidar.background: must be an array of tables [[lidar.background]] with keys "
+                             "x0_m, y0_m, x1_m, y1_m, reflectivity";
+  if (array == nullptr) lidar_section.fail_at(*node, "background", wanted);
+  background.clear();
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::table* table = (*array)[i].as_table();
+    if (table == nullptr) lidar_section.fail_at((*array)[i], "background", wanted);
+    Section s(table, "lidar.background[" + std::to_string(i) + "]", source, lines);
+    lidar::BackgroundSegment segment;
+    s.read("x0_m", segment.x0_m);
+    s.read("y0_m", segment.y0_m);
+    s.read("x1_m", segment.x1_m);
+    s.read("y1_m", segment.y1_m);
+    s.read("reflectivity", segment.reflectivity);
+    s.reject_unknown();
+    background.push_back(segment);
+  }
+}
+
+void read_lidar(const toml::table& root, std::string_view source, KeyLines& lines, lidar::LidarParams& l) {
+  Section s(root, "lidar", source, lines);
+  s.read("wavelength_m", l.wavelength_m);
+  s.read("field_of_view_deg", l.field_of_view_deg);
+  s.read("angular_step_deg", l.angular_step_deg);
+  s.read("scan_rate_hz", l.scan_rate_hz);
+  s.read("scans_per_step", l.scans_per_step, 1, 100000);
+  s.read("min_range_m", l.min_range_m);
+  s.read("max_range_m", l.max_range_m);
+  s.read("pulse_width_ns", l.pulse_width_ns);
+  s.read("sample_interval_ns", l.sample_interval_ns);
+  s.read("overlap_range_m", l.overlap_range_m);
+  s.read("threshold_range_m", l.threshold_range_m);
+  s.read("threshold_reflectivity", l.threshold_reflectivity);
+  s.read("false_alarm_probability", l.false_alarm_probability);
+  s.read("max_echoes", l.max_echoes, 1, 8);
+  s.read("min_echo_separation_m", l.min_echo_separation_m);
+  s.read("intensity_scale", l.intensity_scale);
+  s.read("intensity_saturation", l.intensity_saturation);
+  s.read("target_width_m", l.target_width_m);
+  s.read("target_offset_m", l.target_offset_m);
+  s.read("target_reflectivity", l.target_reflectivity);
+  s.read("fog_width_m", l.fog_width_m);
+  read_lidar_background(s, source, lines, l.background);
+  s.reject_unknown({"fog_fluctuation"});
+
+  Section f(root, "lidar.fog_fluctuation", source, lines);
+  f.read("log_std", l.fog_fluctuation.log_std);
+  f.read("correlation_time_s", l.fog_fluctuation.correlation_time_s);
+  f.reject_unknown();
+}
+
+void read_camera_region(const toml::table& root, const std::string& path, std::string_view source,
+                        KeyLines& lines, camera::RegionParams& region) {
+  Section s(root, path, source, lines);
+  s.read("median_reflectance", region.median_reflectance);
+  s.read("log_sigma", region.log_sigma);
+  s.reject_unknown();
+}
+
+void read_camera(const toml::table& root, std::string_view source, KeyLines& lines, camera::CameraParams& c) {
+  Section s(root, "camera", source, lines);
+  std::optional<std::string> band, transfer;
+  s.read("band", band);
+  if (band) c.band = camera::parse_band(*band, "camera.band");
+  s.read("wavelength_nm", c.wavelength_nm);
+  s.read("transfer", transfer);
+  if (transfer) c.transfer = camera::parse_transfer_curve(*transfer, "camera.transfer");
+  s.read("gamma", c.gamma);
+  s.read("frames_per_step", c.frames_per_step, 1, 100000);
+  s.read("contrast_threshold", c.contrast_threshold);
+  s.read("write_roi_images", c.write_roi_images);
+  s.reject_unknown({"exposure", "noise", "roi"});
+
+  Section e(root, "camera.exposure", source, lines);
+  std::optional<std::string> mode;
+  e.read("mode", mode);
+  if (mode) c.exposure.mode = camera::parse_exposure_mode(*mode, "camera.exposure.mode");
+  e.read("ambient_level", c.exposure.ambient_level);
+  e.read("auto_target_grey", c.exposure.auto_target_grey);
+  e.reject_unknown();
+
+  Section n(root, "camera.noise", source, lines);
+  n.read("enabled", c.noise.enabled);
+  n.read("full_well_electrons", c.noise.full_well_electrons);
+  n.read("read_noise_electrons", c.noise.read_noise_electrons);
+  n.reject_unknown();
+
+  Section r(root, "camera.roi", source, lines);
+  r.read("width_px", c.roi.width_px, 8, 4096);
+  r.read("height_px", c.roi.height_px, 8, 4096);
+  r.read("cell_px", c.roi.cell_px, 2, 2048, "with 2 x camera.roi.cell_px <= camera.roi.width_px and camera.roi.height_px");
+  r.read("target_fraction", c.roi.target_fraction);
+  r.reject_unknown({"target", "background"});
+  read_camera_region(root, "camera.roi.target", source, lines, c.roi.target);
+  read_camera_region(root, "camera.roi.background", source, lines, c.roi.background);
+}
+
 // Validation errors name library fields; the user wrote scenario keys.
 std::string scenario_key(const std::string& field) {
   static const std::pair<std::string_view, std::string_view> renames[] = {
@@ -498,6 +603,8 @@ void Scenario::validate() const {
                   "an integer in [0, " + std::to_string(max_seed) + "]");
   }
   chamber_spec().validate();
+  lidar.validate();
+  camera.validate();
   const radar::Scene target_scene = scene();
   target_scene.validate();
   // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps (docs/radar.md).
@@ -553,12 +660,13 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
   } catch (const toml::parse_error& e) {
     throw_at(source_name, e.source().begin.line, "toml", std::string("malformed TOML: ") + std::string(e.description()));
   }
-  static const std::set<std::string_view> sections = {"radar", "processing", "target", "chamber", "fog", "experiment"};
+  static const std::set<std::string_view> sections = {"radar", "processing", "target", "chamber",
+                                                      "fog",   "experiment", "lidar",  "camera"};
   for (const auto& [key, node] : root) {
     if (!sections.count(key.str())) {
       throw_at(source_name, node.source().begin.line, std::string(key.str()),
                "unknown section or key '" + std::string(key.str()) +
-                   "' (sections: radar, processing, target, chamber, fog, experiment)");
+                   "' (sections: radar, processing, target, chamber, fog, experiment, lidar, camera)");
     }
   }
 
@@ -570,6 +678,8 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     read_chamber(root, source_name, lines, s.chamber);
     read_fog(root, source_name, lines, s.fog, s.clutter_scatterers_per_bin);
     read_experiment(root, source_name, lines, s.experiment);
+    read_lidar(root, source_name, lines, s.lidar);
+    read_camera(root, source_name, lines, s.camera);
     s.validate();
   } catch (const InvalidParameter& e) {
     // A reader's error already names its key and line; it may name keys read before it.
@@ -735,6 +845,72 @@ std::string to_toml(const Scenario& s) {
       << "measurements_per_step = " << s.experiment.measurements_per_step << '\n'
       << "max_active_layers = " << s.experiment.max_active_layers << '\n'
       << "seed = " << s.experiment.seed << '\n';
+
+  const lidar::LidarParams& l = s.lidar;
+  out << "\n[lidar]\n"
+      << "wavelength_m = " << num(l.wavelength_m) << '\n'
+      << "field_of_view_deg = " << num(l.field_of_view_deg) << '\n'
+      << "angular_step_deg = " << num(l.angular_step_deg) << '\n'
+      << "scan_rate_hz = " << num(l.scan_rate_hz) << '\n'
+      << "scans_per_step = " << l.scans_per_step << '\n'
+      << "min_range_m = " << num(l.min_range_m) << '\n'
+      << "max_range_m = " << num(l.max_range_m) << '\n'
+      << "pulse_width_ns = " << num(l.pulse_width_ns) << '\n'
+      << "sample_interval_ns = " << num(l.sample_interval_ns) << '\n'
+      << "overlap_range_m = " << num(l.overlap_range_m) << '\n'
+      << "threshold_range_m = " << num(l.threshold_range_m) << '\n'
+      << "threshold_reflectivity = " << num(l.threshold_reflectivity) << '\n'
+      << "false_alarm_probability = " << num(l.false_alarm_probability) << '\n'
+      << "max_echoes = " << l.max_echoes << '\n'
+      << "min_echo_separation_m = " << num(l.min_echo_separation_m) << '\n'
+      << "intensity_scale = " << num(l.intensity_scale) << '\n'
+      << "intensity_saturation = " << num(l.intensity_saturation) << '\n'
+      << "target_width_m = " << num(l.target_width_m) << '\n'
+      << "target_offset_m = " << num(l.target_offset_m) << '\n'
+      << "target_reflectivity = " << num(l.target_reflectivity) << '\n'
+      << "fog_width_m = " << num(l.fog_width_m) << '\n';
+  if (l.background.empty()) out << "background = []\n";
+  out << "\n[lidar.fog_fluctuation]\n"
+      << "log_std = " << num(l.fog_fluctuation.log_std) << '\n'
+      << "correlation_time_s = " << num(l.fog_fluctuation.correlation_time_s) << '\n';
+  for (const lidar::BackgroundSegment& b : l.background) {
+    out << "\n[[lidar.background]]\n"
+        << "x0_m = " << num(b.x0_m) << '\n'
+        << "y0_m = " << num(b.y0_m) << '\n'
+        << "x1_m = " << num(b.x1_m) << '\n'
+        << "y1_m = " << num(b.y1_m) << '\n'
+        << "reflectivity = " << num(b.reflectivity) << '\n';
+  }
+
+  const camera::CameraParams& c = s.camera;
+  const auto region = [&](const char* name, const camera::RegionParams& p) {
+    out << "\n[camera.roi." << name << "]\n"
+        << "median_reflectance = " << num(p.median_reflectance) << '\n'
+        << "log_sigma = " << num(p.log_sigma) << '\n';
+  };
+  out << "\n[camera]\n"
+      << "band = " << str(camera::to_string(c.band)) << '\n'
+      << "wavelength_nm = " << num(c.wavelength_nm) << '\n'
+      << "transfer = " << str(camera::to_string(c.transfer)) << '\n'
+      << "gamma = " << num(c.gamma) << '\n'
+      << "frames_per_step = " << c.frames_per_step << '\n'
+      << "contrast_threshold = " << num(c.contrast_threshold) << '\n'
+      << "write_roi_images = " << (c.write_roi_images ? "true" : "false") << "\n\n"
+      << "[camera.exposure]\n"
+      << "mode = " << str(camera::to_string(c.exposure.mode)) << '\n'
+      << "ambient_level = " << num(c.exposure.ambient_level) << '\n'
+      << "auto_target_grey = " << num(c.exposure.auto_target_grey) << "\n\n"
+      << "[camera.noise]\n"
+      << "enabled = " << (c.noise.enabled ? "true" : "false") << '\n'
+      << "full_well_electrons = " << num(c.noise.full_well_electrons) << '\n'
+      << "read_noise_electrons = " << num(c.noise.read_noise_electrons) << "\n\n"
+      << "[camera.roi]\n"
+      << "width_px = " << c.roi.width_px << '\n'
+      << "height_px = " << c.roi.height_px << '\n'
+      << "cell_px = " << c.roi.cell_px << '\n'
+      << "target_fraction = " << num(c.roi.target_fraction) << '\n';
+  region("target", c.roi.target);
+  region("background", c.roi.background);
   return out.str();
 }
 

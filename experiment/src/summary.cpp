@@ -74,6 +74,11 @@ ExperimentSummary summarize(const ExperimentResult& result) {
   if (!summary.steps.empty() && !std::isnan(summary.steps.back().median_snr_db)) {
     summary.attenuation_margin_db = summary.steps.back().median_snr_db - result.cfar_threshold_db;
   }
+  if (result.lidar) {
+    summary.lidar = lidar::summarize(result.lidar->params(), result.lidar_steps);
+    summary.lidar_sensor = result.lidar;
+  }
+  if (result.camera) summary.camera = camera::summarize(result.camera->params(), result.camera_steps);
   return summary;
 }
 

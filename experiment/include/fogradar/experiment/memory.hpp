@@ -18,13 +18,16 @@ struct MemoryEstimate {
   std::size_t per_thread_bytes = 0;  // frame, detection mask, CFAR and estimation workspaces, tones
   std::size_t shared_bytes = 0;      // windows, window spectra, FFT plans, process baseline
   std::size_t records_bytes = 0;     // one MeasurementRecord per measurement
+  // The lidar's and the camera's own estimates (lidar_memory_bytes, camera::memory_bytes), threads
+  // included, when they run.
+  std::size_t sensor_bytes = 0;
   std::size_t total_bytes() const {
-    return threads * per_thread_bytes + shared_bytes + records_bytes;
+    return threads * per_thread_bytes + shared_bytes + records_bytes + sensor_bytes;
   }
 };
 
-// The threads run_experiment starts: `requested` (0: all hardware threads), at most one per
-// measurement.
+// The threads run_experiment starts: `requested` (0: all hardware threads), at most one per item
+// (radar measurements, lidar scans and camera frames together).
 unsigned worker_threads(unsigned requested, std::size_t measurements);
 
 // Estimate for `scenario` run with `requested_threads` (as RunOptions::threads). The scenario must

@@ -35,12 +35,17 @@ struct SensorVerdict {
   std::string margin;  // when the limit is not reached: the sensor's margin at the last step
 };
 std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary);
+// Every sensor's per-step table under its name, in the order the sensors ran (what `fogradar run`
+// prints).
+std::string sensor_tables(const ExperimentSummary& summary);
 // The benchmark lines `fogradar run` prints after the sensors' tables.
 std::string benchmark_table(const ExperimentSummary& summary);
 
-// Every name a result set can hold (of every sensor); an output directory holding only these is an
-// earlier result set.
+// Every fixed name a result set can hold (of every sensor); with camera_roi_<step>.pgm (ROI images,
+// camera.write_roi_images) these are the result file names, and an output directory holding only
+// result files is an earlier result set.
 const std::vector<std::string>& result_file_names();
+bool is_result_file_name(const std::string& name);
 
 std::string samples_csv(const ExperimentResult& result);
 std::string summary_csv(const ExperimentSummary& summary);
@@ -48,7 +53,11 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
 // RCS box plots per step with the detection rate under them, the sensor limit marked, and title and
 // caption from the scenario (target, chamber, fog as given, droplets, CFAR, n, seed).
 std::string rcs_boxplot_svg(const Scenario& scenario, const ExperimentSummary& summary);
-// The per-layer table printed by `fogradar run`.
+// benchmark.svg: per sensor that ran, its metric relative to clear weather (radar: median target RCS
+// as a power ratio; lidar: median target intensity, a missing target counted as 0; camera: target
+// contrast) against active layers, each sensor's limit marked by a dashed line.
+std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& summary);
+// The radar's per-layer table printed by `fogradar run`.
 std::string summary_table(const ExperimentSummary& summary);
 
 // The result files of the scenario's sensors as {name, content}.

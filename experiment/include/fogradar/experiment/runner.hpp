@@ -14,7 +14,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include <memory>
+
+#include "fogradar/camera/camera.hpp"
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/lidar/lidar.hpp"
 #include "fogradar/radar/origin.hpp"
 
 namespace fogradar::experiment {
@@ -52,6 +56,14 @@ struct ExperimentResult {
   // cells; a detection is an 8-connected object of cells, so noise detections per frame come out
   // at most this (fewer where the window correlates neighbouring cells).
   double expected_false_alarm_cells_per_frame = 0.0;
+
+  // The lidar's part when it ran: the sensor as built for the run (its result files need its
+  // geometry and derived figures) and one result per step, scans by index.
+  std::shared_ptr<const lidar::Lidar> lidar;
+  std::vector<lidar::LidarStepResult> lidar_steps;
+  // The camera's part when it ran: the sensor and one result per step, frames by index.
+  std::shared_ptr<const camera::Camera> camera;
+  std::vector<camera::CameraStepResult> camera_steps;
 };
 
 struct RunOptions {

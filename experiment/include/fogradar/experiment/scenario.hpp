@@ -11,7 +11,9 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/camera/params.hpp"
 #include "fogradar/core/random.hpp"
+#include "fogradar/lidar/params.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/scene.hpp"
@@ -59,6 +61,8 @@ struct Scenario {
   propagation::FogSpec fog;
   unsigned clutter_scatterers_per_bin = 4;
   ExperimentSpec experiment;
+  lidar::LidarParams lidar;    // [lidar], keys = field names (docs/lidar.md)
+  camera::CameraParams camera;  // [camera], keys = field names (docs/camera.md)
 
   // Throws InvalidParameter naming the scenario key (e.g. "processing.cfar.training_cells").
   void validate() const;

@@ -7,7 +7,9 @@
 #include <optional>
 #include <vector>
 
+#include "fogradar/camera/camera.hpp"
 #include "fogradar/experiment/runner.hpp"
+#include "fogradar/lidar/summary.hpp"
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/median_interval.hpp"
 
@@ -46,6 +48,10 @@ struct ExperimentSummary {
   // much more two-way attenuation the median echo could take before it drops below the threshold.
   std::optional<double> attenuation_margin_db;
   double expected_false_alarm_cells_per_frame = 0.0;  // ExperimentResult's design figure
+
+  std::optional<lidar::LidarSummary> lidar;    // when the lidar ran
+  std::shared_ptr<const lidar::Lidar> lidar_sensor;  // the run's lidar: its files' derived figures
+  std::optional<camera::CameraSummary> camera;  // when the camera ran
 };
 
 inline constexpr double sensor_limit_success_fraction = 0.5;
