@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "fogradar/core/constants.hpp"
@@ -127,10 +128,12 @@ DetectedEchoes extract_echoes(std::span<const double> waveform, const EchoDetect
       if (!(v >= threshold)) continue;
       inside = true;
       const double before = k == 0 ? 0.0 : waveform[k - 1];
-      // Sample position of the crossing, linear between the samples around it.
-      const double position =
-          k == 0 ? 0.0 : static_cast<double>(k) - 1.0 + (threshold - before) / (v - before);
-      const double range_m = position * dr + detector.range_offset_m;
+      // Range of the crossing, linear between the samples around it; a record that starts above
+      // the threshold has no leading edge in it and counts as nearer than any min_range_m.
+      const double range_m =
+          k == 0 ? -std::numeric_limits<double>::infinity()
+                 : (static_cast<double>(k) - 1.0 + (threshold - before) / (v - before)) * dr +
+                       detector.range_offset_m;
       if (any && range_m - last_start_m < detector.min_separation_m) {
         // Merges into the previous echo (recording stays as it was for that echo).
       } else {

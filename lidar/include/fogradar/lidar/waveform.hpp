@@ -84,7 +84,7 @@ struct DetectedEchoes {
 // Echoes of a (noisy) waveform in range order: each upward threshold crossing starts an echo that
 // lasts until the signal falls below the threshold again; a crossing within min_separation_m of the
 // previous echo's range merges into it (the larger peak is kept); echoes closer than min_range_m
-// are dropped; at most max_echoes (<= capacity) are kept, the nearest.
+// are dropped, as is one already above the threshold at the record's first sample; at most max_echoes (<= capacity) are kept, the nearest.
 DetectedEchoes extract_echoes(std::span<const double> waveform, const EchoDetector& detector);
 
 }  // namespace fogradar::lidar

@@ -1,0 +1,305 @@
+// The lidar as a sensor: the threshold's false-alarm rate, the fog fluctuation series, determinism,
+// every invalid key refused by name, result files, the memory estimate, and the paper scenario's
+// Fig. 5 / Fig. 6 pattern.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fogradar/core/random.hpp"
+#include "fogradar/lidar/lidar.hpp"
+#include "fogradar/lidar/outputs.hpp"
+#include "fogradar/lidar/summary.hpp"
+#include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/water.hpp"
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
+
+namespace fogradar::lidar {
+namespace {
+
+constexpr double degree_rad = 3.14159265358979323846 / 180.0;
+
+const propagation::SegelsteinTable& table() {
+  static const propagation::SegelsteinTable instance;
+  return instance;
+}
+
+// An empty scene: no target, no background; with no active layer every beam is noise only.
+LidarParams empty_scene() {
+  LidarParams params;
+  params.target_width_m = 0.0;
+  params.background.clear();
+  return params;
+}
+
+// Noise alone: every sample is N(0, sigma^2) with sigma = threshold / z_(1 - p), so a sample exceeds
+// the threshold with probability p and starts an echo (an upward crossing) with probability
+// p (1 - p) (p at the first sample). With no merging (separation 0), no minimum range and 8 echoes
+// allowed, the expected echo count per beam is p + (N - 1) p (1 - p). p = 1e-3, N = 401 samples,
+// 20 scans x 361 beams: ~2900 expected echoes; the count is a sum of nearly independent rare events
+// (variance ~ mean), tolerance 5 standard deviations.
+TEST(LidarSensor, FalseAlarmRateOnNoiseAloneMatchesTheDesign) {
+  LidarParams params = empty_scene();
+  params.false_alarm_probability = 1e-3;
+  params.min_echo_separation_m = 0.0;
+  params.min_range_m = 0.0;
+  params.max_echoes = 8;
+  const Lidar lidar(params, propagation::ChamberSpec{}, table());
+  const std::size_t scans = 20;
+  std::size_t echoes = 0;
+  for (std::size_t s = 0; s < scans; ++s) {
+    RandomStream stream = sensor_stream(3, SensorId::lidar, 0, s);
+    const LidarScan scan = lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
+    for (const LidarEcho& e : scan.echoes) EXPECT_EQ(e.origin, EchoOrigin::noise);
+    echoes += scan.echoes.size();
+  }
+  const double p = params.false_alarm_probability;
+  const double n = static_cast<double>(lidar.samples_per_beam());
+  const double expected = static_cast<double>(scans * lidar.beam_count()) * (p + (n - 1.0) * p * (1.0 - p));
+  EXPECT_NEAR(static_cast<double>(echoes), expected, 5.0 * std::sqrt(expected));
+}
+
+// The series: unit mean of the factor, lag-one correlation of its log rho = exp(-T / tau), std of
+// the log = log_std. 4000 scans x 4 layers: the sample mean of f (std ~0.2 / sqrt(n_eff), n_eff =
+// n (1 - rho) / (1 + rho) ~ 16000 x 0.05 / 1.95 = 400) within 0.05; log std within 0.03; correlation
+// within 0.02 of the design (its sampling std ~ (1 - rho^2) / sqrt(n) ~ 0.001 for rho = 0.95).
+TEST(LidarSensor, FogFluctuationSeriesHasTheStatedDistributionAndCorrelation) {
+  LidarParams params;
+  params.scans_per_step = 4000;
+  params.fog_fluctuation = {.log_std = 0.2, .correlation_time_s = 0.5};
+  const Lidar lidar(params, propagation::ChamberSpec{}, table());
+  const FogFluctuationSeries series = lidar.fog_fluctuation(RandomStream(11, 2, 40));
+  ASSERT_EQ(series.factors.size(), 16000u);
+  double mean = 0.0, log_sum = 0.0, log_sq = 0.0, lag = 0.0;
+  std::size_t pairs = 0;
+  for (std::size_t s = 0; s < 4000; ++s) {
+    for (std::size_t l = 0; l < 4; ++l) {
+      const double f = series.scan(s)[l];
+      mean += f;
+      log_sum += std::log(f);
+      log_sq += std::log(f) * std::log(f);
+      if (s > 0) {
+        lag += (std::log(f) + 0.02) * (std::log(series.scan(s - 1)[l]) + 0.02);
+        ++pairs;
+      }
+    }
+  }
+  mean /= 16000.0;
+  const double log_mean = log_sum / 16000.0;
+  const double log_var = log_sq / 16000.0 - log_mean * log_mean;
+  EXPECT_NEAR(mean, 1.0, 0.05);
+  EXPECT_NEAR(std::sqrt(log_var), 0.2, 0.03);
+  const double rho = std::exp(-1.0 / (40.0 * 0.5));
+  EXPECT_NEAR(lag / static_cast<double>(pairs) / log_var, rho, 0.02);
+  params.fog_fluctuation.log_std = 0.0;
+  const Lidar steady(params, propagation::ChamberSpec{}, table());
+  for (const double f : steady.fog_fluctuation(RandomStream(1)).factors) EXPECT_EQ(f, 1.0);
+}
+
+std::vector<LidarScan> scans_of_step(const Lidar& lidar, std::size_t step, unsigned threads) {
+  const auto active = propagation::first_layers_active(step, 4);
+  const FogFluctuationSeries fog =
+      lidar.fog_fluctuation(sensor_stream(5, SensorId::lidar, step, lidar.fog_series_index()));
+  std::vector<LidarScan> scans(lidar.params().scans_per_step);
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    pool.emplace_back([&, t] {
+      for (std::size_t s = t; s < scans.size(); s += threads) {
+        RandomStream stream = sensor_stream(5, SensorId::lidar, step, s);
+        scans[s] = lidar.measure(active, fog.scan(s), stream);
+      }
+    });
+  }
+  for (std::thread& thread : pool) thread.join();
+  return scans;
+}
+
+// Same seed, any thread count and order: byte-identical echoes CSV.
+TEST(LidarSensor, ScansAreDeterministicForAnyThreadCount) {
+  LidarParams params;
+  params.scans_per_step = 6;
+  params.field_of_view_deg = 20.0;
+  const Lidar lidar(params, propagation::ChamberSpec{}, table());
+  std::vector<LidarStepResult> one{{1, scans_of_step(lidar, 1, 1)}};
+  std::vector<LidarStepResult> three{{1, scans_of_step(lidar, 1, 3)}};
+  EXPECT_EQ(lidar_echoes_csv(lidar, one), lidar_echoes_csv(lidar, three));
+  EXPECT_FALSE(one[0].scans[0].echoes.empty());
+}
+
+TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
+  using test_support::rejected_field;
+  const auto rejects = [](auto change) {
+    LidarParams p;
+    change(p);
+    return rejected_field([&] { p.validate(); });
+  };
+  EXPECT_EQ(rejected_field([] { LidarParams{}.validate(); }), "accepted");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.wavelength_m = 10e-6; }), "lidar.wavelength_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.field_of_view_deg = -1.0; }), "lidar.field_of_view_deg");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.angular_step_deg = 0.0; }), "lidar.angular_step_deg");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.scan_rate_hz = std::nan(""); }), "lidar.scan_rate_hz");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.scans_per_step = 0; }), "lidar.scans_per_step");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.min_range_m = -0.1; }), "lidar.min_range_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.max_range_m = 0.05; }), "lidar.max_range_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.pulse_width_ns = 0.0; }), "lidar.pulse_width_ns");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.sample_interval_ns = 3.0; }), "lidar.sample_interval_ns");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.overlap_range_m = -1.0; }), "lidar.overlap_range_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.threshold_range_m = 0.0; }), "lidar.threshold_range_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.threshold_reflectivity = 0.0; }),
+            "lidar.threshold_reflectivity");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.false_alarm_probability = 0.5; }),
+            "lidar.false_alarm_probability");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.max_echoes = 0; }), "lidar.max_echoes");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.max_echoes = 9; }), "lidar.max_echoes");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.min_echo_separation_m = -1.0; }),
+            "lidar.min_echo_separation_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.intensity_scale = 0.0; }), "lidar.intensity_scale");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.intensity_saturation = -1.0; }),
+            "lidar.intensity_saturation");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.target_width_m = -1.0; }), "lidar.target_width_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.target_offset_m = 1e3; }), "lidar.target_offset_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.target_reflectivity = 1.5; }),
+            "lidar.target_reflectivity");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.fog_width_m = -2.0; }), "lidar.fog_width_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.background[2].reflectivity = 2.0; }),
+            "lidar.background[2].reflectivity");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.background[0].y1_m = std::nan(""); }),
+            "lidar.background[0].y1_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.background[1] = {1.0, 1.0, 1.0, 1.0, 0.5}; }),
+            "lidar.background[1].x1_m");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.fog_fluctuation.log_std = -0.1; }),
+            "lidar.fog_fluctuation.log_std");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.fog_fluctuation.correlation_time_s = 0.0; }),
+            "lidar.fog_fluctuation.correlation_time_s");
+  // The sensor refuses inputs that do not match the chamber, naming them.
+  const Lidar lidar(LidarParams{}, propagation::ChamberSpec{}, table());
+  RandomStream stream(1);
+  EXPECT_EQ(rejected_field([&] {
+              (void)lidar.measure(propagation::ActiveLayers(3, true), std::vector<double>(4, 1.0), stream);
+            }),
+            "active_layers");
+  EXPECT_EQ(rejected_field([&] {
+              (void)lidar.measure(propagation::ActiveLayers(4, true), std::vector<double>(2, 1.0), stream);
+            }),
+            "optical_depth_factors");
+}
+
+// ---- The paper scenario: 5 steps x 40 scans of the defaults in the study's chamber. ----
+
+struct PaperRun {
+  LidarParams params;
+  std::unique_ptr<Lidar> lidar;
+  std::vector<LidarStepResult> steps;
+  LidarSummary summary;
+};
+
+const PaperRun& paper_run() {
+  static const PaperRun run = [] {
+    PaperRun r;
+#ifdef FOGRADAR_SANITIZE_BUILD
+    // The sanitizer build measures the beams around the target only (the pattern is per beam).
+    r.params.field_of_view_deg = 30.0;
+#endif
+    r.lidar = std::make_unique<Lidar>(r.params, propagation::ChamberSpec{}, table());
+    for (std::size_t step = 0; step <= 4; ++step) {
+      r.steps.push_back({step, scans_of_step(*r.lidar, step, 2)});
+    }
+    r.summary = summarize(r.params, r.steps);
+    return r;
+  }();
+  return run;
+}
+
+// The study's Fig. 6 and text: at 0 layers the target is seen in every scan; at 1 layer the median
+// intensity drops to 0 with "a few outliers" (here: at most 10 of the 40 scans see it); from 2
+// layers on "no signal is received from the EVT" (no target-origin echo in any beam of any scan).
+// The sensor limit is 1 layer.
+TEST(LidarPaperScenario, Fig6TargetIntensityPattern) {
+  const PaperRun& run = paper_run();
+  ASSERT_EQ(run.summary.steps.size(), 5u);
+  const LidarStepSummary& clear = run.summary.steps[0];
+  EXPECT_EQ(clear.target_detections, 40u);
+  EXPECT_GT(clear.target_intensity.median, 0.0);
+  const LidarStepSummary& one = run.summary.steps[1];
+  EXPECT_EQ(one.target_intensity.median, 0.0);
+  EXPECT_LE(one.target_detections, 10u);
+  for (std::size_t step = 2; step <= 4; ++step) {
+    EXPECT_EQ(run.summary.steps[step].target_detections, 0u) << step;
+    for (const LidarScan& scan : run.steps[step].scans) {
+      for (const LidarEcho& e : scan.echoes) EXPECT_NE(e.origin, EchoOrigin::target);
+    }
+  }
+  ASSERT_TRUE(run.summary.sensor_limit_layers.has_value());
+  EXPECT_EQ(*run.summary.sensor_limit_layers, 1u);
+}
+
+// The study's Fig. 5: with one or more layers the beams through the fog (here those within 20 deg of
+// boresight, inside the fog's 3 m width for the whole first layer) return their first echo from the
+// fog's near edge: origin fog, range within [-0.5, +0.75] m of the edge's range along the beam
+// (sensor_gap / cos(angle)); the window is the pulse's range length c fwhm / 2 = 0.75 m, within
+// which the leading edge of the fog's rising return crosses the threshold. At least 95 % of those
+// beams qualify in every step; and "more than one layer has almost no further effect": the median
+// first-echo range at 2-4 layers is within 0.15 m of that at 1 layer.
+TEST(LidarPaperScenario, Fig5FirstEchoesAtTheFogsNearEdge) {
+  const PaperRun& run = paper_run();
+  for (std::size_t step = 1; step <= 4; ++step) {
+    std::size_t beams = 0, at_edge = 0;
+    for (const LidarScan& scan : run.steps[step].scans) {
+      std::vector<bool> seen(run.lidar->beam_count(), false);
+      for (const LidarEcho& e : scan.echoes) {
+        const double angle_deg = run.lidar->beam_angle_deg(e.beam);
+        if (e.index != 0 || std::abs(angle_deg) > 20.0) continue;
+        const double edge_m = 2.0 / std::cos(angle_deg * degree_rad);
+        if (e.origin == EchoOrigin::fog && e.range_m > edge_m - 0.5 && e.range_m < edge_m + 0.75) {
+          ++at_edge;
+        }
+        seen[e.beam] = true;
+      }
+      for (std::size_t b = 0; b < seen.size(); ++b) {
+        if (std::abs(run.lidar->beam_angle_deg(b)) <= 20.0) ++beams;
+      }
+    }
+    EXPECT_GE(static_cast<double>(at_edge), 0.95 * static_cast<double>(beams)) << step;
+    EXPECT_NEAR(run.summary.steps[step].median_first_echo_range_m,
+                run.summary.steps[1].median_first_echo_range_m, 0.15)
+        << step;
+  }
+  EXPECT_TRUE(std::isnan(run.summary.steps[0].fog_echo_rate));  // no beam crosses fog at 0 layers
+}
+
+// Result files: one CSV row per echo, the JSON's limit, well-formed SVGs, the memory estimate an
+// upper bound of what the step results hold.
+TEST(LidarPaperScenario, ResultFilesAndMemoryEstimate) {
+  const PaperRun& run = paper_run();
+  std::size_t echoes = 0, held = 0;
+  for (const LidarStepResult& step : run.steps) {
+    for (const LidarScan& scan : step.scans) {
+      echoes += scan.echoes.size();
+      held += sizeof(LidarScan) + scan.echoes.capacity() * sizeof(LidarEcho) +
+              scan.first_echo_range_through_fog_m.capacity() * sizeof(double);
+    }
+  }
+  const std::string csv = lidar_echoes_csv(*run.lidar, run.steps);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), echoes + 1);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "step,scan,angle_deg,echo,range_m,intensity,origin");
+  const nlohmann::json json = lidar_summary_json(*run.lidar, run.summary);
+  EXPECT_EQ(json.at("sensor_limit_layers"), 1);
+  EXPECT_EQ(json.at("steps").size(), 5u);
+  const std::string summary_csv = lidar_summary_csv(run.summary);
+  EXPECT_EQ(std::count(summary_csv.begin(), summary_csv.end(), '\n'), 6);
+  EXPECT_EQ(test_support::xml_error(lidar_intensity_boxplot_svg(*run.lidar, run.summary)), "");
+  EXPECT_EQ(test_support::xml_error(lidar_scans_svg(*run.lidar, run.steps)), "");
+  EXPECT_NE(lidar_summary_table(run.summary).find("lidar sensor limit: 1 layer"), std::string::npos);
+  const std::size_t estimate = lidar_memory_bytes(run.params, 5, 2);
+  EXPECT_GE(estimate, held + csv.size());
+  EXPECT_LT(csv.size(), 10u << 20);  // the paper run's lidar files stay well under 10 MB
+}
+
+}  // namespace
+}  // namespace fogradar::lidar
