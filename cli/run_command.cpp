@@ -131,7 +131,8 @@ void run(const RunOptions& options) {
                    [&] { return signals.stop().load(); })) {
     signals.throw_interrupted(dir);
   }
-  std::cout << experiment::sensor_tables(summary) << experiment::benchmark_table(summary) << "results in " << dir.string() << "/\n";
+  std::cout << experiment::sensor_tables(summary) << experiment::benchmark_table(summary)
+            << "results in " << dir.string() << "/\n";
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace {
 
 struct Curve {
   std::string name;
-  std::string metric;  // legend text: what is normalised
+  std::string metric;  // legend text: which metric (the caption says how it is normalised)
   std::vector<double> layers;
   std::vector<double> value;  // relative to clear weather (step 0)
   std::optional<std::size_t> limit;
@@ -23,7 +23,7 @@ struct Curve {
 // The radar's median target RCS as a linear power ratio to clear weather: 10^((m_k - m_0) / 10);
 // 0 at a step without target detections.
 Curve radar_curve(const ExperimentSummary& summary) {
-  Curve c{"radar", "median target RCS (linear) / clear", {}, {}, summary.sensor_limit_layers};
+  Curve c{"radar", "RCS", {}, {}, summary.sensor_limit_layers};
   const double clear = summary.steps.empty() ? std::numeric_limits<double>::quiet_NaN()
                                              : summary.steps.front().rcs.median;
   for (const StepSummary& s : summary.steps) {
@@ -37,7 +37,7 @@ Curve radar_curve(const ExperimentSummary& summary) {
 // The lidar's median target intensity (a missing target counted as 0, as Fig. 6) over clear
 // weather.
 Curve lidar_curve(const lidar::LidarSummary& summary) {
-  Curve c{"lidar", "median target intensity / clear", {}, {}, summary.sensor_limit_layers};
+  Curve c{"lidar", "intensity", {}, {}, summary.sensor_limit_layers};
   const double clear = summary.steps.empty() ? 0.0 : summary.steps.front().target_intensity.median;
   for (const lidar::LidarStepSummary& s : summary.steps) {
     c.layers.push_back(static_cast<double>(s.active_layers));
@@ -49,7 +49,7 @@ Curve lidar_curve(const lidar::LidarSummary& summary) {
 
 // The camera's target contrast over its noise-free clear-weather contrast.
 Curve camera_curve(const camera::CameraSummary& summary) {
-  Curve c{"camera", "target contrast / clear", {}, {}, summary.sensor_limit_layers};
+  Curve c{"camera", "contrast", {}, {}, summary.sensor_limit_layers};
   for (const camera::CameraStepSummary& s : summary.steps) {
     c.layers.push_back(static_cast<double>(s.active_layers));
     c.value.push_back(s.relative_contrast);
@@ -71,7 +71,7 @@ std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& sum
       c = camera_curve(*summary.camera);
     else
       continue;
-    stats::LineSeries line{.label = c.name + ": " + c.metric,
+    stats::LineSeries line{.label = c.name + " " + c.metric,
                            .x = c.layers,
                            .y = c.value,
                            .marker_x = {},
@@ -80,7 +80,7 @@ std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& sum
       line.marker_x = static_cast<double>(*c.limit);
       line.marker_label = c.name + " limit " + std::to_string(*c.limit);
     } else {
-      line.label += " (limit not reached)";
+      line.label += " (no limit)";
     }
     series.push_back(std::move(line));
   }

@@ -10,8 +10,8 @@
 
 #include "fogradar/camera/camera.hpp"
 #include "fogradar/core/error.hpp"
-#include "fogradar/lidar/outputs.hpp"
 #include "fogradar/experiment/runner.hpp"
+#include "fogradar/lidar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
 
 namespace fogradar::experiment {
@@ -54,8 +54,10 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
   if (scenario.runs(SensorId::camera)) items += steps * scenario.camera.frames_per_step;
   MemoryEstimate e;
   e.threads = worker_threads(requested_threads, items);
-  if (scenario.runs(SensorId::lidar)) e.sensor_bytes += lidar::lidar_memory_bytes(scenario.lidar, steps, e.threads);
-  if (scenario.runs(SensorId::camera)) e.sensor_bytes += camera::memory_bytes(scenario.camera, steps);
+  if (scenario.runs(SensorId::lidar))
+    e.sensor_bytes += lidar::lidar_memory_bytes(scenario.lidar, steps, e.threads);
+  if (scenario.runs(SensorId::camera))
+    e.sensor_bytes += camera::memory_bytes(scenario.camera, steps);
 
   // Per thread (MeasurementWorkspace): the complex frame and the chirps x samples detection mask.
   const std::size_t frame = cells * complex_bytes + cells * sizeof(std::uint8_t);

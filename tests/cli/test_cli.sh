@@ -18,9 +18,29 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
   || fail "small run (1 thread) failed: $(cat "$work/t1.log")"
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t2" --threads 2 >/dev/null 2>&1 \
   || fail "small run (2 threads) failed"
-for f in samples.csv summary.csv summary.json rcs_boxplot.svg scenario.toml; do
+# small.toml runs the paper scenario's three sensors: every sensor's files.
+for f in samples.csv summary.csv summary.json rcs_boxplot.svg scenario.toml lidar_echoes.csv lidar_summary.csv \
+  lidar_summary.json lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.csv camera_summary.csv \
+  camera_summary.json camera_histograms.svg benchmark.svg; do
   if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
 done
+[ "$(ls -A "$work/t1" | wc -l)" -eq 15 ] && pass || fail "result set is not the 15 files: $(ls -A "$work/t1")"
+# One table per sensor, then the benchmark: layers to failure (or not reached) per sensor.
+for sensor in radar lidar camera; do
+  grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
+  grep -q "^$sensor *layers to failure: " "$work/t1.log" && pass || fail "no benchmark line for $sensor"
+done
+head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'step,scan,angle_deg,echo,range_m,intensity,origin' && pass \
+  || fail "lidar_echoes.csv header: $(head -1 "$work/t1/lidar_echoes.csv")"
+if command -v python3 >/dev/null; then
+  python3 - "$work/t1/summary.json" <<'PY' && pass || fail "summary.json lacks a sensor's limit"
+import json, sys
+sensors = json.load(open(sys.argv[1]))["sensors"]
+assert sorted(sensors) == ["camera", "lidar", "radar"], sensors
+for name, entry in sensors.items():
+    assert "sensor_limit_layers" in entry and entry["criterion"], name
+PY
+fi
 head -1 "$work/t1/samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms' && pass \
   || fail "samples.csv header"
 head -1 "$work/t1/summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame' \
@@ -30,12 +50,14 @@ grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary
 grep -q '<svg' "$work/t1/rcs_boxplot.svg" && pass || fail "no svg element"
 # An XML parser independent of the C++ tests' checker, where Python is installed.
 if command -v python3 >/dev/null; then
-  python3 -c 'import sys, xml.etree.ElementTree as ET; ET.parse(sys.argv[1])' "$work/t1/rcs_boxplot.svg" && pass \
-    || fail "rcs_boxplot.svg is not well-formed XML"
+  for svg in rcs_boxplot.svg lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.svg benchmark.svg; do
+    python3 -c 'import sys, xml.etree.ElementTree as ET; ET.parse(sys.argv[1])' "$work/t1/$svg" && pass \
+      || fail "$svg is not well-formed XML"
+  done
 fi
 # The resolved scenario reproduces the run exactly.
 "$fogradar" run --scenario "$work/t1/scenario.toml" --out "$work/t3" >/dev/null 2>&1 || fail "rerun from scenario.toml"
-cmp -s "$work/t1/samples.csv" "$work/t3/samples.csv" && pass || fail "scenario.toml does not reproduce the run"
+diff -r "$work/t1" "$work/t3" >/dev/null && pass || fail "scenario.toml does not reproduce the run"
 ls -A "$work/t1" | grep -q '\.tmp' && fail "temporary files left behind" || pass
 
 # --- the result set is replaced whole or not at all (README, docs/scenario.md Results) ---------------
@@ -144,11 +166,12 @@ rc=$?
 [ "$rc" -eq 2 ] && grep -qF -- "--out" "$work/err" && [ -z "$(ls -A "$work/cwd")" ] && pass \
   || fail "--out . : exit $rc, $(cat "$work/err"), left $(ls -A "$work/cwd")"
 
-# (e) A full filesystem: a 64 KiB tmpfs, filled after the first set is in place. Needs mount rights.
+# (e) A full filesystem: a 1 MiB tmpfs (the three sensors' set is about 0.4 MB), filled after the first
+# set is in place. Needs mount rights.
 mkdir -p "$work/full"
-if mount -t tmpfs -o size=64k tmpfs "$work/full" 2>/dev/null; then
+if mount -t tmpfs -o size=1m tmpfs "$work/full" 2>/dev/null; then
   make_old full
-  dd if=/dev/zero of="$parent/filler" bs=1k count=64 2>/dev/null
+  dd if=/dev/zero of="$parent/filler" bs=1k count=1024 2>/dev/null
   before=$(digest "$parent/out")
   "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err"
   rc=$?
@@ -215,6 +238,13 @@ printf '[experiment]\nseed = -1\n' >"$work/seed.toml"
 printf '[experiment]\nsensors = ["radar", "sonar"]\n' >"$work/sonar.toml"
 printf '[experiment]\nsensors = []\n' >"$work/no-sensors.toml"
 printf '[experiment]\nsensors = ["radar", "radar"]\n' >"$work/radar-twice.toml"
+printf '[lidar]\npulse_width_ns = -5\n' >"$work/lidar-pulse.toml"
+printf '[lidar]\nscans_per_step = 0\n' >"$work/lidar-scans.toml"
+printf '[[lidar.background]]\nx0_m = 1\nx1_m = 2\nreflectivity = 2\n' >"$work/lidar-background.toml"
+printf '[lidar]\nrange_m = 3\n' >"$work/lidar-unknown.toml"
+printf '[camera.exposure]\nmode = "manual"\n' >"$work/camera-mode.toml"
+printf '[camera.roi.target]\nlog_sigma = nan\n' >"$work/camera-sigma.toml"
+printf '[camera]\nframes_per_step = 1.5\n' >"$work/camera-frames.toml"
 printf '[radar]\nsamples_per_chirp = 32\n[processing.cfar]\nguard_cells = 20\n' >"$work/guard.toml"
 printf '[radar]\nsample_rate_hz = 5e6\nsamples_per_chirp = 256\n[chamber]\ntarget_gap_m = 40\n' >"$work/far.toml"
 printf '[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n' >"$work/layers.toml"
@@ -256,6 +286,18 @@ expect_bad_run no-sensors 'no-sensors.toml:2: experiment.sensors = []' \
   'a non-empty array of distinct names from "radar", "lidar", "camera"' --scenario "$work/no-sensors.toml"
 expect_bad_run sensor-twice 'radar-twice.toml:2: experiment.sensors' '"radar" is named twice' \
   --scenario "$work/radar-twice.toml"
+expect_bad_run lidar-pulse 'lidar-pulse.toml:2: lidar.pulse_width_ns = -5' "[0.1, 1000]" --scenario "$work/lidar-pulse.toml"
+expect_bad_run lidar-scans 'lidar-scans.toml:2: lidar.scans_per_step = 0' "an integer in [1, 100000]" \
+  --scenario "$work/lidar-scans.toml"
+expect_bad_run lidar-background 'lidar-background.toml:4: lidar.background[0].reflectivity = 2' "[0, 1]" \
+  --scenario "$work/lidar-background.toml"
+expect_bad_run lidar-unknown 'lidar.range_m' "known keys of [lidar]" --scenario "$work/lidar-unknown.toml"
+expect_bad_run camera-mode "camera-mode.toml:2: camera.exposure.mode = 'manual'" "one of fixed, auto" \
+  --scenario "$work/camera-mode.toml"
+expect_bad_run camera-sigma 'camera-sigma.toml:2: camera.roi.target.log_sigma = nan' "[0, 3]" \
+  --scenario "$work/camera-sigma.toml"
+expect_bad_run camera-frames 'camera-frames.toml:2: camera.frames_per_step = 1.5' "an integer in [1, 100000]" \
+  --scenario "$work/camera-frames.toml"
 expect_bad_run two-densities "fog.lwc_g_per_m3 (line 2) and fog.visibility_m (line 3)" "at most one fog density" \
   --scenario "$work/two-densities.toml"
 expect_bad_run missing-file "--scenario = '$work/does-not-exist.toml'" "a readable regular TOML file" \

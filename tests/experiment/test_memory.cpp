@@ -15,6 +15,7 @@ namespace {
 
 Scenario small_frame() {
   Scenario s = paper_scenario();
+  s.experiment.sensors = {SensorId::radar};  // the radar's subject; test_multisensor.cpp runs all
   s.radar.samples_per_chirp = 64;
   s.radar.chirps_per_frame = 16;
   s.clutter_scatterers_per_bin = 4;

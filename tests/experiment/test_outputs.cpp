@@ -23,6 +23,7 @@ namespace {
 // detections (a dense 0.5 mm fog), intervals unbounded for want of detections.
 Scenario mixed_scenario() {
   Scenario s = paper_scenario();
+  s.experiment.sensors = {SensorId::radar};  // the radar's subject; test_multisensor.cpp runs all
   s.radar.chirps_per_frame = 16;
   s.radar.cfar.false_alarm_probability = 1e-2;
   s.experiment.measurements_per_step = 8;

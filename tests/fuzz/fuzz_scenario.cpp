@@ -1,7 +1,8 @@
 // libFuzzer target (scripts/fuzz.sh, docs/architecture.md "Fuzzing"): arbitrary bytes as a scenario
 // file, through everything `fogradar run` does before its first frame: parse_scenario (the byte
 // check, toml++, the readers, Scenario::validate), the memory estimate, the chamber and scene, the
-// radar chain (plans, windows, CFAR design) and RadarChain::check_compatible. Bad input must end in
+// radar chain (plans, windows, CFAR design), RadarChain::check_compatible and the lidar and camera
+// as the run builds them (each layer's fog resolved at their wavelengths). Bad input must end in
 // InvalidParameter; anything else (another exception, a failed FOGRADAR_CHECK, a sanitizer report,
 // a hang) is a finding. A scenario that reads must also survive to_toml and read back the same.
 #include <cstddef>
@@ -10,9 +11,11 @@
 #include <string>
 #include <string_view>
 
+#include "fogradar/camera/camera.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/lidar/lidar.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "fogradar/radar/measurement.hpp"
@@ -32,6 +35,12 @@ void set_up_chain(const fogradar::experiment::Scenario& scenario) {
   const radar::Scene scene = scenario.scene();
   const radar::RadarChain chain(scenario.radar);
   chain.check_compatible(scene, chamber);
+  if (scenario.runs(SensorId::lidar)) {
+    const lidar::Lidar lidar(scenario.lidar, scenario.chamber_spec(), table);
+  }
+  if (scenario.runs(SensorId::camera)) {
+    const camera::Camera camera(scenario.camera, scenario.chamber_spec(), table);
+  }
 }
 
 }  // namespace

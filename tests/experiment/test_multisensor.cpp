@@ -1,0 +1,275 @@
+// The experiment with several sensors on one chamber (DESIGN §10): the result files are the same
+// bytes for any thread count; adding or removing a sensor never changes another sensor's files
+// (each draws from its own streams, sensor_stream); summary.json carries every sensor's limit and
+// summary in the documented layout; the embedded paper scenario holds the sensors' own defaults;
+// every invalid [lidar] and [camera] key is refused naming the key and its line.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/outputs.hpp"
+#include "fogradar/experiment/runner.hpp"
+#include "fogradar/experiment/summary.hpp"
+#include "fogradar/lidar/outputs.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+using Files = std::map<std::string, std::string>;
+
+// Every sensor, each small (fast enough for the Debug sanitizer build): 16-chirp radar frames, 4
+// measurements, 3 scans of a 12 degree field of view (the target and the fog in it), 2 frames of a
+// 64 x 48 ROI per step at one wavelength (the photopic band's Mie at 95 wavelengths costs about
+// half a second per run).
+Scenario small_three_sensors() {
+  Scenario s = paper_scenario();
+  s.experiment.sensors = {SensorId::radar, SensorId::lidar, SensorId::camera};
+  s.radar.chirps_per_frame = 16;
+  s.experiment.measurements_per_step = 4;
+  s.lidar.scans_per_step = 3;
+  s.lidar.field_of_view_deg = 12.0;
+  s.camera.frames_per_step = 2;
+  s.camera.roi.width_px = 64;
+  s.camera.roi.height_px = 48;
+  s.camera.band = camera::Band::monochromatic;
+  return s;
+}
+
+Files files_of(const Scenario& s, unsigned threads) {
+  const ExperimentResult result = run_experiment(s, {.threads = threads, .progress = {}});
+  const std::vector<std::pair<std::string, std::string>> files =
+      result_files(s, result, summarize(result));
+  return {files.begin(), files.end()};
+}
+
+TEST(MultiSensor, EveryFileIsTheSameBytesForAnyThreadCount) {
+  const Scenario s = small_three_sensors();
+  const Files one = files_of(s, 1), three = files_of(s, 3);
+  EXPECT_EQ(one.size(), result_file_names().size());  // every fixed name (no ROI images asked for)
+  for (const std::string& name : result_file_names()) {
+    ASSERT_TRUE(one.contains(name)) << name;
+    EXPECT_EQ(one.at(name), three.at(name)) << name;
+  }
+}
+
+// The radar's files of a radar-only run equal those of runs that add the lidar or the camera; the
+// lidar's equal between a run with and without the radar and camera; the camera's likewise. The
+// scenario (and so scenario.toml and summary.json) differ only in experiment.sensors.
+TEST(MultiSensor, AddingASensorLeavesTheOthersFilesUnchanged) {
+  Scenario radar_only = small_three_sensors();
+  radar_only.experiment.sensors = {SensorId::radar};
+  Scenario radar_lidar = radar_only;
+  radar_lidar.experiment.sensors = {SensorId::radar, SensorId::lidar};
+  Scenario lidar_only = radar_only;
+  lidar_only.experiment.sensors = {SensorId::lidar};
+  Scenario camera_first = radar_only;
+  camera_first.experiment.sensors = {SensorId::camera, SensorId::radar};
+  const Files all = files_of(small_three_sensors(), 2), r = files_of(radar_only, 2),
+              rl = files_of(radar_lidar, 2), l = files_of(lidar_only, 2),
+              cr = files_of(camera_first, 2);
+  EXPECT_EQ(r.size(), 6u);  // samples, summary.csv/.json, rcs_boxplot, scenario, benchmark
+  EXPECT_FALSE(l.contains("samples.csv"));
+  for (const char* radar_file : {"samples.csv", "summary.csv", "rcs_boxplot.svg"}) {
+    EXPECT_EQ(r.at(radar_file), rl.at(radar_file)) << radar_file;
+    EXPECT_EQ(r.at(radar_file), all.at(radar_file)) << radar_file;
+    EXPECT_EQ(r.at(radar_file), cr.at(radar_file)) << radar_file;
+  }
+  for (const char* lidar_file : {"lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
+                                 "lidar_intensity_boxplot.svg", "lidar_scans.svg"}) {
+    EXPECT_EQ(l.at(lidar_file), rl.at(lidar_file)) << lidar_file;
+    EXPECT_EQ(l.at(lidar_file), all.at(lidar_file)) << lidar_file;
+  }
+  for (const char* camera_file : {"camera_histograms.csv", "camera_summary.csv",
+                                  "camera_summary.json", "camera_histograms.svg"}) {
+    EXPECT_EQ(cr.at(camera_file), all.at(camera_file)) << camera_file;
+  }
+  // The radar's part of summary.json is the same whichever sensors ran beside it.
+  nlohmann::json radar_part = nlohmann::json::parse(r.at("summary.json")),
+                 with_all = nlohmann::json::parse(all.at("summary.json"));
+  for (nlohmann::json* j : {&radar_part, &with_all}) {
+    j->erase("scenario");
+    j->erase("sensors");
+  }
+  EXPECT_EQ(radar_part, with_all);
+}
+
+// summary.json's "sensors" object (docs/scenario.md, Results): one entry per sensor that ran with
+// its limit, criterion and margin; the lidar's and the camera's summaries embedded as their own
+// files hold them; the radar's limit is the top-level sensor_limit_layers.
+TEST(MultiSensor, SummaryJsonCarriesEverySensorsLimitAndSummary) {
+  const Scenario s = small_three_sensors();
+  const ExperimentResult result = run_experiment(s);
+  const ExperimentSummary summary = summarize(result);
+  const Files files = files_of(s, 2);
+  const nlohmann::json json = nlohmann::json::parse(files.at("summary.json"));
+  ASSERT_TRUE(json.contains("sensors"));
+  const nlohmann::json& sensors = json.at("sensors");
+  EXPECT_EQ(sensors.size(), 3u);
+  for (const char* name : {"radar", "lidar", "camera"}) {
+    ASSERT_TRUE(sensors.contains(name)) << name;
+    EXPECT_TRUE(sensors.at(name).contains("sensor_limit_layers")) << name;
+    EXPECT_FALSE(sensors.at(name).at("criterion").get<std::string>().empty()) << name;
+    // A margin exactly when the limit is not reached.
+    EXPECT_EQ(sensors.at(name).at("sensor_limit_layers").is_null(),
+              !sensors.at(name).at("margin").get<std::string>().empty())
+        << name;
+  }
+  EXPECT_EQ(sensors.at("radar").at("sensor_limit_layers"), json.at("sensor_limit_layers"));
+  EXPECT_EQ(sensors.at("lidar").at("summary"),
+            nlohmann::json::parse(files.at("lidar_summary.json")));
+  EXPECT_EQ(sensors.at("camera").at("summary"),
+            nlohmann::json::parse(files.at("camera_summary.json")));
+  ASSERT_TRUE(summary.lidar.has_value());
+  EXPECT_EQ(sensors.at("lidar").at("sensor_limit_layers").is_null(),
+            !summary.lidar->sensor_limit_layers);
+  // One benchmark line per sensor, in experiment.sensors' order.
+  const std::string table = benchmark_table(summary);
+  EXPECT_LT(table.find("radar "), table.find("lidar "));
+  EXPECT_LT(table.find("lidar "), table.find("camera "));
+}
+
+// A run without the radar writes no radar file and no radar field in summary.json.
+TEST(MultiSensor, WithoutTheRadarNoRadarFiles) {
+  Scenario s = small_three_sensors();
+  s.experiment.sensors = {SensorId::camera};
+  const Files files = files_of(s, 1);
+  EXPECT_FALSE(files.contains("samples.csv"));
+  EXPECT_FALSE(files.contains("rcs_boxplot.svg"));
+  const nlohmann::json json = nlohmann::json::parse(files.at("summary.json"));
+  EXPECT_FALSE(json.contains("steps"));
+  EXPECT_EQ(json.at("sensors").size(), 1u);
+}
+
+// The paper scenario file lists the [lidar] and [camera] keys with the modules' own defaults
+// (lidar/params.hpp, camera/params.hpp), so the two cannot drift apart unnoticed.
+TEST(MultiSensor, PaperScenarioHoldsTheSensorsDefaults) {
+  const Scenario paper = paper_scenario();
+  EXPECT_EQ(paper.experiment.sensors,
+            (std::vector<SensorId>{SensorId::radar, SensorId::lidar, SensorId::camera}));
+  Scenario defaults = paper;
+  defaults.lidar = lidar::LidarParams{};
+  defaults.camera = camera::CameraParams{};
+  EXPECT_EQ(to_toml(paper), to_toml(defaults));
+}
+
+// Items counted over every sensor: progress reaches the total of radar measurements, lidar scans
+// and camera frames.
+TEST(MultiSensor, ProgressCountsEverySensorsItems) {
+  const Scenario s = small_three_sensors();
+  std::atomic<std::size_t> last_total{0}, calls{0};
+  run_experiment(s, {.threads = 2, .progress = [&](std::size_t, std::size_t total) {
+                       last_total = total;
+                       ++calls;
+                     }});
+  const std::size_t expected = 5 * (4 + 3 + 2);
+  EXPECT_EQ(last_total.load(), expected);
+  EXPECT_EQ(calls.load(), expected);
+}
+
+// Every key of [lidar...] and [camera...] as to_toml writes it, given a value its section refuses
+// (nan for a number, -1 for an integer, an unknown name for a string, 1 for a boolean): refused
+// naming the key as written and its line. The keys come from the resolved scenario, so a key added
+// to a sensor later is covered as soon as to_toml writes it.
+TEST(MultiSensor, EveryInvalidSensorKeyIsRefusedNamingIt) {
+  std::istringstream text(to_toml(paper_scenario()));
+  std::string line, section;
+  std::size_t tested = 0;
+  while (std::getline(text, line)) {
+    if (line.rfind("[", 0) == 0) {
+      section =
+          line.substr(line.find_first_not_of('['), line.find(']') - line.find_first_not_of('['));
+      continue;
+    }
+    const bool sensor_section = section.rfind("lidar", 0) == 0 || section.rfind("camera", 0) == 0;
+    const std::size_t equals = line.find(" = ");
+    if (!sensor_section || equals == std::string::npos || section == "lidar.background") continue;
+    const std::string key = line.substr(0, equals), value = line.substr(equals + 3);
+    if (key == "background") continue;  // the array of segments: its own cases below
+    std::string bad;
+    if (value.front() == '"')
+      bad = "\"bogus\"";
+    else if (value == "true" || value == "false")
+      bad = "1";
+    else if (value.find_first_of(".e") == std::string::npos)
+      bad = "-1";
+    else
+      bad = "nan";
+    const std::string file = "[" + section + "]\n" + key + " = " + bad + "\n";
+    const std::string full = section + "." + key;
+    try {
+      parse_scenario(file, "bad.toml");
+      ADD_FAILURE() << "accepted: " << file;
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.field(), full) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("bad.toml:2: " + full, 0), 0u) << e.what();
+    }
+    ++tested;
+  }
+  EXPECT_GE(tested,
+            21u + 2u + 7u + 3u + 3u + 4u + 2u + 2u);  // every [lidar...] and [camera...] key
+}
+
+struct BadSensorInput {
+  const char* name;
+  const char* toml;
+  const char* key;
+  int line;
+  const char* allowed;
+};
+
+class SensorSectionRejects : public ::testing::TestWithParam<BadSensorInput> {};
+
+TEST_P(SensorSectionRejects, NamesTheKeyLineAndRange) {
+  const BadSensorInput& bad = GetParam();
+  try {
+    parse_scenario(bad.toml, "bad.toml");
+    FAIL() << "accepted: " << bad.toml;
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), bad.key) << e.what();
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("bad.toml:" + std::to_string(bad.line) + ":", 0), 0u) << message;
+    EXPECT_NE(message.find(bad.allowed), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadSensorInputs, SensorSectionRejects,
+    ::testing::Values(
+        BadSensorInput{"unknown_lidar_key", "[lidar]\npulse_width_s = 5e-9\n",
+                       "lidar.pulse_width_s", 2, "known keys of [lidar]"},
+        BadSensorInput{"unknown_camera_key", "[camera.roi]\nsize_px = 3\n", "camera.roi.size_px", 2,
+                       "known keys of [camera.roi]"},
+        BadSensorInput{"lidar_wavelength", "[lidar]\nwavelength_m = 77e-3\n", "lidar.wavelength_m",
+                       2, "[4e-07, 2e-06]"},
+        BadSensorInput{"lidar_echoes", "[lidar]\nmax_echoes = 9\n", "lidar.max_echoes", 2,
+                       "an integer in [1, 8]"},
+        BadSensorInput{"lidar_fluctuation", "[lidar.fog_fluctuation]\nlog_std = 3\n",
+                       "lidar.fog_fluctuation.log_std", 2, "[0, 2]"},
+        BadSensorInput{"lidar_background_not_tables", "[lidar]\nbackground = [1, 2]\n",
+                       "lidar.background", 2, "an array of tables [[lidar.background]]"},
+        BadSensorInput{"lidar_background_key", "[[lidar.background]]\nx0_m = 1\nz_m = 2\n",
+                       "lidar.background[0].z_m", 3, "known keys of [lidar.background[0]]"},
+        BadSensorInput{"lidar_background_reflectivity",
+                       "[[lidar.background]]\nx0_m = 1\nx1_m = 2\nreflectivity = 1.5\n",
+                       "lidar.background[0].reflectivity", 4, "[0, 1]"},
+        BadSensorInput{"camera_band", "[camera]\nband = \"infrared\"\n", "camera.band", 2,
+                       "one of photopic, rgb, monochromatic"},
+        BadSensorInput{"camera_exposure_mode", "[camera.exposure]\nmode = \"\"\n",
+                       "camera.exposure.mode", 2, "one of fixed, auto"},
+        BadSensorInput{"camera_cell", "[camera.roi]\ncell_px = 100\n", "camera.roi.cell_px", 2,
+                       "camera.roi.width_px"},
+        BadSensorInput{"camera_frames", "[camera]\nframes_per_step = 0\n", "camera.frames_per_step",
+                       2, "an integer in [1, 100000]"},
+        BadSensorInput{"camera_noise_type", "[camera.noise]\nenabled = \"yes\"\n",
+                       "camera.noise.enabled", 2, "must be true or false"}),
+    [](const ::testing::TestParamInfo<BadSensorInput>& p) { return std::string(p.param.name); });
+
+}  // namespace
+}  // namespace fogradar::experiment
