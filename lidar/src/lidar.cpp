@@ -243,72 +243,81 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
   check_inputs(active, optical_depth_factors);
   LidarScan scan;
   ComplexNormalGenerator generator(stream);
-  // Two real samples per complex one: each part of CN(0, 2 sigma^2) is N(0, sigma^2).
+  // Two real samples per complex one: each part of CN(0, 2 sigma^2) is N(0, sigma^2), read as the
+  // array of doubles a std::complex<double> array is ([complex.numbers]).
   std::vector<std::complex<double>> noise((samples_ + 1) / 2);
   const double noise_variance = 2.0 * noise_std_ * noise_std_;
+  // The components stay zero outside the samples a beam's signal touches, [lo, hi).
   std::vector<double> target(samples_), fog(samples_), background(samples_), received(samples_);
   std::vector<FogStretch> stretches;
   stretches.reserve(layers_.size());
-  const auto noise_at = [&](std::size_t k) {
-    return k % 2 == 0 ? noise[k / 2].real() : noise[k / 2].imag();
+  const double support_s = 2.0 * grid_.pulse_fwhm_s;
+  const auto sample_at = [&](double range_m, double shift_s) {
+    const double k = std::floor((2.0 * range_m / speed_of_light_m_per_s + shift_s) /
+                                grid_.sample_interval_s);
+    return static_cast<std::size_t>(std::clamp(k, 0.0, static_cast<double>(samples_)));
   };
   for (std::size_t beam = 0; beam < beam_count_; ++beam) {
     const Hit hit = trace(beam, active, optical_depth_factors, stretches);
     std::fill(noise.begin(), noise.end(), std::complex<double>{});
     generator.add(noise, noise_variance);
+    const double* noise_samples = reinterpret_cast<const double*>(noise.data());
+    std::copy(noise_samples, noise_samples + samples_, received.begin());
     const bool through_fog = !stretches.empty();
-    const bool signal = through_fog || hit.found;
-    std::fill(target.begin(), target.end(), 0.0);
-    std::fill(fog.begin(), fog.end(), 0.0);
-    std::fill(background.begin(), background.end(), 0.0);
-    if (signal) {
-      for (const FogStretch& stretch : stretches) add_fog_stretch(fog, grid_, stretch);
-      if (hit.found) {
-        add_hard_target(hit.is_target ? target : background, grid_, hit.range_m, hit.amplitude);
-      }
-    }
-    bool exceeds = signal;
-    for (std::size_t k = 0; k < samples_; ++k) {
-      received[k] = target[k] + fog[k] + background[k] + noise_at(k);
-      exceeds = exceeds || received[k] >= detector_.threshold;
-    }
-    if (through_fog) ++scan.beams_through_fog;
-    if (!exceeds) continue;
-    const DetectedEchoes echoes = extract_echoes(received, detector_);
-    bool fog_echo = false;
-    double strongest_fog = 0.0;
-    for (std::size_t e = 0; e < echoes.count; ++e) {
-      const DetectedEcho& echo = echoes.echoes[e];
-      const std::size_t k = echo.peak_sample;
-      const std::array<double, 3> parts{target[k], fog[k], background[k]};
-      const auto largest = std::max_element(parts.begin(), parts.end());
-      const EchoOrigin origin = *largest < noise_std_
-                                    ? EchoOrigin::noise
-                                    : static_cast<EchoOrigin>(largest - parts.begin());
-      const double intensity = std::min(params_.intensity_saturation,
-                                        params_.intensity_scale * echo.peak / detector_.threshold);
-      scan.echoes.push_back({.beam = static_cast<std::uint32_t>(beam),
-                             .index = static_cast<std::uint8_t>(e),
-                             .origin = origin,
-                             .range_m = echo.range_m,
-                             .intensity = intensity});
-      if (origin == EchoOrigin::fog) {
-        fog_echo = true;
-        strongest_fog = std::max(strongest_fog, intensity);
-      }
-      if (beam == target_beam_ && origin == EchoOrigin::target) {
-        scan.target_detected = true;
-        scan.target_intensity = std::max(scan.target_intensity, intensity);
-      }
-    }
+    std::size_t lo = samples_, hi = 0;
     if (through_fog) {
-      if (fog_echo) ++scan.beams_through_fog_with_fog_echo;
-      if (echoes.count > 0) scan.first_echo_range_through_fog_m.push_back(echoes.echoes[0].range_m);
+      lo = sample_at(stretches.front().start_m, -support_s);
+      hi = sample_at(stretches.back().end_m, support_s) + 1;
+      for (const FogStretch& stretch : stretches) add_fog_stretch(fog, grid_, stretch);
     }
-    if (beam == target_beam_ && scan.target_detected && fog_echo &&
-        strongest_fog >= scan.target_intensity) {
-      scan.fog_outshines_target = true;
+    if (hit.found) {
+      lo = std::min(lo, sample_at(hit.range_m, -support_s));
+      hi = std::max(hi, sample_at(hit.range_m, support_s) + 1);
+      add_hard_target(hit.is_target ? target : background, grid_, hit.range_m, hit.amplitude);
     }
+    hi = std::min(hi, samples_);
+    for (std::size_t k = lo; k < hi; ++k) received[k] += target[k] + fog[k] + background[k];
+    if (through_fog) ++scan.beams_through_fog;
+    const bool exceeds = lo < hi || *std::max_element(received.begin(), received.end()) >=
+                                        detector_.threshold;
+    if (exceeds) {
+      const DetectedEchoes echoes = extract_echoes(received, detector_);
+      bool fog_echo = false;
+      double strongest_fog = 0.0;
+      for (std::size_t e = 0; e < echoes.count; ++e) {
+        const DetectedEcho& echo = echoes.echoes[e];
+        const std::size_t k = echo.peak_sample;
+        const std::array<double, 3> parts{target[k], fog[k], background[k]};
+        const auto largest = std::max_element(parts.begin(), parts.end());
+        const EchoOrigin origin = *largest < noise_std_
+                                      ? EchoOrigin::noise
+                                      : static_cast<EchoOrigin>(largest - parts.begin());
+        const double intensity = std::min(params_.intensity_saturation,
+                                          params_.intensity_scale * echo.peak / detector_.threshold);
+        scan.echoes.push_back({.beam = static_cast<std::uint32_t>(beam),
+                               .index = static_cast<std::uint8_t>(e),
+                               .origin = origin,
+                               .range_m = echo.range_m,
+                               .intensity = intensity});
+        if (origin == EchoOrigin::fog) {
+          fog_echo = true;
+          strongest_fog = std::max(strongest_fog, intensity);
+        }
+        if (beam == target_beam_ && origin == EchoOrigin::target) {
+          scan.target_detected = true;
+          scan.target_intensity = std::max(scan.target_intensity, intensity);
+        }
+      }
+      if (through_fog) {
+        if (fog_echo) ++scan.beams_through_fog_with_fog_echo;
+        if (echoes.count > 0) scan.first_echo_range_through_fog_m.push_back(echoes.echoes[0].range_m);
+      }
+      if (beam == target_beam_ && scan.target_detected && fog_echo &&
+          strongest_fog >= scan.target_intensity) {
+        scan.fog_outshines_target = true;
+      }
+    }
+    for (std::size_t k = lo; k < hi; ++k) target[k] = fog[k] = background[k] = 0.0;
   }
   return scan;
 }

@@ -32,7 +32,7 @@ constexpr std::size_t samples = 1500;  // 112 m
 
 // A hard target on a sample (2R/c = k dt) peaks at exactly its amplitude rho cos(i)/pi T^2/R^2;
 // its neighbours follow the Gaussian. Tolerance 1e-12 relative: the recurrence's rounding over the
-// ~25 samples from the support's edge to the peak.
+// ~20 samples from the support's edge to the peak.
 TEST(LidarWaveform, HardTargetPeakIsTheClosedForm) {
   std::vector<double> w(samples, 0.0);
   const std::size_t k = 400;
@@ -45,7 +45,7 @@ TEST(LidarWaveform, HardTargetPeakIsTheClosedForm) {
     const double t = (static_cast<double>(j) - static_cast<double>(k)) * grid.sample_interval_s;
     EXPECT_NEAR(w[j], amplitude * gaussian(t, grid.pulse_fwhm_s), 1e-12 * amplitude) << j;
   }
-  EXPECT_EQ(w[k - 40], 0.0);  // beyond the 2.5 FWHM support
+  EXPECT_EQ(w[k - 21], 0.0);  // beyond the 2 FWHM (20-sample) support
 }
 
 // Inside a thick non-absorbing layer (no change of the integrand over the pulse but 1/r^2), the
@@ -69,7 +69,8 @@ TEST(LidarWaveform, ThickTransparentLayerPlateau) {
 // tau_e beta_pi T^2(a) integral_a^b exp(-2 alpha (r - a)) / r^2 dr, and that integral is, with
 // k = 2 alpha, e^(k a) [e^(-k a)/a - e^(-k b)/b - k (E1(k a) - E1(k b))] (integration by parts;
 // E1 the exponential integral, Boost.Math expint). The sample sum times dt is the trapezoidal rule
-// of a smooth function vanishing at both ends (error far below 1e-8). Tolerance 1e-7.
+// of a function vanishing at both ends. Tolerance 1e-5: the pulse is evaluated within 2 FWHM of
+// its centre, and the cut-off tails hold 3e-6 of its energy (waveform.cpp).
 TEST(LidarWaveform, AbsorbingLayerEnergyMatchesTheExponentialIntegralForm) {
   std::vector<double> w(samples, 0.0);
   const double a = 5.0, b = 6.0, alpha = 0.9, beta = 0.05, t0 = 0.4;
@@ -83,12 +84,12 @@ TEST(LidarWaveform, AbsorbingLayerEnergyMatchesTheExponentialIntegralForm) {
                          k * (boost::math::expint(1, k * a) - boost::math::expint(1, k * b)));
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   const double expected = tau_e * beta * t0 * integral;
-  EXPECT_NEAR(energy, expected, 1e-7 * expected);
+  EXPECT_NEAR(energy, expected, 1e-5 * expected);
 }
 
 // Inside the overlap range the fog return is weighted by O(r) = (r / r_full)^2: with r_full = 20 m,
 // a transparent layer from 10 m to 15 m has the constant integrand beta / r_full^2, so its energy
-// is tau_e beta (15 - 10) / 400. Tolerance 1e-7 as above.
+// is tau_e beta (15 - 10) / 400. Tolerance 1e-5 as above.
 TEST(LidarWaveform, OverlapFunctionInsideTheFullOverlapRange) {
   std::vector<double> w(samples, 0.0);
   WaveformGrid near_grid = grid;
@@ -99,7 +100,7 @@ TEST(LidarWaveform, OverlapFunctionInsideTheFullOverlapRange) {
   for (const double v : w) energy += v * grid.sample_interval_s;
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   const double expected = tau_e * 1e-3 * 5.0 / 400.0;
-  EXPECT_NEAR(energy, expected, 1e-7 * expected);
+  EXPECT_NEAR(energy, expected, 1e-5 * expected);
   EXPECT_NEAR(overlap(10.0, 20.0), 0.25, 1e-15);
 }
 

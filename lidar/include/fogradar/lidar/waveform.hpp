@@ -37,7 +37,7 @@ struct WaveformGrid {
   double full_overlap_range_m = 0.5;
 };
 
-// waveform[k] += amplitude p(k dt - 2 R / c) O(R) for the samples within 5 fwhm of the echo.
+// waveform[k] += amplitude p(k dt - 2 R / c) O(R) for the samples within 2 fwhm of the echo's centre.
 void add_hard_target(std::span<double> waveform, const WaveformGrid& grid, double range_m,
                      double amplitude);
 
@@ -53,8 +53,10 @@ struct FogStretch {
 };
 
 // waveform[k] += integral_start^end p(k dt - 2r/c) beta_pi T^2(r) / r^2 O(r) dr,
-// T^2(r) = T^2(start) exp(-2 alpha (r - start)), by 20-point Gauss-Legendre quadrature (Boost.Math)
-// over the part of the stretch within 5 fwhm (in range c fwhm / 2) of each sample.
+// T^2(r) = T^2(start) exp(-2 alpha (r - start)), by composite 8-point Gauss-Legendre quadrature
+// (Boost.Math nodes) in panels of at most the pulse's range FWHM c fwhm / 2 (and split at the
+// overlap function's kink), each node's pulse evaluated at least 2 fwhm either side of it (a
+// panel's nodes share one window: their own 2 fwhm around any of them).
 void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog);
 
 // The receiver (docs/lidar.md §4).

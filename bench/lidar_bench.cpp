@@ -1,0 +1,88 @@
+// Per-beam cost of the lidar (docs/lidar.md, Speed): one scan of the paper scenario's lidar
+// (LidarParams defaults, 361 beams over 90 deg) through 0, 1 and 4 active layers, in beams per
+// second; one paper radar frame (RadarChain::measure, all four layers on, the EVT with floor
+// multipath: chain_bench's BM_Measure) for the ratio; and the paper scenario's lidar part, 5 steps x
+// 40 scans, at one thread. Run interleaved so the ratio is stable on a loaded machine:
+//   ./build/release/bench/lidar_bench --benchmark_repetitions=5
+//       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "fogradar/core/random.hpp"
+#include "fogradar/lidar/lidar.hpp"
+#include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/water.hpp"
+#include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/scene.hpp"
+
+namespace {
+
+using namespace fogradar;
+
+const propagation::SegelsteinTable& table() {
+  static const propagation::SegelsteinTable instance;
+  return instance;
+}
+
+const lidar::Lidar& paper_lidar() {
+  static const lidar::Lidar instance(lidar::LidarParams{}, propagation::ChamberSpec{}, table());
+  return instance;
+}
+
+void BM_LidarScan(benchmark::State& state) {
+  const lidar::Lidar& sensor = paper_lidar();
+  const auto layers = static_cast<std::size_t>(state.range(0));
+  const auto active = propagation::first_layers_active(layers, 4);
+  const lidar::FogFluctuationSeries fog = sensor.fog_fluctuation(RandomStream(1, 2, 3));
+  std::uint64_t i = 0;
+  for (auto _ : state) {
+    RandomStream stream = sensor_stream(1, SensorId::lidar, layers, i);
+    benchmark::DoNotOptimize(sensor.measure(active, fog.scan(i % 40), stream));
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sensor.beam_count()));
+  state.SetLabel("items = beams");
+}
+
+void BM_RadarFrame(benchmark::State& state) {
+  static const radar::RadarChain chain{radar::RadarParams{}};
+  static const propagation::Chamber chamber(propagation::ChamberSpec{},
+                                            chain.params().centre_frequency_hz, table());
+  radar::Scene scene = radar::evt_rear_scene();
+  scene.floor.enabled = true;
+  const auto active = propagation::first_layers_active(4, 4);
+  radar::MeasurementWorkspace workspace = chain.make_workspace();
+  radar::Measurement m;
+  std::uint64_t i = 0;
+  for (auto _ : state) {
+    RandomStream rng(6, i++);
+    chain.measure(scene, chamber, active, rng, workspace, m);
+  }
+}
+
+// The paper scenario's lidar part as experiment/ runs it, at one thread.
+void BM_PaperLidarPart(benchmark::State& state) {
+  const lidar::Lidar& sensor = paper_lidar();
+  for (auto _ : state) {
+    for (std::size_t step = 0; step <= 4; ++step) {
+      const auto active = propagation::first_layers_active(step, 4);
+      const lidar::FogFluctuationSeries fog = sensor.fog_fluctuation(
+          sensor_stream(1, SensorId::lidar, step, sensor.fog_series_index()));
+      for (std::size_t s = 0; s < 40; ++s) {
+        RandomStream stream = sensor_stream(1, SensorId::lidar, step, s);
+        benchmark::DoNotOptimize(sensor.measure(active, fog.scan(s), stream));
+      }
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * 200 * static_cast<std::int64_t>(sensor.beam_count()));
+}
+
+BENCHMARK(BM_LidarScan)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RadarFrame)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PaperLidarPart)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
