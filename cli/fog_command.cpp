@@ -1,5 +1,6 @@
 // `fogradar fog`: the fog's water index, radar attenuation and backscatter, optical extinction and
-// visibility (docs/physics.md).
+// visibility (docs/physics.md), and its optics at the paper scenario's three sensors' bands with each
+// sensor's loss through one layer.
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -12,7 +13,11 @@
 #include "checks.hpp"
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/camera/camera.hpp"
+#include "fogradar/core/constants.hpp"
 #include "fogradar/core/units.hpp"
+#include "fogradar/experiment/scenario.hpp"
+#include "fogradar/lidar/lidar.hpp"
 #include "fogradar/propagation/fog.hpp"
 
 namespace fogradar::cli {
@@ -27,8 +32,44 @@ struct FogOptions {
   std::optional<double>
       temperature_c;  // absent: 20 C under Liebe, the table's own under Segelstein
   std::string water_model = "liebe";
+  double layer_length_m = 1.0;  // the study's layer f_i
   bool json = false;
 };
+
+// The fog through one layer of `layer_length_m` as each of the paper scenario's sensors sees it,
+// resolved by the sensor modules themselves (the lidar's Mie at its wavelength, the camera's band
+// quadrature), so these are the numbers a run uses.
+struct SensorBands {
+  double radar_two_way_loss_db = 0.0;  // 2 A L, A the specific attenuation
+  double lidar_wavelength_m = 0.0;
+  double lidar_extinction_per_m = 0.0;
+  double lidar_backscatter_per_m_sr = 0.0;  // beta_pi = eta / (4 pi)
+  double lidar_two_way_loss_db = 0.0;       // 10 log10 e x 2 alpha L (Beer-Lambert)
+  std::string camera_band;
+  double camera_transmittance = 0.0;         // band-weighted one-way t of the layer
+  double camera_extinction_per_m = 0.0;      // -ln t / L: the band's effective beta
+  double camera_one_way_loss_db = 0.0;       // -10 log10 t
+};
+
+SensorBands sensor_bands(const propagation::FogSpec& spec, const propagation::FogOptics& radar,
+                         double layer_length_m, const propagation::SegelsteinTable& table) {
+  const experiment::Scenario paper = experiment::paper_scenario();
+  propagation::ChamberSpec chamber;
+  chamber.layers = {propagation::FogLayerSpec{.length_m = layer_length_m, .fog = spec}};
+  SensorBands b;
+  b.radar_two_way_loss_db = 2.0 * radar.specific_attenuation_db_per_km * layer_length_m * 1e-3;
+  const lidar::Lidar lidar(paper.lidar, chamber, table);
+  b.lidar_wavelength_m = paper.lidar.wavelength_m;
+  b.lidar_extinction_per_m = lidar.layer_extinction_per_m(0);
+  b.lidar_backscatter_per_m_sr = lidar.layer_backscatter_per_m_sr(0);
+  b.lidar_two_way_loss_db = 10.0 * std::log10(std::exp(1.0)) * 2.0 * b.lidar_extinction_per_m * layer_length_m;
+  const camera::Camera camera(paper.camera, chamber, table);
+  b.camera_band = std::string(camera::to_string(paper.camera.band));
+  b.camera_transmittance = camera.step_optics(propagation::ActiveLayers{true}).transmittance.front();
+  b.camera_extinction_per_m = -std::log(b.camera_transmittance) / layer_length_m;
+  b.camera_one_way_loss_db = -10.0 * std::log10(b.camera_transmittance);
+  return b;
+}
 
 // The argument names the user typed, so errors name them rather than internal fields.
 propagation::FogSpec fog_spec_from(const FogOptions& o) {
@@ -90,6 +131,7 @@ void run_fog(const FogOptions& options) {
       fog.at_optical_wavelength(propagation::visibility_wavelength_m);
   const double optical_extinction_per_km = fog.optical_extinction_per_km();
   const double visibility_m = fog.visibility_m();
+  const SensorBands bands = sensor_bands(spec, radar, options.layer_length_m, table);
 
   if (options.json) {
     const nlohmann::json out = {
@@ -108,6 +150,24 @@ void run_fog(const FogOptions& options) {
         {"volume_backscatter_m2_per_m3", radar.volume_backscatter_m2_per_m3},
         {"optical_extinction_per_km", optical_extinction_per_km},
         {"visibility_m", number_or_null(visibility_m)},
+        {"layer_length_m", options.layer_length_m},
+        {"sensors",
+         {{"radar",
+           {{"frequency_hz", radar.frequency_hz},
+            {"specific_attenuation_db_per_km", radar.specific_attenuation_db_per_km},
+            {"volume_backscatter_m2_per_m3", radar.volume_backscatter_m2_per_m3},
+            {"two_way_loss_db_per_layer", bands.radar_two_way_loss_db}}},
+          {"lidar",
+           {{"wavelength_m", bands.lidar_wavelength_m},
+            {"extinction_per_m", bands.lidar_extinction_per_m},
+            {"backscatter_per_m_sr", bands.lidar_backscatter_per_m_sr},
+            {"lidar_ratio_sr", number_or_null(bands.lidar_extinction_per_m / bands.lidar_backscatter_per_m_sr)},
+            {"two_way_loss_db_per_layer", bands.lidar_two_way_loss_db}}},
+          {"camera",
+           {{"band", bands.camera_band},
+            {"extinction_per_m", number_or_null(bands.camera_extinction_per_m)},
+            {"transmittance_per_layer", bands.camera_transmittance},
+            {"one_way_loss_db_per_layer", number_or_null(bands.camera_one_way_loss_db)}}}}},
     };
     std::cout << out.dump(2) << '\n';
     return;
@@ -123,7 +183,15 @@ void run_fog(const FogOptions& options) {
             << "volume backscatter eta    " << radar.volume_backscatter_m2_per_m3 << " m^2/m^3\n"
             << "optical extinction 550 nm " << optical_extinction_per_km << " 1/km (water index "
             << water_source(optical) << ")\n"
-            << "visibility (eq. 6, 2 %)   " << visibility_m << " m\n";
+            << "visibility (eq. 6, 2 %)   " << visibility_m << " m\n"
+            << "through one layer of " << options.layer_length_m << " m, as the paper scenario's sensors see it:\n"
+            << "  radar 2-way loss        " << bands.radar_two_way_loss_db << " dB\n"
+            << "  lidar (" << bands.lidar_wavelength_m * 1e9 << " nm)         extinction "
+            << bands.lidar_extinction_per_m << " 1/m, backscatter beta_pi " << bands.lidar_backscatter_per_m_sr
+            << " 1/(m sr), 2-way loss " << bands.lidar_two_way_loss_db << " dB\n"
+            << "  camera (" << bands.camera_band << ")       transmittance " << bands.camera_transmittance
+            << " (effective extinction " << bands.camera_extinction_per_m << " 1/m), 1-way loss "
+            << bands.camera_one_way_loss_db << " dB\n";
 }
 
 }  // namespace
@@ -161,6 +229,10 @@ Action add_fog_command(CLI::App& app) {
          "Water index at the radar frequency: liebe (temperature dependent, up to 1000 GHz) | "
          "segelstein (25 C table); 550 nm always uses segelstein")
       ->capture_default_str();
+  fog->add_option("--layer-length-m", options->layer_length_m,
+                  "Layer length in m for each sensor's loss through one layer [0.001, 10000]")
+      ->capture_default_str()
+      ->check(number_in("--layer-length-m", 0.001, 1e4, "in [0.001, 10000]"));
   fog->add_flag("--json", options->json, "Print one JSON object");
   return [options] { run_fog(*options); };
 }

@@ -351,6 +351,25 @@ for key in frequency_hz wavelength_m refractive_index_n refractive_index_k lwc_g
   water_model temperature_c optical_water_model optical_water_temperature_c; do
   echo "$json" | grep -q "\"$key\"" && pass || fail "fog --json lacks $key"
 done
+# The study's fog (beta = 900 /km at 550 nm, 1 um droplets) at the three sensors' bands through one
+# 2 m layer. References: the radar's two-way loss is 2 A L with A the printed specific attenuation;
+# the lidar's 10 log10(e) 2 alpha L (Beer-Lambert); the camera's photopic band-weighted extinction is
+# within 2 % of the 550 nm value the fog was given by (V(lambda) peaks at 555 nm and beta of 1 um
+# drops changes by a few % over its width), and its transmittance is exp(-beta_eff L).
+if command -v python3 >/dev/null; then
+  "$fogradar" fog --extinction-per-km 900 --layer-length-m 2 --json | python3 -c '
+import json, math, sys
+j = json.load(sys.stdin)
+s = j["sensors"]
+assert abs(s["radar"]["two_way_loss_db_per_layer"] - 2 * j["specific_attenuation_db_per_km"] * 2e-3) < 1e-12, s
+a = s["lidar"]["extinction_per_m"]
+assert abs(s["lidar"]["two_way_loss_db_per_layer"] - 10 * math.log10(math.e) * 2 * a * 2) < 1e-9, s
+assert s["lidar"]["wavelength_m"] == 905e-9 and s["lidar"]["backscatter_per_m_sr"] > 0, s
+c = s["camera"]
+assert abs(c["extinction_per_m"] / 0.9 - 1) < 0.02, c
+assert abs(c["transmittance_per_layer"] - math.exp(-2 * c["extinction_per_m"])) < 1e-12, c
+' && pass || fail "fog --json: sensors' bands"
+fi
 # The temperature the output states is the one the index used: 0 C moves the Liebe index; the
 # table states its own 25 C, in JSON and in text.
 cold=$("$fogradar" fog --lwc 1 --temperature-c 0 --json)
