@@ -55,9 +55,9 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
   MemoryEstimate e;
   e.threads = worker_threads(requested_threads, items);
   if (scenario.runs(SensorId::lidar))
-    e.sensor_bytes += lidar::lidar_memory_bytes(scenario.lidar, steps, e.threads);
+    e.lidar_bytes = lidar::lidar_memory_bytes(scenario.lidar, steps, e.threads);
   if (scenario.runs(SensorId::camera))
-    e.sensor_bytes += camera::memory_bytes(scenario.camera, steps);
+    e.camera_bytes = camera::memory_bytes(scenario.camera, steps);
 
   // Per thread (MeasurementWorkspace): the complex frame and the chirps x samples detection mask.
   const std::size_t frame = cells * complex_bytes + cells * sizeof(std::uint8_t);
@@ -103,17 +103,43 @@ void require_memory_within(const Scenario& scenario, unsigned requested_threads,
   if (estimate.total_bytes() <= limit_bytes) return;
   std::ostringstream out;
   out.precision(6);
-  out << "radar.samples_per_chirp = " << scenario.radar.samples_per_chirp
-      << " x radar.chirps_per_frame = " << scenario.radar.chirps_per_frame
-      << " with experiment.measurements_per_step = " << scenario.experiment.measurements_per_step
-      << " and --threads " << requested_threads << " (" << estimate.threads
-      << " workers) needs an estimated " << mib(estimate.total_bytes()) << " MiB ("
-      << estimate.threads << " x " << mib(estimate.per_thread_bytes) << " MiB frame workspace + "
-      << mib(estimate.records_bytes) << " MiB per-measurement records + "
-      << mib(estimate.sensor_bytes) << " MiB for the lidar and camera + "
-      << mib(estimate.shared_bytes) << " MiB shared): more than the limit of " << mib(limit_bytes)
-      << " MiB (--memory-limit-mib; default half the physical memory); reduce these";
-  throw InvalidParameter("radar.samples_per_chirp", out.str());
+  out << "the run needs an estimated " << mib(estimate.total_bytes()) << " MiB with --threads "
+      << requested_threads << " (" << estimate.threads << " workers), more than the limit of "
+      << mib(limit_bytes) << " MiB (--memory-limit-mib; default half the physical memory): ";
+  const std::size_t radar_bytes =
+      estimate.threads * estimate.per_thread_bytes + estimate.records_bytes;
+  std::string field = "radar.samples_per_chirp";
+  std::size_t largest = 0;
+  if (scenario.runs(SensorId::radar)) {
+    out << "radar " << mib(radar_bytes)
+        << " MiB (radar.samples_per_chirp = " << scenario.radar.samples_per_chirp
+        << " x radar.chirps_per_frame = " << scenario.radar.chirps_per_frame << ": "
+        << estimate.threads << " x " << mib(estimate.per_thread_bytes)
+        << " MiB frame workspace; experiment.measurements_per_step = "
+        << scenario.experiment.measurements_per_step << ": " << mib(estimate.records_bytes)
+        << " MiB per-measurement records), ";
+    largest = radar_bytes;
+  }
+  if (scenario.runs(SensorId::lidar)) {
+    out << "lidar " << mib(estimate.lidar_bytes)
+        << " MiB (lidar.scans_per_step = " << scenario.lidar.scans_per_step << " of "
+        << scenario.lidar.beam_count()
+        << " beams: lidar.field_of_view_deg = " << scenario.lidar.field_of_view_deg
+        << " / lidar.angular_step_deg = " << scenario.lidar.angular_step_deg << "), ";
+    if (estimate.lidar_bytes > largest) {
+      field = "lidar.scans_per_step";
+      largest = estimate.lidar_bytes;
+    }
+  }
+  if (scenario.runs(SensorId::camera)) {
+    out << "camera " << mib(estimate.camera_bytes)
+        << " MiB (camera.frames_per_step = " << scenario.camera.frames_per_step
+        << " of camera.roi.width_px = " << scenario.camera.roi.width_px
+        << " x camera.roi.height_px = " << scenario.camera.roi.height_px << "), ";
+    if (estimate.camera_bytes > largest) field = "camera.frames_per_step";
+  }
+  out << mib(estimate.shared_bytes) << " MiB shared; reduce these";
+  throw InvalidParameter(field, out.str());
 }
 
 }  // namespace fogradar::experiment

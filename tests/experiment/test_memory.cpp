@@ -8,6 +8,7 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/runner.hpp"
+#include "fogradar/lidar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
 
 namespace fogradar::experiment {
@@ -70,6 +71,33 @@ TEST(MemoryEstimate, RefusalNamesTheKeysAndTheLimit) {
     for (const char* key :
          {"radar.samples_per_chirp = 64", "radar.chirps_per_frame = 16",
           "experiment.measurements_per_step = 3", "--threads 2", "--memory-limit-mib"}) {
+      EXPECT_NE(message.find(key), std::string::npos) << key << " missing from: " << message;
+    }
+  }
+}
+
+// The lidar's and the camera's parts are their modules' own estimates, counted once each, and their
+// items count for the threads; a refusal driven by the lidar names its keys and is filed under it.
+TEST(MemoryEstimate, AddsTheLidarAndTheCamera) {
+  Scenario s = small_frame();
+  const MemoryEstimate radar_only = estimate_peak_memory(s, 100);
+  s.experiment.sensors = {SensorId::radar, SensorId::lidar, SensorId::camera};
+  const MemoryEstimate all = estimate_peak_memory(s, 100);
+  const std::size_t items = 5 * (3 + s.lidar.scans_per_step + s.camera.frames_per_step);
+  EXPECT_EQ(all.threads, worker_threads(100, items));
+  EXPECT_EQ(all.lidar_bytes, lidar::lidar_memory_bytes(s.lidar, 5, all.threads));
+  EXPECT_EQ(all.camera_bytes, camera::memory_bytes(s.camera, 5));
+  EXPECT_EQ(all.total_bytes(), all.threads * radar_only.per_thread_bytes + radar_only.shared_bytes +
+                                   radar_only.records_bytes + all.lidar_bytes + all.camera_bytes);
+  s.lidar.scans_per_step = 100000;
+  try {
+    require_memory_within(s, 1, estimate_peak_memory(s, 1).total_bytes() - 1);
+    FAIL() << "no refusal one byte below the estimate";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), "lidar.scans_per_step") << e.what();
+    const std::string message = e.what();
+    for (const char* key : {"lidar.scans_per_step = 100000", "lidar.field_of_view_deg", "camera.frames_per_step",
+                            "radar.samples_per_chirp = 64"}) {
       EXPECT_NE(message.find(key), std::string::npos) << key << " missing from: " << message;
     }
   }

@@ -19,10 +19,11 @@ struct MemoryEstimate {
   std::size_t shared_bytes = 0;      // windows, window spectra, FFT plans, process baseline
   std::size_t records_bytes = 0;     // one MeasurementRecord per measurement
   // The lidar's and the camera's own estimates (lidar_memory_bytes, camera::memory_bytes), threads
-  // included, when they run.
-  std::size_t sensor_bytes = 0;
+  // included; 0 when they do not run.
+  std::size_t lidar_bytes = 0;
+  std::size_t camera_bytes = 0;
   std::size_t total_bytes() const {
-    return threads * per_thread_bytes + shared_bytes + records_bytes + sensor_bytes;
+    return threads * per_thread_bytes + shared_bytes + records_bytes + lidar_bytes + camera_bytes;
   }
 };
 
@@ -37,10 +38,13 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
 // Half the physical memory (sysconf(_SC_PHYS_PAGES) x page size): the default limit.
 std::size_t default_memory_limit_bytes();
 
-// Throws InvalidParameter (field "radar.samples_per_chirp") naming radar.samples_per_chirp,
-// radar.chirps_per_frame, experiment.measurements_per_step and --threads with their values, the
-// estimate and the limit, when estimate_peak_memory(scenario, requested_threads) exceeds
-// limit_bytes.
+// Throws InvalidParameter, when estimate_peak_memory(scenario, requested_threads) exceeds
+// limit_bytes, naming the estimate, the limit, --threads and each running sensor's part with its keys
+// and values: the radar's radar.samples_per_chirp, radar.chirps_per_frame and
+// experiment.measurements_per_step, the lidar's lidar.scans_per_step and its beams
+// (lidar.field_of_view_deg / lidar.angular_step_deg), the camera's camera.frames_per_step and
+// camera.roi.width_px x camera.roi.height_px. Its field is the first key of the largest part
+// ("radar.samples_per_chirp", "lidar.scans_per_step" or "camera.frames_per_step").
 void require_memory_within(const Scenario& scenario, unsigned requested_threads,
                            std::size_t limit_bytes);
 
