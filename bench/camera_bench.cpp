@@ -1,7 +1,10 @@
 // The camera's part of the paper scenario: its cost, and the study's Fig. 7 means under both of the
 // study's fog readings (docs/camera.md §6-§7). Run by hand (Release build), not a test:
 //
-//   camera_bench [--frames N] [--repeats R] [--sensitivity]
+//   camera_bench [--frames N] [--repeats R] [--sensitivity] [--out DIR]
+//
+// --out writes each reading's camera_histograms.svg/.csv and camera_summary.csv/.json into
+// DIR/beta900/ and DIR/v574/ (the directories must exist).
 //
 // --sensitivity also recalibrates under other values of every key the two means do not pin down
 // (one at a time) and prints the 4-layer prediction each gives.
@@ -14,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -36,6 +40,10 @@ propagation::ChamberSpec paper_chamber(propagation::FogDensity density) {
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
 }
 
 double median(std::vector<double> v) {
@@ -98,22 +106,25 @@ int main(int argc, char** argv) {
   std::size_t frames = camera::CameraParams{}.frames_per_step;
   int repeats = 5;
   bool sensitivity = false;
+  std::string out_dir;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--sensitivity") sensitivity = true;
     if (i + 1 >= argc) continue;
     if (flag == "--frames") frames = std::strtoul(argv[i + 1], nullptr, 10);
     if (flag == "--repeats") repeats = std::atoi(argv[i + 1]);
+    if (flag == "--out") out_dir = argv[i + 1];
   }
   const propagation::SegelsteinTable table;
 
   struct Reading {
     const char* name;
+    const char* folder;
     propagation::FogDensity density;
   };
   const std::vector<Reading> readings{
-      {"beta = 900 /km at 550 nm", propagation::OpticalExtinction{900.0}},
-      {"V = 5.74 m (beta = 681.5 /km)", propagation::Visibility{5.74}},
+      {"beta = 900 /km at 550 nm", "beta900", propagation::OpticalExtinction{900.0}},
+      {"V = 5.74 m (beta = 681.5 /km)", "v574", propagation::Visibility{5.74}},
   };
   for (const Reading& reading : readings) {
     const propagation::ChamberSpec chamber = paper_chamber(reading.density);
@@ -135,7 +146,7 @@ int main(int argc, char** argv) {
                 calibration.params.exposure.ambient_level,
                 calibration.params.roi.target.median_reflectance, calibration.clear_mean_grey,
                 calibration.fog_mean_grey);
-    std::printf("band-weighted beta(550 nm node) of one layer: %.1f /km\n",
+    std::printf("beta of one layer at the 550 nm band node (interpolated from the Mie wavelengths): %.1f /km\n",
                 1e3 * camera.layer_extinction_per_m(0)[38]);
     std::printf("noise-free mean grey per active layers:");
     for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
@@ -163,6 +174,13 @@ int main(int argc, char** argv) {
                 camera.band_wavelengths_m().size(), build_s, calibration_s, steps.size(), frames,
                 params.roi.width_px, params.roi.height_px, median(run_s), repeats);
     if (sensitivity) print_sensitivity(params, chamber, table);
+    if (!out_dir.empty()) {
+      const std::string folder = out_dir + "/" + reading.folder + "/";
+      write_file(folder + "camera_histograms.svg", camera::histograms_svg(summary));
+      write_file(folder + "camera_histograms.csv", camera::histograms_csv(summary));
+      write_file(folder + "camera_summary.csv", camera::summary_csv(summary));
+      write_file(folder + "camera_summary.json", camera::summary_json(summary).dump(2) + "\n");
+    }
   }
   return 0;
 }
