@@ -34,7 +34,7 @@ struct ExposureParams {
   // hall's ambient radiance L_a (a white Lambertian surface in the uniform diffuse hall light): the
   // product of ambient radiance and exposure gain, the only combination grey values depend on.
   // Calibrated on the study's 0- and 2-layer means (docs/camera.md §6).
-  double ambient_level = 0.05509;
+  double ambient_level = 0.05508;
   double auto_target_grey = 46.0;  // automatic mode: ROI mean grey held at every step
 };
 
