@@ -9,6 +9,7 @@
 
 #include "fogradar/camera/pipeline.hpp"
 #include "fogradar/camera/spectral.hpp"
+#include "fogradar/core/complex_normal_generator.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/fog.hpp"
 
@@ -36,6 +37,16 @@ std::size_t count_edges(const std::vector<double>& value, std::size_t cells_x, d
     if (c + cells_x < value.size() && edge_contrast(value[c], value[c + cells_x]) >= threshold) ++edges;
   }
   return edges;
+}
+
+// Grey level of a linear signal: g with thresholds[g - 1] <= linear < thresholds[g], walking from
+// `start`.
+inline std::size_t walk_level(const std::array<double, grey_levels - 1>& thresholds, double linear,
+                              std::size_t start) {
+  std::size_t g = start;
+  while (g + 1 < grey_levels && linear >= thresholds[g]) ++g;
+  while (g > 0 && linear < thresholds[g - 1]) --g;
+  return g;
 }
 
 // Lognormal reflectance at probability q: median exp(sigma Phi^-1(q)).
@@ -67,6 +78,8 @@ Camera::Camera(const CameraParams& params, const propagation::ChamberSpec& chamb
   channel_count_ = weights_.size();
 
   // Mie over the band once per distinct fog, never per step, frame or pixel.
+  const std::vector<double> mie_wavelengths =
+      mie_wavelengths_m(params_.band, params_.wavelength_nm, params_.mie_step_nm);
   std::vector<propagation::FogSpec> distinct;
   for (const propagation::FogLayerSpec& layer : chamber.layers) {
     layer_lengths_m_.push_back(layer.length_m);
@@ -77,15 +90,15 @@ Camera::Camera(const CameraParams& params, const propagation::ChamberSpec& chamb
     const propagation::Fog fog(layer.fog, table);
     std::vector<double> extinction;
     std::vector<double> albedo;
-    for (double wavelength : wavelengths_m_) {
+    for (double wavelength : mie_wavelengths) {
       const propagation::FogOptics optics = fog.at_optical_wavelength(wavelength);
       extinction.push_back(optics.extinction_per_m);
       albedo.push_back(optics.extinction_per_m > 0.0
                            ? optics.scattering_per_m / optics.extinction_per_m
                            : 1.0);
     }
-    extinction_.push_back(std::move(extinction));
-    albedo_.push_back(std::move(albedo));
+    extinction_.push_back(interpolate_quadratic(mie_wavelengths, extinction, wavelengths_m_));
+    albedo_.push_back(interpolate_quadratic(mie_wavelengths, albedo, wavelengths_m_));
   }
 
   build_scene();
@@ -93,6 +106,18 @@ Camera::Camera(const CameraParams& params, const propagation::ChamberSpec& chamb
 
 void Camera::build_scene() {
   cells_.clear();
+  // The pipeline's look-up tables: grey level g holds linear values in [thresholds_[g - 1],
+  // thresholds_[g]) (round(255 encode(v)) = g), and decodes to grey_linear_[g].
+  for (std::size_t g = 0; g < grey_levels; ++g) {
+    grey_linear_[g] = decode(params_.transfer, params_.gamma, static_cast<double>(g) / 255.0);
+    if (g + 1 < grey_levels) {
+      thresholds_[g] = decode(params_.transfer, params_.gamma, (static_cast<double>(g) + 0.5) / 255.0);
+    }
+  }
+  for (std::size_t b = 0; b < bucket_levels_.size(); ++b) {
+    const double start = static_cast<double>(b) / static_cast<double>(bucket_levels_.size());
+    bucket_levels_[b] = static_cast<std::uint8_t>(walk_level(thresholds_, start, b == 0 ? 0 : bucket_levels_[b - 1]));
+  }
   // The ROI's cell grid; the target is the central rectangle holding target_fraction of the cells.
   const RoiParams& roi = params_.roi;
   cells_x_ = (roi.width_px + roi.cell_px - 1) / roi.cell_px;
@@ -134,8 +159,11 @@ void Camera::build_scene() {
 
 Camera Camera::with_scene(const CameraParams& params) const {
   params.validate();
-  if (params.band != params_.band || params.wavelength_nm != params_.wavelength_nm) {
-    throw InvalidParameter("camera.band", "with_scene keeps the band: camera.band and camera.wavelength_nm must equal the built camera's");
+  if (params.band != params_.band || params.wavelength_nm != params_.wavelength_nm ||
+      params.mie_step_nm != params_.mie_step_nm) {
+    throw InvalidParameter("camera.band",
+                           "with_scene keeps the fog optics: camera.band, camera.wavelength_nm and "
+                           "camera.mie_step_nm must equal the built camera's");
   }
   Camera copy = *this;
   copy.params_ = params;
@@ -233,88 +261,86 @@ std::size_t Camera::clear_edge_count() const {
   return count_edges(reflectance, cells_x_, params_.contrast_threshold);
 }
 
+std::uint8_t Camera::quantise(double linear) const {
+  if (!(linear > 0.0)) return 0;
+  if (linear >= 1.0) return grey_levels - 1;
+  const auto bucket = static_cast<std::size_t>(linear * static_cast<double>(bucket_levels_.size()));
+  const std::uint8_t low = bucket_levels_[bucket];
+  // Most buckets lie inside one grey level; a bucket with a threshold in it takes one compare.
+  if (low == grey_levels - 1 || linear < thresholds_[low]) return low;
+  return static_cast<std::uint8_t>(walk_level(thresholds_, linear, low + 1u));
+}
+
 CameraFrame Camera::frame(const StepOptics& optics, RandomStream& stream) const {
   FOGRADAR_CHECK(optics.transmittance.size() == channel_count_);
   const RoiParams& roi = params_.roi;
   const NoiseParams& noise = params_.noise;
-  const double read_variance = noise.read_noise_electrons * noise.read_noise_electrons;
+  const std::size_t pixels = roi.width_px * roi.height_px;
 
-  // Linear value of every grey level, for the linearised means behind the contrasts.
-  std::array<double, grey_levels> grey_linear{};
-  for (std::size_t g = 0; g < grey_levels; ++g) {
-    grey_linear[g] = decode(params_.transfer, params_.gamma, static_cast<double>(g) / 255.0);
+  // Standard normals for every pixel and channel, two per complex sample of CN(0, 2).
+  std::vector<std::complex<double>> normals;
+  if (noise.enabled) {
+    normals.assign((pixels * channel_count_ + 1) / 2, {0.0, 0.0});
+    ComplexNormalGenerator generator(stream);
+    generator.add(normals, 2.0);
   }
+  // A complex<double> array is an array of its real and imaginary parts ([complex.numbers]).
+  const double* normal = reinterpret_cast<const double*>(normals.data());
 
   CameraFrame result;
-  if (params_.write_roi_images) result.pixels.assign(roi.width_px * roi.height_px, 0);
+  if (params_.write_roi_images) result.pixels.assign(pixels, 0);
   std::vector<double> cell_linear(cells_.size(), 0.0);
   double target_sum = 0.0;
   double background_sum = 0.0;
   std::size_t target_pixels = 0;
-
-  // Gaussian pairs from one Box-Muller draw: CN(0, 2) has independent N(0, 1) real and imaginary parts.
-  std::complex<double> pair;
-  bool have_second = false;
-  const auto standard_normal = [&]() {
-    if (have_second) {
-      have_second = false;
-      return pair.imag();
-    }
-    pair = stream.complex_normal(2.0);
-    have_second = true;
-    return pair.real();
-  };
+  std::size_t draw = 0;
 
   for (std::size_t ci = 0; ci < cells_.size(); ++ci) {
     const Cell& cell = cells_[ci];
-    std::array<double, 3> electrons{};
+    std::array<double, 3> signal{};
+    std::array<double, 3> sigma{};
     for (std::size_t c = 0; c < channel_count_; ++c) {
-      // Eq. 8 in units of L_a: rho t_c + a_c, times the exposure, in electrons.
-      const double radiance = cell.reflectance * optics.transmittance[c] + optics.airlight_factor[c];
-      electrons[c] = optics.exposure_level * radiance * noise.full_well_electrons;
+      // Eq. 8 in units of L_a, rho t_c + a_c, times the exposure: the linear signal (full scale 1).
+      signal[c] = optics.exposure_level *
+                  (cell.reflectance * optics.transmittance[c] + optics.airlight_factor[c]);
+      // Shot noise (Poisson in electrons, Gaussian approximation, variance N_e) and read noise.
+      const double electrons = signal[c] * noise.full_well_electrons;
+      sigma[c] = std::sqrt(electrons + noise.read_noise_electrons * noise.read_noise_electrons) /
+                 noise.full_well_electrons;
     }
     const std::size_t x_end = std::min(cell.x0 + roi.cell_px, roi.width_px);
     const std::size_t y_end = std::min(cell.y0 + roi.cell_px, roi.height_px);
+    double linear_sum = 0.0;
     for (std::size_t y = cell.y0; y < y_end; ++y) {
       for (std::size_t x = cell.x0; x < x_end; ++x) {
-        std::array<double, 3> encoded{};
+        std::array<std::uint8_t, 3> q{};
         for (std::size_t c = 0; c < channel_count_; ++c) {
-          double signal = electrons[c];
-          // Shot noise (Poisson, Gaussian approximation, variance N_e) and read noise.
-          if (noise.enabled) signal += std::sqrt(signal + read_variance) * standard_normal();
-          encoded[c] = encode(params_.transfer, params_.gamma, signal / noise.full_well_electrons);
+          const double v = noise.enabled ? signal[c] + sigma[c] * normal[draw++] : signal[c];
+          q[c] = quantise(v);
         }
-        std::uint8_t grey = 0;
-        if (channel_count_ == 3) {
-          // Each channel quantised to 8 bits, then luma rounded, as cvtColor on an 8-bit image.
-          grey = quantise_8bit(luma_bt601(quantise_8bit(encoded[0]) / 255.0,
-                                          quantise_8bit(encoded[1]) / 255.0,
-                                          quantise_8bit(encoded[2]) / 255.0));
-        } else {
-          grey = quantise_8bit(encoded[0]);
-        }
+        // Rgb: each channel quantised to 8 bits, then the luma rounded, as cvtColor on an 8-bit image.
+        const std::uint8_t grey =
+            channel_count_ == 3 ? quantise_8bit(luma_bt601(q[0], q[1], q[2]) / 255.0) : q[0];
         ++result.histogram[grey];
-        cell_linear[ci] += grey_linear[grey];
+        linear_sum += grey_linear_[grey];
         if (!result.pixels.empty()) result.pixels[y * roi.width_px + x] = grey;
       }
     }
-    const auto count = static_cast<double>((x_end - cell.x0) * (y_end - cell.y0));
+    cell_linear[ci] = linear_sum;
+    const std::size_t count = (x_end - cell.x0) * (y_end - cell.y0);
     (cell.target ? target_sum : background_sum) += cell_linear[ci];
-    if (cell.target) target_pixels += (x_end - cell.x0) * (y_end - cell.y0);
-    cell_linear[ci] /= count;
+    if (cell.target) target_pixels += count;
+    cell_linear[ci] /= static_cast<double>(count);
   }
 
   double grey_sum = 0.0;
   for (std::size_t g = 0; g < grey_levels; ++g) {
     grey_sum += static_cast<double>(g) * static_cast<double>(result.histogram[g]);
   }
-  const std::size_t pixels = roi.width_px * roi.height_px;
   result.mean_grey = grey_sum / static_cast<double>(pixels);
   const double target_mean = target_sum / static_cast<double>(target_pixels);
   const double background_mean = background_sum / static_cast<double>(pixels - target_pixels);
-  result.target_contrast =
-      background_mean > 0.0 ? weber_contrast(target_mean, background_mean) : 0.0;
-
+  result.target_contrast = background_mean > 0.0 ? weber_contrast(target_mean, background_mean) : 0.0;
   result.edges_above_threshold = count_edges(cell_linear, cells_x_, params_.contrast_threshold);
   return result;
 }

@@ -70,6 +70,8 @@ TransferCurve parse_transfer_curve(std::string_view text, std::string_view field
 void CameraParams::validate() const {
   // The Segelstein table and the Mie sums cover it; a camera sees 380-780 nm, silicon to ~1100 nm.
   require_in_range("camera.wavelength_nm", wavelength_nm, 300.0, 1100.0);
+  // 5 nm is the CIE table's own spacing; 160 nm leaves 3 nodes over 400-720 nm.
+  require_in_range("camera.mie_step_nm", mie_step_nm, 5.0, 160.0);
   // Above 1 every pixel of a white surface clips; 1e-4 is 0.03 grey levels of linear signal.
   require_in_range("camera.exposure.ambient_level", exposure.ambient_level, 1e-4, 1.0);
   require_in_range("camera.exposure.auto_target_grey", exposure.auto_target_grey, 1.0, 254.0);

@@ -100,4 +100,45 @@ BandQuadrature band_quadrature(Band band, double wavelength_nm, const ColourMatc
   return quadrature;
 }
 
+std::vector<double> mie_wavelengths_m(Band band, double wavelength_nm, double step_nm) {
+  if (band == Band::monochromatic) return {wavelength_nm * 1e-9};
+  constexpr double first_nm = 400.0;
+  constexpr double last_nm = 720.0;
+  std::vector<double> nodes;
+  for (int k = 0; first_nm + k * step_nm < last_nm; ++k) nodes.push_back((first_nm + k * step_nm) * 1e-9);
+  nodes.push_back(last_nm * 1e-9);
+  return nodes;
+}
+
+std::vector<double> interpolate_quadratic(const std::vector<double>& x, const std::vector<double>& y,
+                                          const std::vector<double>& at) {
+  FOGRADAR_CHECK(!x.empty() && x.size() == y.size());
+  const std::size_t n = x.size();
+  std::vector<double> out;
+  out.reserve(at.size());
+  for (const double raw : at) {
+    const double v = std::clamp(raw, x.front(), x.back());
+    if (n == 1) {
+      out.push_back(y.front());
+      continue;
+    }
+    // The nearest node, then the run of min(n, 3) nodes centred on it as far as the ends allow.
+    const auto upper = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), v) - x.begin());
+    std::size_t nearest = std::min(upper, n - 1);
+    if (nearest > 0 && v - x[nearest - 1] < x[nearest] - v) --nearest;
+    const std::size_t count = std::min<std::size_t>(n, 3);
+    const std::size_t first = std::min(nearest > 0 ? nearest - 1 : 0, n - count);
+    double sum = 0.0;
+    for (std::size_t i = first; i < first + count; ++i) {
+      double basis = 1.0;
+      for (std::size_t j = first; j < first + count; ++j) {
+        if (j != i) basis *= (v - x[j]) / (x[i] - x[j]);
+      }
+      sum += basis * y[i];
+    }
+    out.push_back(sum);
+  }
+  return out;
+}
+
 }  // namespace fogradar::camera

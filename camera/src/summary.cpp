@@ -135,6 +135,7 @@ std::string histograms_svg(const CameraSummary& summary) {
   options.title = "Camera ROI grey histograms per active fog layers (cf. paper Fig. 7)";
   options.x_label = "grey level (8 bit)";
   options.y_label = "pixels (% of ROI)";
+  options.x_axis_exact = true;
   options.caption = {"Dashed lines: each step's mean grey. Histograms summed over the step's frames.",
                      summary.criterion};
   return stats::line_plot_svg(series, options);
@@ -162,10 +163,16 @@ std::string step_table(const CameraSummary& summary) {
              pad(format_fixed(s.edges_above_threshold, 1), 11) + " (" + std::to_string(s.clear_edges) +
              ")\n";
   }
-  table += "camera limit (" + summary.criterion + "): " +
-           (summary.sensor_limit_layers ? std::to_string(*summary.sensor_limit_layers) + " layers"
-                                        : std::string("not reached")) +
-           "\n";
+  std::string verdict;
+  if (summary.sensor_limit_layers) {
+    verdict = std::to_string(*summary.sensor_limit_layers) + " layers";
+  } else if (!summary.steps.empty()) {
+    verdict = "not reached (|contrast| " + format_fixed(std::abs(summary.steps.back().target_contrast), 3) +
+              " at the last step)";
+  } else {
+    verdict = "not reached";
+  }
+  table += "camera limit (" + summary.criterion + "): " + verdict + "\n";
   return table;
 }
 

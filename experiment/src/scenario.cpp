@@ -447,6 +447,7 @@ void read_camera(const toml::table& root, std::string_view source, KeyLines& lin
   s.read("band", band);
   if (band) c.band = camera::parse_band(*band, "camera.band");
   s.read("wavelength_nm", c.wavelength_nm);
+  s.read("mie_step_nm", c.mie_step_nm);
   s.read("transfer", transfer);
   if (transfer) c.transfer = camera::parse_transfer_curve(*transfer, "camera.transfer");
   s.read("gamma", c.gamma);
@@ -891,6 +892,7 @@ std::string to_toml(const Scenario& s) {
   out << "\n[camera]\n"
       << "band = " << str(camera::to_string(c.band)) << '\n'
       << "wavelength_nm = " << num(c.wavelength_nm) << '\n'
+      << "mie_step_nm = " << num(c.mie_step_nm) << '\n'
       << "transfer = " << str(camera::to_string(c.transfer)) << '\n'
       << "gamma = " << num(c.gamma) << '\n'
       << "frames_per_step = " << c.frames_per_step << '\n'

@@ -110,7 +110,11 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
   const double left = margin_left;
   const double right = width - legend_column;
   const double bottom = height - below_plot_px(options);
-  const auto to_x = [&](double v) { return left + (v - xt.first) / (xt.last - xt.first) * (right - left); };
+  const double axis_x_low = options.x_axis_exact && x_high > x_low ? x_low : xt.first;
+  const double axis_x_high = options.x_axis_exact && x_high > x_low ? x_high : xt.last;
+  const auto to_x = [&](double v) {
+    return left + (v - axis_x_low) / (axis_x_high - axis_x_low) * (right - left);
+  };
   const auto to_y = [&](double v) {
     return bottom - (v - yt.first) / (yt.last - yt.first) * (bottom - plot_top);
   };
@@ -134,6 +138,7 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
   const auto x_ticks = std::lround((xt.last - xt.first) / xt.step);
   for (long i = 0; i <= x_ticks; ++i) {
     const double value = xt.first + static_cast<double>(i) * xt.step;
+    if (value < axis_x_low - 1e-9 * xt.step || value > axis_x_high + 1e-9 * xt.step) continue;
     line(svg, to_x(value), bottom, to_x(value), bottom + 5.0, "stroke=\"#333333\" stroke-width=\"1\"");
     text(svg, to_x(value), bottom + tick_baseline, "middle", "class=\"tick\"",
          format_fixed(value, xt.decimals));
@@ -142,6 +147,7 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
          px(right - left) + "\" height=\"" + px(bottom - plot_top) +
          "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1\"/>\n";
 
+  std::string labels;
   for (std::size_t i = 0; i < series.size(); ++i) {
     const LineSeries& s = series[i];
     const std::string colour(palette[i % palette.size()]);
@@ -158,9 +164,11 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
       const double x = to_x(*s.marker_x);
       line(svg, x, plot_top, x, bottom,
            "class=\"marker\" stroke=\"" + colour + "\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"");
-      // Marker labels stacked downwards so that close markers do not overwrite each other.
-      text(svg, x + 4.0, plot_top + 14.0 + 14.0 * static_cast<double>(i), "start",
-           "class=\"marker-label\" fill=\"" + colour + "\"", s.marker_label);
+      // Labels after every line (below), stacked downwards so that close markers stay readable.
+      text(labels, x + 4.0, plot_top + 14.0 + 14.0 * static_cast<double>(i), "start",
+           "class=\"marker-label\" fill=\"" + colour +
+               "\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\"",
+           s.marker_label);
     }
     const double ly = plot_top + 10.0 + legend_row * static_cast<double>(i);
     line(svg, right + 16.0, ly, right + 40.0, ly,
@@ -168,6 +176,7 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
     text(svg, right + 46.0, ly + 4.0, "start", "class=\"legend-text\"", s.label);
   }
 
+  svg += labels;
   text(svg, 0.5 * (left + right), bottom + x_label_baseline, "middle", "class=\"x-label\"",
        options.x_label);
   svg += "<text class=\"y-label\" x=\"0.00\" y=\"0.00\" text-anchor=\"middle\" transform=\"translate(" +

@@ -121,6 +121,8 @@ class Camera {
   };
 
   void build_scene();
+  // Grey level of a linear signal (full scale 1): round(255 encode(linear)) by the thresholds.
+  std::uint8_t quantise(double linear) const;
 
   CameraParams params_;
   std::size_t layer_count_ = 0;
@@ -134,6 +136,9 @@ class Camera {
   std::vector<Cell> cells_;
   std::size_t cells_x_ = 0;
   std::size_t cells_y_ = 0;
+  std::array<double, grey_levels - 1> thresholds_{};
+  std::array<double, grey_levels> grey_linear_{};
+  std::array<std::uint8_t, 4096> bucket_levels_{};  // grey level at linear b / 4096
 };
 
 // Per-step statistics and the sensor limit (stats/ for the statistics).

@@ -34,7 +34,7 @@ struct ExposureParams {
   // hall's ambient radiance L_a (a white Lambertian surface in the uniform diffuse hall light): the
   // product of ambient radiance and exposure gain, the only combination grey values depend on.
   // Calibrated on the study's 0- and 2-layer means (docs/camera.md §6).
-  double ambient_level = 0.0606;
+  double ambient_level = 0.05508;
   double auto_target_grey = 46.0;  // automatic mode: ROI mean grey held at every step
 };
 
@@ -59,19 +59,24 @@ struct RoiParams {
   std::size_t height_px = 120;
   std::size_t cell_px = 8;
   double target_fraction = 0.6;
-  RegionParams target{.median_reflectance = 0.32, .log_sigma = 0.6};
-  RegionParams background{.median_reflectance = 0.25, .log_sigma = 0.8};
+  RegionParams target{.median_reflectance = 0.2923, .log_sigma = 0.6};
+  RegionParams background{.median_reflectance = 0.8, .log_sigma = 0.6};
 };
 
 struct CameraParams {
   Band band = Band::photopic;
   double wavelength_nm = 550.0;  // band = monochromatic only
+  // Spacing of the wavelengths at which Mie gives beta(lambda) and omega(lambda) (from 400 to 720 nm,
+  // where V(lambda) holds 99.99 % of its integral), interpolated piecewise quadratically onto the
+  // CIE table's 5 nm nodes (held constant outside): beta(lambda) of fog is smooth; docs/camera.md §2
+  // gives the error and when to refine (monodisperse fogs ripple).
+  double mie_step_nm = 160.0;
   ExposureParams exposure;
   TransferCurve transfer = TransferCurve::srgb;
   double gamma = 2.2;  // transfer = gamma only
   NoiseParams noise;
   RoiParams roi;
-  std::size_t frames_per_step = 20;
+  std::size_t frames_per_step = 10;
   // Weber contrast threshold of an edge and of the target (CIE 5 %, paper eq. 9).
   double contrast_threshold = 0.05;
   bool write_roi_images = false;  // keep the first frame of each step (camera_roi_<step>.pgm)

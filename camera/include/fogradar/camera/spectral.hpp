@@ -30,4 +30,14 @@ struct BandQuadrature {
 };
 BandQuadrature band_quadrature(Band band, double wavelength_nm, const ColourMatchingTable& table);
 
+// Wavelengths at which Mie is evaluated: 400, 400 + step, ..., and 720 nm for the photopic and rgb
+// bands (V(lambda) holds 99.99 % of its integral there); {wavelength_nm} for monochromatic.
+std::vector<double> mie_wavelengths_m(Band band, double wavelength_nm, double step_nm);
+
+// Piecewise-quadratic interpolation of the points (x, y), x ascending: at each of `at`, the Lagrange
+// parabola through the three nodes nearest to it (linear with two nodes, constant with one);
+// constant beyond the ends.
+std::vector<double> interpolate_quadratic(const std::vector<double>& x, const std::vector<double>& y,
+                                          const std::vector<double>& at);
+
 }  // namespace fogradar::camera

@@ -24,6 +24,9 @@ struct LinePlotOptions {
   std::vector<std::string> caption;
   std::string x_label;
   std::string y_label;
+  // The x axis spans the data exactly (e.g. grey levels 0-255), ticks at 1-2-5 steps inside it;
+  // false: the axis is widened to the enclosing ticks.
+  bool x_axis_exact = false;
   double width_px = 960;
   double height_px = 640;
   // Throws InvalidParameter naming "svg.width_px" (finite, >= 480) or "svg.height_px" (finite,

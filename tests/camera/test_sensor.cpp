@@ -1,0 +1,273 @@
+// The camera's sensor pipeline, metrics, determinism, result files and bad input. References:
+// IEC 61966-2-1 sRGB values computed by hand from the standard's formula; ITU-R BT.601 weights;
+// the pipeline's own public pure functions as the second method for the frame's look-up-table
+// quantisation; the study's direction (Fig. 7: mean up, tonal range down with layers).
+#include <gtest/gtest.h>
+
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "fogradar/camera/calibration.hpp"
+#include "fogradar/camera/camera.hpp"
+#include "fogradar/camera/pipeline.hpp"
+#include "fogradar/core/error.hpp"
+
+namespace fogradar::camera {
+namespace {
+
+using test_support::rejected_field;
+
+const propagation::SegelsteinTable& table() {
+  static const propagation::SegelsteinTable instance;
+  return instance;
+}
+
+propagation::ChamberSpec paper_chamber() {
+  propagation::ChamberSpec spec;
+  for (auto& layer : spec.layers) layer.fog.density = propagation::OpticalExtinction{900.0};
+  return spec;
+}
+
+const Camera& default_camera() {
+  static const Camera camera(CameraParams{}, paper_chamber(), table());
+  return camera;
+}
+
+TEST(Pipeline, SrgbKnownValuesAndRoundTrip) {
+  // IEC 61966-2-1: 1.055 v^(1/2.4) - 0.055; 0.5 -> 0.735356983, 0.18 -> 0.461356129 (evaluated by
+  // hand to 9 digits), the linear segment 12.92 v below 0.0031308.
+  EXPECT_NEAR(srgb_encode(0.5), 0.735356983, 1e-9);
+  EXPECT_NEAR(srgb_encode(0.18), 0.461356129, 1e-9);
+  EXPECT_DOUBLE_EQ(srgb_encode(0.001), 0.01292);
+  EXPECT_EQ(srgb_encode(0.0), 0.0);
+  EXPECT_NEAR(srgb_encode(1.0), 1.0, 1e-15);
+  // The two segments meet (continuity at the break to 1e-4, the standard's rounded constants).
+  EXPECT_NEAR(srgb_encode(0.0031308 * (1 + 1e-12)), 12.92 * 0.0031308, 1e-4);
+  for (double v = 0.0; v <= 1.0; v += 1.0 / 1024.0) {
+    EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-12);
+    EXPECT_NEAR(gamma_decode(gamma_encode(v, 2.2), 2.2), v, 1e-12);
+  }
+  EXPECT_DOUBLE_EQ(gamma_encode(0.25, 2.0), 0.5);
+}
+
+TEST(Pipeline, QuantisationAndLuma) {
+  EXPECT_EQ(quantise_8bit(0.0), 0);
+  EXPECT_EQ(quantise_8bit(0.5 / 255.0 - 1e-9), 0);
+  EXPECT_EQ(quantise_8bit(0.5 / 255.0 + 1e-9), 1);
+  EXPECT_EQ(quantise_8bit(46.0 / 255.0), 46);
+  EXPECT_EQ(quantise_8bit(1.2), 255);  // clipped
+  EXPECT_EQ(quantise_8bit(-0.3), 0);
+  // BT.601 weights sum to 1: a grey pixel keeps its value.
+  EXPECT_NEAR(luma_bt601(0.4, 0.4, 0.4), 0.4, 1e-15);
+  EXPECT_NEAR(luma_bt601(1.0, 0.0, 0.0), 0.299, 1e-15);
+}
+
+TEST(Pipeline, FrameQuantisationEqualsThePureFunctions) {
+  // Uniform target and background (log_sigma 0), no noise: every pixel of a region has the grey
+  // round(255 srgb(k (rho t + a))) computed here from the step's optics with the public functions.
+  CameraParams params;
+  params.noise.enabled = false;
+  params.roi.target.log_sigma = 0.0;
+  params.roi.background.log_sigma = 0.0;
+  const Camera camera = default_camera().with_scene(params);
+  for (std::size_t n = 0; n <= 4; ++n) {
+    const StepOptics optics = camera.step_optics(propagation::first_layers_active(n, 4));
+    RandomStream stream(1);
+    const CameraFrame frame = camera.frame(optics, stream);
+    std::size_t expected_levels = 0;
+    for (const double rho : {params.roi.target.median_reflectance, params.roi.background.median_reflectance}) {
+      const double linear = optics.exposure_level * (rho * optics.transmittance[0] + optics.airlight_factor[0]);
+      EXPECT_GT(frame.histogram[quantise_8bit(srgb_encode(linear))], 0u) << n;
+      ++expected_levels;
+    }
+    std::size_t levels = 0;
+    for (const auto count : frame.histogram) levels += count > 0 ? 1 : 0;
+    EXPECT_LE(levels, expected_levels);
+  }
+}
+
+TEST(Pipeline, AutoExposureHoldsItsTarget) {
+  // Noise-free mean held to 1e-6 grey by the bisection; a noisy, quantised frame within 1 level.
+  CameraParams params;
+  params.exposure.mode = ExposureMode::automatic;
+  params.exposure.auto_target_grey = 100.0;
+  const Camera camera = default_camera().with_scene(params);
+  for (std::size_t n = 0; n <= 4; ++n) {
+    const StepOptics optics = camera.step_optics(propagation::first_layers_active(n, 4));
+    EXPECT_NEAR(camera.expected_mean_grey(optics), 100.0, 1e-6) << n;
+    RandomStream stream(sensor_stream(5, SensorId::camera, n, 0));
+    EXPECT_NEAR(camera.frame(optics, stream).mean_grey, 100.0, 1.0) << n;
+  }
+}
+
+std::vector<CameraStepResult> run_steps(const Camera& camera, std::uint64_t seed) {
+  std::vector<CameraStepResult> steps;
+  for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
+    steps.push_back(camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), seed));
+  }
+  return steps;
+}
+
+TEST(Sensor, DirectionOfTheStudysFigure7) {
+  // Mean grey rises, std and the 5-95 % tonal range narrow, the target's contrast falls, strictly
+  // with every active layer (the study: 46, 64, 68 and a narrowing histogram).
+  const CameraSummary summary = summarize(default_camera().params(), run_steps(default_camera(), 1));
+  ASSERT_EQ(summary.steps.size(), 5u);
+  for (std::size_t i = 1; i < summary.steps.size(); ++i) {
+    const CameraStepSummary& a = summary.steps[i - 1];
+    const CameraStepSummary& b = summary.steps[i];
+    EXPECT_GT(b.mean_grey, a.mean_grey) << i;
+    EXPECT_LT(b.std_grey, a.std_grey) << i;
+    EXPECT_LE(b.tonal_range, a.tonal_range) << i;
+    EXPECT_LT(std::abs(b.target_contrast), std::abs(a.target_contrast)) << i;
+    EXPECT_LE(b.edges_above_threshold, a.edges_above_threshold) << i;
+  }
+  EXPECT_LT(summary.steps.back().tonal_range, summary.steps.front().tonal_range);
+  EXPECT_NEAR(summary.steps[0].relative_contrast, 1.0, 0.02);  // clear weather, quantisation only
+}
+
+TEST(Sensor, DefaultsReproduceTheCalibrationMeans) {
+  // The defaults are the calibrated keys (docs/camera.md §6), rounded to 4 digits: noise-free means
+  // 46 and 64 to 0.05 grey; calibrating again from them returns them to 0.1 %.
+  const Camera& camera = default_camera();
+  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(0, 4))), 46.0, 0.05);
+  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(2, 4))), 64.0, 0.05);
+  const CalibrationResult calibration = calibrate_to_means(camera, 46.0, 2, 64.0);
+  EXPECT_NEAR(calibration.params.exposure.ambient_level / camera.params().exposure.ambient_level, 1.0, 1e-3);
+  EXPECT_NEAR(calibration.params.roi.target.median_reflectance / camera.params().roi.target.median_reflectance,
+              1.0, 1e-3);
+}
+
+TEST(Sensor, DeterministicAndIndependentOfFrameOrder) {
+  // Same seed: identical steps; a frame measured alone from its own stream equals the same frame
+  // inside measure_step (what any thread count does); another seed differs.
+  const Camera& camera = default_camera();
+  const auto a = run_steps(camera, 42);
+  const auto b = run_steps(camera, 42);
+  const auto c = run_steps(camera, 43);
+  for (std::size_t s = 0; s < a.size(); ++s) {
+    for (std::size_t f = 0; f < a[s].frames.size(); ++f) {
+      EXPECT_EQ(a[s].frames[f].histogram, b[s].frames[f].histogram);
+    }
+  }
+  EXPECT_NE(a[2].frames[0].histogram, c[2].frames[0].histogram);
+  RandomStream stream = sensor_stream(42, SensorId::camera, 3, 7);
+  const CameraFrame alone = camera.frame(camera.step_optics(propagation::first_layers_active(3, 4)), stream);
+  EXPECT_EQ(alone.histogram, a[3].frames[7].histogram);
+}
+
+TEST(Summary, SensorLimitIsTheFirstStepBelowTheThreshold) {
+  CameraParams params;
+  std::vector<CameraStepResult> steps;
+  for (const double contrast : {-0.6, -0.2, -0.06, -0.049, -0.01}) {
+    CameraStepResult step;
+    step.active_layers = steps.size();
+    step.optics.clear_contrast = -0.6;
+    CameraFrame frame;
+    frame.histogram[40] = 10;
+    frame.target_contrast = contrast;
+    step.frames = {frame};
+    steps.push_back(step);
+  }
+  const CameraSummary summary = summarize(params, steps);
+  ASSERT_TRUE(summary.sensor_limit_layers.has_value());
+  EXPECT_EQ(*summary.sensor_limit_layers, 3u);
+  EXPECT_NEAR(summary.steps[1].relative_contrast, 1.0 / 3.0, 1e-15);
+  steps.pop_back();
+  steps.pop_back();
+  EXPECT_FALSE(summarize(params, steps).sensor_limit_layers.has_value());
+}
+
+TEST(Summary, ResultFiles) {
+  CameraParams params = default_camera().params();
+  params.write_roi_images = true;
+  params.frames_per_step = 2;
+  const Camera camera = default_camera().with_scene(params);
+  const auto steps = run_steps(camera, 9);
+  const CameraSummary summary = summarize(params, steps);
+
+  const std::string histograms = histograms_csv(summary);
+  EXPECT_EQ(std::count(histograms.begin(), histograms.end(), '\n'), 1 + 5 * 256);
+  EXPECT_TRUE(histograms.starts_with("step,active_layers,grey_level,count\n0,0,0,"));
+  const std::string csv = summary_csv(summary);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
+  const nlohmann::json json = summary_json(summary);
+  EXPECT_EQ(json["steps"].size(), 5u);
+  EXPECT_TRUE(json.contains("sensor_limit_layers"));
+  const std::string svg = histograms_svg(summary);
+  EXPECT_EQ(test_support::xml_error(svg), "");
+  EXPECT_NE(svg.find("mean 46."), std::string::npos);
+  const std::string pgm = roi_pgm(params, steps[0].frames[0]);
+  EXPECT_TRUE(pgm.starts_with("P5\n160 120\n255\n"));
+  EXPECT_EQ(pgm.size(), std::string("P5\n160 120\n255\n").size() + 160 * 120);
+  EXPECT_NE(step_table(summary).find("camera limit"), std::string::npos);
+  EXPECT_GT(memory_bytes(params, 5), 5u * 2u * 160u * 120u);
+  EXPECT_EQ(rejected_field([&] { roi_pgm(default_camera().params(), CameraFrame{}); }),
+            "camera.write_roi_images");
+}
+
+TEST(Params, EveryInvalidKeyIsRefusedByName) {
+  const auto rejected = [](auto change) {
+    CameraParams params;
+    change(params);
+    return rejected_field([&] { params.validate(); });
+  };
+  EXPECT_EQ(rejected([](CameraParams&) {}), "accepted");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.wavelength_nm = 200.0; }), "camera.wavelength_nm");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.mie_step_nm = 2.0; }), "camera.mie_step_nm");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = 0.0; }), "camera.exposure.ambient_level");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = std::nan(""); }),
+            "camera.exposure.ambient_level");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.auto_target_grey = 255.0; }),
+            "camera.exposure.auto_target_grey");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.gamma = 0.5; }), "camera.gamma");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.noise.full_well_electrons = 10.0; }),
+            "camera.noise.full_well_electrons");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.noise.read_noise_electrons = -1.0; }),
+            "camera.noise.read_noise_electrons");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.width_px = 4; }), "camera.roi.width_px");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.height_px = 5000; }), "camera.roi.height_px");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.cell_px = 1; }), "camera.roi.cell_px");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.cell_px = 70; }), "camera.roi.cell_px");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target_fraction = 1.0; }), "camera.roi.target_fraction");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target.median_reflectance = 0.0; }),
+            "camera.roi.target.median_reflectance");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target.log_sigma = -0.1; }), "camera.roi.target.log_sigma");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.background.median_reflectance = 2.0; }),
+            "camera.roi.background.median_reflectance");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.background.log_sigma = 4.0; }),
+            "camera.roi.background.log_sigma");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.frames_per_step = 0; }), "camera.frames_per_step");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.contrast_threshold = 0.0; }), "camera.contrast_threshold");
+  EXPECT_EQ(rejected_field([] { parse_band("infrared"); }), "camera.band");
+  EXPECT_EQ(rejected_field([] { parse_exposure_mode("manual"); }), "camera.exposure.mode");
+  EXPECT_EQ(rejected_field([] { parse_transfer_curve("log"); }), "camera.transfer");
+  EXPECT_EQ(parse_exposure_mode("auto"), ExposureMode::automatic);
+  EXPECT_EQ(to_string(Band::rgb), "rgb");
+  // The sensor refuses bad params and a wrong active-layer list at construction / per step.
+  CameraParams bad;
+  bad.gamma = 9.0;
+  EXPECT_EQ(rejected_field([&] { Camera(bad, paper_chamber(), table()); }), "camera.gamma");
+  EXPECT_EQ(rejected_field([] { default_camera().step_optics({true}); }), "active_layers");
+}
+
+TEST(Sensor, RgbBandRunsAndAgreesWithPhotopicForAGreyScene) {
+  // A spectrally flat scene: the rgb channels' transmittances differ by the fog's weak wavelength
+  // dependence only, so the luma mean stays within 1 grey level of the photopic mean.
+  CameraParams params;
+  params.band = Band::rgb;
+  params.frames_per_step = 2;
+  const Camera rgb(params, paper_chamber(), table());
+  ASSERT_EQ(rgb.channel_count(), 3u);
+  const auto active = propagation::first_layers_active(2, 4);
+  EXPECT_NEAR(rgb.expected_mean_grey(rgb.step_optics(active)),
+              default_camera().expected_mean_grey(default_camera().step_optics(active)), 1.0);
+  const CameraStepResult step = rgb.measure_step(2, active, 1);
+  EXPECT_NEAR(summarize(params, {step}).steps[0].mean_grey, 64.0, 1.5);
+}
+
+}  // namespace
+}  // namespace fogradar::camera

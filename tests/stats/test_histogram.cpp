@@ -1,0 +1,76 @@
+// Histogram statistics against the same statistics of the expanded sample (box_plot.hpp's type-7
+// quantile and a two-pass standard deviation written here); the line plot's SVG is well formed
+// (svg_check.hpp) and refuses bad series by name.
+#include <gtest/gtest.h>
+
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "fogradar/core/random.hpp"
+#include "fogradar/stats/box_plot.hpp"
+#include "fogradar/stats/histogram.hpp"
+#include "fogradar/stats/line_plot.hpp"
+
+namespace fogradar::stats {
+namespace {
+
+TEST(Histogram, MatchesTheExpandedSample) {
+  RandomStream stream(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<std::uint64_t> counts(256, 0);
+    std::vector<double> sample;
+    const std::size_t n = 1 + stream() % 500;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t v = 40 + stream() % 30;
+      ++counts[v];
+      sample.push_back(static_cast<double>(v));
+    }
+    std::sort(sample.begin(), sample.end());
+    double mean = 0.0;
+    for (const double v : sample) mean += v;
+    mean /= static_cast<double>(n);
+    double squares = 0.0;
+    for (const double v : sample) squares += (v - mean) * (v - mean);
+    const HistogramSummary summary = histogram_summary(counts);
+    EXPECT_EQ(summary.n, n);
+    EXPECT_NEAR(summary.mean, mean, 1e-12);
+    if (n > 1) {
+      EXPECT_NEAR(summary.std_dev, std::sqrt(squares / static_cast<double>(n - 1)), 1e-12);
+    }
+    for (const double p : {0.0, 0.05, 0.25, 0.5, 0.95, 1.0}) {
+      EXPECT_NEAR(histogram_quantile_type7(counts, p), quantile_type7(sample, p), 1e-12) << p;
+    }
+  }
+  const std::vector<std::uint64_t> empty(256, 0);
+  EXPECT_EQ(test_support::rejected_field([&] { histogram_summary(empty); }), "counts");
+  const std::vector<std::uint64_t> one{0, 1};
+  EXPECT_EQ(test_support::rejected_field([&] { histogram_quantile_type7(one, 1.5); }), "p");
+}
+
+TEST(LinePlot, WellFormedWithMarkersAndRefusesBadSeries) {
+  std::vector<LineSeries> series(2);
+  series[0] = {"0 layers", {0, 1, 2}, {1, 5, 2}, 1.2, "mean 1.2"};
+  series[1] = {"a < b & c", {0, 1, 2}, {0, 2, 9}, std::nullopt, ""};
+  LinePlotOptions options;
+  options.title = "t";
+  options.caption = {"caption"};
+  const std::string svg = line_plot_svg(series, options);
+  EXPECT_EQ(test_support::xml_error(svg), "");
+  EXPECT_NE(svg.find("mean 1.2"), std::string::npos);
+  EXPECT_NE(svg.find("a &lt; b &amp; c"), std::string::npos);
+  EXPECT_EQ(line_plot_svg(series, options), svg);  // deterministic
+  series[1].y.pop_back();
+  EXPECT_EQ(test_support::rejected_field([&] { line_plot_svg(series, options); }), "series[1].x");
+  series[1].y.push_back(std::nan(""));
+  EXPECT_EQ(test_support::rejected_field([&] { line_plot_svg(series, options); }), "series[1].y");
+  EXPECT_EQ(test_support::rejected_field([&] { line_plot_svg({}, options); }), "series");
+  options.width_px = 100;
+  EXPECT_EQ(test_support::rejected_field([&] { line_plot_svg(series, options); }), "svg.width_px");
+}
+
+}  // namespace
+}  // namespace fogradar::stats
