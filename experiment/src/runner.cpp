@@ -152,7 +152,7 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
     work.push_back({per_step, [&] {
                       return [&](std::size_t k, std::size_t i) {
                         RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::lidar, k, i);
-                        result.lidar_steps[k].scans[i] = sensor.measure(active[k], lidar_fog[k].scan(i), rng);
+                        result.lidar_steps[k].scans[i] = result.lidar->measure(active[k], lidar_fog[k].scan(i), rng);
                       };
                     }});
   }
@@ -171,7 +171,7 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
     work.push_back({per_step, [&] {
                       return [&](std::size_t k, std::size_t i) {
                         RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::camera, k, i);
-                        result.camera_steps[k].frames[i] = sensor.frame(result.camera_steps[k].optics, rng);
+                        result.camera_steps[k].frames[i] = result.camera->frame(result.camera_steps[k].optics, rng);
                       };
                     }});
   }
