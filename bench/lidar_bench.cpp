@@ -1,8 +1,8 @@
 // Per-beam cost of the lidar (docs/lidar.md, Speed): one scan of the paper scenario's lidar
 // (LidarParams defaults, 361 beams over 90 deg) through 0, 1 and 4 active layers, in beams per
 // second; one paper radar frame (RadarChain::measure, all four layers on, the EVT with floor
-// multipath: chain_bench's BM_Measure) for the ratio; and the paper scenario's lidar part, 5 steps x
-// 40 scans, at one thread. Run interleaved so the ratio is stable on a loaded machine:
+// multipath: chain_bench's BM_Measure) for the ratio; and the paper scenario's lidar part, 5 steps
+// x 40 scans, at one thread. Run interleaved so the ratio is stable on a loaded machine:
 //   ./build/release/bench/lidar_bench --benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
@@ -76,7 +76,8 @@ void BM_PaperLidarPart(benchmark::State& state) {
       }
     }
   }
-  state.SetItemsProcessed(state.iterations() * 200 * static_cast<std::int64_t>(sensor.beam_count()));
+  state.SetItemsProcessed(state.iterations() * 200 *
+                          static_cast<std::int64_t>(sensor.beam_count()));
 }
 
 BENCHMARK(BM_LidarScan)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMicrosecond);

@@ -78,7 +78,8 @@ void LidarParams::validate() const {
     require_in_range(key + "x1_m", s.x1_m, -max_coordinate_m, max_coordinate_m);
     require_in_range(key + "y1_m", s.y1_m, -max_coordinate_m, max_coordinate_m);
     if (s.x0_m == s.x1_m && s.y0_m == s.y1_m) {
-      throw_invalid(key + "x1_m", s.x1_m, "a point distinct from (x0_m, y0_m): a segment of length > 0");
+      throw_invalid(key + "x1_m", s.x1_m,
+                    "a point distinct from (x0_m, y0_m): a segment of length > 0");
     }
     require_in_range(key + "reflectivity", s.reflectivity, 0.0, 1.0);
   }
