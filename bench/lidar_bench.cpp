@@ -1,13 +1,16 @@
 // Per-beam cost of the lidar (docs/lidar.md, Speed): one scan of the paper scenario's lidar
 // (LidarParams defaults, 361 beams over 90 deg) through 0, 1 and 4 active layers, in beams per
 // second; one paper radar frame (RadarChain::measure, all four layers on, the EVT with floor
-// multipath: chain_bench's BM_Measure) for the ratio; and the paper scenario's lidar part, 5 steps x
-// 40 scans, at one thread. Run interleaved so the ratio is stable on a loaded machine:
+// multipath: chain_bench's BM_Measure) for the ratio; and the paper scenario's lidar part, 5 steps
+// x 40 scans, at one thread. Run interleaved so the ratio is stable on a loaded machine:
 //   ./build/release/bench/lidar_bench --benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "fogradar/core/random.hpp"
@@ -76,13 +79,74 @@ void BM_PaperLidarPart(benchmark::State& state) {
       }
     }
   }
-  state.SetItemsProcessed(state.iterations() * 200 * static_cast<std::int64_t>(sensor.beam_count()));
+  state.SetItemsProcessed(state.iterations() * 200 *
+                          static_cast<std::int64_t>(sensor.beam_count()));
 }
 
 BENCHMARK(BM_LidarScan)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RadarFrame)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PaperLidarPart)->Unit(benchmark::kMillisecond);
 
+// Console output plus, at the end, the ratios the issue asks for, from CPU time (stable on a shared
+// machine; the median when --benchmark_repetitions > 1): each scan in radar frames, and the paper
+// lidar part against the paper radar part (measurements_per_step x 5 steps = 1000 frames).
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& run : runs) {
+      if (run.error_occurred) continue;
+      Entry& entry = entries_[run.run_name.function_name +
+                              (run.run_name.args.empty() ? "" : "/" + run.run_name.args)];
+      const double seconds = run.GetAdjustedCPUTime() * unit_seconds(run.time_unit);
+      if (run.run_type == Run::RT_Aggregate) {
+        if (run.aggregate_name == "median") entry.median_s = seconds;
+      } else {
+        entry.sum_s += seconds;
+        entry.count += 1;
+      }
+    }
+  }
+  void Finalize() override {
+    ConsoleReporter::Finalize();
+    const auto frame = entries_.find("BM_RadarFrame");
+    if (frame == entries_.end()) return;
+    const double frame_s = frame->second.time_s();
+    std::printf("\nCPU time as a ratio to one paper radar frame (%.1f us):\n", frame_s * 1e6);
+    for (const auto& [key, entry] : entries_) {
+      std::printf("  %-22s %12.1f us  %8.2f frames\n", key.c_str(), entry.time_s() * 1e6,
+                  entry.time_s() / frame_s);
+    }
+    const auto part = entries_.find("BM_PaperLidarPart");
+    if (part != entries_.end()) {
+      std::printf("paper lidar part / paper radar part (1000 frames): %.2f\n",
+                  part->second.time_s() / (1000.0 * frame_s));
+    }
+  }
+
+ private:
+  struct Entry {
+    double median_s = -1.0;
+    double sum_s = 0.0;
+    int count = 0;
+    double time_s() const { return median_s >= 0.0 ? median_s : sum_s / count; }
+  };
+  static double unit_seconds(benchmark::TimeUnit unit) {
+    return unit == benchmark::kNanosecond    ? 1e-9
+           : unit == benchmark::kMicrosecond ? 1e-6
+           : unit == benchmark::kMillisecond ? 1e-3
+                                             : 1.0;
+  }
+  std::map<std::string, Entry> entries_;
+};
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}

@@ -55,10 +55,11 @@ int main(int argc, char** argv) {
   const auto t3 = Clock::now();
   std::cout << lidar::lidar_summary_table(summary);
   const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-  std::printf("alpha %.4g /m, beta_pi %.4g /m/sr, lidar ratio %.4g sr, threshold %.4g, noise std %.4g\n",
-              sensor.layer_extinction_per_m(0), sensor.layer_backscatter_per_m_sr(0),
-              sensor.layer_extinction_per_m(0) / sensor.layer_backscatter_per_m_sr(0),
-              sensor.threshold(), sensor.noise_std());
+  std::printf(
+      "alpha %.4g /m, beta_pi %.4g /m/sr, lidar ratio %.4g sr, threshold %.4g, noise std %.4g\n",
+      sensor.layer_extinction_per_m(0), sensor.layer_backscatter_per_m_sr(0),
+      sensor.layer_extinction_per_m(0) / sensor.layer_backscatter_per_m_sr(0), sensor.threshold(),
+      sensor.noise_std());
   std::printf("construction %.3f s, measurement %.3f s (%zu beams), result files %.3f s\n",
               seconds(t0, t1), seconds(t1, t2),
               sensor.beam_count() * params.scans_per_step * steps.size(), seconds(t2, t3));

@@ -42,10 +42,14 @@ SegmentHit intersect(double ux, double uy, double x0, double y0, double x1, doub
 
 std::string_view to_string(EchoOrigin origin) noexcept {
   switch (origin) {
-    case EchoOrigin::target: return "target";
-    case EchoOrigin::fog: return "fog";
-    case EchoOrigin::background: return "background";
-    case EchoOrigin::noise: return "noise";
+    case EchoOrigin::target:
+      return "target";
+    case EchoOrigin::fog:
+      return "fog";
+    case EchoOrigin::background:
+      return "background";
+    case EchoOrigin::noise:
+      return "noise";
   }
   return "?";
 }
@@ -64,7 +68,9 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
   double start_m = chamber.sensor_gap_m;
   for (std::size_t i = 0; i < chamber.layers.size(); ++i) {
     const propagation::FogLayerSpec& spec = chamber.layers[i];
-    Layer layer{.start_m = start_m, .end_m = start_m + spec.length_m, .extinction_per_m = 0.0,
+    Layer layer{.start_m = start_m,
+                .end_m = start_m + spec.length_m,
+                .extinction_per_m = 0.0,
                 .backscatter_per_m_sr = 0.0};
     // A layer of the same fog as an earlier one takes its optics (the Mie sums are the start-up).
     std::size_t same = 0;
@@ -83,8 +89,7 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
     start_m = layer.end_m;
   }
   beam_count_ = params_.beam_count();
-  const double target_angle_deg =
-      std::atan2(params_.target_offset_m, target_range_m_) / degree_rad;
+  const double target_angle_deg = std::atan2(params_.target_offset_m, target_range_m_) / degree_rad;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < beam_count_; ++b) {
     const double distance = std::abs(beam_angle_deg(b) - target_angle_deg);
@@ -96,9 +101,9 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
   grid_ = {.sample_interval_s = params_.sample_interval_ns * 1e-9,
            .pulse_fwhm_s = params_.pulse_width_ns * 1e-9,
            .full_overlap_range_m = params_.overlap_range_m};
-  samples_ = static_cast<std::size_t>(
-                 std::floor(2.0 * params_.max_range_m / speed_of_light_m_per_s /
-                            grid_.sample_interval_s)) + 1;
+  samples_ = static_cast<std::size_t>(std::floor(
+                 2.0 * params_.max_range_m / speed_of_light_m_per_s / grid_.sample_interval_s)) +
+             1;
   // The datasheet's detection range: a Lambertian target of threshold_reflectivity at
   // threshold_range_m, normal incidence, clear air, peaks exactly at the threshold.
   const double threshold =
@@ -106,8 +111,8 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
       overlap(params_.threshold_range_m, params_.overlap_range_m);
   // Noise alone exceeds the threshold in a sample with probability P_fa: thr = sigma z_(1-P_fa).
   const boost::math::normal_distribution<double> normal;
-  noise_std_ = threshold / boost::math::quantile(boost::math::complement(
-                               normal, params_.false_alarm_probability));
+  noise_std_ = threshold / boost::math::quantile(
+                               boost::math::complement(normal, params_.false_alarm_probability));
   detector_ = {.threshold = threshold,
                .sample_interval_s = grid_.sample_interval_s,
                .range_offset_m = speed_of_light_m_per_s * grid_.pulse_fwhm_s / 4.0,
@@ -253,8 +258,8 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
   stretches.reserve(layers_.size());
   const double support_s = 2.0 * grid_.pulse_fwhm_s;
   const auto sample_at = [&](double range_m, double shift_s) {
-    const double k = std::floor((2.0 * range_m / speed_of_light_m_per_s + shift_s) /
-                                grid_.sample_interval_s);
+    const double k =
+        std::floor((2.0 * range_m / speed_of_light_m_per_s + shift_s) / grid_.sample_interval_s);
     return static_cast<std::size_t>(std::clamp(k, 0.0, static_cast<double>(samples_)));
   };
   for (std::size_t beam = 0; beam < beam_count_; ++beam) {
@@ -278,8 +283,8 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
     hi = std::min(hi, samples_);
     for (std::size_t k = lo; k < hi; ++k) received[k] += target[k] + fog[k] + background[k];
     if (through_fog) ++scan.beams_through_fog;
-    const bool exceeds = lo < hi || *std::max_element(received.begin(), received.end()) >=
-                                        detector_.threshold;
+    const bool exceeds =
+        lo < hi || *std::max_element(received.begin(), received.end()) >= detector_.threshold;
     if (exceeds) {
       const DetectedEchoes echoes = extract_echoes(received, detector_);
       bool fog_echo = false;
@@ -292,8 +297,9 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
         const EchoOrigin origin = *largest < noise_std_
                                       ? EchoOrigin::noise
                                       : static_cast<EchoOrigin>(largest - parts.begin());
-        const double intensity = std::min(params_.intensity_saturation,
-                                          params_.intensity_scale * echo.peak / detector_.threshold);
+        const double intensity =
+            std::min(params_.intensity_saturation,
+                     params_.intensity_scale * echo.peak / detector_.threshold);
         scan.echoes.push_back({.beam = static_cast<std::uint32_t>(beam),
                                .index = static_cast<std::uint8_t>(e),
                                .origin = origin,
@@ -310,7 +316,8 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
       }
       if (through_fog) {
         if (fog_echo) ++scan.beams_through_fog_with_fog_echo;
-        if (echoes.count > 0) scan.first_echo_range_through_fog_m.push_back(echoes.echoes[0].range_m);
+        if (echoes.count > 0)
+          scan.first_echo_range_through_fog_m.push_back(echoes.echoes[0].range_m);
       }
       if (beam == target_beam_ && scan.target_detected && fog_echo &&
           strongest_fog >= scan.target_intensity) {

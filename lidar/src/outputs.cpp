@@ -74,8 +74,17 @@ std::string lidar_summary_csv(const LidarSummary& summary) {
       "fog_echo_rate,median_first_echo_range_m,beams_through_fog,sensor_limit\n";
   for (const LidarStepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.target_intensity;
-    const double numbers[] = {s.target_detection_rate, s.target_told_rate, b.mean, b.std_dev,
-                              b.min, b.q1, b.median, b.q3, b.max, b.whisker_low, b.whisker_high};
+    const double numbers[] = {s.target_detection_rate,
+                              s.target_told_rate,
+                              b.mean,
+                              b.std_dev,
+                              b.min,
+                              b.q1,
+                              b.median,
+                              b.q3,
+                              b.max,
+                              b.whisker_low,
+                              b.whisker_high};
     out += std::to_string(s.active_layers) + ',' + std::to_string(s.scans) + ',' +
            std::to_string(s.target_detections);
     for (const double v : numbers) out += ',' + exact(v);
@@ -154,20 +163,20 @@ std::string lidar_intensity_boxplot_svg(const Lidar& lidar, const LidarSummary& 
     if (summary.sensor_limit_layers == s.active_layers) options.marked_category = i;
   }
   options.title = "Lidar: target intensity against active fog layers (the study's Fig. 6)";
-  options.caption = {
-      "One value per scan from the beam through the target's centre (" +
-          stats::format_number(lidar.beam_angle_deg(lidar.target_beam()), 6) +
-          " deg); a scan without a target echo counts as 0, as the study plots it.",
-      stats::format_number(p.wavelength_m * 1e9, 4) + " nm, pulse " +
-          stats::format_number(p.pulse_width_ns, 4) + " ns FWHM, threshold from " +
-          stats::format_number(p.threshold_range_m, 4) + " m at reflectivity " +
-          stats::format_number(p.threshold_reflectivity, 3) + "; target reflectivity " +
-          stats::format_number(p.target_reflectivity, 3) + " at " +
-          stats::format_number(lidar.target_range_m(), 4) + " m; clear-weather margin " +
-          stats::format_number(clear_margin(lidar), 3) + " x threshold.",
-      "Intensity = " + stats::format_number(p.intensity_scale, 6) +
-          " x peak / threshold (a unit choice), saturating at " +
-          stats::format_number(p.intensity_saturation, 6) + "."};
+  options.caption = {"One value per scan from the beam through the target's centre (" +
+                         stats::format_number(lidar.beam_angle_deg(lidar.target_beam()), 6) +
+                         " deg); a scan without a target echo counts as 0, as the study plots it.",
+                     stats::format_number(p.wavelength_m * 1e9, 4) + " nm, pulse " +
+                         stats::format_number(p.pulse_width_ns, 4) + " ns FWHM, threshold from " +
+                         stats::format_number(p.threshold_range_m, 4) + " m at reflectivity " +
+                         stats::format_number(p.threshold_reflectivity, 3) +
+                         "; target reflectivity " + stats::format_number(p.target_reflectivity, 3) +
+                         " at " + stats::format_number(lidar.target_range_m(), 4) +
+                         " m; clear-weather margin " +
+                         stats::format_number(clear_margin(lidar), 3) + " x threshold.",
+                     "Intensity = " + stats::format_number(p.intensity_scale, 6) +
+                         " x peak / threshold (a unit choice), saturating at " +
+                         stats::format_number(p.intensity_saturation, 6) + "."};
   options.x_label = "active fog layers";
   options.y_label = "target intensity (relative)";
   options.height_px = 604.0 + 16.0 * static_cast<double>(options.caption.size());
@@ -182,8 +191,8 @@ std::string lidar_intensity_boxplot_svg(const Lidar& lidar, const LidarSummary& 
 std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResult>& steps) {
   const LidarParams& p = lidar.params();
   // Scene extent: the fog, the target and the background near them, plus a metre of margin.
-  double half_width_m = std::max(0.5 * p.fog_width_m,
-                                 std::abs(p.target_offset_m) + 0.5 * p.target_width_m);
+  double half_width_m =
+      std::max(0.5 * p.fog_width_m, std::abs(p.target_offset_m) + 0.5 * p.target_width_m);
   const double depth_m = lidar.target_range_m() + 2.0;
   for (const BackgroundSegment& s : p.background) {
     if (std::min(s.x0_m, s.x1_m) < depth_m) {
@@ -204,9 +213,11 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
          "\" height=\"" + px(height) + "\" viewBox=\"0 0 " + px(width) + " " + px(height) +
          "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + px(left) + "\" y=\"22\" font-size=\"15\">Lidar: one scan per step, top "
+  svg += "<text x=\"" + px(left) +
+         "\" y=\"22\" font-size=\"15\">Lidar: one scan per step, top "
          "view, sensor at the bottom (the study's Fig. 5)</text>\n";
-  svg += "<text x=\"" + px(left) + "\" y=\"40\" fill=\"#444\">First scan of each step; echoes by "
+  svg += "<text x=\"" + px(left) +
+         "\" y=\"40\" fill=\"#444\">First scan of each step; echoes by "
          "ground-truth origin. Blue bands: active fog layers (dashed: off); grey bar: the "
          "target (EVT).</text>\n";
   struct Style {
@@ -255,8 +266,8 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
         for (const Style& style : styles) {
           if (style.origin == e.origin) colour = style.colour;
         }
-        svg += "<circle cx=\"" + px(sx(y_m)) + "\" cy=\"" + px(sy(x_m)) +
-               "\" r=\"1.6\" fill=\"" + colour + "\"/>\n";
+        svg += "<circle cx=\"" + px(sx(y_m)) + "\" cy=\"" + px(sy(x_m)) + "\" r=\"1.6\" fill=\"" +
+               colour + "\"/>\n";
       }
     }
     svg += "<path d=\"M " + px(sx(0.0)) + " " + px(sy(0.0) - 8.0) + " L " + px(sx(0.0) - 6.0) +
@@ -305,8 +316,8 @@ std::string lidar_summary_table(const LidarSummary& summary) {
     const stats::BoxPlot& b = s.target_intensity;
     std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f %9.1f %10.3f\n",
                   s.active_layers, s.scans, 100.0 * s.target_detection_rate,
-                  100.0 * s.target_told_rate, b.median, b.q1, b.q3, b.max,
-                  100.0 * s.fog_echo_rate, s.median_first_echo_range_m);
+                  100.0 * s.target_told_rate, b.median, b.q1, b.q3, b.max, 100.0 * s.fog_echo_rate,
+                  s.median_first_echo_range_m);
     out << line;
   }
   out << "target det. %: scans with a target-origin echo in the beam through the target's centre;\n"
@@ -314,8 +325,10 @@ std::string lidar_summary_table(const LidarSummary& summary) {
          "missing (the study's Fig. 6); fog echo rate: beams through the fog with a fog echo;\n"
          "1st echo: median first-echo range of the beams through the fog\n";
   out << "lidar sensor limit: ";
-  if (summary.sensor_limit_layers) out << layers_label(*summary.sensor_limit_layers) << "\n";
-  else out << "not reached\n";
+  if (summary.sensor_limit_layers)
+    out << layers_label(*summary.sensor_limit_layers) << "\n";
+  else
+    out << "not reached\n";
   return out.str();
 }
 
@@ -323,11 +336,12 @@ std::size_t lidar_memory_bytes(const LidarParams& params, std::size_t steps, uns
   const std::size_t beams = params.beam_count();
   const std::size_t scans = steps * params.scans_per_step;
   // Per scan: at most max_echoes echoes and one first-echo range per beam, plus the struct.
-  const std::size_t per_scan = beams * (params.max_echoes * sizeof(LidarEcho) + sizeof(double)) +
-                               sizeof(LidarScan);
-  const std::size_t samples = static_cast<std::size_t>(
-                                  2.0 * params.max_range_m / speed_of_light_m_per_s /
-                                  (params.sample_interval_ns * 1e-9)) + 2;
+  const std::size_t per_scan =
+      beams * (params.max_echoes * sizeof(LidarEcho) + sizeof(double)) + sizeof(LidarScan);
+  const std::size_t samples =
+      static_cast<std::size_t>(2.0 * params.max_range_m / speed_of_light_m_per_s /
+                               (params.sample_interval_ns * 1e-9)) +
+      2;
   // Per thread: four real waveforms and the complex noise buffer.
   const std::size_t per_thread = 6 * samples * sizeof(double);
   // lidar_echoes.csv: at most ~60 characters a row; the SVGs and the summary are small.

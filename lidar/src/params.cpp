@@ -4,6 +4,7 @@
 #include <string>
 
 #include "fogradar/core/error.hpp"
+#include "fogradar/stats/format.hpp"
 
 namespace fogradar::lidar {
 namespace {
@@ -37,13 +38,14 @@ void LidarParams::validate() const {
   require_in_range("lidar.min_range_m", min_range_m, 0.0, 100.0);
   if (!(max_range_m > min_range_m && max_range_m <= 1000.0)) {
     throw_invalid("lidar.max_range_m", max_range_m,
-                  "in (lidar.min_range_m = " + std::to_string(min_range_m) + ", 1000]");
+                  "in (lidar.min_range_m = " + stats::format_number(min_range_m) + ", 1000]");
   }
   require_in_range("lidar.pulse_width_ns", pulse_width_ns, 0.1, 1000.0);
   if (!(sample_interval_ns >= 0.01 && sample_interval_ns <= 0.5 * pulse_width_ns)) {
-    throw_invalid("lidar.sample_interval_ns", sample_interval_ns,
-                  "in [0.01, lidar.pulse_width_ns / 2 = " + std::to_string(0.5 * pulse_width_ns) +
-                      "] (at least two samples per pulse width)");
+    throw_invalid(
+        "lidar.sample_interval_ns", sample_interval_ns,
+        "in [0.01, lidar.pulse_width_ns / 2 = " + stats::format_number(0.5 * pulse_width_ns) +
+            "] (at least two samples per pulse width)");
   }
   // A record of more than 1e6 samples per beam is a typo, not a receiver.
   if (2.0 * max_range_m / 299792458.0 / (sample_interval_ns * 1e-9) > 1e6) {
@@ -78,7 +80,8 @@ void LidarParams::validate() const {
     require_in_range(key + "x1_m", s.x1_m, -max_coordinate_m, max_coordinate_m);
     require_in_range(key + "y1_m", s.y1_m, -max_coordinate_m, max_coordinate_m);
     if (s.x0_m == s.x1_m && s.y0_m == s.y1_m) {
-      throw_invalid(key + "x1_m", s.x1_m, "a point distinct from (x0_m, y0_m): a segment of length > 0");
+      throw_invalid(key + "x1_m", s.x1_m,
+                    "a point distinct from (x0_m, y0_m): a segment of length > 0");
     }
     require_in_range(key + "reflectivity", s.reflectivity, 0.0, 1.0);
   }

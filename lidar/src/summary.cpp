@@ -35,8 +35,8 @@ LidarSummary summarize(const LidarParams& params, const std::vector<LidarStepRes
     s.fog_echo_rate = s.beams_through_fog == 0 ? std::numeric_limits<double>::quiet_NaN()
                                                : static_cast<double>(with_fog_echo) /
                                                      static_cast<double>(s.beams_through_fog);
-    s.median_first_echo_range_m =
-        first_ranges.empty() ? std::numeric_limits<double>::quiet_NaN() : stats::median(first_ranges);
+    s.median_first_echo_range_m = first_ranges.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                       : stats::median(first_ranges);
     if (!summary.sensor_limit_layers && s.scans > 0 &&
         s.target_told_rate < lidar_sensor_limit_fraction) {
       summary.sensor_limit_layers = s.active_layers;

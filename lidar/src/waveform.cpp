@@ -1,11 +1,11 @@
 #include "fogradar/lidar/waveform.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <array>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
@@ -92,8 +92,7 @@ void add_hard_target(std::span<double> waveform, const WaveformGrid& grid, doubl
 
 void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog) {
   if (!(fog.end_m > fog.start_m) || fog.backscatter_per_m_sr == 0.0) return;
-  const double panel_m =
-      panel_fwhm_fraction * speed_of_light_m_per_s * grid.pulse_fwhm_s / 2.0;
+  const double panel_m = panel_fwhm_fraction * speed_of_light_m_per_s * grid.pulse_fwhm_s / 2.0;
   // Panel edges: uniform over the stretch, plus the overlap function's kink where it falls inside.
   const auto panels_in = [&](double a, double b) {
     return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil((b - a) / panel_m)));

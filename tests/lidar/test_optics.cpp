@@ -49,10 +49,11 @@ TEST(LidarOptics, SmallDropletsMatchTheRayleighLimit) {
   const std::complex<double> m = table().refractive_index(wavelength_m);
   const std::complex<double> k = (m * m - 1.0) / (m * m + 2.0);
   const double n = concentration(d, lwc);
-  const double scattering = 2.0 * std::pow(pi, 5) * std::pow(d, 6) / (3.0 * std::pow(wavelength_m, 4)) *
-                            std::norm(k);
+  const double scattering =
+      2.0 * std::pow(pi, 5) * std::pow(d, 6) / (3.0 * std::pow(wavelength_m, 4)) * std::norm(k);
   const double absorption = pi * pi * std::pow(d, 3) / wavelength_m * k.imag();
-  const double backscatter = std::pow(pi, 5) * std::pow(d, 6) / std::pow(wavelength_m, 4) * std::norm(k);
+  const double backscatter =
+      std::pow(pi, 5) * std::pow(d, 6) / std::pow(wavelength_m, 4) * std::norm(k);
   EXPECT_NEAR(lidar.layer_extinction_per_m(0), n * (scattering + absorption),
               0.01 * n * (scattering + absorption));
   EXPECT_NEAR(lidar.layer_backscatter_per_m_sr(0), n * backscatter / (4.0 * pi),
@@ -80,10 +81,10 @@ TEST(LidarOptics, LargeDropletExtinctionMatchesAnomalousDiffraction) {
 // nearly constant for effective radii 4-20 um). Tolerance 15 %: the spread of measured and
 // computed water-cloud lidar ratios near 1 um in that paper and its references (about 17-21 sr).
 TEST(LidarOptics, LidarRatioOfNaturalFogIsAbout19Sr) {
-  const Lidar lidar(LidarParams{},
-                    one_layer(propagation::Lognormal{.median_diameter_m = 10e-6, .geometric_std = 1.5},
-                              0.1),
-                    table());
+  const Lidar lidar(
+      LidarParams{},
+      one_layer(propagation::Lognormal{.median_diameter_m = 10e-6, .geometric_std = 1.5}, 0.1),
+      table());
   const double ratio = lidar.layer_extinction_per_m(0) / lidar.layer_backscatter_per_m_sr(0);
   EXPECT_NEAR(ratio, 18.8, 0.15 * 18.8);
 }

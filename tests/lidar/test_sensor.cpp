@@ -38,8 +38,8 @@ LidarParams empty_scene() {
   return params;
 }
 
-// Noise alone: every sample is N(0, sigma^2) with sigma = threshold / z_(1 - p), so a sample exceeds
-// the threshold with probability p and starts an echo (an upward crossing) with probability
+// Noise alone: every sample is N(0, sigma^2) with sigma = threshold / z_(1 - p), so a sample
+// exceeds the threshold with probability p and starts an echo (an upward crossing) with probability
 // p (1 - p) (p at the first sample). With no merging (separation 0), no minimum range and 8 echoes
 // allowed, the expected echo count per beam is p + (N - 1) p (1 - p). p = 1e-3, N = 401 samples,
 // 20 scans x 361 beams: ~2900 expected echoes; the count is a sum of nearly independent rare events
@@ -55,20 +55,23 @@ TEST(LidarSensor, FalseAlarmRateOnNoiseAloneMatchesTheDesign) {
   std::size_t echoes = 0;
   for (std::size_t s = 0; s < scans; ++s) {
     RandomStream stream = sensor_stream(3, SensorId::lidar, 0, s);
-    const LidarScan scan = lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
+    const LidarScan scan =
+        lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
     for (const LidarEcho& e : scan.echoes) EXPECT_EQ(e.origin, EchoOrigin::noise);
     echoes += scan.echoes.size();
   }
   const double p = params.false_alarm_probability;
   const double n = static_cast<double>(lidar.samples_per_beam());
-  const double expected = static_cast<double>(scans * lidar.beam_count()) * (p + (n - 1.0) * p * (1.0 - p));
+  const double expected =
+      static_cast<double>(scans * lidar.beam_count()) * (p + (n - 1.0) * p * (1.0 - p));
   EXPECT_NEAR(static_cast<double>(echoes), expected, 5.0 * std::sqrt(expected));
 }
 
 // The series: unit mean of the factor, lag-one correlation of its log rho = exp(-T / tau), std of
 // the log = log_std. 4000 scans x 4 layers: the sample mean of f (std ~0.2 / sqrt(n_eff), n_eff =
-// n (1 - rho) / (1 + rho) ~ 16000 x 0.05 / 1.95 = 400) within 0.05; log std within 0.03; correlation
-// within 0.02 of the design (its sampling std ~ (1 - rho^2) / sqrt(n) ~ 0.001 for rho = 0.95).
+// n (1 - rho) / (1 + rho) ~ 16000 x 0.05 / 1.95 = 400) within 0.05; log std within 0.03;
+// correlation within 0.02 of the design (its sampling std ~ (1 - rho^2) / sqrt(n) ~ 0.001 for rho =
+// 0.95).
 TEST(LidarSensor, FogFluctuationSeriesHasTheStatedDistributionAndCorrelation) {
   LidarParams params;
   params.scans_per_step = 4000;
@@ -148,7 +151,8 @@ TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
   EXPECT_EQ(rejects([](LidarParams& p) { p.min_range_m = -0.1; }), "lidar.min_range_m");
   EXPECT_EQ(rejects([](LidarParams& p) { p.max_range_m = 0.05; }), "lidar.max_range_m");
   EXPECT_EQ(rejects([](LidarParams& p) { p.pulse_width_ns = 0.0; }), "lidar.pulse_width_ns");
-  EXPECT_EQ(rejects([](LidarParams& p) { p.sample_interval_ns = 3.0; }), "lidar.sample_interval_ns");
+  EXPECT_EQ(rejects([](LidarParams& p) { p.sample_interval_ns = 3.0; }),
+            "lidar.sample_interval_ns");
   EXPECT_EQ(rejects([](LidarParams& p) { p.overlap_range_m = -1.0; }), "lidar.overlap_range_m");
   EXPECT_EQ(rejects([](LidarParams& p) { p.threshold_range_m = 0.0; }), "lidar.threshold_range_m");
   EXPECT_EQ(rejects([](LidarParams& p) { p.threshold_reflectivity = 0.0; }),
@@ -171,7 +175,9 @@ TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
             "lidar.background[2].reflectivity");
   EXPECT_EQ(rejects([](LidarParams& p) { p.background[0].y1_m = std::nan(""); }),
             "lidar.background[0].y1_m");
-  EXPECT_EQ(rejects([](LidarParams& p) { p.background[1] = {1.0, 1.0, 1.0, 1.0, 0.5}; }),
+  EXPECT_EQ(rejects([](LidarParams& p) {
+              p.background[1] = {1.0, 1.0, 1.0, 1.0, 0.5};
+            }),
             "lidar.background[1].x1_m");
   EXPECT_EQ(rejects([](LidarParams& p) { p.fog_fluctuation.log_std = -0.1; }),
             "lidar.fog_fluctuation.log_std");
@@ -181,11 +187,13 @@ TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
   const Lidar lidar(LidarParams{}, propagation::ChamberSpec{}, table());
   RandomStream stream(1);
   EXPECT_EQ(rejected_field([&] {
-              (void)lidar.measure(propagation::ActiveLayers(3, true), std::vector<double>(4, 1.0), stream);
+              (void)lidar.measure(propagation::ActiveLayers(3, true), std::vector<double>(4, 1.0),
+                                  stream);
             }),
             "active_layers");
   EXPECT_EQ(rejected_field([&] {
-              (void)lidar.measure(propagation::ActiveLayers(4, true), std::vector<double>(2, 1.0), stream);
+              (void)lidar.measure(propagation::ActiveLayers(4, true), std::vector<double>(2, 1.0),
+                                  stream);
             }),
             "optical_depth_factors");
 }
@@ -239,9 +247,9 @@ TEST(LidarPaperScenario, Fig6TargetIntensityPattern) {
   EXPECT_EQ(*run.summary.sensor_limit_layers, 1u);
 }
 
-// The study's Fig. 5: with one or more layers the beams through the fog (here those within 20 deg of
-// boresight, inside the fog's 3 m width for the whole first layer) return their first echo from the
-// fog's near edge: origin fog, range within [-0.5, +0.75] m of the edge's range along the beam
+// The study's Fig. 5: with one or more layers the beams through the fog (here those within 20 deg
+// of boresight, inside the fog's 3 m width for the whole first layer) return their first echo from
+// the fog's near edge: origin fog, range within [-0.5, +0.75] m of the edge's range along the beam
 // (sensor_gap / cos(angle)); the window is the pulse's range length c fwhm / 2 = 0.75 m, within
 // which the leading edge of the fog's rising return crosses the threshold. At least 95 % of those
 // beams qualify in every step; and "more than one layer has almost no further effect": the median
@@ -295,7 +303,8 @@ TEST(LidarPaperScenario, ResultFilesAndMemoryEstimate) {
   EXPECT_EQ(std::count(summary_csv.begin(), summary_csv.end(), '\n'), 6);
   EXPECT_EQ(test_support::xml_error(lidar_intensity_boxplot_svg(*run.lidar, run.summary)), "");
   EXPECT_EQ(test_support::xml_error(lidar_scans_svg(*run.lidar, run.steps)), "");
-  EXPECT_NE(lidar_summary_table(run.summary).find("lidar sensor limit: 1 layer"), std::string::npos);
+  EXPECT_NE(lidar_summary_table(run.summary).find("lidar sensor limit: 1 layer"),
+            std::string::npos);
   const std::size_t estimate = lidar_memory_bytes(run.params, 5, 2);
   EXPECT_GE(estimate, held + csv.size());
   EXPECT_LT(csv.size(), 10u << 20);  // the paper run's lidar files stay well under 10 MB

@@ -25,9 +25,12 @@ const propagation::SegelsteinTable& table() {
 }
 
 // A Gaussian pulse of FWHM f evaluated directly: exp(-4 ln 2 t^2 / f^2).
-double gaussian(double t_s, double fwhm_s) { return std::exp(-4.0 * ln2 * t_s * t_s / (fwhm_s * fwhm_s)); }
+double gaussian(double t_s, double fwhm_s) {
+  return std::exp(-4.0 * ln2 * t_s * t_s / (fwhm_s * fwhm_s));
+}
 
-constexpr WaveformGrid grid{.sample_interval_s = 0.5e-9, .pulse_fwhm_s = 5e-9, .full_overlap_range_m = 0.5};
+constexpr WaveformGrid grid{
+    .sample_interval_s = 0.5e-9, .pulse_fwhm_s = 5e-9, .full_overlap_range_m = 0.5};
 constexpr std::size_t samples = 1500;  // 112 m
 
 // A hard target on a sample (2R/c = k dt) peaks at exactly its amplitude rho cos(i)/pi T^2/R^2;
@@ -55,8 +58,12 @@ TEST(LidarWaveform, HardTargetPeakIsTheClosedForm) {
 TEST(LidarWaveform, ThickTransparentLayerPlateau) {
   std::vector<double> w(samples, 0.0);
   const double beta = 2e-3;
-  add_fog_stretch(w, grid, {.start_m = 50.0, .end_m = 150.0, .extinction_per_m = 0.0,
-                            .backscatter_per_m_sr = beta, .transmittance_at_start = 1.0});
+  add_fog_stretch(w, grid,
+                  {.start_m = 50.0,
+                   .end_m = 150.0,
+                   .extinction_per_m = 0.0,
+                   .backscatter_per_m_sr = beta,
+                   .transmittance_at_start = 1.0});
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   for (const std::size_t k : {800u, 900u, 1000u}) {
     const double r = c * static_cast<double>(k) * grid.sample_interval_s / 2.0;
@@ -74,8 +81,12 @@ TEST(LidarWaveform, ThickTransparentLayerPlateau) {
 TEST(LidarWaveform, AbsorbingLayerEnergyMatchesTheExponentialIntegralForm) {
   std::vector<double> w(samples, 0.0);
   const double a = 5.0, b = 6.0, alpha = 0.9, beta = 0.05, t0 = 0.4;
-  add_fog_stretch(w, grid, {.start_m = a, .end_m = b, .extinction_per_m = alpha,
-                            .backscatter_per_m_sr = beta, .transmittance_at_start = t0});
+  add_fog_stretch(w, grid,
+                  {.start_m = a,
+                   .end_m = b,
+                   .extinction_per_m = alpha,
+                   .backscatter_per_m_sr = beta,
+                   .transmittance_at_start = t0});
   double energy = 0.0;
   for (const double v : w) energy += v * grid.sample_interval_s;
   const double k = 2.0 * alpha;
@@ -94,8 +105,12 @@ TEST(LidarWaveform, OverlapFunctionInsideTheFullOverlapRange) {
   std::vector<double> w(samples, 0.0);
   WaveformGrid near_grid = grid;
   near_grid.full_overlap_range_m = 20.0;
-  add_fog_stretch(w, near_grid, {.start_m = 10.0, .end_m = 15.0, .extinction_per_m = 0.0,
-                                 .backscatter_per_m_sr = 1e-3, .transmittance_at_start = 1.0});
+  add_fog_stretch(w, near_grid,
+                  {.start_m = 10.0,
+                   .end_m = 15.0,
+                   .extinction_per_m = 0.0,
+                   .backscatter_per_m_sr = 1e-3,
+                   .transmittance_at_start = 1.0});
   double energy = 0.0;
   for (const double v : w) energy += v * grid.sample_interval_s;
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
@@ -205,7 +220,8 @@ TEST(LidarEchoes, TwoThreeAndFourEchoesInRangeOrder) {
     Constructed w;
     for (std::size_t i = 0; i < n; ++i) w.add(ranges[i], peaks[i]);
     const DetectedEchoes e = extract_echoes(w.w, detector(3));
-    ASSERT_EQ(e.count, std::min<std::size_t>(n, 3)) << n;  // the fourth (strongest) is beyond max_echoes
+    ASSERT_EQ(e.count, std::min<std::size_t>(n, 3))
+        << n;  // the fourth (strongest) is beyond max_echoes
     for (std::size_t i = 0; i < e.count; ++i) {
       const double walk = c * grid.pulse_fwhm_s / 4.0 * (1.0 - std::sqrt(std::log2(peaks[i])));
       EXPECT_NEAR(e.echoes[i].range_m, ranges[i] + walk, 3e-3) << n << " " << i;
@@ -221,7 +237,8 @@ TEST(LidarEchoes, EchoesCloserThanTheSeparationMerge) {
   Constructed w;
   w.add(10.0, 3.0);
   w.add(11.5, 5.0);
-  ASSERT_LT(w.w[static_cast<std::size_t>(std::round(2.0 * 10.75 / c / grid.sample_interval_s))], 1.0);
+  ASSERT_LT(w.w[static_cast<std::size_t>(std::round(2.0 * 10.75 / c / grid.sample_interval_s))],
+            1.0);
   const DetectedEchoes merged = extract_echoes(w.w, detector(3, 2.0));
   ASSERT_EQ(merged.count, 1u);
   EXPECT_NEAR(merged.echoes[0].peak, 5.0, 0.02 * 5.0);
@@ -246,8 +263,8 @@ TEST(LidarEchoes, BelowThresholdAndTooNearGiveNothing) {
   EXPECT_EQ(extract_echoes(inside.w, far_minimum).count, 0u);
 }
 
-// Intensity = min(saturation, scale peak / threshold): the clear-weather target (peak ~3 x threshold
-// by the datasheet margin) saturates when the saturation is set below scale x 3.
+// Intensity = min(saturation, scale peak / threshold): the clear-weather target (peak ~3 x
+// threshold by the datasheet margin) saturates when the saturation is set below scale x 3.
 TEST(LidarEchoes, IntensitySaturates) {
   LidarParams params;
   params.intensity_scale = 100.0;
@@ -255,13 +272,15 @@ TEST(LidarEchoes, IntensitySaturates) {
   params.background.clear();
   const Lidar lidar(params, propagation::ChamberSpec{}, table());
   RandomStream stream(7);
-  const LidarScan scan = lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
+  const LidarScan scan =
+      lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
   ASSERT_TRUE(scan.target_detected);
   EXPECT_EQ(scan.target_intensity, 250.0);
   params.intensity_saturation = 1e6;
   const Lidar unsaturated(params, propagation::ChamberSpec{}, table());
   RandomStream again(7);
-  const LidarScan free = unsaturated.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), again);
+  const LidarScan free = unsaturated.measure(propagation::first_layers_active(0, 4),
+                                             std::vector<double>(4, 1.0), again);
   EXPECT_GT(free.target_intensity, 250.0);
   EXPECT_LT(free.target_intensity, 400.0);
 }

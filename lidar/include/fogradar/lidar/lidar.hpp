@@ -34,11 +34,11 @@ enum class EchoOrigin : std::uint8_t { target, fog, background, noise };
 std::string_view to_string(EchoOrigin origin) noexcept;  // "target", "fog", "background", "noise"
 
 struct LidarEcho {
-  std::uint32_t beam = 0;   // index into the scan, angle = beam_angle_deg(beam)
-  std::uint8_t index = 0;   // 0 = first echo in range order
+  std::uint32_t beam = 0;  // index into the scan, angle = beam_angle_deg(beam)
+  std::uint8_t index = 0;  // 0 = first echo in range order
   EchoOrigin origin = EchoOrigin::noise;
-  double range_m = 0.0;     // leading-edge crossing, calibrated (EchoDetector::range_offset_m)
-  double intensity = 0.0;   // min(saturation, scale * peak / threshold)
+  double range_m = 0.0;    // leading-edge crossing, calibrated (EchoDetector::range_offset_m)
+  double intensity = 0.0;  // min(saturation, scale * peak / threshold)
 };
 
 // One scan. The per-scan quantities the summary needs are kept here so that a step's scans can be
@@ -90,7 +90,7 @@ class Lidar {
   std::size_t layer_count() const { return layers_.size(); }
   double layer_start_m(std::size_t layer) const;
   double layer_end_m(std::size_t layer) const;
-  double layer_extinction_per_m(std::size_t layer) const;    // alpha at the wavelength
+  double layer_extinction_per_m(std::size_t layer) const;      // alpha at the wavelength
   double layer_backscatter_per_m_sr(std::size_t layer) const;  // beta_pi
   double target_range_m() const { return target_range_m_; }
   double threshold() const { return detector_.threshold; }  // waveform units
@@ -129,7 +129,8 @@ class Lidar {
   };
   // The beam's fog stretches (one per active layer it crosses before its hard surface) and hit.
   Hit trace(std::size_t beam, const propagation::ActiveLayers& active,
-            std::span<const double> optical_depth_factors, std::vector<FogStretch>& stretches) const;
+            std::span<const double> optical_depth_factors,
+            std::vector<FogStretch>& stretches) const;
   void check_inputs(const propagation::ActiveLayers& active,
                     std::span<const double> optical_depth_factors) const;
 

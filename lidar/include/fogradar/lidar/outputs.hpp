@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/lidar/summary.hpp"
@@ -22,8 +21,8 @@ std::string lidar_summary_csv(const LidarSummary& summary);
 // limit and its criterion, and the derived sensor figures (alpha, beta_pi per layer, threshold,
 // clear-weather margin at the target).
 nlohmann::json lidar_summary_json(const Lidar& lidar, const LidarSummary& summary);
-// lidar_intensity_boxplot.svg (the study's Fig. 6): target intensity per active-layer count with the
-// detection rate strip and the sensor limit marked.
+// lidar_intensity_boxplot.svg (the study's Fig. 6): target intensity per active-layer count with
+// the detection rate strip and the sensor limit marked.
 std::string lidar_intensity_boxplot_svg(const Lidar& lidar, const LidarSummary& summary);
 // lidar_scans.svg (the study's Fig. 5): the first scan of every step as a top view, sensor at the
 // bottom, fog layers and the target region marked, echoes coloured by origin.

@@ -29,18 +29,19 @@ struct BackgroundSegment {
 std::vector<BackgroundSegment> default_background();
 
 // Scan-to-scan fluctuation of each layer's optical depth (the study's "due to the dynamic of fog
-// bank, some regions are denser than others"): the layer's extinction and backscatter are scaled per
-// scan by f = exp(log_std z - log_std^2 / 2), unit mean, with z an AR(1) series in the scan index,
-// z_k = rho z_(k-1) + sqrt(1 - rho^2) e_k, z_0 and e_k standard normal, independent per layer,
-// rho = exp(-(1 / scan_rate_hz) / correlation_time_s). log_std = 0 switches it off.
+// bank, some regions are denser than others"): the layer's extinction and backscatter are scaled
+// per scan by f = exp(log_std z - log_std^2 / 2), unit mean, with z an AR(1) series in the scan
+// index, z_k = rho z_(k-1) + sqrt(1 - rho^2) e_k, z_0 and e_k standard normal, independent per
+// layer, rho = exp(-(1 / scan_rate_hz) / correlation_time_s). log_std = 0 switches it off.
 struct FogFluctuation {
   double log_std = 0.2;
   double correlation_time_s = 0.5;
 };
 
 struct LidarParams {
-  double wavelength_m = 905e-9;     // datasheet: 905 nm pulsed laser diode
-  double field_of_view_deg = 90.0;  // simulated part of the datasheet's 270 deg, centred on boresight
+  double wavelength_m = 905e-9;  // datasheet: 905 nm pulsed laser diode
+  double field_of_view_deg =
+      90.0;  // simulated part of the datasheet's 270 deg, centred on boresight
   double angular_step_deg = 0.25;   // datasheet
   double scan_rate_hz = 40.0;       // datasheet: 25 ms per scan
   std::size_t scans_per_step = 40;  // the study: 40 scans per box of Fig. 6
@@ -62,10 +63,10 @@ struct LidarParams {
   // Reported intensity = min(intensity_saturation, intensity_scale * peak / threshold).
   double intensity_scale = 180.0;
   double intensity_saturation = 65535.0;
-  double target_width_m = 1.8;      // the EVT's rear, at the chamber's target range
-  double target_offset_m = 0.0;     // lateral (y) position of the EVT's centre
+  double target_width_m = 1.8;       // the EVT's rear, at the chamber's target range
+  double target_offset_m = 0.0;      // lateral (y) position of the EVT's centre
   double target_reflectivity = 0.3;  // 905 nm, Lambertian (assumption)
-  double fog_width_m = 3.0;         // lateral width of the fog bank, centred on boresight
+  double fog_width_m = 3.0;          // lateral width of the fog bank, centred on boresight
   std::vector<BackgroundSegment> background = default_background();
   FogFluctuation fog_fluctuation;
 

@@ -22,9 +22,9 @@ struct LidarStepSummary {
   std::size_t scans = 0;
   std::size_t target_detections = 0;  // scans whose target-centre beam has a target echo
   double target_detection_rate = 0.0;
-  double target_told_rate = 0.0;      // detected and not outshone by a fog echo
-  stats::BoxPlot target_intensity;    // one value per scan, 0 where the target is missing
-  double fog_echo_rate = 0.0;         // beams through the fog with a fog echo / beams through it
+  double target_told_rate = 0.0;    // detected and not outshone by a fog echo
+  stats::BoxPlot target_intensity;  // one value per scan, 0 where the target is missing
+  double fog_echo_rate = 0.0;       // beams through the fog with a fog echo / beams through it
   double median_first_echo_range_m = 0.0;  // of beams through the fog; NaN when none has an echo
   std::size_t beams_through_fog = 0;       // summed over the step's scans
 };

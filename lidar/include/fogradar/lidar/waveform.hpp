@@ -37,7 +37,8 @@ struct WaveformGrid {
   double full_overlap_range_m = 0.5;
 };
 
-// waveform[k] += amplitude p(k dt - 2 R / c) O(R) for the samples within 2 fwhm of the echo's centre.
+// waveform[k] += amplitude p(k dt - 2 R / c) O(R) for the samples within 2 fwhm of the echo's
+// centre.
 void add_hard_target(std::span<double> waveform, const WaveformGrid& grid, double range_m,
                      double amplitude);
 
@@ -61,7 +62,7 @@ void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const
 
 // The receiver (docs/lidar.md §4).
 struct EchoDetector {
-  double threshold = 0.0;          // in waveform units
+  double threshold = 0.0;  // in waveform units
   double sample_interval_s = 0.5e-9;
   // Added to c t_cross / 2: the receiver is calibrated so that an echo whose peak is twice the
   // threshold (its threshold crossing at half maximum) reads its true range: c fwhm / 4.
@@ -72,8 +73,8 @@ struct EchoDetector {
 };
 
 struct DetectedEcho {
-  double range_m = 0.0;            // leading-edge threshold crossing, linearly interpolated
-  double peak = 0.0;               // largest sample from the crossing until the signal falls below
+  double range_m = 0.0;  // leading-edge threshold crossing, linearly interpolated
+  double peak = 0.0;     // largest sample from the crossing until the signal falls below
   std::size_t peak_sample = 0;
 };
 
@@ -86,7 +87,8 @@ struct DetectedEchoes {
 // Echoes of a (noisy) waveform in range order: each upward threshold crossing starts an echo that
 // lasts until the signal falls below the threshold again; a crossing within min_separation_m of the
 // previous echo's range merges into it (the larger peak is kept); echoes closer than min_range_m
-// are dropped, as is one already above the threshold at the record's first sample; at most max_echoes (<= capacity) are kept, the nearest.
+// are dropped, as is one already above the threshold at the record's first sample; at most
+// max_echoes (<= capacity) are kept, the nearest.
 DetectedEchoes extract_echoes(std::span<const double> waveform, const EchoDetector& detector);
 
 }  // namespace fogradar::lidar
