@@ -145,8 +145,9 @@ class Camera {
 CameraSummary summarize(const CameraParams& params, const std::vector<CameraStepResult>& steps);
 
 // Result files as strings.
-std::string histograms_csv(const CameraSummary& summary);  // camera_histograms.csv: step,grey,count
-std::string summary_csv(const CameraSummary& summary);     // camera_summary.csv: one row per step
+std::string histograms_csv(
+    const CameraSummary& summary);  // camera_histograms.csv: step,active_layers,grey_level,count
+std::string summary_csv(const CameraSummary& summary);      // camera_summary.csv: one row per step
 nlohmann::json summary_json(const CameraSummary& summary);  // the object summary.json embeds
 std::string histograms_svg(const CameraSummary& summary);   // camera_histograms.svg (Fig. 7)
 std::string roi_pgm(const CameraParams& params, const CameraFrame& frame);  // binary PGM (P5)
