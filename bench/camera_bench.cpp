@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -81,17 +82,19 @@ void print_sensitivity(const camera::CameraParams& base, const propagation::Cham
     add("roi.target_fraction = " + std::to_string(v),
         [v](camera::CameraParams& p) { p.roi.target_fraction = v; });
   }
-  add("transfer = gamma 2.2", [](camera::CameraParams& p) { p.transfer = camera::TransferCurve::gamma; });
+  add("transfer = gamma 2.2",
+      [](camera::CameraParams& p) { p.transfer = camera::TransferCurve::gamma; });
   add("band = rgb", [](camera::CameraParams& p) { p.band = camera::Band::rgb; });
-  add("band = monochromatic 550 nm", [](camera::CameraParams& p) { p.band = camera::Band::monochromatic; });
+  add("band = monochromatic 550 nm",
+      [](camera::CameraParams& p) { p.band = camera::Band::monochromatic; });
   for (const Variant& variant : variants) {
     const camera::Camera camera(variant.params, chamber, table);
     try {
       const auto calibration = camera::calibrate_to_means(camera, 46.0, 2, 64.0);
       const camera::Camera calibrated = camera.with_scene(calibration.params);
       const auto optics = calibrated.step_optics(propagation::first_layers_active(4, 4));
-      std::printf("  %-45s ambient_level %.4f target median %.4f -> 4 layers %.2f\n", variant.name.c_str(),
-                  calibration.params.exposure.ambient_level,
+      std::printf("  %-45s ambient_level %.4f target median %.4f -> 4 layers %.2f\n",
+                  variant.name.c_str(), calibration.params.exposure.ambient_level,
                   calibration.params.roi.target.median_reflectance,
                   calibrated.expected_mean_grey(optics));
     } catch (const InvalidParameter& error) {
@@ -131,27 +134,37 @@ int main(int argc, char** argv) {
     camera::CameraParams params;
     params.frames_per_step = frames;
 
-    const auto build_start = Clock::now();
+    std::vector<double> build_times;
+    for (int r = 0; r < repeats; ++r) {
+      const auto build_start = Clock::now();
+      const camera::Camera timed(params, chamber, table);
+      build_times.push_back(seconds_since(build_start));
+    }
+    const double build_s = median(build_times);
     const camera::Camera uncalibrated(params, chamber, table);
-    const double build_s = seconds_since(build_start);
 
     const auto calibration_start = Clock::now();
-    const camera::CalibrationResult calibration = camera::calibrate_to_means(uncalibrated, 46.0, 2, 64.0);
+    const camera::CalibrationResult calibration =
+        camera::calibrate_to_means(uncalibrated, 46.0, 2, 64.0);
     const double calibration_s = seconds_since(calibration_start);
     const camera::Camera camera = uncalibrated.with_scene(calibration.params);
 
     std::printf("== %s\n", reading.name);
-    std::printf("calibrated: exposure.ambient_level = %.6g, roi.target.median_reflectance = %.6g "
-                "(noise-free means %.3f, %.3f)\n",
-                calibration.params.exposure.ambient_level,
-                calibration.params.roi.target.median_reflectance, calibration.clear_mean_grey,
-                calibration.fog_mean_grey);
-    std::printf("beta of one layer at the 550 nm band node (interpolated from the Mie wavelengths): %.1f /km\n",
-                1e3 * camera.layer_extinction_per_m(0)[38]);
+    std::printf(
+        "calibrated: exposure.ambient_level = %.6g, roi.target.median_reflectance = %.6g "
+        "(noise-free means %.3f, %.3f)\n",
+        calibration.params.exposure.ambient_level, calibration.params.roi.target.median_reflectance,
+        calibration.clear_mean_grey, calibration.fog_mean_grey);
+    std::printf(
+        "beta of one layer at the 550 nm band node (interpolated from the Mie wavelengths): %.1f "
+        "/km\n",
+        1e3 * camera.layer_extinction_per_m(0)[38]);
     std::printf("noise-free mean grey per active layers:");
     for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
-      const auto optics = camera.step_optics(propagation::first_layers_active(n, camera.layer_count()));
-      std::printf("  %zu: %.2f (t = %.4f)", n, camera.expected_mean_grey(optics), optics.transmittance[0]);
+      const auto optics =
+          camera.step_optics(propagation::first_layers_active(n, camera.layer_count()));
+      std::printf("  %zu: %.2f (t = %.4f)", n, camera.expected_mean_grey(optics),
+                  optics.transmittance[0]);
     }
     std::printf("\n");
 
@@ -161,18 +174,37 @@ int main(int argc, char** argv) {
       steps.clear();
       const auto start = Clock::now();
       for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
-        steps.push_back(camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), 1));
+        steps.push_back(
+            camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), 1));
       }
       run_s.push_back(seconds_since(start));
     }
+    // The whole camera part as `fogradar run` would do it (construction, 5 steps, summary), in CPU
+    // time of this process: comparable with the radar run's user time on a loaded machine.
+    std::vector<double> cpu_s;
+    for (int r = 0; r < repeats; ++r) {
+      const std::clock_t start = std::clock();
+      const camera::Camera part(camera.params(), chamber, table);
+      std::vector<camera::CameraStepResult> part_steps;
+      for (std::size_t n = 0; n <= part.layer_count(); ++n) {
+        part_steps.push_back(
+            part.measure_step(n, propagation::first_layers_active(n, part.layer_count()), 1));
+      }
+      (void)camera::summarize(part.params(), part_steps);
+      cpu_s.push_back(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+    }
     const camera::CameraSummary summary = camera::summarize(camera.params(), steps);
     std::printf("%s", camera::step_table(summary).c_str());
-    std::printf("timing (1 thread): construction (Mie at %zu wavelengths, interpolated onto %zu band "
-                "nodes) %.3f s, calibration %.3f s, %zu steps x %zu frames of %zux%zu px: median %.4f s "
-                "over %d repeats\n\n",
-                camera::mie_wavelengths_m(params.band, params.wavelength_nm, params.mie_step_nm).size(),
-                camera.band_wavelengths_m().size(), build_s, calibration_s, steps.size(), frames,
-                params.roi.width_px, params.roi.height_px, median(run_s), repeats);
+    std::printf("camera part (construction + %zu steps + summary), CPU time: median %.4f s\n",
+                steps.size(), median(cpu_s));
+    std::printf(
+        "timing (1 thread): construction (Mie at %zu wavelengths, interpolated onto %zu band "
+        "nodes) median %.4f s, calibration %.3f s, %zu steps x %zu frames of %zux%zu px: median "
+        "%.4f s "
+        "over %d repeats\n\n",
+        camera::mie_wavelengths_m(params.band, params.wavelength_nm, params.mie_step_nm).size(),
+        camera.band_wavelengths_m().size(), build_s, calibration_s, steps.size(), frames,
+        params.roi.width_px, params.roi.height_px, median(run_s), repeats);
     if (sensitivity) print_sensitivity(params, chamber, table);
     if (!out_dir.empty()) {
       const std::string folder = out_dir + "/" + reading.folder + "/";

@@ -24,7 +24,8 @@ CalibrationResult calibrate_to_means(const Camera& camera, double clear_mean_gre
   require_in_range("fog_layers", static_cast<double>(fog_layers), 1.0,
                    static_cast<double>(camera.layer_count()));
   const propagation::ActiveLayers clear(camera.layer_count(), false);
-  const propagation::ActiveLayers fog = propagation::first_layers_active(fog_layers, camera.layer_count());
+  const propagation::ActiveLayers fog =
+      propagation::first_layers_active(fog_layers, camera.layer_count());
 
   // The validated ranges of the two keys (params.cpp), in logarithms.
   const double log_level_min = std::log(1e-4);
@@ -55,7 +56,8 @@ CalibrationResult calibrate_to_means(const Camera& camera, double clear_mean_gre
   }
   fit_clear(0.5 * (low + high));
 
-  CalibrationResult result{params, mean_grey(camera, params, clear), mean_grey(camera, params, fog)};
+  CalibrationResult result{params, mean_grey(camera, params, clear),
+                           mean_grey(camera, params, fog)};
   if (std::abs(result.clear_mean_grey - clear_mean_grey) > 0.01) {
     throw_invalid("clear_mean_grey", clear_mean_grey,
                   "reachable with camera.roi.target.median_reflectance in [1e-4, 1.5]");

@@ -1,11 +1,10 @@
 #include "fogradar/camera/camera.hpp"
 
 #include <algorithm>
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <complex>
 #include <numeric>
-
-#include <boost/math/distributions/normal.hpp>
 
 #include "fogradar/camera/pipeline.hpp"
 #include "fogradar/camera/spectral.hpp"
@@ -34,7 +33,8 @@ std::size_t count_edges(const std::vector<double>& value, std::size_t cells_x, d
   std::size_t edges = 0;
   for (std::size_t c = 0; c < value.size(); ++c) {
     if ((c + 1) % cells_x != 0 && edge_contrast(value[c], value[c + 1]) >= threshold) ++edges;
-    if (c + cells_x < value.size() && edge_contrast(value[c], value[c + cells_x]) >= threshold) ++edges;
+    if (c + cells_x < value.size() && edge_contrast(value[c], value[c + cells_x]) >= threshold)
+      ++edges;
   }
   return edges;
 }
@@ -52,13 +52,15 @@ inline std::size_t walk_level(const std::array<double, grey_levels - 1>& thresho
 // Lognormal reflectance at probability q: median exp(sigma Phi^-1(q)).
 double lognormal_quantile(const RegionParams& region, double q) {
   const boost::math::normal standard;
-  return region.median_reflectance * std::exp(region.log_sigma * boost::math::quantile(standard, q));
+  return region.median_reflectance *
+         std::exp(region.log_sigma * boost::math::quantile(standard, q));
 }
 
 // A stride coprime to n near n / golden ratio: index i -> (i stride) mod n scatters the quantiles
 // over the cells without a random stream (the scene is the same in every frame and every run).
 std::size_t scatter_stride(std::size_t n) {
-  std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(0.6180339887 * static_cast<double>(n)));
+  std::size_t stride =
+      std::max<std::size_t>(1, static_cast<std::size_t>(0.6180339887 * static_cast<double>(n)));
   while (std::gcd(stride, n) != 1) ++stride;
   return stride;
 }
@@ -72,7 +74,8 @@ Camera::Camera(const CameraParams& params, const propagation::ChamberSpec& chamb
   chamber.validate();
   layer_count_ = chamber.layers.size();
 
-  const BandQuadrature quadrature = band_quadrature(params_.band, params_.wavelength_nm, cie1931_table());
+  const BandQuadrature quadrature =
+      band_quadrature(params_.band, params_.wavelength_nm, cie1931_table());
   wavelengths_m_ = quadrature.wavelength_m;
   weights_ = quadrature.weight;
   channel_count_ = weights_.size();
@@ -93,9 +96,8 @@ Camera::Camera(const CameraParams& params, const propagation::ChamberSpec& chamb
     for (double wavelength : mie_wavelengths) {
       const propagation::FogOptics optics = fog.at_optical_wavelength(wavelength);
       extinction.push_back(optics.extinction_per_m);
-      albedo.push_back(optics.extinction_per_m > 0.0
-                           ? optics.scattering_per_m / optics.extinction_per_m
-                           : 1.0);
+      albedo.push_back(
+          optics.extinction_per_m > 0.0 ? optics.scattering_per_m / optics.extinction_per_m : 1.0);
     }
     extinction_.push_back(interpolate_quadratic(mie_wavelengths, extinction, wavelengths_m_));
     albedo_.push_back(interpolate_quadratic(mie_wavelengths, albedo, wavelengths_m_));
@@ -111,12 +113,14 @@ void Camera::build_scene() {
   for (std::size_t g = 0; g < grey_levels; ++g) {
     grey_linear_[g] = decode(params_.transfer, params_.gamma, static_cast<double>(g) / 255.0);
     if (g + 1 < grey_levels) {
-      thresholds_[g] = decode(params_.transfer, params_.gamma, (static_cast<double>(g) + 0.5) / 255.0);
+      thresholds_[g] =
+          decode(params_.transfer, params_.gamma, (static_cast<double>(g) + 0.5) / 255.0);
     }
   }
   for (std::size_t b = 0; b < bucket_levels_.size(); ++b) {
     const double start = static_cast<double>(b) / static_cast<double>(bucket_levels_.size());
-    bucket_levels_[b] = static_cast<std::uint8_t>(walk_level(thresholds_, start, b == 0 ? 0 : bucket_levels_[b - 1]));
+    bucket_levels_[b] = static_cast<std::uint8_t>(
+        walk_level(thresholds_, start, b == 0 ? 0 : bucket_levels_[b - 1]));
   }
   // The ROI's cell grid; the target is the central rectangle holding target_fraction of the cells.
   const RoiParams& roi = params_.roi;
@@ -124,8 +128,8 @@ void Camera::build_scene() {
   cells_y_ = (roi.height_px + roi.cell_px - 1) / roi.cell_px;
   const double side = std::sqrt(roi.target_fraction);
   const auto target_cells = [side](std::size_t n) {
-    return std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(side * static_cast<double>(n))),
-                                   1, n - 1);
+    return std::clamp<std::size_t>(
+        static_cast<std::size_t>(std::lround(side * static_cast<double>(n))), 1, n - 1);
   };
   const std::size_t tx = target_cells(cells_x_);
   const std::size_t ty = target_cells(cells_y_);
@@ -181,7 +185,8 @@ StepOptics Camera::step_optics(const propagation::ActiveLayers& active) const {
                   "equal to the chamber's layer count");
   }
   StepOptics optics;
-  optics.active_layer_count = static_cast<std::size_t>(std::count(active.begin(), active.end(), true));
+  optics.active_layer_count =
+      static_cast<std::size_t>(std::count(active.begin(), active.end(), true));
   optics.transmittance.assign(channel_count_, 0.0);
   optics.airlight_factor.assign(channel_count_, 0.0);
   for (std::size_t k = 0; k < wavelengths_m_.size(); ++k) {
@@ -228,12 +233,12 @@ double Camera::expected_mean_grey(const StepOptics& optics) const {
     std::array<double, 3> encoded{};
     for (std::size_t c = 0; c < channel_count_; ++c) {
       // Eq. 8 in units of L_a: rho t_c + a_c, times the exposure.
-      const double radiance = optics.exposure_level *
-                              (cell.reflectance * optics.transmittance[c] + optics.airlight_factor[c]);
+      const double radiance = optics.exposure_level * (cell.reflectance * optics.transmittance[c] +
+                                                       optics.airlight_factor[c]);
       encoded[c] = encode(params_.transfer, params_.gamma, radiance);
     }
-    const double grey = channel_count_ == 3 ? luma_bt601(encoded[0], encoded[1], encoded[2])
-                                            : encoded[0];
+    const double grey =
+        channel_count_ == 3 ? luma_bt601(encoded[0], encoded[1], encoded[2]) : encoded[0];
     sum += 255.0 * grey * static_cast<double>(w * h);
     pixels += w * h;
   }
@@ -318,7 +323,8 @@ CameraFrame Camera::frame(const StepOptics& optics, RandomStream& stream) const 
           const double v = noise.enabled ? signal[c] + sigma[c] * normal[draw++] : signal[c];
           q[c] = quantise(v);
         }
-        // Rgb: each channel quantised to 8 bits, then the luma rounded, as cvtColor on an 8-bit image.
+        // Rgb: each channel quantised to 8 bits, then the luma rounded, as cvtColor on an 8-bit
+        // image.
         const std::uint8_t grey =
             channel_count_ == 3 ? quantise_8bit(luma_bt601(q[0], q[1], q[2]) / 255.0) : q[0];
         ++result.histogram[grey];
@@ -340,7 +346,8 @@ CameraFrame Camera::frame(const StepOptics& optics, RandomStream& stream) const 
   result.mean_grey = grey_sum / static_cast<double>(pixels);
   const double target_mean = target_sum / static_cast<double>(target_pixels);
   const double background_mean = background_sum / static_cast<double>(pixels - target_pixels);
-  result.target_contrast = background_mean > 0.0 ? weber_contrast(target_mean, background_mean) : 0.0;
+  result.target_contrast =
+      background_mean > 0.0 ? weber_contrast(target_mean, background_mean) : 0.0;
   result.edges_above_threshold = count_edges(cell_linear, cells_x_, params_.contrast_threshold);
   return result;
 }

@@ -23,7 +23,8 @@ constexpr std::array<std::pair<TransferCurve, std::string_view>, 2> kTransferNam
 }};
 
 template <class Enum, std::size_t N>
-std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>& names, Enum value) {
+std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>& names,
+                         Enum value) {
   for (const auto& [candidate, name] : names) {
     if (candidate == value) return name;
   }
@@ -31,8 +32,8 @@ std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>&
 }
 
 template <class Enum, std::size_t N>
-Enum parse_name(const std::array<std::pair<Enum, std::string_view>, N>& names, std::string_view text,
-                std::string_view field, std::string_view allowed) {
+Enum parse_name(const std::array<std::pair<Enum, std::string_view>, N>& names,
+                std::string_view text, std::string_view field, std::string_view allowed) {
   for (const auto& [value, name] : names) {
     if (name == text) return value;
   }
@@ -44,7 +45,8 @@ void require_count(const char* field, std::size_t value, std::size_t low, std::s
                    static_cast<double>(high));
 }
 
-void validate_region(const RegionParams& region, const char* median_field, const char* sigma_field) {
+void validate_region(const RegionParams& region, const char* median_field,
+                     const char* sigma_field) {
   // Reflectance factors of real surfaces under diffuse light: (0, 1.5] leaves room for retro-
   // reflective or glossy patches; ln-spread up to 3 (a factor 20 per sigma).
   require_in_range(median_field, region.median_reflectance, 1e-4, 1.5);

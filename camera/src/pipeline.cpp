@@ -15,7 +15,8 @@ double koschmieder_radiance(double intrinsic_radiance, double path_radiance, dou
   return intrinsic_radiance * transmittance + path_radiance * (1.0 - transmittance);
 }
 
-// Single scattering of a uniform diffuse field: the source function is omega L_a (docs/camera.md §3).
+// Single scattering of a uniform diffuse field: the source function is omega L_a (docs/camera.md
+// §3).
 double path_radiance_factor(double single_scattering_albedo) { return single_scattering_albedo; }
 
 double weber_contrast(double radiance, double background_radiance) {
@@ -33,7 +34,9 @@ double srgb_decode(double encoded) {
   return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
 }
 
-double gamma_encode(double linear, double gamma) { return std::pow(clip_unit(linear), 1.0 / gamma); }
+double gamma_encode(double linear, double gamma) {
+  return std::pow(clip_unit(linear), 1.0 / gamma);
+}
 double gamma_decode(double encoded, double gamma) { return std::pow(clip_unit(encoded), gamma); }
 
 double encode(TransferCurve curve, double gamma, double linear) {

@@ -105,12 +105,14 @@ std::vector<double> mie_wavelengths_m(Band band, double wavelength_nm, double st
   constexpr double first_nm = 400.0;
   constexpr double last_nm = 720.0;
   std::vector<double> nodes;
-  for (int k = 0; first_nm + k * step_nm < last_nm; ++k) nodes.push_back((first_nm + k * step_nm) * 1e-9);
+  for (int k = 0; first_nm + k * step_nm < last_nm; ++k)
+    nodes.push_back((first_nm + k * step_nm) * 1e-9);
   nodes.push_back(last_nm * 1e-9);
   return nodes;
 }
 
-std::vector<double> interpolate_quadratic(const std::vector<double>& x, const std::vector<double>& y,
+std::vector<double> interpolate_quadratic(const std::vector<double>& x,
+                                          const std::vector<double>& y,
                                           const std::vector<double>& at) {
   FOGRADAR_CHECK(!x.empty() && x.size() == y.size());
   const std::size_t n = x.size();
@@ -123,7 +125,8 @@ std::vector<double> interpolate_quadratic(const std::vector<double>& x, const st
       continue;
     }
     // The nearest node, then the run of min(n, 3) nodes centred on it as far as the ends allow.
-    const auto upper = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), v) - x.begin());
+    const auto upper =
+        static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), v) - x.begin());
     std::size_t nearest = std::min(upper, n - 1);
     if (nearest > 0 && v - x[nearest - 1] < x[nearest] - v) --nearest;
     const std::size_t count = std::min<std::size_t>(n, 3);

@@ -1,8 +1,7 @@
-#include "fogradar/camera/camera.hpp"
-
 #include <cmath>
 #include <cstdio>
 
+#include "fogradar/camera/camera.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/stats/format.hpp"
 #include "fogradar/stats/histogram.hpp"
@@ -15,7 +14,9 @@ using stats::format_fixed;
 using stats::format_number;
 
 // JSON numbers: NaN (no value) as null.
-nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+nlohmann::json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 
 std::string pad(const std::string& text, std::size_t width) {
   return text.size() >= width ? text : std::string(width - text.size(), ' ') + text;
@@ -81,12 +82,13 @@ std::string summary_csv(const CameraSummary& summary) {
       "relative_contrast,edges_above_threshold,clear_edges,transmittance\n";
   for (std::size_t i = 0; i < summary.steps.size(); ++i) {
     const CameraStepSummary& s = summary.steps[i];
-    csv += std::to_string(i) + "," + std::to_string(s.active_layers) + "," + std::to_string(s.frames) +
-           "," + format_number(s.mean_grey) + "," + format_number(s.std_grey) + "," +
-           format_number(s.p05_grey) + "," + format_number(s.p95_grey) + "," +
-           format_number(s.tonal_range) + "," + format_number(s.target_contrast) + "," +
-           format_number(s.relative_contrast) + "," + format_number(s.edges_above_threshold) + "," +
-           std::to_string(s.clear_edges) + "," + format_number(s.transmittance) + "\n";
+    csv += std::to_string(i) + "," + std::to_string(s.active_layers) + "," +
+           std::to_string(s.frames) + "," + format_number(s.mean_grey) + "," +
+           format_number(s.std_grey) + "," + format_number(s.p05_grey) + "," +
+           format_number(s.p95_grey) + "," + format_number(s.tonal_range) + "," +
+           format_number(s.target_contrast) + "," + format_number(s.relative_contrast) + "," +
+           format_number(s.edges_above_threshold) + "," + std::to_string(s.clear_edges) + "," +
+           format_number(s.transmittance) + "\n";
   }
   return csv;
 }
@@ -136,8 +138,9 @@ std::string histograms_svg(const CameraSummary& summary) {
   options.x_label = "grey level (8 bit)";
   options.y_label = "pixels (% of ROI)";
   options.x_axis_exact = true;
-  options.caption = {"Dashed lines: each step's mean grey. Histograms summed over the step's frames.",
-                     summary.criterion};
+  options.caption = {
+      "Dashed lines: each step's mean grey. Histograms summed over the step's frames.",
+      summary.criterion};
   return stats::line_plot_svg(series, options);
 }
 
@@ -156,18 +159,20 @@ std::string step_table(const CameraSummary& summary) {
   std::string table =
       "camera: layers   mean    std  p05-p95  contrast  rel.contrast  edges>thr (clear)\n";
   for (const CameraStepSummary& s : summary.steps) {
-    table += "        " + pad(std::to_string(s.active_layers), 6) + pad(format_fixed(s.mean_grey, 1), 7) +
-             pad(format_fixed(s.std_grey, 1), 7) +
+    table += "        " + pad(std::to_string(s.active_layers), 6) +
+             pad(format_fixed(s.mean_grey, 1), 7) + pad(format_fixed(s.std_grey, 1), 7) +
              pad(format_fixed(s.p05_grey, 0) + "-" + format_fixed(s.p95_grey, 0), 9) +
-             pad(format_fixed(s.target_contrast, 3), 10) + pad(format_fixed(s.relative_contrast, 3), 14) +
-             pad(format_fixed(s.edges_above_threshold, 1), 11) + " (" + std::to_string(s.clear_edges) +
-             ")\n";
+             pad(format_fixed(s.target_contrast, 3), 10) +
+             pad(format_fixed(s.relative_contrast, 3), 14) +
+             pad(format_fixed(s.edges_above_threshold, 1), 11) + " (" +
+             std::to_string(s.clear_edges) + ")\n";
   }
   std::string verdict;
   if (summary.sensor_limit_layers) {
     verdict = std::to_string(*summary.sensor_limit_layers) + " layers";
   } else if (!summary.steps.empty()) {
-    verdict = "not reached (|contrast| " + format_fixed(std::abs(summary.steps.back().target_contrast), 3) +
+    verdict = "not reached (|contrast| " +
+              format_fixed(std::abs(summary.steps.back().target_contrast), 3) +
               " at the last step)";
   } else {
     verdict = "not reached";

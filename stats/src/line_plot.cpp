@@ -35,38 +35,51 @@ std::string escape_xml(std::string_view text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += (static_cast<unsigned char>(c) < 0x20 && c != '\t') ? ' ' : c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += (static_cast<unsigned char>(c) < 0x20 && c != '\t') ? ' ' : c;
     }
   }
   return out;
 }
 
-void line(std::string& svg, double x1, double y1, double x2, double y2, std::string_view attributes) {
+void line(std::string& svg, double x1, double y1, double x2, double y2,
+          std::string_view attributes) {
   svg += "<line x1=\"" + px(x1) + "\" y1=\"" + px(y1) + "\" x2=\"" + px(x2) + "\" y2=\"" + px(y2) +
          "\" " + std::string(attributes) + "/>\n";
 }
 
-void text(std::string& svg, double x, double y, std::string_view anchor, std::string_view attributes,
-          std::string_view content) {
+void text(std::string& svg, double x, double y, std::string_view anchor,
+          std::string_view attributes, std::string_view content) {
   svg += "<text x=\"" + px(x) + "\" y=\"" + px(y) + "\" text-anchor=\"" + std::string(anchor) +
          "\" " + std::string(attributes) + ">" + escape_xml(content) + "</text>\n";
 }
 
 double below_plot_px(const LinePlotOptions& options) {
-  return x_label_baseline + caption_gap + caption_line * static_cast<double>(options.caption.size()) +
-         bottom_padding;
+  return x_label_baseline + caption_gap +
+         caption_line * static_cast<double>(options.caption.size()) + bottom_padding;
 }
 
 void require_drawable(const LineSeries& s, std::size_t i) {
   const std::string name = "series[" + std::to_string(i) + "]";
   if (s.x.empty() || s.x.size() != s.y.size()) {
-    throw_invalid(name + ".x", static_cast<double>(s.x.size()),
-                  "a non-empty list as long as " + name + ".y (" + std::to_string(s.y.size()) + ")");
+    throw_invalid(
+        name + ".x", static_cast<double>(s.x.size()),
+        "a non-empty list as long as " + name + ".y (" + std::to_string(s.y.size()) + ")");
   }
   for (const double v : s.x) require_finite(name + ".x", v);
   for (const double v : s.y) require_finite(name + ".y", v);
@@ -85,7 +98,8 @@ void LinePlotOptions::validate() const {
 
 std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOptions& options) {
   options.validate();
-  if (series.empty()) throw InvalidParameter("series", "series is empty: must contain at least one series");
+  if (series.empty())
+    throw InvalidParameter("series", "series is empty: must contain at least one series");
   for (std::size_t i = 0; i < series.size(); ++i) require_drawable(series[i], i);
 
   double x_low = series[0].x[0];
@@ -132,14 +146,17 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
   const auto y_ticks = std::lround((yt.last - yt.first) / yt.step);
   for (long i = 0; i <= y_ticks; ++i) {
     const double value = yt.first + static_cast<double>(i) * yt.step;
-    line(svg, left, to_y(value), right, to_y(value), "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
-    text(svg, left - 8.0, to_y(value) + 4.0, "end", "class=\"tick\"", format_fixed(value, yt.decimals));
+    line(svg, left, to_y(value), right, to_y(value),
+         "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
+    text(svg, left - 8.0, to_y(value) + 4.0, "end", "class=\"tick\"",
+         format_fixed(value, yt.decimals));
   }
   const auto x_ticks = std::lround((xt.last - xt.first) / xt.step);
   for (long i = 0; i <= x_ticks; ++i) {
     const double value = xt.first + static_cast<double>(i) * xt.step;
     if (value < axis_x_low - 1e-9 * xt.step || value > axis_x_high + 1e-9 * xt.step) continue;
-    line(svg, to_x(value), bottom, to_x(value), bottom + 5.0, "stroke=\"#333333\" stroke-width=\"1\"");
+    line(svg, to_x(value), bottom, to_x(value), bottom + 5.0,
+         "stroke=\"#333333\" stroke-width=\"1\"");
     text(svg, to_x(value), bottom + tick_baseline, "middle", "class=\"tick\"",
          format_fixed(value, xt.decimals));
   }
@@ -163,7 +180,8 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
     if (s.marker_x) {
       const double x = to_x(*s.marker_x);
       line(svg, x, plot_top, x, bottom,
-           "class=\"marker\" stroke=\"" + colour + "\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"");
+           "class=\"marker\" stroke=\"" + colour +
+               "\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"");
       // Labels after every line (below), stacked downwards so that close markers stay readable.
       text(labels, x + 4.0, plot_top + 14.0 + 14.0 * static_cast<double>(i), "start",
            "class=\"marker-label\" fill=\"" + colour +
@@ -179,11 +197,14 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
   svg += labels;
   text(svg, 0.5 * (left + right), bottom + x_label_baseline, "middle", "class=\"x-label\"",
        options.x_label);
-  svg += "<text class=\"y-label\" x=\"0.00\" y=\"0.00\" text-anchor=\"middle\" transform=\"translate(" +
-         px(22.0) + " " + px(0.5 * (plot_top + bottom)) + ") rotate(-90)\">" +
-         escape_xml(options.y_label) + "</text>\n";
+  svg +=
+      "<text class=\"y-label\" x=\"0.00\" y=\"0.00\" text-anchor=\"middle\" "
+      "transform=\"translate(" +
+      px(22.0) + " " + px(0.5 * (plot_top + bottom)) + ") rotate(-90)\">" +
+      escape_xml(options.y_label) + "</text>\n";
   for (std::size_t i = 0; i < options.caption.size(); ++i) {
-    text(svg, left, bottom + x_label_baseline + caption_gap + caption_line * static_cast<double>(i + 1),
+    text(svg, left,
+         bottom + x_label_baseline + caption_gap + caption_line * static_cast<double>(i + 1),
          "start", "class=\"caption\" fill=\"#555555\"", options.caption[i]);
   }
   svg += "</svg>\n";

@@ -1,5 +1,6 @@
 // The camera's physics against independent references:
-//  - Koschmieder's law (paper eq. 8) in its limits and the visibility definitions (eq. 6, 9): closed
+//  - Koschmieder's law (paper eq. 8) in its limits and the visibility definitions (eq. 6, 9):
+//  closed
 //    forms, exact up to rounding (tolerance a few ulp, 1e-14 relative).
 //  - The band-weighted transmittance against a second integration: Simpson's rule on a 10 nm grid
 //    of direct Mie evaluations (no interpolation) weighted by the CIE table's V(lambda), instead of
@@ -31,7 +32,8 @@ const propagation::SegelsteinTable& table() {
 
 propagation::ChamberSpec paper_chamber(double extinction_per_km = 900.0) {
   propagation::ChamberSpec spec;
-  for (auto& layer : spec.layers) layer.fog.density = propagation::OpticalExtinction{extinction_per_km};
+  for (auto& layer : spec.layers)
+    layer.fog.density = propagation::OpticalExtinction{extinction_per_km};
   return spec;
 }
 
@@ -43,8 +45,8 @@ TEST(Koschmieder, Limits) {
 }
 
 TEST(Koschmieder, ContrastAgainstTheHorizonFallsAsTheTransmittance) {
-  // Against a background of the path radiance itself (Koschmieder's horizon sky), the apparent Weber
-  // contrast is C0 t exactly: (L0 t + Ls (1 - t) - Ls) / Ls = t (L0 - Ls) / Ls.
+  // Against a background of the path radiance itself (Koschmieder's horizon sky), the apparent
+  // Weber contrast is C0 t exactly: (L0 t + Ls (1 - t) - Ls) / Ls = t (L0 - Ls) / Ls.
   const double ls = 0.8;
   for (const double l0 : {0.0, 0.05, 0.4, 2.0}) {
     const double c0 = weber_contrast(l0, ls);
@@ -115,8 +117,9 @@ SimpsonBand reference_band(const propagation::Fog& fog) {
 
 TEST(CameraOptics, PhotopicBandAgainstAnIndependentIntegration) {
   // Tolerance: 5e-3 relative at the defaults (mie_step_nm = 160), twice the interpolation error
-  // measured against this reference (2.55e-3 at 4 layers, docs/camera.md §2); refining to 20 nm must
-  // bring it within 1e-4 (measured 2.6e-5: the two quadrature rules' difference then dominates).
+  // measured against this reference (2.55e-3 at 4 layers, docs/camera.md §2); refining to 20 nm
+  // must bring it within 1e-4 (measured 2.6e-5: the two quadrature rules' difference then
+  // dominates).
   const propagation::ChamberSpec chamber = paper_chamber();
   const SimpsonBand band = reference_band(propagation::Fog(chamber.layers[0].fog, table()));
   CameraParams coarse;
@@ -151,9 +154,9 @@ TEST(CameraOptics, BandWeightsAreNormalised) {
 
 // Backward Monte Carlo of the radiance a camera sees through a plane-parallel slab of optical depth
 // tau, single-scattering albedo omega and Henyey-Greenstein phase function g, lit from all sides by
-// a uniform field of radiance 1, looking along the slab normal: a path that leaves the slab after at
-// least one scattering sees the field (weight omega^n); the unscattered path sees the object and is
-// not counted. Returns the mean and its standard error.
+// a uniform field of radiance 1, looking along the slab normal: a path that leaves the slab after
+// at least one scattering sees the field (weight omega^n); the unscattered path sees the object and
+// is not counted. Returns the mean and its standard error.
 struct Estimate {
   double mean;
   double standard_error;
@@ -176,7 +179,8 @@ Estimate monte_carlo_path_radiance(double tau, double omega, double g, std::size
       // Henyey-Greenstein deflection cosine (inverse CDF), then a uniform azimuth.
       const double u = stream.uniform();
       const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
-      const double cos_theta = std::abs(g) < 1e-9 ? 2.0 * u - 1.0 : (1.0 + g * g - s * s) / (2.0 * g);
+      const double cos_theta =
+          std::abs(g) < 1e-9 ? 2.0 * u - 1.0 : (1.0 + g * g - s * s) / (2.0 * g);
       const double phi = 2.0 * pi * stream.uniform();
       const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
       mu = mu * cos_theta + std::sqrt(std::max(0.0, 1.0 - mu * mu)) * sin_theta * std::cos(phi);
@@ -204,14 +208,13 @@ TEST(Airlight, ConservativeSlabInAUniformFieldMatchesMonteCarlo) {
 
 TEST(Airlight, AbsorbingThinSlabMatchesMonteCarloToSingleScattering) {
   // omega < 1: the exact path radiance is sum_n P(n scatterings) omega^n, the single-scattering
-  // model omega P(n >= 1); so 0 <= model - exact <= omega (1 - omega) P(n >= 2) <= (1 - omega) model.
-  // Tolerance: that bound plus 4 standard errors of 40000 photons, and the sign.
+  // model omega P(n >= 1); so 0 <= model - exact <= omega (1 - omega) P(n >= 2) <= (1 - omega)
+  // model. Tolerance: that bound plus 4 standard errors of 40000 photons, and the sign.
   for (const double omega : {0.9, 0.6}) {
     const double tau = 0.1;
     const Estimate mc = monte_carlo_path_radiance(tau, omega, 0.85, 40000, 11);
     const double model = path_radiance_factor(omega) * (1.0 - std::exp(-tau));
-    EXPECT_NEAR(model, mc.mean, (1.0 - omega) * model + 4.0 * mc.standard_error)
-        << omega;
+    EXPECT_NEAR(model, mc.mean, (1.0 - omega) * model + 4.0 * mc.standard_error) << omega;
     EXPECT_GE(model + 4.0 * mc.standard_error, mc.mean);
   }
 }

@@ -4,9 +4,6 @@
 // quantisation; the study's direction (Fig. 7: mean up, tonal range down with layers).
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-#include "svg_check.hpp"
-
 #include <cmath>
 #include <string>
 
@@ -14,6 +11,8 @@
 #include "fogradar/camera/camera.hpp"
 #include "fogradar/camera/pipeline.hpp"
 #include "fogradar/core/error.hpp"
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
 
 namespace fogradar::camera {
 namespace {
@@ -78,8 +77,10 @@ TEST(Pipeline, FrameQuantisationEqualsThePureFunctions) {
     RandomStream stream(1);
     const CameraFrame frame = camera.frame(optics, stream);
     std::size_t expected_levels = 0;
-    for (const double rho : {params.roi.target.median_reflectance, params.roi.background.median_reflectance}) {
-      const double linear = optics.exposure_level * (rho * optics.transmittance[0] + optics.airlight_factor[0]);
+    for (const double rho :
+         {params.roi.target.median_reflectance, params.roi.background.median_reflectance}) {
+      const double linear =
+          optics.exposure_level * (rho * optics.transmittance[0] + optics.airlight_factor[0]);
       EXPECT_GT(frame.histogram[quantise_8bit(srgb_encode(linear))], 0u) << n;
       ++expected_levels;
     }
@@ -106,7 +107,8 @@ TEST(Pipeline, AutoExposureHoldsItsTarget) {
 std::vector<CameraStepResult> run_steps(const Camera& camera, std::uint64_t seed) {
   std::vector<CameraStepResult> steps;
   for (std::size_t n = 0; n <= camera.layer_count(); ++n) {
-    steps.push_back(camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), seed));
+    steps.push_back(
+        camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), seed));
   }
   return steps;
 }
@@ -114,7 +116,8 @@ std::vector<CameraStepResult> run_steps(const Camera& camera, std::uint64_t seed
 TEST(Sensor, DirectionOfTheStudysFigure7) {
   // Mean grey rises, std and the 5-95 % tonal range narrow, the target's contrast falls, strictly
   // with every active layer (the study: 46, 64, 68 and a narrowing histogram).
-  const CameraSummary summary = summarize(default_camera().params(), run_steps(default_camera(), 1));
+  const CameraSummary summary =
+      summarize(default_camera().params(), run_steps(default_camera(), 1));
   ASSERT_EQ(summary.steps.size(), 5u);
   for (std::size_t i = 1; i < summary.steps.size(); ++i) {
     const CameraStepSummary& a = summary.steps[i - 1];
@@ -133,11 +136,15 @@ TEST(Sensor, DefaultsReproduceTheCalibrationMeans) {
   // The defaults are the calibrated keys (docs/camera.md §6), rounded to 4 digits: noise-free means
   // 46 and 64 to 0.05 grey; calibrating again from them returns them to 0.1 %.
   const Camera& camera = default_camera();
-  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(0, 4))), 46.0, 0.05);
-  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(2, 4))), 64.0, 0.05);
+  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(0, 4))),
+              46.0, 0.05);
+  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(2, 4))),
+              64.0, 0.05);
   const CalibrationResult calibration = calibrate_to_means(camera, 46.0, 2, 64.0);
-  EXPECT_NEAR(calibration.params.exposure.ambient_level / camera.params().exposure.ambient_level, 1.0, 1e-3);
-  EXPECT_NEAR(calibration.params.roi.target.median_reflectance / camera.params().roi.target.median_reflectance,
+  EXPECT_NEAR(calibration.params.exposure.ambient_level / camera.params().exposure.ambient_level,
+              1.0, 1e-3);
+  EXPECT_NEAR(calibration.params.roi.target.median_reflectance /
+                  camera.params().roi.target.median_reflectance,
               1.0, 1e-3);
 }
 
@@ -155,7 +162,8 @@ TEST(Sensor, DeterministicAndIndependentOfFrameOrder) {
   }
   EXPECT_NE(a[2].frames[0].histogram, c[2].frames[0].histogram);
   RandomStream stream = sensor_stream(42, SensorId::camera, 3, 7);
-  const CameraFrame alone = camera.frame(camera.step_optics(propagation::first_layers_active(3, 4)), stream);
+  const CameraFrame alone =
+      camera.frame(camera.step_optics(propagation::first_layers_active(3, 4)), stream);
   EXPECT_EQ(alone.histogram, a[3].frames[7].histogram);
 }
 
@@ -218,7 +226,8 @@ TEST(Params, EveryInvalidKeyIsRefusedByName) {
   EXPECT_EQ(rejected([](CameraParams&) {}), "accepted");
   EXPECT_EQ(rejected([](CameraParams& p) { p.wavelength_nm = 200.0; }), "camera.wavelength_nm");
   EXPECT_EQ(rejected([](CameraParams& p) { p.mie_step_nm = 2.0; }), "camera.mie_step_nm");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = 0.0; }), "camera.exposure.ambient_level");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = 0.0; }),
+            "camera.exposure.ambient_level");
   EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = std::nan(""); }),
             "camera.exposure.ambient_level");
   EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.auto_target_grey = 255.0; }),
@@ -232,16 +241,19 @@ TEST(Params, EveryInvalidKeyIsRefusedByName) {
   EXPECT_EQ(rejected([](CameraParams& p) { p.roi.height_px = 5000; }), "camera.roi.height_px");
   EXPECT_EQ(rejected([](CameraParams& p) { p.roi.cell_px = 1; }), "camera.roi.cell_px");
   EXPECT_EQ(rejected([](CameraParams& p) { p.roi.cell_px = 70; }), "camera.roi.cell_px");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target_fraction = 1.0; }), "camera.roi.target_fraction");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target_fraction = 1.0; }),
+            "camera.roi.target_fraction");
   EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target.median_reflectance = 0.0; }),
             "camera.roi.target.median_reflectance");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target.log_sigma = -0.1; }), "camera.roi.target.log_sigma");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.roi.target.log_sigma = -0.1; }),
+            "camera.roi.target.log_sigma");
   EXPECT_EQ(rejected([](CameraParams& p) { p.roi.background.median_reflectance = 2.0; }),
             "camera.roi.background.median_reflectance");
   EXPECT_EQ(rejected([](CameraParams& p) { p.roi.background.log_sigma = 4.0; }),
             "camera.roi.background.log_sigma");
   EXPECT_EQ(rejected([](CameraParams& p) { p.frames_per_step = 0; }), "camera.frames_per_step");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.contrast_threshold = 0.0; }), "camera.contrast_threshold");
+  EXPECT_EQ(rejected([](CameraParams& p) { p.contrast_threshold = 0.0; }),
+            "camera.contrast_threshold");
   EXPECT_EQ(rejected_field([] { parse_band("infrared"); }), "camera.band");
   EXPECT_EQ(rejected_field([] { parse_exposure_mode("manual"); }), "camera.exposure.mode");
   EXPECT_EQ(rejected_field([] { parse_transfer_curve("log"); }), "camera.transfer");

@@ -3,9 +3,6 @@
 // (svg_check.hpp) and refuses bad series by name.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-#include "svg_check.hpp"
-
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -14,6 +11,8 @@
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/histogram.hpp"
 #include "fogradar/stats/line_plot.hpp"
+#include "rejected_field.hpp"
+#include "svg_check.hpp"
 
 namespace fogradar::stats {
 namespace {

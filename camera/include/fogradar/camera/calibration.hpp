@@ -11,7 +11,7 @@
 namespace fogradar::camera {
 
 struct CalibrationResult {
-  CameraParams params;          // the input with the two calibrated keys replaced
+  CameraParams params;           // the input with the two calibrated keys replaced
   double clear_mean_grey = 0.0;  // noise-free means the calibrated params give
   double fog_mean_grey = 0.0;
 };

@@ -1,17 +1,16 @@
 // The camera of the study (sec. IV-C): Koschmieder (paper eq. 8) over the fog-only path in linear
-// radiance, per wavelength over the camera's band, then a sensor pipeline (exposure, noise, clipping,
-// transfer curve, 8-bit quantisation, grey conversion) and the region of interest's statistics.
-// docs/camera.md derives every equation.
+// radiance, per wavelength over the camera's band, then a sensor pipeline (exposure, noise,
+// clipping, transfer curve, 8-bit quantisation, grey conversion) and the region of interest's
+// statistics. docs/camera.md derives every equation.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "fogradar/camera/params.hpp"
 #include "fogradar/core/random.hpp"
@@ -29,9 +28,9 @@ using Histogram = std::array<std::uint64_t, grey_levels>;
 // exposure the step's frames use.
 struct StepOptics {
   std::size_t active_layer_count = 0;
-  std::vector<double> transmittance;     // t_c
-  std::vector<double> airlight_factor;   // a_c
-  double exposure_level = 0.0;           // linear signal of radiance L_a (fixed or auto)
+  std::vector<double> transmittance;    // t_c
+  std::vector<double> airlight_factor;  // a_c
+  double exposure_level = 0.0;          // linear signal of radiance L_a (fixed or auto)
   // Noise-free clear-weather references of the scene (the same at every step): the Weber contrast
   // of the target against the background, and the cell edges above the contrast threshold.
   double clear_contrast = 0.0;
@@ -40,9 +39,9 @@ struct StepOptics {
 
 // One frame of the ROI.
 struct CameraFrame {
-  Histogram histogram{};             // grey counts over the ROI
+  Histogram histogram{};  // grey counts over the ROI
   double mean_grey = 0.0;
-  double target_contrast = 0.0;      // Weber contrast of target vs background means, linearised
+  double target_contrast = 0.0;  // Weber contrast of target vs background means, linearised
   std::size_t edges_above_threshold = 0;
   std::vector<std::uint8_t> pixels;  // row-major grey image; only when write_roi_images
 };
@@ -58,15 +57,15 @@ struct CameraStepSummary {
   std::size_t frames = 0;
   Histogram histogram{};  // summed over the step's frames
   double mean_grey = 0.0;
-  double std_grey = 0.0;          // over every pixel of every frame
-  double p05_grey = 0.0;          // 5 % and 95 % quantiles of the summed histogram
+  double std_grey = 0.0;  // over every pixel of every frame
+  double p05_grey = 0.0;  // 5 % and 95 % quantiles of the summed histogram
   double p95_grey = 0.0;
-  double tonal_range = 0.0;       // p95 - p05
-  double target_contrast = 0.0;   // mean over frames
-  double relative_contrast = 0.0; // target_contrast / clear-weather contrast
+  double tonal_range = 0.0;            // p95 - p05
+  double target_contrast = 0.0;        // mean over frames
+  double relative_contrast = 0.0;      // target_contrast / clear-weather contrast
   double edges_above_threshold = 0.0;  // mean over frames
-  std::size_t clear_edges = 0;    // edges above the threshold in the noise-free clear scene
-  double transmittance = 0.0;     // band-weighted t of the first channel
+  std::size_t clear_edges = 0;         // edges above the threshold in the noise-free clear scene
+  double transmittance = 0.0;          // band-weighted t of the first channel
 };
 
 struct CameraSummary {
@@ -80,7 +79,8 @@ struct CameraSummary {
 
 class Camera {
  public:
-  // Resolves every distinct layer fog at the band's wavelengths by Mie (once); builds the ROI scene.
+  // Resolves every distinct layer fog at the band's wavelengths by Mie (once); builds the ROI
+  // scene.
   Camera(const CameraParams& params, const propagation::ChamberSpec& chamber,
          const propagation::SegelsteinTable& table);
 
@@ -128,11 +128,11 @@ class Camera {
   std::size_t layer_count_ = 0;
   std::size_t channel_count_ = 1;
   std::vector<double> layer_lengths_m_;
-  std::vector<double> wavelengths_m_;               // band nodes
-  std::vector<std::vector<double>> weights_;        // [channel][node], quadrature x sensitivity
-  std::vector<std::size_t> layer_fog_;              // layer -> distinct fog index
-  std::vector<std::vector<double>> extinction_;     // [fog][node], 1/m
-  std::vector<std::vector<double>> albedo_;         // [fog][node]
+  std::vector<double> wavelengths_m_;            // band nodes
+  std::vector<std::vector<double>> weights_;     // [channel][node], quadrature x sensitivity
+  std::vector<std::size_t> layer_fog_;           // layer -> distinct fog index
+  std::vector<std::vector<double>> extinction_;  // [fog][node], 1/m
+  std::vector<std::vector<double>> albedo_;      // [fog][node]
   std::vector<Cell> cells_;
   std::size_t cells_x_ = 0;
   std::size_t cells_y_ = 0;
@@ -145,12 +145,13 @@ class Camera {
 CameraSummary summarize(const CameraParams& params, const std::vector<CameraStepResult>& steps);
 
 // Result files as strings.
-std::string histograms_csv(const CameraSummary& summary);  // camera_histograms.csv: step,grey,count
-std::string summary_csv(const CameraSummary& summary);     // camera_summary.csv: one row per step
+std::string histograms_csv(
+    const CameraSummary& summary);  // camera_histograms.csv: step,active_layers,grey_level,count
+std::string summary_csv(const CameraSummary& summary);      // camera_summary.csv: one row per step
 nlohmann::json summary_json(const CameraSummary& summary);  // the object summary.json embeds
-std::string histograms_svg(const CameraSummary& summary);  // camera_histograms.svg (Fig. 7)
+std::string histograms_svg(const CameraSummary& summary);   // camera_histograms.svg (Fig. 7)
 std::string roi_pgm(const CameraParams& params, const CameraFrame& frame);  // binary PGM (P5)
-std::string step_table(const CameraSummary& summary);  // the terminal table
+std::string step_table(const CameraSummary& summary);                       // the terminal table
 
 // Bytes the run holds for the camera: frames x (histogram + optional image) per step.
 std::size_t memory_bytes(const CameraParams& params, std::size_t step_count);

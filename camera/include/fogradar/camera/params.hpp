@@ -8,9 +8,9 @@
 
 namespace fogradar::camera {
 
-// Spectral weighting of the pixels (docs/camera.md §2): the CIE photopic luminous efficiency V(lambda)
-// (one grey channel), three colour channels R, G, B (the sRGB primaries' colour matching functions,
-// negative lobes clipped) converted to grey with the luma weights, or one wavelength.
+// Spectral weighting of the pixels (docs/camera.md §2): the CIE photopic luminous efficiency
+// V(lambda) (one grey channel), three colour channels R, G, B (the sRGB primaries' colour matching
+// functions, negative lobes clipped) converted to grey with the luma weights, or one wavelength.
 enum class Band { photopic, rgb, monochromatic };
 // How the exposure is set: fixed (exposure.ambient_level), or per step so that the noise-free ROI
 // mean grey equals exposure.auto_target_grey.
@@ -30,9 +30,9 @@ TransferCurve parse_transfer_curve(std::string_view text,
 
 struct ExposureParams {
   ExposureMode mode = ExposureMode::fixed;  // TOML "fixed" | "auto"
-  // Linear sensor signal (fraction of full scale, before clipping) of a surface whose radiance is the
-  // hall's ambient radiance L_a (a white Lambertian surface in the uniform diffuse hall light): the
-  // product of ambient radiance and exposure gain, the only combination grey values depend on.
+  // Linear sensor signal (fraction of full scale, before clipping) of a surface whose radiance is
+  // the hall's ambient radiance L_a (a white Lambertian surface in the uniform diffuse hall light):
+  // the product of ambient radiance and exposure gain, the only combination grey values depend on.
   // Calibrated on the study's 0- and 2-layer means (docs/camera.md §6).
   double ambient_level = 0.05508;
   double auto_target_grey = 46.0;  // automatic mode: ROI mean grey held at every step
@@ -66,10 +66,10 @@ struct RoiParams {
 struct CameraParams {
   Band band = Band::photopic;
   double wavelength_nm = 550.0;  // band = monochromatic only
-  // Spacing of the wavelengths at which Mie gives beta(lambda) and omega(lambda) (from 400 to 720 nm,
-  // where V(lambda) holds 99.99 % of its integral), interpolated piecewise quadratically onto the
-  // CIE table's 5 nm nodes (held constant outside): beta(lambda) of fog is smooth; docs/camera.md §2
-  // gives the error and when to refine (monodisperse fogs ripple).
+  // Spacing of the wavelengths at which Mie gives beta(lambda) and omega(lambda) (from 400 to 720
+  // nm, where V(lambda) holds 99.99 % of its integral), interpolated piecewise quadratically onto
+  // the CIE table's 5 nm nodes (held constant outside): beta(lambda) of fog is smooth;
+  // docs/camera.md §2 gives the error and when to refine (monodisperse fogs ripple).
   double mie_step_nm = 160.0;
   ExposureParams exposure;
   TransferCurve transfer = TransferCurve::srgb;

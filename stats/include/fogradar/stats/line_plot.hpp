@@ -1,7 +1,7 @@
 // Line plots as standalone SVG 1.1 documents: several series of (x, y) points drawn as polylines in
 // distinct colours over the same axes (1-2-5 ticks from nice_axis_ticks, gridlines), each with an
-// optional vertical marker line (e.g. a histogram's mean) labelled with its value, a legend, a title
-// and caption lines. Deterministic, locale-independent output; text XML-escaped.
+// optional vertical marker line (e.g. a histogram's mean) labelled with its value, a legend, a
+// title and caption lines. Deterministic, locale-independent output; text XML-escaped.
 #pragma once
 
 #include <optional>
@@ -14,7 +14,7 @@ namespace fogradar::stats {
 struct LineSeries {
   std::string label;  // legend text
   std::vector<double> x;
-  std::vector<double> y;  // same length as x
+  std::vector<double> y;           // same length as x
   std::optional<double> marker_x;  // a dashed vertical line in the series' colour
   std::string marker_label;        // written at the top of the marker line, e.g. "mean 46.1"
 };
