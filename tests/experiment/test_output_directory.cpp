@@ -147,14 +147,18 @@ TEST_F(OutputDirectoryTest, OneHolderAtATime) {
 // refused.
 TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
   const fs::path dir = parent_ / "out";
-  Files every;
+  Files every = {{"camera_roi_0.pgm", "P5"}, {"camera_roi_12.pgm", "P5"}};  // camera.write_roi_images
   for (const std::string& name : result_file_names()) every.emplace_back(name, "earlier " + name);
-  EXPECT_EQ(every.size(), 15u);  // the radar's 5, the lidar's 5, the camera's 4, benchmark.svg
+  // Two ROI images and the radar's 5, the lidar's 5, the camera's 4 files and benchmark.svg.
+  EXPECT_EQ(every.size(), 17u);
   ASSERT_TRUE(OutputDirectory(dir).replace(every));
   EXPECT_TRUE(OutputDirectory(dir).replace(result_set("radar only")));
   EXPECT_EQ(listing(dir), as_listing(result_set("radar only")));
-  std::ofstream(dir / "lidar_notes.csv") << "mine";
-  EXPECT_THROW(OutputDirectory refused(dir), InvalidParameter);
+  for (const char* foreign : {"lidar_notes.csv", "camera_roi_x.pgm", "camera_roi_.pgm"}) {
+    std::ofstream(dir / foreign) << "mine";
+    EXPECT_THROW(OutputDirectory refused(dir), InvalidParameter) << foreign;
+    fs::remove(dir / foreign);
+  }
   expect_only_result_directory();
 }
 
