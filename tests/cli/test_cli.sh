@@ -59,6 +59,14 @@ fi
 "$fogradar" run --scenario "$work/t1/scenario.toml" --out "$work/t3" >/dev/null 2>&1 || fail "rerun from scenario.toml"
 diff -r "$work/t1" "$work/t3" >/dev/null && pass || fail "scenario.toml does not reproduce the run"
 ls -A "$work/t1" | grep -q '\.tmp' && fail "temporary files left behind" || pass
+# The camera alone with its ROI images (camera_roi_<step>.pgm, binary PGM): a result set a later run
+# of other sensors replaces whole.
+printf '[experiment]\nsensors = ["camera"]\n[camera]\nframes_per_step = 2\nwrite_roi_images = true\n' >"$work/roi.toml"
+"$fogradar" run --scenario "$work/roi.toml" --out "$work/roi" >/dev/null 2>&1 || fail "camera run with ROI images failed"
+[ "$(ls "$work/roi" | grep -c '^camera_roi_[0-4]\.pgm$')" -eq 5 ] && [ "$(head -c 2 "$work/roi/camera_roi_0.pgm")" = P5 ] \
+  && [ ! -e "$work/roi/samples.csv" ] && pass || fail "camera ROI set: $(ls "$work/roi")"
+"$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/roi" >/dev/null 2>&1 && ! ls "$work/roi" | grep -q pgm \
+  && pass || fail "ROI images not replaced by the next set: $(ls "$work/roi")"
 
 # --- the result set is replaced whole or not at all (README, docs/scenario.md Results) ---------------
 # Each case works in a parent of its own so that "no temporary files" means an empty listing besides DIR.
