@@ -43,8 +43,10 @@ std::function<void(std::size_t, std::size_t)> terminal_progress() {
     int previous = last_percent->load();
     while (percent > previous) {
       if (last_percent->compare_exchange_weak(previous, percent)) {
-        std::fprintf(stderr, "\rfogradar: %3d %% (%zu of %zu measurements)%s", percent, done, total,
-                     done == total ? "\n" : "");
+        std::fprintf(
+            stderr,
+            "\rfogradar: %3d %% (%zu of %zu radar measurements, lidar scans and camera frames)%s",
+            percent, done, total, done == total ? "\n" : "");
         break;
       }
     }
