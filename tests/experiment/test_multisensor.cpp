@@ -156,6 +156,27 @@ TEST(MultiSensor, PaperScenarioHoldsTheSensorsDefaults) {
   EXPECT_EQ(to_toml(paper), to_toml(defaults));
 }
 
+// The sensors' sections written by to_toml read back to the same scenario: the paper's background
+// segments (an array of tables), none at all (background = []), and changed enumerations and nested
+// keys.
+TEST(MultiSensor, SensorSectionsRoundTrip) {
+  Scenario s = paper_scenario();
+  const std::string paper = to_toml(s);
+  EXPECT_EQ(to_toml(parse_scenario(paper, "paper.toml")), paper);
+  EXPECT_EQ(parse_scenario(paper, "paper.toml").lidar.background.size(), s.lidar.background.size());
+  s.lidar.background.clear();
+  s.lidar.fog_fluctuation.log_std = 0.0;
+  s.camera.band = camera::Band::rgb;
+  s.camera.exposure.mode = camera::ExposureMode::automatic;
+  s.camera.transfer = camera::TransferCurve::gamma;
+  s.camera.roi.background.log_sigma = 1.25;
+  const std::string changed = to_toml(s);
+  const Scenario read = parse_scenario(changed, "changed.toml");
+  EXPECT_TRUE(read.lidar.background.empty());
+  EXPECT_EQ(read.camera.band, camera::Band::rgb);
+  EXPECT_EQ(to_toml(read), changed);
+}
+
 // Items counted over every sensor: progress reaches the total of radar measurements, lidar scans
 // and camera frames.
 TEST(MultiSensor, ProgressCountsEverySensorsItems) {
