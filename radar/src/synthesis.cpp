@@ -25,21 +25,34 @@ struct TonePhasors {
   std::complex<double> amplitude, block_step;
 };
 
-// The 64 block steps (N = 1024) and the 16 powers keep the rounding error near (N/16 + 16) eps;
-// the recurrence leaves no long dependency chain, so the adds vectorise.
-TonePhasors tone_phasors(std::complex<double> amplitude, double frequency_hz, double sample_rate_hz) {
-  const std::complex<double> step = std::polar(1.0, 2.0 * pi * frequency_hz / sample_rate_hz);
+// Fills the powers and the block steps of tones[0..count) from their steps s (in block_step on
+// entry): s^j by repeated multiplication, s^16 = block_step on return. The 64 block steps (N = 1024)
+// and the 16 powers keep the rounding error near (N/16 + 16) eps; the recurrence leaves no long
+// dependency chain in add_tone_blocks, so the adds vectorise. The tones' chains of products are
+// independent and interleaved here (each the product sequence of a tone alone).
+void fill_tone_powers(TonePhasors* tones, std::size_t count) {
+  std::array<std::complex<double>, tones_per_pass> power, step;
+  for (std::size_t t = 0; t < count; ++t) {
+    power[t] = 1.0;
+    step[t] = tones[t].block_step;
+  }
+  for (std::size_t j = 0; j < tone_block; ++j) {
+    for (std::size_t t = 0; t < count; ++t) {
+      tones[t].powers[2 * j] = power[t].real();
+      tones[t].powers[2 * j + 1] = power[t].imag();
+      tones[t].rotated[2 * j] = -power[t].imag();
+      tones[t].rotated[2 * j + 1] = power[t].real();
+      power[t] *= step[t];
+    }
+  }
+  for (std::size_t t = 0; t < count; ++t) tones[t].block_step = power[t];
+}
+
+// A tone's amplitude and step s = exp(i 2 pi f / fs), before fill_tone_powers.
+TonePhasors tone_step(std::complex<double> amplitude, double frequency_hz, double sample_rate_hz) {
   TonePhasors tone;
   tone.amplitude = amplitude;
-  std::complex<double> power = 1.0;
-  for (std::size_t j = 0; j < tone_block; ++j) {
-    tone.powers[2 * j] = power.real();
-    tone.powers[2 * j + 1] = power.imag();
-    tone.rotated[2 * j] = -power.imag();
-    tone.rotated[2 * j + 1] = power.real();
-    power *= step;
-  }
-  tone.block_step = power;
+  tone.block_step = std::polar(1.0, 2.0 * pi * frequency_hz / sample_rate_hz);
   return tone;
 }
 
@@ -85,7 +98,7 @@ void add_tone_blocks(double* row, std::size_t n, const TonePhasors* tones, std::
   }
 }
 
-// Adds the tones to `row`, up to tones_per_pass of them per pass over it.
+// Adds the tones (powers filled) to `row`, up to tones_per_pass of them per pass over it.
 void add_tones(std::span<std::complex<double>> row, std::span<const TonePhasors> tones) {
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   double* values = reinterpret_cast<double*>(row.data());
@@ -97,7 +110,8 @@ void add_tones(std::span<std::complex<double>> row, std::span<const TonePhasors>
 // Adds a exp(i 2 pi f n / fs), n = 0..N-1, to `row`.
 void add_tone(std::span<std::complex<double>> row, std::complex<double> amplitude, double frequency_hz,
               double sample_rate_hz) {
-  const TonePhasors tone = tone_phasors(amplitude, frequency_hz, sample_rate_hz);
+  TonePhasors tone = tone_step(amplitude, frequency_hz, sample_rate_hz);
+  fill_tone_powers(&tone, 1);
   add_tones(row, std::span<const TonePhasors>(&tone, 1));
 }
 
@@ -149,13 +163,15 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
       moving_paths = true;
       continue;
     }
-    pass[in_pass++] = tone_phasors(tone.amplitude, beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
-                                   params.sample_rate_hz);
+    pass[in_pass++] = tone_step(tone.amplitude, beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
+                                params.sample_rate_hz);
     if (in_pass == tones_per_pass) {
+      fill_tone_powers(pass.data(), in_pass);
       add_tones(row(0), pass);
       in_pass = 0;
     }
   }
+  fill_tone_powers(pass.data(), in_pass);
   add_tones(row(0), std::span<const TonePhasors>(pass.data(), in_pass));
   const bool noise_with_copy = params.thermal_noise && params.phase_noise_rms_rad == 0.0;
   const bool window_with_noise = window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
