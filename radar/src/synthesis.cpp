@@ -26,10 +26,10 @@ struct TonePhasors {
 };
 
 // Fills the powers and the block steps of tones[0..count) from their steps s (in block_step on
-// entry): s^j by repeated multiplication, s^16 = block_step on return. The 64 block steps (N = 1024)
-// and the 16 powers keep the rounding error near (N/16 + 16) eps; the recurrence leaves no long
-// dependency chain in add_tone_blocks, so the adds vectorise. The tones' chains of products are
-// independent and interleaved here (each the product sequence of a tone alone).
+// entry): s^j by repeated multiplication, s^16 = block_step on return. The 64 block steps
+// (N = 1024) and the 16 powers keep the rounding error near (N/16 + 16) eps; the recurrence leaves
+// no long dependency chain in add_tone_blocks, so the adds vectorise. The tones' chains of products
+// are independent and interleaved here (each the product sequence of a tone alone).
 void fill_tone_powers(TonePhasors* tones, std::size_t count) {
   std::array<std::complex<double>, tones_per_pass> power, step;
   for (std::size_t t = 0; t < count; ++t) {
@@ -62,7 +62,8 @@ TonePhasors tone_step(std::complex<double> amplitude, double frequency_hz, doubl
 // terms in their order, each formed as for a tone alone: the sum is the one `count` passes of one
 // tone each would give, bit for bit.
 template <std::size_t count>
-[[gnu::always_inline]] inline void add_tone_blocks_of(double* row, std::size_t n, const TonePhasors* tones) {
+[[gnu::always_inline]] inline void add_tone_blocks_of(double* row, std::size_t n,
+                                                      const TonePhasors* tones) {
   std::complex<double> block[count];
   for (std::size_t t = 0; t < count; ++t) block[t] = tones[t].amplitude;
   std::size_t start = 0;
@@ -80,9 +81,10 @@ template <std::size_t count>
   }
   for (std::size_t j = 0; start + j < n; ++j) {
     for (std::size_t t = 0; t < count; ++t) {
-      row[2 * (start + j)] += block[t].real() * tones[t].powers[2 * j] + block[t].imag() * tones[t].rotated[2 * j];
-      row[2 * (start + j) + 1] +=
-          block[t].real() * tones[t].powers[2 * j + 1] + block[t].imag() * tones[t].rotated[2 * j + 1];
+      row[2 * (start + j)] +=
+          block[t].real() * tones[t].powers[2 * j] + block[t].imag() * tones[t].rotated[2 * j];
+      row[2 * (start + j) + 1] += block[t].real() * tones[t].powers[2 * j + 1] +
+                                  block[t].imag() * tones[t].rotated[2 * j + 1];
     }
   }
 }
@@ -90,11 +92,16 @@ template <std::size_t count>
 FOGRADAR_SIMD_CLONES
 void add_tone_blocks(double* row, std::size_t n, const TonePhasors* tones, std::size_t count) {
   switch (count) {
-    case 1: return add_tone_blocks_of<1>(row, n, tones);
-    case 2: return add_tone_blocks_of<2>(row, n, tones);
-    case 3: return add_tone_blocks_of<3>(row, n, tones);
-    case 4: return add_tone_blocks_of<4>(row, n, tones);
-    default: FOGRADAR_CHECK(count <= tones_per_pass);
+    case 1:
+      return add_tone_blocks_of<1>(row, n, tones);
+    case 2:
+      return add_tone_blocks_of<2>(row, n, tones);
+    case 3:
+      return add_tone_blocks_of<3>(row, n, tones);
+    case 4:
+      return add_tone_blocks_of<4>(row, n, tones);
+    default:
+      FOGRADAR_CHECK(count <= tones_per_pass);
   }
 }
 
@@ -103,13 +110,14 @@ void add_tones(std::span<std::complex<double>> row, std::span<const TonePhasors>
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   double* values = reinterpret_cast<double*>(row.data());
   for (std::size_t first = 0; first < tones.size(); first += tones_per_pass) {
-    add_tone_blocks(values, row.size(), tones.data() + first, std::min(tones_per_pass, tones.size() - first));
+    add_tone_blocks(values, row.size(), tones.data() + first,
+                    std::min(tones_per_pass, tones.size() - first));
   }
 }
 
 // Adds a exp(i 2 pi f n / fs), n = 0..N-1, to `row`.
-void add_tone(std::span<std::complex<double>> row, std::complex<double> amplitude, double frequency_hz,
-              double sample_rate_hz) {
+void add_tone(std::span<std::complex<double>> row, std::complex<double> amplitude,
+              double frequency_hz, double sample_rate_hz) {
   TonePhasors tone = tone_step(amplitude, frequency_hz, sample_rate_hz);
   fill_tone_powers(&tone, 1);
   add_tones(row, std::span<const TonePhasors>(&tone, 1));
@@ -163,7 +171,8 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
       moving_paths = true;
       continue;
     }
-    pass[in_pass++] = tone_step(tone.amplitude, beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
+    pass[in_pass++] = tone_step(tone.amplitude,
+                                beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
                                 params.sample_rate_hz);
     if (in_pass == tones_per_pass) {
       fill_tone_powers(pass.data(), in_pass);

@@ -382,8 +382,10 @@ TEST(CfarDetectorEdges, EdgeThresholdsAreTheRunByRunSumsBitForBit) {
   for (const CfarKind kind : {CfarKind::ca, CfarKind::go, CfarKind::so}) {
     for (const unsigned guard : {0u, 2u, 3u}) {
       for (const unsigned n : {1u, 5u, 8u}) {
-        const CfarConfig config{
-            .kind = kind, .guard_cells = guard, .training_cells = n, .false_alarm_probability = 1e-4};
+        const CfarConfig config{.kind = kind,
+                                .guard_cells = guard,
+                                .training_cells = n,
+                                .false_alarm_probability = 1e-4};
         const CfarDetector detector(config);
         for (const std::size_t extra : {1u, 2u, 7u, 300u, 2u}) {
           std::vector<double> power(config.window_length() + extra);
@@ -424,11 +426,13 @@ TEST(CfarDetectorEdges, EdgeThresholdsAreTheRunByRunSumsBitForBit) {
             const double combined = kind == CfarKind::ca   ? first + second
                                     : kind == CfarKind::go ? std::max(first, second)
                                                            : std::min(first, second);
-            const double expected = detector.edge_threshold_factor(std::min(i, length - 1 - i)) / divisor * combined;
+            const double expected =
+                detector.edge_threshold_factor(std::min(i, length - 1 - i)) / divisor * combined;
             ASSERT_EQ(workspace.threshold[i], expected)
-                << to_string(kind) << " cell " << i << " of " << length << " guard " << guard << " n " << n;
-            EXPECT_EQ(power[i] > expected,
-                      std::binary_search(workspace.detections.begin(), workspace.detections.end(), i));
+                << to_string(kind) << " cell " << i << " of " << length << " guard " << guard
+                << " n " << n;
+            EXPECT_EQ(power[i] > expected, std::binary_search(workspace.detections.begin(),
+                                                              workspace.detections.end(), i));
           }
         }
       }

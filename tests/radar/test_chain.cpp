@@ -933,6 +933,50 @@ TEST(Synthesis, WindowInTheNoisePassEqualsTheWindowAfterwards) {
   }
 }
 
+// Static tones, summed up to four per pass over the chirp: every sample of every chirp equals the
+// direct sum of a_t exp(i 2 pi f_t n / fs) over the tones, f_t = S L_t / c (reference: std::polar
+// in long double per sample and tone). 1 to 9 tones cover passes of one to four tones and a last
+// short pass; 1000 samples leave a tail of 8 after the blocks of 16. Tolerance 4 (N/16 + 16) eps
+// sum |a_t|: the block recurrence and the 16 powers each carry about one rounding per step.
+TEST(Synthesis, StaticTonesAreTheDirectSumOfTheirExponentials) {
+  RadarParams p;
+  p.chirps_per_frame = 3;
+  p.samples_per_chirp = 1000;
+  p.sample_rate_hz = 20e6;  // 1000 samples fit the 51.2 us chirp
+  p.thermal_noise = false;
+  const RadarDerived d = derive(p);
+  const std::size_t columns = p.samples_per_chirp;
+  for (std::size_t count = 1; count <= 9; ++count) {
+    std::vector<Tone> tones;
+    double amplitude_sum = 0.0;
+    for (std::size_t t = 0; t < count; ++t) {
+      const std::complex<double> a =
+          std::polar(1.0 + 0.37 * static_cast<double>(t), 0.9 * static_cast<double>(t));
+      tones.push_back({4.0 + 3.71 * static_cast<double>(t), a, 0.0, Origin::fog});
+      amplitude_sum += std::abs(a);
+    }
+    ComplexVector frame(p.chirps_per_frame * columns);
+    RandomStream rng(3);
+    synthesize_frame(tones, p, d, rng, frame);
+    const double tolerance = 4.0 * (static_cast<double>(columns) / 16.0 + 16.0) *
+                             std::numeric_limits<double>::epsilon() * amplitude_sum;
+    for (std::size_t n = 0; n < columns; ++n) {
+      std::complex<long double> expected = 0.0L;
+      for (const Tone& tone : tones) {
+        const long double f = beat_frequency_hz(tone.path_length_m, d.chirp_slope_hz_per_s);
+        const long double phase = 2.0L * std::numbers::pi_v<long double> * f *
+                                  static_cast<long double>(n) /
+                                  static_cast<long double>(p.sample_rate_hz);
+        expected += std::complex<long double>(tone.amplitude) * std::polar(1.0L, phase);
+      }
+      for (std::size_t c = 0; c < p.chirps_per_frame; ++c) {
+        ASSERT_LE(std::abs(std::complex<long double>(frame[c * columns + n]) - expected), tolerance)
+            << count << " tones, chirp " << c << ", sample " << n;
+      }
+    }
+  }
+}
+
 // Clipping is counted: with the full scale set to the thermal noise power (rail amplitude
 // A = sqrt(k T0 F fs), about 1.41 rail sigmas) the count reported by synthesize_frame equals the
 // number of samples with a rail at |x| >= A, counted here from the unquantised frame drawn with
