@@ -151,7 +151,8 @@ std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits, dou
 
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
-                                 std::span<std::complex<double>> frame, const FrameWindow* window) {
+                                 std::span<std::complex<double>> frame, const FrameWindow* window,
+                                 const ChirpTransform* transform) {
   const std::size_t columns = params.samples_per_chirp;
   const std::size_t rows = params.chirps_per_frame;
   FOGRADAR_CHECK(frame.size() == rows * columns);
@@ -184,12 +185,27 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   add_tones(row(0), std::span<const TonePhasors>(pass.data(), in_pass));
   const bool noise_with_copy = params.thermal_noise && params.phase_noise_rms_rad == 0.0;
   const bool window_with_noise = window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
+  SynthesisReport report;
   if (window_with_noise) {
     ComplexNormalGenerator noise(rng);
-    for (std::size_t c = 1; c < rows; ++c) {
-      noise.add_weighted(row(0), row(c), derived.noise_power_w, window->doppler[c], window->range_pairs);
-    }
-    noise.add_weighted(row(0), row(0), derived.noise_power_w, window->doppler[0], window->range_pairs);
+    const bool by_chirp = transform != nullptr && transform->fft != nullptr &&
+                          transform->chirp.size() == columns && fft_is_aligned(frame.data()) &&
+                          (rows == 1 || fft_is_aligned(row(1).data()));
+    // Each chirp's noise (and window) into the chirp buffer, then its range FFT into its row: the
+    // values the noise pass writes into the frame, transformed as the batch would transform them.
+    const auto finish = [&](std::size_t c) {
+      if (by_chirp) {
+        noise.add_weighted(row(0), transform->chirp, derived.noise_power_w, window->doppler[c],
+                           window->range_pairs);
+        transform->fft->execute(transform->chirp, row(c));
+      } else {
+        noise.add_weighted(row(0), row(c), derived.noise_power_w, window->doppler[c],
+                           window->range_pairs);
+      }
+    };
+    for (std::size_t c = 1; c < rows; ++c) finish(c);
+    finish(0);
+    report.range_transformed = by_chirp;
   } else if (noise_with_copy) {
     ComplexNormalGenerator noise(rng);
     for (std::size_t c = 1; c < rows; ++c) noise.add(row(0), row(c), derived.noise_power_w);
@@ -215,7 +231,6 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
     }
   }
   if (params.thermal_noise && !noise_with_copy) ComplexNormalGenerator(rng).add(frame, derived.noise_power_w);
-  SynthesisReport report;
   if (params.adc_bits > 0) {
     report.clipped_samples =
         quantize(frame, params.adc_bits, std::sqrt(dbm_to_watt(params.adc_full_scale_dbm)));
