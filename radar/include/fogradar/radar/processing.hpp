@@ -39,8 +39,8 @@ class RangeDopplerProcessor {
   // The range FFT of one chirp, out of place (from a buffer of one chirp into the frame's row):
   // FFTW's plan for one row without the buffered first stage the in-place batch needs. Null
   // unless it gives the batch's bits (checked when the processor is made: both plans transform the
-  // same pseudo-random frame and the results must be equal in every bit) and every chirp of an
-  // aligned frame is aligned as the plan wants.
+  // same pseudo-random frame and the first two and the last chirp must be equal in every bit) and
+  // every chirp of an aligned frame is aligned as the plan wants.
   const FftPlan* range_chirp_fft() const { return range_chirp_fft_ ? &*range_chirp_fft_ : nullptr; }
   // transform, and `power` receives |Y|^2 (same layout).
   void process(std::span<std::complex<double>> frame, std::span<double> power) const;
