@@ -52,6 +52,7 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
 MeasurementWorkspace RadarChain::make_workspace() const {
   MeasurementWorkspace ws;
   ws.frame.resize(params_.chirps_per_frame * params_.samples_per_chirp);
+  ws.chirp.resize(params_.samples_per_chirp);
   return ws;
 }
 
@@ -62,9 +63,14 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
                                                      MeasurementWorkspace& ws) const {
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
   const FrameWindow window = processor_.window();
+  const ChirpTransform by_chirp{.fft = processor_.range_chirp_fft(), .chirp = ws.chirp};
   const SynthesisReport report =
-      synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window);
-  processor_.transform_windowed(ws.frame);
+      synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp);
+  if (report.range_transformed) {
+    processor_.doppler_transform(ws.frame);
+  } else {
+    processor_.transform_windowed(ws.frame);
+  }
   return report;
 }
 

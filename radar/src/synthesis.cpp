@@ -14,48 +14,113 @@ namespace fogradar::radar {
 namespace {
 
 constexpr std::size_t tone_block = 16;
+// Static tones summed in one pass over the row: each pass loads and stores the row once for up to
+// this many tones instead of once per tone.
+constexpr std::size_t tones_per_pass = 4;
 
-// row[n] += a s^n for n = 0..N-1 (interleaved re, im): blocks of 16 samples, each the block's
-// phasor b times the powers s^0..s^15, with b advanced by s^16 from block to block. `powers` holds
-// s^j as (Re, Im) pairs and `rotated` as (-Im, Re) pairs, so b s^j = Re(b) powers + Im(b) rotated.
-FOGRADAR_SIMD_CLONES
-void add_tone_blocks(double* row, std::size_t n, std::complex<double> amplitude, const double* powers,
-                     const double* rotated, std::complex<double> block_step) {
-  using detail::f64x4;
-  std::complex<double> block = amplitude;
+// One tone a exp(i 2 pi f n / fs) as add_tone_blocks sums it: `powers` holds s^0..s^15 as (Re, Im)
+// pairs and `rotated` as (-Im, Re) pairs, s = exp(i 2 pi f / fs); block_step = s^16.
+struct TonePhasors {
+  std::array<double, 2 * tone_block> powers{}, rotated{};
+  std::complex<double> amplitude, block_step;
+};
+
+// Fills the powers and the block steps of tones[0..count) from their steps s (in block_step on
+// entry): s^j by repeated multiplication, s^16 = block_step on return. The 64 block steps
+// (N = 1024) and the 16 powers keep the rounding error near (N/16 + 16) eps; the recurrence leaves
+// no long dependency chain in add_tone_blocks, so the adds vectorise. The tones' chains of products
+// are independent and interleaved here (each the product sequence of a tone alone).
+void fill_tone_powers(TonePhasors* tones, std::size_t count) {
+  std::array<std::complex<double>, tones_per_pass> power, step;
+  for (std::size_t t = 0; t < count; ++t) {
+    power[t] = 1.0;
+    step[t] = tones[t].block_step;
+  }
+  for (std::size_t j = 0; j < tone_block; ++j) {
+    for (std::size_t t = 0; t < count; ++t) {
+      tones[t].powers[2 * j] = power[t].real();
+      tones[t].powers[2 * j + 1] = power[t].imag();
+      tones[t].rotated[2 * j] = -power[t].imag();
+      tones[t].rotated[2 * j + 1] = power[t].real();
+      power[t] *= step[t];
+    }
+  }
+  for (std::size_t t = 0; t < count; ++t) tones[t].block_step = power[t];
+}
+
+// A tone's amplitude and step s = exp(i 2 pi f / fs), before fill_tone_powers.
+TonePhasors tone_step(std::complex<double> amplitude, double frequency_hz, double sample_rate_hz) {
+  TonePhasors tone;
+  tone.amplitude = amplitude;
+  tone.block_step = std::polar(1.0, 2.0 * pi * frequency_hz / sample_rate_hz);
+  return tone;
+}
+
+// row[n] += a_t s_t^n for n = 0..N-1 (interleaved re, im) and each of `count` tones in turn:
+// blocks of 16 samples, each the block's phasor b times the powers s^0..s^15, with b advanced by
+// s^16 from block to block, so b s^j = Re(b) powers + Im(b) rotated. Every value takes the tones'
+// terms in their order, each formed as for a tone alone: the sum is the one `count` passes of one
+// tone each would give, bit for bit.
+template <std::size_t count>
+[[gnu::always_inline]] inline void add_tone_blocks_of(double* row, std::size_t n,
+                                                      const TonePhasors* tones) {
+  std::complex<double> block[count];
+  for (std::size_t t = 0; t < count; ++t) block[t] = tones[t].amplitude;
   std::size_t start = 0;
   for (; start + tone_block <= n; start += tone_block) {
     double* out = row + 2 * start;
     for (std::size_t v = 0; v < 2 * tone_block; v += 4) {
-      detail::store4(out + v, detail::load4(out + v) + block.real() * detail::load4(powers + v) +
-                                  block.imag() * detail::load4(rotated + v));
+      detail::f64x4 sum = detail::load4(out + v);
+      for (std::size_t t = 0; t < count; ++t) {
+        sum = sum + block[t].real() * detail::load4(tones[t].powers.data() + v) +
+              block[t].imag() * detail::load4(tones[t].rotated.data() + v);
+      }
+      detail::store4(out + v, sum);
     }
-    block *= block_step;
+    for (std::size_t t = 0; t < count; ++t) block[t] *= tones[t].block_step;
   }
   for (std::size_t j = 0; start + j < n; ++j) {
-    row[2 * (start + j)] += block.real() * powers[2 * j] + block.imag() * rotated[2 * j];
-    row[2 * (start + j) + 1] += block.real() * powers[2 * j + 1] + block.imag() * rotated[2 * j + 1];
+    for (std::size_t t = 0; t < count; ++t) {
+      row[2 * (start + j)] +=
+          block[t].real() * tones[t].powers[2 * j] + block[t].imag() * tones[t].rotated[2 * j];
+      row[2 * (start + j) + 1] += block[t].real() * tones[t].powers[2 * j + 1] +
+                                  block[t].imag() * tones[t].rotated[2 * j + 1];
+    }
   }
 }
 
-// Adds a exp(i 2 pi f n / fs), n = 0..N-1, to `row`. The 64 block steps (N = 1024) and the 16
-// powers keep the rounding error near (N/16 + 16) eps; the recurrence leaves no long dependency
-// chain, so the adds vectorise.
-void add_tone(std::span<std::complex<double>> row, std::complex<double> amplitude, double frequency_hz,
-              double sample_rate_hz) {
-  const std::complex<double> step = std::polar(1.0, 2.0 * pi * frequency_hz / sample_rate_hz);
-  std::array<double, 2 * tone_block> powers{}, rotated{};
-  std::complex<double> power = 1.0;
-  for (std::size_t j = 0; j < tone_block; ++j) {
-    powers[2 * j] = power.real();
-    powers[2 * j + 1] = power.imag();
-    rotated[2 * j] = -power.imag();
-    rotated[2 * j + 1] = power.real();
-    power *= step;
+FOGRADAR_SIMD_CLONES
+void add_tone_blocks(double* row, std::size_t n, const TonePhasors* tones, std::size_t count) {
+  switch (count) {
+    case 1:
+      return add_tone_blocks_of<1>(row, n, tones);
+    case 2:
+      return add_tone_blocks_of<2>(row, n, tones);
+    case 3:
+      return add_tone_blocks_of<3>(row, n, tones);
+    case 4:
+      return add_tone_blocks_of<4>(row, n, tones);
+    default:
+      FOGRADAR_CHECK(count <= tones_per_pass);
   }
+}
+
+// Adds the tones (powers filled) to `row`, up to tones_per_pass of them per pass over it.
+void add_tones(std::span<std::complex<double>> row, std::span<const TonePhasors> tones) {
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
-  add_tone_blocks(reinterpret_cast<double*>(row.data()), row.size(), amplitude, powers.data(), rotated.data(),
-                  power);
+  double* values = reinterpret_cast<double*>(row.data());
+  for (std::size_t first = 0; first < tones.size(); first += tones_per_pass) {
+    add_tone_blocks(values, row.size(), tones.data() + first,
+                    std::min(tones_per_pass, tones.size() - first));
+  }
+}
+
+// Adds a exp(i 2 pi f n / fs), n = 0..N-1, to `row`.
+void add_tone(std::span<std::complex<double>> row, std::complex<double> amplitude,
+              double frequency_hz, double sample_rate_hz) {
+  TonePhasors tone = tone_step(amplitude, frequency_hz, sample_rate_hz);
+  fill_tone_powers(&tone, 1);
+  add_tones(row, std::span<const TonePhasors>(&tone, 1));
 }
 
 // Mid-rise quantiser of one rail: q (floor(x / q) + 1/2), clipped to the outermost levels.
@@ -86,7 +151,8 @@ std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits, dou
 
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
-                                 std::span<std::complex<double>> frame, const FrameWindow* window) {
+                                 std::span<std::complex<double>> frame, const FrameWindow* window,
+                                 const ChirpTransform* transform) {
   const std::size_t columns = params.samples_per_chirp;
   const std::size_t rows = params.chirps_per_frame;
   FOGRADAR_CHECK(frame.size() == rows * columns);
@@ -99,22 +165,47 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   // pass applies the window too.
   std::fill(row(0).begin(), row(0).end(), std::complex<double>{});
   bool moving_paths = false;
+  std::array<TonePhasors, tones_per_pass> pass;
+  std::size_t in_pass = 0;
   for (const Tone& tone : tones) {
     if (tone.radial_velocity_m_per_s != 0.0) {
       moving_paths = true;
       continue;
     }
-    add_tone(row(0), tone.amplitude, beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
-             params.sample_rate_hz);
+    pass[in_pass++] = tone_step(tone.amplitude,
+                                beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s),
+                                params.sample_rate_hz);
+    if (in_pass == tones_per_pass) {
+      fill_tone_powers(pass.data(), in_pass);
+      add_tones(row(0), pass);
+      in_pass = 0;
+    }
   }
+  fill_tone_powers(pass.data(), in_pass);
+  add_tones(row(0), std::span<const TonePhasors>(pass.data(), in_pass));
   const bool noise_with_copy = params.thermal_noise && params.phase_noise_rms_rad == 0.0;
   const bool window_with_noise = window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
+  SynthesisReport report;
   if (window_with_noise) {
     ComplexNormalGenerator noise(rng);
-    for (std::size_t c = 1; c < rows; ++c) {
-      noise.add_weighted(row(0), row(c), derived.noise_power_w, window->doppler[c], window->range_pairs);
-    }
-    noise.add_weighted(row(0), row(0), derived.noise_power_w, window->doppler[0], window->range_pairs);
+    const bool by_chirp = transform != nullptr && transform->fft != nullptr &&
+                          transform->chirp.size() == columns && fft_is_aligned(frame.data()) &&
+                          (rows == 1 || fft_is_aligned(row(1).data()));
+    // Each chirp's noise (and window) into the chirp buffer, then its range FFT into its row: the
+    // values the noise pass writes into the frame, transformed as the batch would transform them.
+    const auto finish = [&](std::size_t c) {
+      if (by_chirp) {
+        noise.add_weighted(row(0), transform->chirp, derived.noise_power_w, window->doppler[c],
+                           window->range_pairs);
+        transform->fft->execute(transform->chirp, row(c));
+      } else {
+        noise.add_weighted(row(0), row(c), derived.noise_power_w, window->doppler[c],
+                           window->range_pairs);
+      }
+    };
+    for (std::size_t c = 1; c < rows; ++c) finish(c);
+    finish(0);
+    report.range_transformed = by_chirp;
   } else if (noise_with_copy) {
     ComplexNormalGenerator noise(rng);
     for (std::size_t c = 1; c < rows; ++c) noise.add(row(0), row(c), derived.noise_power_w);
@@ -140,7 +231,6 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
     }
   }
   if (params.thermal_noise && !noise_with_copy) ComplexNormalGenerator(rng).add(frame, derived.noise_power_w);
-  SynthesisReport report;
   if (params.adc_bits > 0) {
     report.clipped_samples =
         quantize(frame, params.adc_bits, std::sqrt(dbm_to_watt(params.adc_full_scale_dbm)));

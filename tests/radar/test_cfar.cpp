@@ -370,6 +370,76 @@ TEST_P(CfarDetectorKind, WorkspaceReuseIsStateless) {
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, CfarDetectorKind, testing::ValuesIn(kAllKinds), kind_name);
 
+// The edge cells of CA/GO/SO bit for bit: each half of the reference cells (the first and the last
+// n in range order) summed run by run, every contiguous run cell by cell in range order from 0.0
+// and the runs' sums added in order, the way the detector documents it; the threshold is
+// (edge factor / N or n) times the combined halves. One workspace serves every length, guard and n
+// in turn. Exact: the same additions in the same order (a half summed as one chain instead fails).
+TEST(CfarDetectorEdges, EdgeThresholdsAreTheRunByRunSumsBitForBit) {
+  std::mt19937_64 rng(11);
+  std::exponential_distribution<double> noise(1.0);
+  CfarWorkspace workspace;
+  for (const CfarKind kind : {CfarKind::ca, CfarKind::go, CfarKind::so}) {
+    for (const unsigned guard : {0u, 2u, 3u}) {
+      for (const unsigned n : {1u, 5u, 8u}) {
+        const CfarConfig config{.kind = kind,
+                                .guard_cells = guard,
+                                .training_cells = n,
+                                .false_alarm_probability = 1e-4};
+        const CfarDetector detector(config);
+        for (const std::size_t extra : {1u, 2u, 7u, 300u, 2u}) {
+          std::vector<double> power(config.window_length() + extra);
+          for (double& value : power) value = noise(rng);
+          power[1] = 1e9;  // a strong cell inside the edge references
+          detector.detect(power, workspace);
+          const std::size_t length = power.size();
+          const std::size_t reach = guard + n;
+          for (std::size_t i = 0; i < length; ++i) {
+            if (i >= reach && i < length - reach) continue;
+            // The reference cells: the nearest n beyond the guard on each side, a short side's
+            // deficit taken from the other (docs/radar.md, the edge policy).
+            std::vector<std::size_t> left, right;
+            for (std::size_t j = i; j-- > 0;) {
+              if (i - j > guard) left.push_back(j);
+            }
+            for (std::size_t j = i + guard + 1; j < length; ++j) right.push_back(j);
+            std::size_t a = std::min<std::size_t>(n, left.size());
+            std::size_t b = std::min<std::size_t>(n, right.size());
+            if (a < n) b = 2 * n - a;
+            if (b < n) a = 2 * n - b;
+            std::vector<std::size_t> cells(left.begin(), left.begin() + static_cast<long>(a));
+            std::reverse(cells.begin(), cells.end());
+            cells.insert(cells.end(), right.begin(), right.begin() + static_cast<long>(b));
+            const auto half_sum = [&](std::size_t begin, std::size_t end) {
+              std::vector<double> runs{0.0};
+              for (std::size_t k = begin; k < end; ++k) {
+                if (k > begin && cells[k] != cells[k - 1] + 1) runs.push_back(0.0);  // a new run
+                runs.back() += power[cells[k]];
+              }
+              double total = runs[0];
+              for (std::size_t r = 1; r < runs.size(); ++r) total += runs[r];
+              return total;
+            };
+            const double first = half_sum(0, n);
+            const double second = half_sum(n, 2 * n);
+            const double divisor = static_cast<double>(kind == CfarKind::ca ? 2 * n : n);
+            const double combined = kind == CfarKind::ca   ? first + second
+                                    : kind == CfarKind::go ? std::max(first, second)
+                                                           : std::min(first, second);
+            const double expected =
+                detector.edge_threshold_factor(std::min(i, length - 1 - i)) / divisor * combined;
+            ASSERT_EQ(workspace.threshold[i], expected)
+                << to_string(kind) << " cell " << i << " of " << length << " guard " << guard
+                << " n " << n;
+            EXPECT_EQ(power[i] > expected, std::binary_search(workspace.detections.begin(),
+                                                              workspace.detections.end(), i));
+          }
+        }
+      }
+    }
+  }
+}
+
 // --- False-alarm rate on noise ----------------------------------------------------------------
 
 // Two-sided 99.9 % binomial acceptance interval for `cells` independent trials at p: the

@@ -933,6 +933,91 @@ TEST(Synthesis, WindowInTheNoisePassEqualsTheWindowAfterwards) {
   }
 }
 
+// The range FFT chirp by chirp (ChirpTransform, out of place from a one-chirp buffer) followed by
+// doppler_transform gives the frame of the previous path bit for bit: synthesis into the frame,
+// then the batched in-place range FFT and the Doppler FFT (transform_windowed; the reference).
+// Where the processor found no per-chirp plan with the batch's bits (range_chirp_fft() null, as
+// FFTW's plans for a size and CPU decide), synthesize_frame must not transform. With the transform
+// given on a path other than the noise pass (no thermal noise), the frame is left untransformed
+// and equals the frame synthesised without it.
+TEST(Synthesis, RangeFftChirpByChirpEqualsTheBatchBitForBit) {
+  const std::pair<std::size_t, std::size_t> sizes[] = {
+      {64, 512}, {128, 1024}, {16, 250}, {8, 1000}, {5, 96}};
+  for (const auto& [chirps, samples] : sizes) {
+    RadarParams p;
+    p.chirps_per_frame = chirps;
+    p.samples_per_chirp = samples;
+    p.sample_rate_hz = 20e6;  // up to 1024 samples fit the 51.2 us chirp
+    const RadarDerived d = derive(p);
+    const RangeDopplerProcessor processor(p);
+    const FrameWindow window = processor.window();
+    const double amplitude = 30.0 * std::sqrt(reference_noise_power_w(p));
+    const std::vector<Tone> tones{{20.0, {amplitude, -0.5 * amplitude}, 0.0, Origin::target},
+                                  {31.3, {0.2 * amplitude, 0.7 * amplitude}, 0.0, Origin::fog}};
+    for (const bool thermal_noise : {true, false}) {
+      p.thermal_noise = thermal_noise;
+      ComplexVector by_chirp(chirps * samples), batch(by_chirp.size()), chirp(samples);
+      const ChirpTransform transform{.fft = processor.range_chirp_fft(), .chirp = chirp};
+      RandomStream rng_by_chirp(5), rng_batch(5);
+      const SynthesisReport report =
+          synthesize_frame(tones, p, d, rng_by_chirp, by_chirp, &window, &transform);
+      synthesize_frame(tones, p, d, rng_batch, batch, &window);
+      const bool expected_path = thermal_noise && processor.range_chirp_fft() != nullptr;
+      ASSERT_EQ(report.range_transformed, expected_path) << chirps << " x " << samples;
+      if (report.range_transformed) {
+        processor.doppler_transform(by_chirp);
+        processor.transform_windowed(batch);
+      }
+      EXPECT_EQ(std::memcmp(by_chirp.data(), batch.data(), batch.size() * sizeof batch[0]), 0)
+          << chirps << " x " << samples << (thermal_noise ? ", noise pass" : ", no thermal noise");
+    }
+  }
+}
+
+// Static tones, summed up to four per pass over the chirp: every sample of every chirp equals the
+// direct sum of a_t exp(i 2 pi f_t n / fs) over the tones, f_t = S L_t / c (reference: std::polar
+// in long double per sample and tone). 1 to 9 tones cover passes of one to four tones and a last
+// short pass; 1000 samples leave a tail of 8 after the blocks of 16. Tolerance 4 (N/16 + 16) eps
+// sum |a_t|: the block recurrence and the 16 powers each carry about one rounding per step.
+TEST(Synthesis, StaticTonesAreTheDirectSumOfTheirExponentials) {
+  RadarParams p;
+  p.chirps_per_frame = 3;
+  p.samples_per_chirp = 1000;
+  p.sample_rate_hz = 20e6;  // 1000 samples fit the 51.2 us chirp
+  p.thermal_noise = false;
+  const RadarDerived d = derive(p);
+  const std::size_t columns = p.samples_per_chirp;
+  for (std::size_t count = 1; count <= 9; ++count) {
+    std::vector<Tone> tones;
+    double amplitude_sum = 0.0;
+    for (std::size_t t = 0; t < count; ++t) {
+      const std::complex<double> a =
+          std::polar(1.0 + 0.37 * static_cast<double>(t), 0.9 * static_cast<double>(t));
+      tones.push_back({4.0 + 3.71 * static_cast<double>(t), a, 0.0, Origin::fog});
+      amplitude_sum += std::abs(a);
+    }
+    ComplexVector frame(p.chirps_per_frame * columns);
+    RandomStream rng(3);
+    synthesize_frame(tones, p, d, rng, frame);
+    const double tolerance = 4.0 * (static_cast<double>(columns) / 16.0 + 16.0) *
+                             std::numeric_limits<double>::epsilon() * amplitude_sum;
+    for (std::size_t n = 0; n < columns; ++n) {
+      std::complex<long double> expected = 0.0L;
+      for (const Tone& tone : tones) {
+        const long double f = beat_frequency_hz(tone.path_length_m, d.chirp_slope_hz_per_s);
+        const long double phase = 2.0L * std::numbers::pi_v<long double> * f *
+                                  static_cast<long double>(n) /
+                                  static_cast<long double>(p.sample_rate_hz);
+        expected += std::complex<long double>(tone.amplitude) * std::polar(1.0L, phase);
+      }
+      for (std::size_t c = 0; c < p.chirps_per_frame; ++c) {
+        ASSERT_LE(std::abs(std::complex<long double>(frame[c * columns + n]) - expected), tolerance)
+            << count << " tones, chirp " << c << ", sample " << n;
+      }
+    }
+  }
+}
+
 // Clipping is counted: with the full scale set to the thermal noise power (rail amplitude
 // A = sqrt(k T0 F fs), about 1.41 rail sigmas) the count reported by synthesize_frame equals the
 // number of samples with a rail at |x| >= A, counted here from the unquantised frame drawn with

@@ -28,6 +28,7 @@ struct Measurement {
 
 struct MeasurementWorkspace {
   ComplexVector frame;
+  ComplexVector chirp;        // one chirp, for the range FFT chirp by chirp (ChirpTransform)
   std::vector<double> power;  // filled by synthesize_and_process only; measure does not need it
   std::vector<Tone> tones;
   EstimationWorkspace estimation;

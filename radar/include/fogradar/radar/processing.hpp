@@ -4,6 +4,7 @@
 #pragma once
 
 #include <complex>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -32,6 +33,15 @@ class RangeDopplerProcessor {
   // The range and Doppler FFTs of transform, for a frame that already carries window() (as
   // synthesize_frame leaves it when given the window).
   void transform_windowed(std::span<std::complex<double>> frame) const;
+  // The Doppler FFT of transform_windowed alone, for a frame whose chirps are already range
+  // transformed (by range_chirp_fft, as synthesize_frame does given it).
+  void doppler_transform(std::span<std::complex<double>> frame) const;
+  // The range FFT of one chirp, out of place (from a buffer of one chirp into the frame's row):
+  // FFTW's plan for one row without the buffered first stage the in-place batch needs. Null
+  // unless it gives the batch's bits (checked when the processor is made: both plans transform the
+  // same pseudo-random frame and the first two and the last chirp must be equal in every bit) and
+  // every chirp of an aligned frame is aligned as the plan wants.
+  const FftPlan* range_chirp_fft() const { return range_chirp_fft_ ? &*range_chirp_fft_ : nullptr; }
   // transform, and `power` receives |Y|^2 (same layout).
   void process(std::span<std::complex<double>> frame, std::span<double> power) const;
 
@@ -54,6 +64,7 @@ class RangeDopplerProcessor {
   std::vector<double> doppler_window_;
   std::vector<double> range_window_pairs_;  // w_r[n] at 2n and 2n + 1
   FftPlan range_fft_;
+  std::optional<FftPlan> range_chirp_fft_;  // see range_chirp_fft()
   ColumnBlockFft doppler_fft_;  // down the columns in cache-sized blocks: same bits, no cache cliff
   double coherent_amplitude_gain_;
   double noise_power_gain_;

@@ -8,6 +8,7 @@
 #include <span>
 
 #include "fogradar/core/random.hpp"
+#include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/scene.hpp"
 #include "fogradar/radar/window.hpp"
@@ -16,10 +17,21 @@ namespace fogradar::radar {
 
 struct SynthesisReport {
   std::size_t clipped_samples = 0;  // I or Q rail beyond the ADC full scale
+  bool range_transformed = false;   // every chirp went through the ChirpTransform given
 };
 
-// Per sample n of chirp c (t = n / fs, stop-and-hop between chirps, range rate kept within a chirp):
-//   x_c[n] = sum_p a_p exp(i 2 pi (f_b,p - 2 v_p / lambda) t) exp(-i 4 pi v_p c T_i / lambda) + w_c[n]
+// The range FFT done chirp by chirp as synthesize_frame finishes each chirp: the chirp is written
+// to `chirp` (one chirp long, FFTW-aligned) and transformed out of place into its row of the frame
+// by `fft` (RangeDopplerProcessor::range_chirp_fft), while it is in the L1 cache.
+struct ChirpTransform {
+  const FftPlan* fft = nullptr;
+  std::span<std::complex<double>> chirp;
+};
+
+// Per sample n of chirp c (t = n / fs, stop-and-hop between chirps, range rate kept within a
+// chirp):
+//   x_c[n] = sum_p a_p exp(i 2 pi (f_b,p - 2 v_p / lambda) t) exp(-i 4 pi v_p c T_i / lambda) +
+//   w_c[n]
 // with f_b,p = S L_p / c and w ~ CN(0, k T0 F fs) from a ComplexNormalGenerator seeded by `rng`.
 // Tones without velocity (the static scene) are summed once, in blocks of 16 samples from
 // precomputed phasor powers, and copied to every chirp, the thermal noise added during the copy
@@ -27,10 +39,15 @@ struct SynthesisReport {
 // Given a window (rows Doppler weights, 2 columns range-pair weights), the frame comes out
 // multiplied by it, with the values apply_frame_window would give afterwards: for a static scene
 // with thermal noise and neither phase noise nor an ADC it is applied in the noise pass, which
-// saves a pass over the frame; otherwise after everything else.
+// saves a pass over the frame; otherwise after everything else. Given a ChirpTransform as well, on
+// that noise-pass path (and when the frame's chirps are FFTW-aligned) each chirp is range
+// transformed as it is finished, and the report says so (range_transformed); on every other path
+// the transform is not used and the frame comes out untransformed.
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
-                                 std::span<std::complex<double>> frame, const FrameWindow* window = nullptr);
+                                 std::span<std::complex<double>> frame,
+                                 const FrameWindow* window = nullptr,
+                                 const ChirpTransform* transform = nullptr);
 
 // ADC model: I and Q each quantised mid-rise with 2^bits levels over [-A, A], A = sqrt(P_fs) the
 // amplitude of a full-scale complex tone; values beyond A clip to the outermost level. Returns the
