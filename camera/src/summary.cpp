@@ -121,7 +121,8 @@ std::string histograms_svg(const CameraSummary& summary) {
   std::vector<stats::LineSeries> series;
   for (const CameraStepSummary& s : summary.steps) {
     stats::LineSeries line;
-    line.label = std::to_string(s.active_layers) + " layers, mean " + format_fixed(s.mean_grey, 1);
+    line.label = std::to_string(s.active_layers) + (s.active_layers == 1 ? " layer" : " layers") +
+                 ", mean " + format_fixed(s.mean_grey, 1);
     // Fraction of pixels per grey level, so that steps with different frame counts compare.
     double total = 0.0;
     for (const std::uint64_t c : s.histogram) total += static_cast<double>(c);
@@ -157,7 +158,7 @@ std::string roi_pgm(const CameraParams& params, const CameraFrame& frame) {
 
 std::string step_table(const CameraSummary& summary) {
   std::string table =
-      "camera: layers   mean    std  p05-p95  contrast  rel.contrast  edges>thr (clear)\n";
+      "        layers   mean    std  p05-p95  contrast  rel.contrast  edges>thr (clear)\n";
   for (const CameraStepSummary& s : summary.steps) {
     table += "        " + pad(std::to_string(s.active_layers), 6) +
              pad(format_fixed(s.mean_grey, 1), 7) + pad(format_fixed(s.std_grey, 1), 7) +
@@ -169,7 +170,8 @@ std::string step_table(const CameraSummary& summary) {
   }
   std::string verdict;
   if (summary.sensor_limit_layers) {
-    verdict = std::to_string(*summary.sensor_limit_layers) + " layers";
+    verdict = std::to_string(*summary.sensor_limit_layers) +
+              (*summary.sensor_limit_layers == 1 ? " layer" : " layers");
   } else if (!summary.steps.empty()) {
     verdict = "not reached (|contrast| " +
               format_fixed(std::abs(summary.steps.back().target_contrast), 3) +

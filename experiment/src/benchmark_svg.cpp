@@ -89,6 +89,7 @@ std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& sum
       "The study's benchmark: each sensor's metric relative to clear weather against active fog "
       "layers";
   options.x_label = "active fog layers";
+  options.x_integer_ticks = true;
   options.y_label = "metric / clear-weather value";
   options.caption = {
       "Dashed line: the sensor's limit (layers to failure by its own criterion, summary.json "

@@ -314,10 +314,17 @@ std::string lidar_summary_table(const LidarSummary& summary) {
   out << line;
   for (const LidarStepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.target_intensity;
-    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f %9.1f %10.3f\n",
+    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f",
                   s.active_layers, s.scans, 100.0 * s.target_detection_rate,
-                  100.0 * s.target_told_rate, b.median, b.q1, b.q3, b.max, 100.0 * s.fog_echo_rate,
-                  s.median_first_echo_range_m);
+                  100.0 * s.target_told_rate, b.median, b.q1, b.q3, b.max);
+    out << line;
+    // No beam crosses the fog at 0 active layers: its two columns have no value then.
+    if (std::isnan(s.fog_echo_rate) || std::isnan(s.median_first_echo_range_m)) {
+      std::snprintf(line, sizeof line, " %9s %10s\n", "-", "-");
+    } else {
+      std::snprintf(line, sizeof line, " %9.1f %10.3f\n", 100.0 * s.fog_echo_rate,
+                    s.median_first_echo_range_m);
+    }
     out << line;
   }
   out << "target det. %: scans with a target-origin echo in the beam through the target's centre;\n"

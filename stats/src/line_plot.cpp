@@ -116,7 +116,9 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
       y_high = std::max(y_high, v);
     }
   }
-  const AxisTicks xt = nice_axis_ticks(x_low, x_high, 8);
+  AxisTicks xt = nice_axis_ticks(x_low, x_high, 8);
+  if (options.x_integer_ticks && xt.step < 1.0)
+    xt = {std::floor(xt.first), std::ceil(xt.last), 1.0, 0};
   const AxisTicks yt = nice_axis_ticks(y_low, y_high, 6);
 
   const double width = options.width_px;

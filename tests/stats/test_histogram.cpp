@@ -71,5 +71,23 @@ TEST(LinePlot, WellFormedWithMarkersAndRefusesBadSeries) {
   EXPECT_EQ(test_support::rejected_field([&] { line_plot_svg(series, options); }), "svg.width_px");
 }
 
+// Layer counts 0-4 give 1-2-5 ticks at 0.5 steps (Heckbert's rule allows 8 intervals); a count axis
+// must show whole numbers only.
+TEST(LinePlot, IntegerTicksForCountAxes) {
+  const std::vector<LineSeries> series{{"metric", {0, 1, 2, 3, 4}, {1, 0.5, 0.2, 0.1, 0}, {}, ""}};
+  LinePlotOptions options;
+  options.title = "t";
+  const auto has_tick = [](const std::string& svg, const std::string& label) {
+    return svg.find("class=\"tick\">" + label + "<") != std::string::npos;
+  };
+  const std::string plain = line_plot_svg(series, options);
+  EXPECT_TRUE(has_tick(plain, "0.5"));
+  options.x_integer_ticks = true;
+  const std::string counts = line_plot_svg(series, options);
+  EXPECT_EQ(test_support::xml_error(counts), "");
+  for (const char* label : {"0", "1", "2", "3", "4"}) EXPECT_TRUE(has_tick(counts, label)) << label;
+  for (const char* label : {"0.5", "1.5", "3.5"}) EXPECT_FALSE(has_tick(counts, label)) << label;
+}
+
 }  // namespace
 }  // namespace fogradar::stats

@@ -27,6 +27,8 @@ struct LinePlotOptions {
   // The x axis spans the data exactly (e.g. grey levels 0-255), ticks at 1-2-5 steps inside it;
   // false: the axis is widened to the enclosing ticks.
   bool x_axis_exact = false;
+  // x is a count (e.g. active fog layers): ticks only at whole numbers, never at 0.5 steps.
+  bool x_integer_ticks = false;
   double width_px = 960;
   double height_px = 640;
   // Throws InvalidParameter naming "svg.width_px" (finite, >= 480) or "svg.height_px" (finite,
