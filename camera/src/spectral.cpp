@@ -6,6 +6,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "fogradar/core/detail/text_fields.hpp"
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::camera {
@@ -15,25 +16,14 @@ std::string_view cie1931_2deg_xyz_text();  // generated from data/cie1931_2deg_x
 
 namespace {
 
+using fogradar::detail::parse_number;
+using fogradar::detail::take_field;
+
 // Layout of data/cie1931_2deg_xyz.txt: title, blank line, column titles, then rows of
 // wavelength (nm), x_bar, y_bar, z_bar separated by tabs.
 constexpr std::size_t cie_header_lines = 3;
 constexpr std::size_t cie_row_count = 95;
 constexpr double cie_step_nm = 5.0;
-
-std::string_view take_field(std::string_view& text, char separator) {
-  const std::size_t end = text.find(separator);
-  const std::string_view field = text.substr(0, end);
-  text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-  return field;
-}
-
-double parse_number(std::string_view field) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
-  FOGRADAR_CHECK(error == std::errc() && end == field.data() + field.size());
-  return value;
-}
 
 // IEC 61966-2-1 (sRGB) XYZ -> linear RGB matrix, rows R, G, B.
 constexpr std::array<std::array<double, 3>, 3> xyz_to_linear_srgb{{

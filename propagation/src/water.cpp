@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fogradar/core/constants.hpp"
+#include "fogradar/core/detail/text_fields.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 
@@ -24,6 +25,9 @@ std::string_view segelstein81_table_text();
 }  // namespace detail
 
 namespace {
+
+using fogradar::detail::parse_number;
+using fogradar::detail::take_field;
 
 using Pchip = boost::math::interpolators::pchip<std::vector<double>>;
 
@@ -47,21 +51,6 @@ struct SegelsteinRows {
   std::vector<double> n;
   std::vector<double> k;
 };
-
-// Splits off the text up to `separator`; the remainder follows it (or is empty).
-std::string_view take_field(std::string_view& text, char separator) {
-  const std::size_t end = text.find(separator);
-  const std::string_view field = text.substr(0, end);
-  text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-  return field;
-}
-
-double parse_number(std::string_view field) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
-  FOGRADAR_CHECK(error == std::errc() && end == field.data() + field.size());
-  return value;
-}
 
 SegelsteinRows parse_segelstein_table(std::string_view text) {
   for (std::size_t line = 0; line < segelstein_header_lines; ++line) take_field(text, '\n');

@@ -8,9 +8,12 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/stats/format.hpp"
 #include "fogradar/stats/svg_plot.hpp"
+#include "svg_text.hpp"
 
 namespace fogradar::stats {
 namespace {
+
+using detail::escape_xml;
 
 // Layout in px, as box_plot_svg's: tick labels and y label on the left, the legend on the right.
 constexpr double margin_left = 84.0;
@@ -30,32 +33,6 @@ constexpr std::array<std::string_view, 7> palette{"#0072B2", "#D55E00", "#009E73
                                                   "#E69F00", "#56B4E9", "#000000"};
 
 std::string px(double v) { return format_fixed(v, 2); }
-
-std::string escape_xml(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += (static_cast<unsigned char>(c) < 0x20 && c != '\t') ? ' ' : c;
-    }
-  }
-  return out;
-}
 
 void line(std::string& svg, double x1, double y1, double x2, double y2,
           std::string_view attributes) {

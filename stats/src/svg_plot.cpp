@@ -7,10 +7,45 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/stats/format.hpp"
+#include "svg_text.hpp"
 
 namespace fogradar::stats {
 
+namespace detail {
+
+std::string escape_xml(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out +=
+            (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : c;
+    }
+  }
+  return out;
+}
+
+}  // namespace detail
+
 namespace {
+
+using detail::escape_xml;
 
 // Layout in px. Left margin: tick labels and the y label; right: the legend column. Below the
 // plot, top to bottom: the rate strip (with its title above it), category labels, the x label and
@@ -52,36 +87,6 @@ constexpr std::string_view rate_fill = "fill=\"#8fb3d9\"";
 
 // Coordinates with two decimals: 0.01 px is far below any rendering resolution.
 std::string px(double v) { return format_fixed(v, 2); }
-
-// XML character data and attribute values: the five predefined entities; control characters
-// that XML 1.0 forbids become spaces.
-std::string escape_xml(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out +=
-            (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : c;
-    }
-  }
-  return out;
-}
 
 // Characters of UTF-8 text: every byte but continuation bytes (10xxxxxx).
 std::size_t utf8_length(std::string_view text) {
