@@ -1,6 +1,6 @@
 // `fogradar fog`: the fog's water index, radar attenuation and backscatter, optical extinction and
-// visibility (docs/physics.md), and its optics at the paper scenario's three sensors' bands with each
-// sensor's loss through one layer.
+// visibility (docs/physics.md), and its optics at the paper scenario's three sensors' bands with
+// each sensor's loss through one layer.
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -12,9 +12,9 @@
 
 #include "checks.hpp"
 #include "commands.hpp"
-#include "fogradar/core/error.hpp"
 #include "fogradar/camera/camera.hpp"
 #include "fogradar/core/constants.hpp"
+#include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/lidar/lidar.hpp"
@@ -46,9 +46,9 @@ struct SensorBands {
   double lidar_backscatter_per_m_sr = 0.0;  // beta_pi = eta / (4 pi)
   double lidar_two_way_loss_db = 0.0;       // 10 log10 e x 2 alpha L (Beer-Lambert)
   std::string camera_band;
-  double camera_transmittance = 0.0;         // band-weighted one-way t of the layer
-  double camera_extinction_per_m = 0.0;      // -ln t / L: the band's effective beta
-  double camera_one_way_loss_db = 0.0;       // -10 log10 t
+  double camera_transmittance = 0.0;     // band-weighted one-way t of the layer
+  double camera_extinction_per_m = 0.0;  // -ln t / L: the band's effective beta
+  double camera_one_way_loss_db = 0.0;   // -10 log10 t
 };
 
 SensorBands sensor_bands(const propagation::FogSpec& spec, const propagation::FogOptics& radar,
@@ -62,10 +62,12 @@ SensorBands sensor_bands(const propagation::FogSpec& spec, const propagation::Fo
   b.lidar_wavelength_m = paper.lidar.wavelength_m;
   b.lidar_extinction_per_m = lidar.layer_extinction_per_m(0);
   b.lidar_backscatter_per_m_sr = lidar.layer_backscatter_per_m_sr(0);
-  b.lidar_two_way_loss_db = 10.0 * std::log10(std::exp(1.0)) * 2.0 * b.lidar_extinction_per_m * layer_length_m;
+  b.lidar_two_way_loss_db =
+      10.0 * std::log10(std::exp(1.0)) * 2.0 * b.lidar_extinction_per_m * layer_length_m;
   const camera::Camera camera(paper.camera, chamber, table);
   b.camera_band = std::string(camera::to_string(paper.camera.band));
-  b.camera_transmittance = camera.step_optics(propagation::ActiveLayers{true}).transmittance.front();
+  b.camera_transmittance =
+      camera.step_optics(propagation::ActiveLayers{true}).transmittance.front();
   b.camera_extinction_per_m = -std::log(b.camera_transmittance) / layer_length_m;
   b.camera_one_way_loss_db = -10.0 * std::log10(b.camera_transmittance);
   return b;
@@ -161,7 +163,8 @@ void run_fog(const FogOptions& options) {
            {{"wavelength_m", bands.lidar_wavelength_m},
             {"extinction_per_m", bands.lidar_extinction_per_m},
             {"backscatter_per_m_sr", bands.lidar_backscatter_per_m_sr},
-            {"lidar_ratio_sr", number_or_null(bands.lidar_extinction_per_m / bands.lidar_backscatter_per_m_sr)},
+            {"lidar_ratio_sr",
+             number_or_null(bands.lidar_extinction_per_m / bands.lidar_backscatter_per_m_sr)},
             {"two_way_loss_db_per_layer", bands.lidar_two_way_loss_db}}},
           {"camera",
            {{"band", bands.camera_band},
@@ -184,14 +187,17 @@ void run_fog(const FogOptions& options) {
             << "optical extinction 550 nm " << optical_extinction_per_km << " 1/km (water index "
             << water_source(optical) << ")\n"
             << "visibility (eq. 6, 2 %)   " << visibility_m << " m\n"
-            << "through one layer of " << options.layer_length_m << " m, as the paper scenario's sensors see it:\n"
+            << "through one layer of " << options.layer_length_m
+            << " m, as the paper scenario's sensors see it:\n"
             << "  radar 2-way loss        " << bands.radar_two_way_loss_db << " dB\n"
             << "  lidar (" << bands.lidar_wavelength_m * 1e9 << " nm)         extinction "
-            << bands.lidar_extinction_per_m << " 1/m, backscatter beta_pi " << bands.lidar_backscatter_per_m_sr
-            << " 1/(m sr), 2-way loss " << bands.lidar_two_way_loss_db << " dB\n"
-            << "  camera (" << bands.camera_band << ")       transmittance " << bands.camera_transmittance
-            << " (effective extinction " << bands.camera_extinction_per_m << " 1/m), 1-way loss "
-            << bands.camera_one_way_loss_db << " dB\n";
+            << bands.lidar_extinction_per_m << " 1/m, backscatter beta_pi "
+            << bands.lidar_backscatter_per_m_sr << " 1/(m sr), 2-way loss "
+            << bands.lidar_two_way_loss_db << " dB\n"
+            << "  camera (" << bands.camera_band << ")       transmittance "
+            << bands.camera_transmittance << " (effective extinction "
+            << bands.camera_extinction_per_m << " 1/m), 1-way loss " << bands.camera_one_way_loss_db
+            << " dB\n";
 }
 
 }  // namespace
@@ -199,15 +205,19 @@ void run_fog(const FogOptions& options) {
 Action add_fog_command(CLI::App& app) {
   auto options = std::make_shared<FogOptions>();
   CLI::App* fog = app.add_subcommand(
-      "fog", "Water index, radar attenuation and backscatter, optical extinction and visibility of a fog");
+      "fog",
+      "Water index, radar attenuation and backscatter, optical extinction and visibility of a fog");
   fog->add_option("--frequency-ghz", options->frequency_ghz, "Radar frequency in GHz")
       ->capture_default_str()
-      ->check(number_in("--frequency-ghz", 0.03, 2.99e7,
-                        "in [0.03, 1000] with --water-model liebe, [0.03, 2.99e7] with segelstein"));
-  auto* lwc = fog->add_option("--lwc", options->lwc_g_per_m3, "Liquid water content in g/m^3 [0, 100]")
-                  ->check(number_in("--lwc", 0.0, 100.0, "in [0, 100]"));
+      ->check(
+          number_in("--frequency-ghz", 0.03, 2.99e7,
+                    "in [0.03, 1000] with --water-model liebe, [0.03, 2.99e7] with segelstein"));
+  auto* lwc =
+      fog->add_option("--lwc", options->lwc_g_per_m3, "Liquid water content in g/m^3 [0, 100]")
+          ->check(number_in("--lwc", 0.0, 100.0, "in [0, 100]"));
   auto* ext = fog->add_option("--extinction-per-km", options->extinction_per_km,
-                              "Optical extinction coefficient at 550 nm in 1/km [0, 1e6] (default 900, the study's fog)")
+                              "Optical extinction coefficient at 550 nm in 1/km [0, 1e6] (default "
+                              "900, the study's fog)")
                   ->check(number_in("--extinction-per-km", 0.0, 1e6, "in [0, 1e6]"));
   auto* vis = fog->add_option("--visibility-m", options->visibility_m,
                               "Visibility (eq. 6, 2 % contrast at 550 nm) in m [1e-3, 1e7]")
@@ -215,13 +225,14 @@ Action add_fog_command(CLI::App& app) {
   lwc->excludes(ext)->excludes(vis);
   ext->excludes(vis);
   fog->add_option("--diameter-um", options->diameter_um,
-                  "Monodisperse droplets of this diameter in um [0.01, 1000] (default: lognormal, median 1 um, "
+                  "Monodisperse droplets of this diameter in um [0.01, 1000] (default: lognormal, "
+                  "median 1 um, "
                   "sigma_g 1.5)")
       ->check(number_in("--diameter-um", 0.01, 1000.0, "in [0.01, 1000]"));
   fog->add_option(
-      "--temperature-c", options->temperature_c,
-      "Water temperature in C: [-20, 50] with liebe (default 20); segelstein is a table for "
-      "25 C and takes only 25")
+         "--temperature-c", options->temperature_c,
+         "Water temperature in C: [-20, 50] with liebe (default 20); segelstein is a table for "
+         "25 C and takes only 25")
       ->check(number_in("--temperature-c", -20.0, 50.0,
                         "in [-20, 50] with --water-model liebe, 25 with segelstein"));
   fog->add_option(

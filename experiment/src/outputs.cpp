@@ -234,7 +234,8 @@ std::vector<std::string> plot_caption(const Scenario& scenario, const Experiment
           droplets(scenario.fog.droplets) + "; " + num(scenario.fog.temperature_c) + " \u00b0C.",
       "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
           std::string(radar::to_string(r.sweep_direction)) + "-sweep centred on " +
-          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " + cfar + ".",
+          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
+          cfar + ".",
       "n = " + std::to_string(scenario.experiment.measurements_per_step) +
           " measurements per step, seed " + std::to_string(scenario.experiment.seed) + ".",
       "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
@@ -307,10 +308,10 @@ std::string summary_csv(const ExperimentSummary& summary) {
 
 const std::vector<std::string>& result_file_names() {
   static const std::vector<std::string> names = {
-      "samples.csv",       "summary.csv",         "summary.json",
-      "rcs_boxplot.svg",   "scenario.toml",       "lidar_echoes.csv",
-      "lidar_summary.csv", "lidar_summary.json",  "lidar_intensity_boxplot.svg",
-      "lidar_scans.svg",   "camera_histograms.csv", "camera_summary.csv",
+      "samples.csv",         "summary.csv",           "summary.json",
+      "rcs_boxplot.svg",     "scenario.toml",         "lidar_echoes.csv",
+      "lidar_summary.csv",   "lidar_summary.json",    "lidar_intensity_boxplot.svg",
+      "lidar_scans.svg",     "camera_histograms.csv", "camera_summary.csv",
       "camera_summary.json", "camera_histograms.svg", "benchmark.svg"};
   return names;
 }
@@ -324,11 +325,15 @@ bool is_result_file_name(const std::string& name) {
       name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
     return false;
   }
-  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  return digits.size() <= 7 && std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return digits.size() <= 7 &&
+         std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-std::string camera_roi_name(std::size_t step) { return "camera_roi_" + std::to_string(step) + ".pgm"; }
+std::string camera_roi_name(std::size_t step) {
+  return "camera_roi_" + std::to_string(step) + ".pgm";
+}
 
 std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary) {
   std::vector<SensorVerdict> verdicts;
@@ -352,8 +357,9 @@ std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary) {
       v.sensor_limit_layers = summary.lidar->sensor_limit_layers;
       if (!v.sensor_limit_layers && !summary.lidar->steps.empty()) {
         const lidar::LidarStepSummary& last = summary.lidar->steps.back();
-        v.margin = "target told from fog in " + stats::format_fixed(100.0 * last.target_told_rate, 1) +
-                   " % of the scans at " + counted(last.active_layers, "layer") + " (fails below 50 %)";
+        v.margin = "target told from fog in " +
+                   stats::format_fixed(100.0 * last.target_told_rate, 1) + " % of the scans at " +
+                   counted(last.active_layers, "layer") + " (fails below 50 %)";
       }
     } else if (sensor == SensorId::camera && summary.camera) {
       v.criterion = summary.camera->criterion;
@@ -361,8 +367,8 @@ std::vector<SensorVerdict> sensor_verdicts(const ExperimentSummary& summary) {
       if (!v.sensor_limit_layers && !summary.camera->steps.empty()) {
         const camera::CameraStepSummary& last = summary.camera->steps.back();
         v.margin = "target contrast " + stats::format_fixed(last.target_contrast, 3) + " (" +
-                   stats::format_fixed(100.0 * last.relative_contrast, 1) + " % of clear weather) at " +
-                   counted(last.active_layers, "layer");
+                   stats::format_fixed(100.0 * last.relative_contrast, 1) +
+                   " % of clear weather) at " + counted(last.active_layers, "layer");
       }
     }
     verdicts.push_back(std::move(v));
@@ -375,7 +381,8 @@ std::string sensor_tables(const ExperimentSummary& summary) {
   for (SensorId sensor : summary.sensors) {
     out += std::string(sensor_name(sensor)) + '\n';
     if (sensor == SensorId::radar) out += summary_table(summary);
-    if (sensor == SensorId::lidar && summary.lidar) out += lidar::lidar_summary_table(*summary.lidar);
+    if (sensor == SensorId::lidar && summary.lidar)
+      out += lidar::lidar_summary_table(*summary.lidar);
     if (sensor == SensorId::camera && summary.camera) out += camera::step_table(*summary.camera);
     out += '\n';
   }
@@ -388,7 +395,8 @@ std::string benchmark_table(const ExperimentSummary& summary) {
     std::string name(sensor_name(v.sensor));
     name.resize(7, ' ');
     out += name + "layers to failure: " +
-           (v.sensor_limit_layers ? std::to_string(*v.sensor_limit_layers) : "not reached (" + v.margin + ")") +
+           (v.sensor_limit_layers ? std::to_string(*v.sensor_limit_layers)
+                                  : "not reached (" + v.margin + ")") +
            "\n       criterion: " + v.criterion + "\n";
   }
   return out;
@@ -429,7 +437,8 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
   nlohmann::json sensors = nlohmann::json::object();
   for (const SensorVerdict& v : sensor_verdicts(summary)) {
     nlohmann::json entry = {
-        {"sensor_limit_layers", v.sensor_limit_layers ? nlohmann::json(*v.sensor_limit_layers) : nlohmann::json(nullptr)},
+        {"sensor_limit_layers",
+         v.sensor_limit_layers ? nlohmann::json(*v.sensor_limit_layers) : nlohmann::json(nullptr)},
         {"criterion", v.criterion},
         {"margin", v.margin}};
     if (v.sensor == SensorId::lidar && summary.lidar && summary.lidar_sensor) {
@@ -462,8 +471,9 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
          "target detections only: a fog- or noise-origin detection in the gate is a miss"}}},
   };
   if (!std::count(summary.sensors.begin(), summary.sensors.end(), SensorId::radar)) {
-    for (const char* radar_key : {"steps", "sensor_limit_layers", "sensor_limit_criterion",
-                                  "expected_false_alarm_cells_per_frame", "attenuation_margin_db", "statistics"}) {
+    for (const char* radar_key :
+         {"steps", "sensor_limit_layers", "sensor_limit_criterion",
+          "expected_false_alarm_cells_per_frame", "attenuation_margin_db", "statistics"}) {
       out.erase(radar_key);
     }
   }
@@ -519,10 +529,13 @@ std::string summary_table(const ExperimentSummary& summary) {
          "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
          "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
   out << "sensor limit: ";
-  if (summary.sensor_limit_layers) out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
-  else out << "not reached\n";
+  if (summary.sensor_limit_layers)
+    out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
+  else
+    out << "not reached\n";
   if (summary.attenuation_margin_db) {
-    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n", *summary.attenuation_margin_db);
+    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n",
+                  *summary.attenuation_margin_db);
     out << line;
   }
   return out.str();
@@ -537,14 +550,17 @@ std::vector<std::pair<std::string, std::string>> result_files(const Scenario& sc
     files.emplace_back("summary.csv", summary_csv(summary));
   }
   files.emplace_back("summary.json", summary_json(scenario, summary));
-  if (scenario.runs(SensorId::radar)) files.emplace_back("rcs_boxplot.svg", rcs_boxplot_svg(scenario, summary));
+  if (scenario.runs(SensorId::radar))
+    files.emplace_back("rcs_boxplot.svg", rcs_boxplot_svg(scenario, summary));
   files.emplace_back("scenario.toml", to_toml(scenario));
   if (result.lidar && summary.lidar) {
     const lidar::Lidar& sensor = *result.lidar;
     files.emplace_back("lidar_echoes.csv", lidar::lidar_echoes_csv(sensor, result.lidar_steps));
     files.emplace_back("lidar_summary.csv", lidar::lidar_summary_csv(*summary.lidar));
-    files.emplace_back("lidar_summary.json", lidar::lidar_summary_json(sensor, *summary.lidar).dump(2) + '\n');
-    files.emplace_back("lidar_intensity_boxplot.svg", lidar::lidar_intensity_boxplot_svg(sensor, *summary.lidar));
+    files.emplace_back("lidar_summary.json",
+                       lidar::lidar_summary_json(sensor, *summary.lidar).dump(2) + '\n');
+    files.emplace_back("lidar_intensity_boxplot.svg",
+                       lidar::lidar_intensity_boxplot_svg(sensor, *summary.lidar));
     files.emplace_back("lidar_scans.svg", lidar::lidar_scans_svg(sensor, result.lidar_steps));
   }
   if (result.camera && summary.camera) {

@@ -48,7 +48,8 @@ struct SensorWork {
 };
 
 // Runs every item of every sensor on one pool of threads taking items from a shared counter.
-void run_items(const std::vector<SensorWork>& sensors, std::size_t steps, const RunOptions& options) {
+void run_items(const std::vector<SensorWork>& sensors, std::size_t steps,
+               const RunOptions& options) {
   std::vector<std::size_t> first_item;  // of each sensor, in the order of `sensors`
   std::size_t total = 0;
   for (const SensorWork& sensor : sensors) {
@@ -100,7 +101,8 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
   const propagation::Chamber chamber(chamber_spec, scenario.radar.centre_frequency_hz, table);
   const std::size_t steps = scenario.experiment.max_active_layers + 1;
   std::vector<propagation::ActiveLayers> active(steps);
-  for (std::size_t k = 0; k < steps; ++k) active[k] = propagation::first_layers_active(k, chamber.layer_count());
+  for (std::size_t k = 0; k < steps; ++k)
+    active[k] = propagation::first_layers_active(k, chamber.layer_count());
 
   ExperimentResult result;
   result.sensors = scenario.experiment.sensors;
@@ -126,10 +128,12 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
     }
     work.push_back({per_step, [&] {
                       // Each thread's frame buffers, made on its first radar measurement.
-                      auto workspace = std::make_shared<radar::MeasurementWorkspace>(chain->make_workspace());
+                      auto workspace =
+                          std::make_shared<radar::MeasurementWorkspace>(chain->make_workspace());
                       auto measurement = std::make_shared<radar::Measurement>();
                       return [&, workspace, measurement](std::size_t k, std::size_t i) {
-                        RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::radar, k, i);
+                        RandomStream rng =
+                            sensor_stream(scenario.experiment.seed, SensorId::radar, k, i);
                         chain->measure(*scene, chamber, active[k], rng, *workspace, *measurement);
                         result.steps[k].records[i] = record_of(*measurement);
                       };
@@ -151,8 +155,10 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
     }
     work.push_back({per_step, [&] {
                       return [&](std::size_t k, std::size_t i) {
-                        RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::lidar, k, i);
-                        result.lidar_steps[k].scans[i] = result.lidar->measure(active[k], lidar_fog[k].scan(i), rng);
+                        RandomStream rng =
+                            sensor_stream(scenario.experiment.seed, SensorId::lidar, k, i);
+                        result.lidar_steps[k].scans[i] =
+                            result.lidar->measure(active[k], lidar_fog[k].scan(i), rng);
                       };
                     }});
   }
@@ -170,8 +176,10 @@ ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& opti
     }
     work.push_back({per_step, [&] {
                       return [&](std::size_t k, std::size_t i) {
-                        RandomStream rng = sensor_stream(scenario.experiment.seed, SensorId::camera, k, i);
-                        result.camera_steps[k].frames[i] = result.camera->frame(result.camera_steps[k].optics, rng);
+                        RandomStream rng =
+                            sensor_stream(scenario.experiment.seed, SensorId::camera, k, i);
+                        result.camera_steps[k].frames[i] =
+                            result.camera->frame(result.camera_steps[k].optics, rng);
                       };
                     }});
   }

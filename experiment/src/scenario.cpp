@@ -1,21 +1,21 @@
 #include "fogradar/experiment/scenario.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <toml++/toml.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <charconv>
 #include <cctype>
-#include <cmath>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 #include <vector>
-#include <toml++/toml.h>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
@@ -62,7 +62,8 @@ class Section {
   void read(std::string_view key, double& out) {
     if (const toml::node* node = find(key)) {
       const std::optional<double> value = node->is_number() ? node->value<double>() : std::nullopt;
-      if (!value) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a number");
+      if (!value)
+        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a number");
       out = *value;
     }
   }
@@ -70,13 +71,15 @@ class Section {
   // An integer key with its documented range (docs/scenario.md); ranges that depend on other keys
   // pass their widest bound here and are checked with those keys by Scenario::validate().
   template <class Integer>
-    requires std::is_integral_v<Integer>
+  requires std::is_integral_v<Integer>
   // `also` states the bound that other keys set within [low, high].
-  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high, const std::string& also = "") {
+  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high,
+            const std::string& also = "") {
     if (const toml::node* node = find(key)) {
-      const std::string range = "an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]" +
-                                (also.empty() ? "" : " " + also);
-      if (!node->is_integer()) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be " + range);
+      const std::string range = "an integer in [" + std::to_string(low) + ", " +
+                                std::to_string(high) + "]" + (also.empty() ? "" : " " + also);
+      if (!node->is_integer())
+        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be " + range);
       const std::int64_t value = *node->value<std::int64_t>();
       if (value < low || value > high) {
         fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be " + range);
@@ -96,7 +99,8 @@ class Section {
 
   void read(std::string_view key, std::string& out) {
     if (const toml::node* node = find(key)) {
-      if (!node->is_string()) fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a string");
+      if (!node->is_string())
+        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a string");
       out = *node->value<std::string>();
     }
   }
@@ -115,12 +119,14 @@ class Section {
   // A key's node, marked as read; null when the table does not give it.
   const toml::node* node(std::string_view key) { return find(key); }
 
-  [[noreturn]] void fail_at(const toml::node& node, std::string_view key, const std::string& message) const {
+  [[noreturn]] void fail_at(const toml::node& node, std::string_view key,
+                            const std::string& message) const {
     fail(node, full(key), message);
   }
 
   // Throws at the second of `keys` the table gives, naming each given one and its line.
-  void reject_more_than_one(std::initializer_list<std::string_view> keys, std::string_view what) const {
+  void reject_more_than_one(std::initializer_list<std::string_view> keys,
+                            std::string_view what) const {
     if (table_ == nullptr) return;
     std::string all;
     for (std::string_view key : keys) all += (all.empty() ? "" : ", ") + full(key);
@@ -133,7 +139,8 @@ class Section {
                std::to_string(node->source().begin.line) + ")";
       if (seen) {
         fail(*node, full(key),
-             given + " are both given: at most one " + std::string(what) + " of " + all + " per scenario");
+             given + " are both given: at most one " + std::string(what) + " of " + all +
+                 " per scenario");
       }
       seen = true;
     }
@@ -153,7 +160,8 @@ class Section {
     for (const auto& [key, node] : *table_) {
       const std::string name(key.str());
       if (read_.count(name)) continue;
-      if (node.is_table() && std::find(subtables.begin(), subtables.end(), name) != subtables.end()) continue;
+      if (node.is_table() && std::find(subtables.begin(), subtables.end(), name) != subtables.end())
+        continue;
       fail(node, full(name), "unknown key '" + full(name) + "'" + known_keys_hint());
     }
   }
@@ -175,7 +183,8 @@ class Section {
     return hint + ")";
   }
 
-  [[noreturn]] void fail(const toml::node& node, const std::string& key, const std::string& message) const {
+  [[noreturn]] void fail(const toml::node& node, const std::string& key,
+                         const std::string& message) const {
     throw_at(source_, node.source().begin.line, key, message);
   }
 
@@ -186,7 +195,8 @@ class Section {
   std::set<std::string> read_;
 };
 
-void read_radar(const toml::table& root, std::string_view source, KeyLines& lines, radar::RadarParams& r) {
+void read_radar(const toml::table& root, std::string_view source, KeyLines& lines,
+                radar::RadarParams& r) {
   Section s(root, "radar", source, lines);
   // Its value was the start of a down-chirp, which a reader of "carrier" could not know.
   s.reject_retired("carrier_frequency_hz",
@@ -196,7 +206,8 @@ void read_radar(const toml::table& root, std::string_view source, KeyLines& line
   s.read("centre_frequency_hz", r.centre_frequency_hz);
   std::optional<std::string> direction;
   s.read("sweep_direction", direction);
-  if (direction) r.sweep_direction = radar::parse_sweep_direction(*direction, "radar.sweep_direction");
+  if (direction)
+    r.sweep_direction = radar::parse_sweep_direction(*direction, "radar.sweep_direction");
   s.read("sweep_bandwidth_hz", r.sweep_bandwidth_hz);
   s.read("chirp_duration_s", r.chirp_duration_s);
   s.read("chirp_interval_s", r.chirp_interval_s);
@@ -216,7 +227,8 @@ void read_radar(const toml::table& root, std::string_view source, KeyLines& line
   s.reject_unknown();
 }
 
-void read_processing(const toml::table& root, std::string_view source, KeyLines& lines, radar::RadarParams& r) {
+void read_processing(const toml::table& root, std::string_view source, KeyLines& lines,
+                     radar::RadarParams& r) {
   Section s(root, "processing", source, lines);
   std::optional<std::string> window;
   s.read("window", window);
@@ -228,17 +240,21 @@ void read_processing(const toml::table& root, std::string_view source, KeyLines&
   std::optional<std::string> kind;
   c.read("kind", kind);
   if (kind) r.cfar.kind = radar::parse_cfar_kind(*kind, "processing.cfar.kind");
-  const std::string window_rule = "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
-                                  "radar.samples_per_chirp = " + std::to_string(r.samples_per_chirp);
+  const std::string window_rule =
+      "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
+      "radar.samples_per_chirp = " +
+      std::to_string(r.samples_per_chirp);
   c.read("guard_cells", r.cfar.guard_cells, 0, 32766, window_rule);
   c.read("training_cells", r.cfar.training_cells, 1, 32767, window_rule);
   c.read("false_alarm_probability", r.cfar.false_alarm_probability);
   c.read("os_rank", r.cfar.os_rank, 0, 65534,
-         "and 0 or at most 2 x processing.cfar.training_cells = " + std::to_string(2 * r.cfar.training_cells));
+         "and 0 or at most 2 x processing.cfar.training_cells = " +
+             std::to_string(2 * r.cfar.training_cells));
   std::optional<std::string> design;
   c.read("threshold_design", design);
   if (design) {
-    r.cfar.threshold_design = radar::parse_cfar_threshold_design(*design, "processing.cfar.threshold_design");
+    r.cfar.threshold_design =
+        radar::parse_cfar_threshold_design(*design, "processing.cfar.threshold_design");
   }
   c.reject_unknown();
 }
@@ -257,7 +273,8 @@ void read_target(const toml::table& root, std::string_view source, KeyLines& lin
   s.read("rcs_dbsm", t.rcs_dbsm);
   // Any integer reaches the parser, which names the allowed set (0, 1, 3).
   std::int64_t swerling = static_cast<std::int64_t>(t.swerling);
-  s.read("swerling", swerling, std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max());
+  s.read("swerling", swerling, std::numeric_limits<std::int64_t>::min(),
+         std::numeric_limits<std::int64_t>::max());
   t.swerling = radar::parse_swerling(std::to_string(swerling), "target.swerling");
   s.read("height_m", t.height_m);
   s.read("sensor_height_m", t.sensor_height_m);
@@ -267,7 +284,8 @@ void read_target(const toml::table& root, std::string_view source, KeyLines& lin
   s.reject_unknown();
 }
 
-void read_chamber(const toml::table& root, std::string_view source, KeyLines& lines, ChamberLayout& c) {
+void read_chamber(const toml::table& root, std::string_view source, KeyLines& lines,
+                  ChamberLayout& c) {
   Section s(root, "chamber", source, lines);
   s.read("sensor_gap_m", c.sensor_gap_m);
   s.read("layer_count", c.layer_count, 1, 1000);
@@ -294,7 +312,8 @@ void read_droplets(const toml::table& root, std::string_view source, KeyLines& l
                                       : propagation::Monodisperse{};
     s.read("diameter_m", d.diameter_m);
     droplets = d;
-  } else if (distribution == "advection" || distribution == "radiation" || distribution == "modified_gamma") {
+  } else if (distribution == "advection" || distribution == "radiation" ||
+             distribution == "modified_gamma") {
     propagation::ModifiedGamma d = distribution == "advection"   ? propagation::advection_fog()
                                    : distribution == "radiation" ? propagation::radiation_fog()
                                    : std::holds_alternative<propagation::ModifiedGamma>(droplets)
@@ -311,8 +330,8 @@ void read_droplets(const toml::table& root, std::string_view source, KeyLines& l
   s.reject_unknown();
 }
 
-void read_fog(const toml::table& root, std::string_view source, KeyLines& lines, propagation::FogSpec& fog,
-              unsigned& clutter_scatterers_per_bin) {
+void read_fog(const toml::table& root, std::string_view source, KeyLines& lines,
+              propagation::FogSpec& fog, unsigned& clutter_scatterers_per_bin) {
   Section s(root, "fog", source, lines);
   s.reject_more_than_one({"lwc_g_per_m3", "extinction_per_km", "visibility_m"}, "fog density");
   if (s.has("lwc_g_per_m3")) {
@@ -342,18 +361,21 @@ void read_fog(const toml::table& root, std::string_view source, KeyLines& lines,
   read_droplets(root, source, lines, fog.droplets);
 }
 
-const std::string sensors_allowed = "a non-empty array of distinct names from \"radar\", \"lidar\", \"camera\"";
+const std::string sensors_allowed =
+    "a non-empty array of distinct names from \"radar\", \"lidar\", \"camera\"";
 
 std::vector<SensorId> read_sensors(Section& s) {
   const toml::node* node = s.node("sensors");
   if (node == nullptr) return {};
-  const std::string given = "experiment.sensors = " + as_written(*node) + ": must be " + sensors_allowed;
+  const std::string given =
+      "experiment.sensors = " + as_written(*node) + ": must be " + sensors_allowed;
   const toml::array* array = node->as_array();
   if (array == nullptr || array->empty()) s.fail_at(*node, "sensors", given);
   std::vector<SensorId> sensors;
   for (const toml::node& element : *array) {
     const std::optional<std::string> name = element.value<std::string>();
-    if (!element.is_string()) s.fail_at(*node, "sensors", given + " (" + as_written(element) + " is not a string)");
+    if (!element.is_string())
+      s.fail_at(*node, "sensors", given + " (" + as_written(element) + " is not a string)");
     const auto known = std::find_if(std::begin(all_sensors), std::end(all_sensors),
                                     [&](SensorId id) { return sensor_name(id) == *name; });
     if (known == std::end(all_sensors)) {
@@ -367,9 +389,11 @@ std::vector<SensorId> read_sensors(Section& s) {
   return sensors;
 }
 
-void read_experiment(const toml::table& root, std::string_view source, KeyLines& lines, ExperimentSpec& e) {
+void read_experiment(const toml::table& root, std::string_view source, KeyLines& lines,
+                     ExperimentSpec& e) {
   Section s(root, "experiment", source, lines);
-  if (std::vector<SensorId> sensors = read_sensors(s); !sensors.empty()) e.sensors = std::move(sensors);
+  if (std::vector<SensorId> sensors = read_sensors(s); !sensors.empty())
+    e.sensors = std::move(sensors);
   s.read("measurements_per_step", e.measurements_per_step, 1, 1000000);
   // Its upper bound is chamber.layer_count, checked with that key by Scenario::validate().
   s.read("max_active_layers", e.max_active_layers, 0, std::numeric_limits<std::int64_t>::max());
@@ -382,8 +406,9 @@ void read_lidar_background(Section& lidar_section, std::string_view source, KeyL
   const toml::node* node = lidar_section.node("background");
   if (node == nullptr) return;
   const toml::array* array = node->as_array();
-  const std::string wanted = "lidar.background: must be an array of tables [[lidar.background]] with keys "
-                             "x0_m, y0_m, x1_m, y1_m, reflectivity";
+  const std::string wanted =
+      "lidar.background: must be an array of tables [[lidar.background]] with keys "
+      "x0_m, y0_m, x1_m, y1_m, reflectivity";
   if (array == nullptr) lidar_section.fail_at(*node, "background", wanted);
   background.clear();
   for (std::size_t i = 0; i < array->size(); ++i) {
@@ -401,7 +426,8 @@ void read_lidar_background(Section& lidar_section, std::string_view source, KeyL
   }
 }
 
-void read_lidar(const toml::table& root, std::string_view source, KeyLines& lines, lidar::LidarParams& l) {
+void read_lidar(const toml::table& root, std::string_view source, KeyLines& lines,
+                lidar::LidarParams& l) {
   Section s(root, "lidar", source, lines);
   s.read("wavelength_m", l.wavelength_m);
   s.read("field_of_view_deg", l.field_of_view_deg);
@@ -441,7 +467,8 @@ void read_camera_region(const toml::table& root, const std::string& path, std::s
   s.reject_unknown();
 }
 
-void read_camera(const toml::table& root, std::string_view source, KeyLines& lines, camera::CameraParams& c) {
+void read_camera(const toml::table& root, std::string_view source, KeyLines& lines,
+                 camera::CameraParams& c) {
   Section s(root, "camera", source, lines);
   std::optional<std::string> band, transfer;
   s.read("band", band);
@@ -473,7 +500,8 @@ void read_camera(const toml::table& root, std::string_view source, KeyLines& lin
   Section r(root, "camera.roi", source, lines);
   r.read("width_px", c.roi.width_px, 8, 4096);
   r.read("height_px", c.roi.height_px, 8, 4096);
-  r.read("cell_px", c.roi.cell_px, 2, 2048, "with 2 x camera.roi.cell_px <= camera.roi.width_px and camera.roi.height_px");
+  r.read("cell_px", c.roi.cell_px, 2, 2048,
+         "with 2 x camera.roi.cell_px <= camera.roi.width_px and camera.roi.height_px");
   r.read("target_fraction", c.roi.target_fraction);
   r.reject_unknown({"target", "background"});
   read_camera_region(root, "camera.roi.target", source, lines, c.roi.target);
@@ -499,7 +527,9 @@ std::string scenario_key(const std::string& field) {
   return field;
 }
 
-bool is_key_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.'; }
+bool is_key_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
+}
 
 // Positions where `key` occurs in `text` as a whole key, not as part of a longer one.
 std::vector<std::size_t> key_positions(std::string_view text, std::string_view key) {
@@ -524,13 +554,15 @@ std::string scenario_keys_in(std::string message) {
   };
   for (const auto& [from, to] : renames) {
     const std::vector<std::size_t> positions = key_positions(message, from);
-    for (auto at = positions.rbegin(); at != positions.rend(); ++at) message.replace(*at, from.size(), to);
+    for (auto at = positions.rbegin(); at != positions.rend(); ++at)
+      message.replace(*at, from.size(), to);
   }
   return message;
 }
 
 // The lines of the other keys a combined check names, so every key involved can be found.
-std::string other_key_lines(const std::string& message, const std::string& key, const KeyLines& lines) {
+std::string other_key_lines(const std::string& message, const std::string& key,
+                            const KeyLines& lines) {
   std::string listed;
   for (const auto& [other, line] : lines) {
     if (other == key || key_positions(message, other).empty()) continue;
@@ -564,15 +596,19 @@ std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }
 
 std::string_view sensor_name(SensorId sensor) {
   switch (sensor) {
-    case SensorId::radar: return "radar";
-    case SensorId::lidar: return "lidar";
-    case SensorId::camera: return "camera";
+    case SensorId::radar:
+      return "radar";
+    case SensorId::lidar:
+      return "lidar";
+    case SensorId::camera:
+      return "camera";
   }
   return "unknown";
 }
 
 bool Scenario::runs(SensorId sensor) const {
-  return std::find(experiment.sensors.begin(), experiment.sensors.end(), sensor) != experiment.sensors.end();
+  return std::find(experiment.sensors.begin(), experiment.sensors.end(), sensor) !=
+         experiment.sensors.end();
 }
 
 void Scenario::validate() const {
@@ -580,8 +616,9 @@ void Scenario::validate() const {
   for (std::size_t i = 0; i < experiment.sensors.size(); ++i) {
     const SensorId sensor = experiment.sensors[i];
     names += (names.empty() ? "[" : ", ") + std::string(sensor_name(sensor));
-    if (std::find(experiment.sensors.begin(), experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i), sensor) !=
-            experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i) ||
+    if (std::find(experiment.sensors.begin(),
+                  experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i),
+                  sensor) != experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i) ||
         sensor_name(sensor) == "unknown") {
       throw_invalid("experiment.sensors", names + ", ...]", sensors_allowed);
     }
@@ -590,12 +627,13 @@ void Scenario::validate() const {
   radar.validate();
   require_in_range("target.rcs_dbsm", target.rcs_dbsm, -60.0, 60.0);
   require_in_range("target.height_m", target.height_m, 0.0, 100.0);
-  require_in_range("experiment.measurements_per_step", static_cast<double>(experiment.measurements_per_step),
-                   1.0, 1e6);
+  require_in_range("experiment.measurements_per_step",
+                   static_cast<double>(experiment.measurements_per_step), 1.0, 1e6);
   require_in_range("chamber.layer_count", static_cast<double>(chamber.layer_count), 1.0, 1000.0);
   if (experiment.max_active_layers > chamber.layer_count) {
-    throw_invalid("experiment.max_active_layers", static_cast<double>(experiment.max_active_layers),
-                  "an integer in [0, chamber.layer_count = " + std::to_string(chamber.layer_count) + "]");
+    throw_invalid(
+        "experiment.max_active_layers", static_cast<double>(experiment.max_active_layers),
+        "an integer in [0, chamber.layer_count = " + std::to_string(chamber.layer_count) + "]");
   }
   // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
   constexpr auto max_seed = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
@@ -617,12 +655,13 @@ void Scenario::validate() const {
   if (farthest_m > limit_m) {
     std::ostringstream constraint;
     constraint.precision(10);
-    constraint << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
-                  "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
-               << farthest_m
-               << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
-                  "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
-               << limit_m << " m";
+    constraint
+        << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
+           "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
+        << farthest_m
+        << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
+           "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
+        << limit_m << " m";
     throw_invalid("chamber.target_gap_m", chamber.target_gap_m, constraint.str());
   }
 }
@@ -631,13 +670,15 @@ propagation::ChamberSpec Scenario::chamber_spec() const {
   propagation::ChamberSpec spec;
   spec.sensor_gap_m = chamber.sensor_gap_m;
   spec.target_gap_m = chamber.target_gap_m;
-  spec.layers.assign(chamber.layer_count, propagation::FogLayerSpec{.length_m = chamber.layer_length_m, .fog = fog});
+  spec.layers.assign(chamber.layer_count,
+                     propagation::FogLayerSpec{.length_m = chamber.layer_length_m, .fog = fog});
   return spec;
 }
 
 radar::Scene Scenario::scene() const {
-  radar::Scene scene = target.model == TargetModel::evt ? radar::evt_rear_scene(target.rcs_dbsm)
-                                                        : radar::point_target_scene(target.rcs_dbsm);
+  radar::Scene scene = target.model == TargetModel::evt
+                           ? radar::evt_rear_scene(target.rcs_dbsm)
+                           : radar::point_target_scene(target.rcs_dbsm);
   if (target.model == TargetModel::point) {
     scene.centres.front().height_m = target.height_m;
     scene.centres.front().swerling = target.swerling;
@@ -659,15 +700,17 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
   try {
     root = toml::parse(toml_text, source_name);
   } catch (const toml::parse_error& e) {
-    throw_at(source_name, e.source().begin.line, "toml", std::string("malformed TOML: ") + std::string(e.description()));
+    throw_at(source_name, e.source().begin.line, "toml",
+             std::string("malformed TOML: ") + std::string(e.description()));
   }
   static const std::set<std::string_view> sections = {"radar", "processing", "target", "chamber",
                                                       "fog",   "experiment", "lidar",  "camera"};
   for (const auto& [key, node] : root) {
     if (!sections.count(key.str())) {
-      throw_at(source_name, node.source().begin.line, std::string(key.str()),
-               "unknown section or key '" + std::string(key.str()) +
-                   "' (sections: radar, processing, target, chamber, fog, experiment, lidar, camera)");
+      throw_at(
+          source_name, node.source().begin.line, std::string(key.str()),
+          "unknown section or key '" + std::string(key.str()) +
+              "' (sections: radar, processing, target, chamber, fog, experiment, lidar, camera)");
     }
   }
 
@@ -700,7 +743,8 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
       line = given->second;
     } else {
       for (const auto& [other, other_line] : lines) {
-        if (!key_positions(message, other).empty() && (line == 0 || other_line < line)) line = other_line;
+        if (!key_positions(message, other).empty() && (line == 0 || other_line < line))
+          line = other_line;
       }
     }
     if (line == 0) throw InvalidParameter(key, std::string(source_name) + ": " + message);
@@ -725,7 +769,8 @@ Scenario load_scenario_file(const std::string& path) {
   const int fd = file.fd;
   if (fd < 0) throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
   struct stat info {};
-  if (::fstat(fd, &info) != 0) throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
+  if (::fstat(fd, &info) != 0)
+    throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
   if (!S_ISREG(info.st_mode)) {
     const char* kind = S_ISDIR(info.st_mode)    ? "a directory"
                        : S_ISFIFO(info.st_mode) ? "a FIFO"
@@ -736,7 +781,8 @@ Scenario load_scenario_file(const std::string& path) {
     throw_invalid("--scenario", path, wanted + "; it is " + kind);
   }
   if (static_cast<std::uintmax_t>(info.st_size) > max_scenario_file_bytes) {
-    throw_invalid("--scenario", path, wanted + "; it holds " + std::to_string(info.st_size) + " bytes");
+    throw_invalid("--scenario", path,
+                  wanted + "; it holds " + std::to_string(info.st_size) + " bytes");
   }
   std::string text(static_cast<std::size_t>(info.st_size), '\0');
   std::size_t got = 0;
@@ -824,16 +870,18 @@ std::string to_toml(const Scenario& s) {
       << "[fog.droplets]\n";
   struct Droplets {
     std::string operator()(const propagation::Monodisperse& d) const {
-      return "distribution = \"monodisperse\"\ndiameter_m = " + format_toml_number(d.diameter_m) + "\n";
+      return "distribution = \"monodisperse\"\ndiameter_m = " + format_toml_number(d.diameter_m) +
+             "\n";
     }
     std::string operator()(const propagation::Lognormal& d) const {
-      return "distribution = \"lognormal\"\nmedian_diameter_m = " + format_toml_number(d.median_diameter_m) +
+      return "distribution = \"lognormal\"\nmedian_diameter_m = " +
+             format_toml_number(d.median_diameter_m) +
              "\ngeometric_std = " + format_toml_number(d.geometric_std) + "\n";
     }
     std::string operator()(const propagation::ModifiedGamma& d) const {
       return "distribution = \"modified_gamma\"\nalpha = " + format_toml_number(d.alpha) +
-             "\ngamma = " + format_toml_number(d.gamma) + "\nb_per_um_gamma = " + format_toml_number(d.b_per_um_gamma) +
-             "\n";
+             "\ngamma = " + format_toml_number(d.gamma) +
+             "\nb_per_um_gamma = " + format_toml_number(d.b_per_um_gamma) + "\n";
     }
   };
   out << std::visit(Droplets{}, s.fog.droplets) << '\n'

@@ -18,7 +18,9 @@ std::vector<double> detected_rcs_dbsm(const StepResult& step) {
   return values;
 }
 
-double median_of(const std::vector<double>& values) { return values.empty() ? nan : stats::median(values); }
+double median_of(const std::vector<double>& values) {
+  return values.empty() ? nan : stats::median(values);
+}
 
 double fraction(std::size_t count, std::size_t n) {
   return n == 0 ? 0.0 : static_cast<double>(count) / static_cast<double>(n);
@@ -30,7 +32,8 @@ ExperimentSummary summarize(const ExperimentResult& result) {
   ExperimentSummary summary;
   summary.sensors = result.sensors;
   summary.expected_false_alarm_cells_per_frame = result.expected_false_alarm_cells_per_frame;
-  const std::vector<double> baseline = result.steps.empty() ? std::vector<double>{} : detected_rcs_dbsm(result.steps[0]);
+  const std::vector<double> baseline =
+      result.steps.empty() ? std::vector<double>{} : detected_rcs_dbsm(result.steps[0]);
   for (const StepResult& step : result.steps) {
     StepSummary s;
     s.active_layers = step.active_layers;
@@ -78,7 +81,8 @@ ExperimentSummary summarize(const ExperimentResult& result) {
     summary.lidar = lidar::summarize(result.lidar->params(), result.lidar_steps);
     summary.lidar_sensor = result.lidar;
   }
-  if (result.camera) summary.camera = camera::summarize(result.camera->params(), result.camera_steps);
+  if (result.camera)
+    summary.camera = camera::summarize(result.camera->params(), result.camera_steps);
   return summary;
 }
 

@@ -13,9 +13,9 @@ RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
     : params_(params),
       derived_(derive(params)),
       processor_(params, planner),
-      cfar_(params.cfar, window_noise_correlation(processor_.range_window(),
-                                                  std::size_t{params.cfar.guard_cells} +
-                                                      params.cfar.reference_cells())),
+      cfar_(params.cfar, window_noise_correlation(
+                             processor_.range_window(),
+                             std::size_t{params.cfar.guard_cells} + params.cfar.reference_cells())),
       origin_classifier_(processor_, params_, derived_) {}
 
 void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {

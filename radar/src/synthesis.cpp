@@ -135,7 +135,8 @@ double quantize_rail(double x, double step, double top_level, bool& clipped) {
 
 }  // namespace
 
-std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits, double full_scale_amplitude) {
+std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits,
+                     double full_scale_amplitude) {
   FOGRADAR_CHECK(bits > 0 && full_scale_amplitude > 0.0);
   const double step = 2.0 * full_scale_amplitude / std::ldexp(1.0, static_cast<int>(bits));
   const double top_level = full_scale_amplitude - 0.5 * step;
@@ -156,7 +157,8 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   const std::size_t columns = params.samples_per_chirp;
   const std::size_t rows = params.chirps_per_frame;
   FOGRADAR_CHECK(frame.size() == rows * columns);
-  FOGRADAR_CHECK(window == nullptr || (window->doppler.size() == rows && window->range_pairs.size() == 2 * columns));
+  FOGRADAR_CHECK(window == nullptr ||
+                 (window->doppler.size() == rows && window->range_pairs.size() == 2 * columns));
   const auto row = [&](std::size_t c) { return frame.subspan(c * columns, columns); };
 
   // Static paths: one chirp, copied to all. Without phase noise (which multiplies the noise-free
@@ -184,7 +186,8 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   fill_tone_powers(pass.data(), in_pass);
   add_tones(row(0), std::span<const TonePhasors>(pass.data(), in_pass));
   const bool noise_with_copy = params.thermal_noise && params.phase_noise_rms_rad == 0.0;
-  const bool window_with_noise = window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
+  const bool window_with_noise =
+      window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
   SynthesisReport report;
   if (window_with_noise) {
     ComplexNormalGenerator noise(rng);
@@ -218,10 +221,13 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   for (const Tone& tone : tones) {
     if (tone.radial_velocity_m_per_s == 0.0) continue;
     const double doppler_hz = doppler_shift_hz(tone.radial_velocity_m_per_s, derived);
-    const double frequency_hz = beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s) + doppler_hz;
+    const double frequency_hz =
+        beat_frequency_hz(tone.path_length_m, derived.chirp_slope_hz_per_s) + doppler_hz;
     for (std::size_t c = 0; c < rows; ++c) {
-      const double chirp_phase = 2.0 * pi * doppler_hz * static_cast<double>(c) * params.chirp_interval_s;
-      add_tone(row(c), tone.amplitude * std::polar(1.0, chirp_phase), frequency_hz, params.sample_rate_hz);
+      const double chirp_phase =
+          2.0 * pi * doppler_hz * static_cast<double>(c) * params.chirp_interval_s;
+      add_tone(row(c), tone.amplitude * std::polar(1.0, chirp_phase), frequency_hz,
+               params.sample_rate_hz);
     }
   }
 
@@ -230,7 +236,8 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
       sample *= std::polar(1.0, params.phase_noise_rms_rad * rng.normal());
     }
   }
-  if (params.thermal_noise && !noise_with_copy) ComplexNormalGenerator(rng).add(frame, derived.noise_power_w);
+  if (params.thermal_noise && !noise_with_copy)
+    ComplexNormalGenerator(rng).add(frame, derived.noise_power_w);
   if (params.adc_bits > 0) {
     report.clipped_samples =
         quantize(frame, params.adc_bits, std::sqrt(dbm_to_watt(params.adc_full_scale_dbm)));

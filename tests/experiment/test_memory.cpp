@@ -96,8 +96,8 @@ TEST(MemoryEstimate, AddsTheLidarAndTheCamera) {
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.field(), "lidar.scans_per_step") << e.what();
     const std::string message = e.what();
-    for (const char* key : {"lidar.scans_per_step = 100000", "lidar.field_of_view_deg", "camera.frames_per_step",
-                            "radar.samples_per_chirp = 64"}) {
+    for (const char* key : {"lidar.scans_per_step = 100000", "lidar.field_of_view_deg",
+                            "camera.frames_per_step", "radar.samples_per_chirp = 64"}) {
       EXPECT_NE(message.find(key), std::string::npos) << key << " missing from: " << message;
     }
   }

@@ -147,7 +147,8 @@ TEST_F(OutputDirectoryTest, OneHolderAtATime) {
 // refused.
 TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
   const fs::path dir = parent_ / "out";
-  Files every = {{"camera_roi_0.pgm", "P5"}, {"camera_roi_12.pgm", "P5"}};  // camera.write_roi_images
+  Files every = {{"camera_roi_0.pgm", "P5"},
+                 {"camera_roi_12.pgm", "P5"}};  // camera.write_roi_images
   for (const std::string& name : result_file_names()) every.emplace_back(name, "earlier " + name);
   // Two ROI images and the radar's 5, the lidar's 5, the camera's 4 files and benchmark.svg.
   EXPECT_EQ(every.size(), 17u);

@@ -1,6 +1,6 @@
 // The methodology end to end on small scenarios: determinism across thread counts, the calibrated
-// point target read back through the whole experiment, fog that is invisible to the radar leaving the
-// RCS unchanged, and a fog dense enough to reach the sensor limit.
+// point target read back through the whole experiment, fog that is invisible to the radar leaving
+// the RCS unchanged, and a fog dense enough to reach the sensor limit.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -46,8 +46,8 @@ TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
             one.steps[0].records[0].rcs_dbsm);
 }
 
-// A non-fluctuating 10 dBsm point target at the chamber's 10 m, no multipath, no micro-motion: every
-// measurement detects it and reads 10 dBsm back within 0.2 dB (the chain's calibration, issue
+// A non-fluctuating 10 dBsm point target at the chamber's 10 m, no multipath, no micro-motion:
+// every measurement detects it and reads 10 dBsm back within 0.2 dB (the chain's calibration, issue
 // criterion), the paper fog's two-way loss (< 0.01 dB) included.
 TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
   Scenario s = small_scenario();
@@ -72,8 +72,8 @@ TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
 // (644.7 dB/km, `fogradar fog --lwc 100 --diameter-um 500`), and the point target, seen with
 // -19 dBm, has a median SNR of about 19 dB at 0 layers against the CA threshold factor of 14.8 dB:
 // detected in every measurement without fog, lost after one or two layers (200 measurements per
-// step: 100 %, 66.5 %, 6.5 %, 0 %, 0 %). So the sensor limit is reached inside the chamber, whatever
-// the 12 measurements of this test draw.
+// step: 100 %, 66.5 %, 6.5 %, 0 %, 0 %). So the sensor limit is reached inside the chamber,
+// whatever the 12 measurements of this test draw.
 TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
   Scenario s = small_scenario();
   s.radar.tx_power_dbm = -19.0;

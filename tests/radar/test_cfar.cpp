@@ -9,8 +9,6 @@
 // Monte Carlo tests use fixed-seed std::mt19937_64 streams and statistically sized bounds.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <algorithm>
 #include <boost/math/distributions/binomial.hpp>
 #include <boost/math/distributions/gamma.hpp>
@@ -31,6 +29,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/cfar.hpp"
+#include "rejected_field.hpp"
 
 namespace fogradar::radar {
 namespace {
@@ -138,7 +137,8 @@ TEST(CfarConfig, RejectsWindowWiderThanProfile) {
   } catch (const InvalidParameter& error) {
     EXPECT_EQ(error.field(), "cfar.guard_cells") << error.what();
     EXPECT_NE(std::string(error.what()).find("[0, 1]"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("cfar.training_cells = 1"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("cfar.training_cells = 1"), std::string::npos)
+        << error.what();
   }
   EXPECT_THROW(cfar_detect(std::vector<double>{}, CfarConfig{}), InvalidParameter);
 }

@@ -9,7 +9,8 @@
 //   [Ri14] M. A. Richards, Fundamentals of Radar Signal Processing, 2nd ed., sec. 6.5: CA-CFAR
 //          Pfa = E[exp(-alpha Z)] = (1 + alpha/N)^-N for iid reference cells; for correlated
 //          Gaussian reference cells the same expectation is 1 / det(I + (alpha/N) C).
-//   [Pap]  The study (Hasirlioglu et al., IEEE VTC2017-Spring): eq. 7 (RCS), eq. 4 (virtual layer model).
+//   [Pap]  The study (Hasirlioglu et al., IEEE VTC2017-Spring): eq. 7 (RCS), eq. 4 (virtual layer
+//   model).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -508,12 +509,14 @@ TEST(Estimation, PeakPowerIsTheDirectTwoDimensionalDtftForEveryBatchSize) {
     RandomStream rng(11, tones);
     for (auto& v : frame) v = rng.complex_normal(1.0);
     for (std::size_t i = 0; i < tones; ++i) {
-      const double nu = 30.3 + 70.7 * static_cast<double>(i), mu = 1.3 + 2.6 * static_cast<double>(i);
+      const double nu = 30.3 + 70.7 * static_cast<double>(i),
+                   mu = 1.3 + 2.6 * static_cast<double>(i);
       for (std::size_t c = 0; c < rows; ++c) {
         for (std::size_t n = 0; n < columns; ++n) {
-          frame[c * columns + n] += std::polar(1.0, 2.0 * std::numbers::pi *
-                                                        (nu * static_cast<double>(n) / static_cast<double>(columns) +
-                                                         mu * static_cast<double>(c) / static_cast<double>(rows)));
+          frame[c * columns + n] +=
+              std::polar(1.0, 2.0 * std::numbers::pi *
+                                  (nu * static_cast<double>(n) / static_cast<double>(columns) +
+                                   mu * static_cast<double>(c) / static_cast<double>(rows)));
         }
       }
     }
@@ -527,9 +530,11 @@ TEST(Estimation, PeakPowerIsTheDirectTwoDimensionalDtftForEveryBatchSize) {
       Wide direct{};
       for (std::size_t c = 0; c < rows; ++c) {
         for (std::size_t n = 0; n < columns; ++n) {
-          const long double phase = -two_pi * (static_cast<long double>(det.range_bin) * n / columns +
-                                               static_cast<long double>(det.doppler_bin) * c / rows);
-          const long double w = static_cast<long double>(processor.doppler_window()[c]) * processor.range_window()[n];
+          const long double phase =
+              -two_pi * (static_cast<long double>(det.range_bin) * n / columns +
+                         static_cast<long double>(det.doppler_bin) * c / rows);
+          const long double w =
+              static_cast<long double>(processor.doppler_window()[c]) * processor.range_window()[n];
           direct += w * Wide(frame[c * columns + n]) * std::polar(1.0L, phase);
         }
       }
@@ -540,8 +545,10 @@ TEST(Estimation, PeakPowerIsTheDirectTwoDimensionalDtftForEveryBatchSize) {
           << tones << " tones, range bin " << det.range_bin << ", Doppler bin " << det.doppler_bin;
     }
   }
-  std::printf("[ measured ] peak power vs direct 2-D DTFT, 1-6 objects, 499 x 16: worst relative error %.1e\n",
-              worst);
+  std::printf(
+      "[ measured ] peak power vs direct 2-D DTFT, 1-6 objects, 499 x 16: worst relative error "
+      "%.1e\n",
+      worst);
 }
 
 // --- Fog --------------------------------------------------------------------------------------
@@ -789,15 +796,18 @@ TEST(Estimation, NewtonPolishReadsBackToRoundingLevel) {
       ASSERT_NE(det, nullptr) << v << " m/s, offset " << offset_bins;
       EXPECT_NEAR(det->rcs_dbsm, 10.0, 1e-10) << v << " m/s, offset " << offset_bins;
       EXPECT_NEAR(det->range_m, range_m, 1e-11) << v << " m/s, offset " << offset_bins;
-      EXPECT_NEAR(det->radial_velocity_m_per_s / v_bin, v / v_bin, 1e-10) << v << " m/s, offset " << offset_bins;
+      EXPECT_NEAR(det->radial_velocity_m_per_s / v_bin, v / v_bin, 1e-10)
+          << v << " m/s, offset " << offset_bins;
       worst_db = std::max(worst_db, std::abs(det->rcs_dbsm - 10.0));
       worst_m = std::max(worst_m, std::abs(det->range_m - range_m));
       worst_bin = std::max(worst_bin, std::abs(det->radial_velocity_m_per_s - v) / v_bin);
     }
   }
-  std::printf("[ measured ] Newton polish, 64 x 512 Hann, 3 velocities x 4 offsets: worst |RCS error| %.1e dB, "
-              "|range error| %.1e m, |velocity error| %.1e bin\n",
-              worst_db, worst_m, worst_bin);
+  std::printf(
+      "[ measured ] Newton polish, 64 x 512 Hann, 3 velocities x 4 offsets: worst |RCS error| %.1e "
+      "dB, "
+      "|range error| %.1e m, |velocity error| %.1e bin\n",
+      worst_db, worst_m, worst_bin);
 }
 
 // Nine point targets in one frame (more than one batch of the row interpolation, which serves up to
@@ -828,14 +838,17 @@ TEST(Estimation, ManyObjectsInOneFrameEachReadBack) {
   for (const ScatteringCentre& centre : scene.centres) {
     const double range_m = chamber.target_range_m() + centre.range_offset_m;
     const Detection* match = nullptr;
-    for (const Detection& det : all.detections) {  // the strongest within 5 cm (noise-free side lobes
+    for (const Detection& det :
+         all.detections) {  // the strongest within 5 cm (noise-free side lobes
       const bool near = std::abs(det.range_m - range_m) < 0.05;  // are detected too, ~90 dB down)
-      if (near && (match == nullptr || det.received_power_w > match->received_power_w)) match = &det;
+      if (near && (match == nullptr || det.received_power_w > match->received_power_w))
+        match = &det;
     }
     ASSERT_NE(match, nullptr) << "target at " << range_m << " m";
     EXPECT_NEAR(match->rcs_dbsm, 10.0, 0.01) << range_m;
     EXPECT_NEAR(match->range_m, range_m, 0.002) << range_m;
-    EXPECT_NEAR(match->radial_velocity_m_per_s, centre.radial_velocity_m_per_s, 0.01 * v_bin) << range_m;
+    EXPECT_NEAR(match->radial_velocity_m_per_s, centre.radial_velocity_m_per_s, 0.01 * v_bin)
+        << range_m;
 
     Scene alone = scene;
     alone.centres = {centre};
@@ -924,10 +937,12 @@ TEST(Synthesis, WindowInTheNoisePassEqualsTheWindowAfterwards) {
     ComplexVector windowed(p.chirps_per_frame * p.samples_per_chirp), afterwards(windowed.size());
     RandomStream rng_windowed(41), rng_afterwards(41);
     const SynthesisReport report = synthesize_frame(c.tones, p, d, rng_windowed, windowed, &window);
-    const SynthesisReport report_afterwards = synthesize_frame(c.tones, p, d, rng_afterwards, afterwards);
+    const SynthesisReport report_afterwards =
+        synthesize_frame(c.tones, p, d, rng_afterwards, afterwards);
     apply_frame_window(window, afterwards);
     EXPECT_EQ(report.clipped_samples, report_afterwards.clipped_samples) << c.name;
-    EXPECT_EQ(std::memcmp(windowed.data(), afterwards.data(), windowed.size() * sizeof windowed[0]), 0)
+    EXPECT_EQ(std::memcmp(windowed.data(), afterwards.data(), windowed.size() * sizeof windowed[0]),
+              0)
         << c.name;
     EXPECT_EQ(rng_windowed(), rng_afterwards()) << c.name;  // the same draws
   }

@@ -39,8 +39,8 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
 std::size_t default_memory_limit_bytes();
 
 // Throws InvalidParameter, when estimate_peak_memory(scenario, requested_threads) exceeds
-// limit_bytes, naming the estimate, the limit, --threads and each running sensor's part with its keys
-// and values: the radar's radar.samples_per_chirp, radar.chirps_per_frame and
+// limit_bytes, naming the estimate, the limit, --threads and each running sensor's part with its
+// keys and values: the radar's radar.samples_per_chirp, radar.chirps_per_frame and
 // experiment.measurements_per_step, the lidar's lidar.scans_per_step and its beams
 // (lidar.field_of_view_deg / lidar.angular_step_deg), the camera's camera.frames_per_step and
 // camera.roi.width_px x camera.roi.height_px. Its field is the first key of the largest part

@@ -1,8 +1,8 @@
 // Result files of `fogradar run` (docs/scenario.md, Results): the radar's samples.csv, summary.csv,
 // rcs_boxplot.svg; summary.json (every sensor's summary and limit) and scenario.toml; each further
-// sensor's files prefixed with its name; benchmark.svg. The output directory is the run's result set and is
-// replaced whole: the files are written to a sibling staging directory, which then takes the
-// directory's place in one rename (docs/scenario.md, Results; docs/architecture.md, Contracts).
+// sensor's files prefixed with its name; benchmark.svg. The output directory is the run's result
+// set and is replaced whole: the files are written to a sibling staging directory, which then takes
+// the directory's place in one rename (docs/scenario.md, Results; docs/architecture.md, Contracts).
 #pragma once
 
 #include <filesystem>
@@ -53,9 +53,9 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
 // RCS box plots per step with the detection rate under them, the sensor limit marked, and title and
 // caption from the scenario (target, chamber, fog as given, droplets, CFAR, n, seed).
 std::string rcs_boxplot_svg(const Scenario& scenario, const ExperimentSummary& summary);
-// benchmark.svg: per sensor that ran, its metric relative to clear weather (radar: median target RCS
-// as a power ratio; lidar: median target intensity, a missing target counted as 0; camera: target
-// contrast) against active layers, each sensor's limit marked by a dashed line.
+// benchmark.svg: per sensor that ran, its metric relative to clear weather (radar: median target
+// RCS as a power ratio; lidar: median target intensity, a missing target counted as 0; camera:
+// target contrast) against active layers, each sensor's limit marked by a dashed line.
 std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& summary);
 // The radar's per-layer table printed by `fogradar run`.
 std::string summary_table(const ExperimentSummary& summary);
@@ -67,9 +67,9 @@ std::vector<std::pair<std::string, std::string>> result_files(const Scenario& sc
 
 // The output directory of one run, held from before the run until its result set is in place.
 // Construction refuses (InvalidParameter naming "--out") a `dir` that is not a directory, that
-// holds anything but result files, result_file_names() (so no file of the user's is ever deleted), or that
-// another run holds; it then takes the lock (`.NAME.lock` beside `dir`, flock) and creates the
-// staging directory
+// holds anything but result files, result_file_names() (so no file of the user's is ever deleted),
+// or that another run holds; it then takes the lock (`.NAME.lock` beside `dir`, flock) and creates
+// the staging directory
 // `.NAME.tmp-<pid>-<random>` beside `dir`. Destruction removes the staging directory (and the lock
 // file) whatever happened: a failed or interrupted run leaves the previous set untouched.
 class OutputDirectory {

@@ -1,20 +1,19 @@
 // The study's methodology (paper sec. III-A): for k = 0 .. max_active_layers layers switched on in
 // order from the sensor, a series of items per sensor of the scenario (radar measurements, each a
 // full radar frame; lidar scans; camera frames), all on one chamber. Item (k, i) of a sensor draws
-// from its own random stream sensor_stream(seed, sensor, k, i) (the radar's is RandomStream(seed, k,
-// i)), and results are stored by index, so a run is bit-identical for any thread count and adding a
-// sensor never changes another's numbers. One pool of threads takes the items of every sensor from
-// one counter. Frames are streamed: only one per thread exists at a time.
+// from its own random stream sensor_stream(seed, sensor, k, i) (the radar's is RandomStream(seed,
+// k, i)), and results are stored by index, so a run is bit-identical for any thread count and
+// adding a sensor never changes another's numbers. One pool of threads takes the items of every
+// sensor from one counter. Frames are streamed: only one per thread exists at a time.
 #pragma once
 
 #include <atomic>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <vector>
-
-#include <memory>
 
 #include "fogradar/camera/camera.hpp"
 #include "fogradar/experiment/scenario.hpp"

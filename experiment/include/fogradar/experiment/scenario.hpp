@@ -1,8 +1,8 @@
-// A scenario: everything one run of the study's methodology needs, as read from a TOML file with the
-// sections [radar], [processing], [target], [chamber], [fog], [experiment] and one section per further
-// sensor (docs/scenario.md). Keys carry
-// their units in their names; docs/scenario.md lists them with defaults and ranges. The paper
-// scenario (examples/paper.toml) is compiled in and is the base every scenario file overrides.
+// A scenario: everything one run of the study's methodology needs, as read from a TOML file with
+// the sections [radar], [processing], [target], [chamber], [fog], [experiment] and one section per
+// further sensor (docs/scenario.md). Keys carry their units in their names; docs/scenario.md lists
+// them with defaults and ranges. The paper scenario (examples/paper.toml) is compiled in and is the
+// base every scenario file overrides.
 #pragma once
 
 #include <cstddef>
@@ -41,8 +41,8 @@ struct ChamberLayout {
   double target_gap_m = 4.0;
 };
 
-// The sensors a scenario can run, by their scenario names ("radar", "lidar", "camera"), in the order
-// their results are reported.
+// The sensors a scenario can run, by their scenario names ("radar", "lidar", "camera"), in the
+// order their results are reported.
 inline constexpr SensorId all_sensors[] = {SensorId::radar, SensorId::lidar, SensorId::camera};
 std::string_view sensor_name(SensorId sensor);
 
@@ -61,7 +61,7 @@ struct Scenario {
   propagation::FogSpec fog;
   unsigned clutter_scatterers_per_bin = 4;
   ExperimentSpec experiment;
-  lidar::LidarParams lidar;    // [lidar], keys = field names (docs/lidar.md)
+  lidar::LidarParams lidar;     // [lidar], keys = field names (docs/lidar.md)
   camera::CameraParams camera;  // [camera], keys = field names (docs/camera.md)
 
   // Throws InvalidParameter naming the scenario key (e.g. "processing.cfar.training_cells").

@@ -49,9 +49,9 @@ struct ExperimentSummary {
   std::optional<double> attenuation_margin_db;
   double expected_false_alarm_cells_per_frame = 0.0;  // ExperimentResult's design figure
 
-  std::optional<lidar::LidarSummary> lidar;    // when the lidar ran
+  std::optional<lidar::LidarSummary> lidar;          // when the lidar ran
   std::shared_ptr<const lidar::Lidar> lidar_sensor;  // the run's lidar: its files' derived figures
-  std::optional<camera::CameraSummary> camera;  // when the camera ran
+  std::optional<camera::CameraSummary> camera;       // when the camera ran
 };
 
 inline constexpr double sensor_limit_success_fraction = 0.5;

@@ -19,9 +19,9 @@ namespace fogradar::radar {
 struct Measurement {
   std::vector<Detection> detections;  // each with its origin (target, fog or noise)
   // The strongest detection within the association gate around the chamber's target range, or
-  // nothing: a missed detection is reported as such, never as a made-up value (docs/scenario.md). This
-  // is what a tracker associates, whatever its origin: a noise or fog detection in the gate is a
-  // false association, which the caller tells from target->origin.
+  // nothing: a missed detection is reported as such, never as a made-up value (docs/scenario.md).
+  // This is what a tracker associates, whatever its origin: a noise or fog detection in the gate is
+  // a false association, which the caller tells from target->origin.
   std::optional<Detection> target;
   SynthesisReport synthesis;
 };
@@ -55,8 +55,8 @@ class RadarChain {
   // Synthesise, process and estimate one frame, and attribute each detection to its origin from the
   // frame's tones (OriginClassifier); `out` is overwritten (its buffers reused).
   void measure(const Scene& scene, const propagation::Chamber& chamber,
-               const propagation::ActiveLayers& active, RandomStream& rng, MeasurementWorkspace& workspace,
-               Measurement& out) const;
+               const propagation::ActiveLayers& active, RandomStream& rng,
+               MeasurementWorkspace& workspace, Measurement& out) const;
 
   // Only the synthesis and processing stages: leaves the range-Doppler map in workspace.frame and
   // its power in workspace.power (for tests and benchmarks of the map itself).
@@ -67,7 +67,8 @@ class RadarChain {
  private:
   // Synthesis and the transforms: the range-Doppler map in workspace.frame.
   SynthesisReport synthesize_and_transform(const Scene& scene, const propagation::Chamber& chamber,
-                                           const propagation::ActiveLayers& active, RandomStream& rng,
+                                           const propagation::ActiveLayers& active,
+                                           RandomStream& rng,
                                            MeasurementWorkspace& workspace) const;
 
   RadarParams params_;

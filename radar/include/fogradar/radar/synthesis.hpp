@@ -52,6 +52,7 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
 // ADC model: I and Q each quantised mid-rise with 2^bits levels over [-A, A], A = sqrt(P_fs) the
 // amplitude of a full-scale complex tone; values beyond A clip to the outermost level. Returns the
 // number of samples with a clipped rail.
-std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits, double full_scale_amplitude);
+std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits,
+                     double full_scale_amplitude);
 
 }  // namespace fogradar::radar
