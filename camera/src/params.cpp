@@ -1,6 +1,8 @@
 #include "fogradar/camera/params.hpp"
 
+#include <algorithm>
 #include <array>
+#include <string>
 #include <utility>
 
 #include "fogradar/core/error.hpp"
@@ -84,7 +86,8 @@ void CameraParams::validate() const {
   require_count("camera.roi.height_px", roi.height_px, 8, 4096);
   if (!(roi.cell_px >= 2 && roi.cell_px <= roi.width_px / 2 && roi.cell_px <= roi.height_px / 2)) {
     throw_invalid("camera.roi.cell_px", static_cast<double>(roi.cell_px),
-                  "in [2, min(camera.roi.width_px, camera.roi.height_px) / 2]");
+                  "in [2, " + std::to_string(std::min(roi.width_px, roi.height_px) / 2) +
+                      "] (half of min(camera.roi.width_px, camera.roi.height_px))");
   }
   require_in_range("camera.roi.target_fraction", roi.target_fraction, 0.05, 0.95);
   validate_region(roi.target, "camera.roi.target.median_reflectance",
