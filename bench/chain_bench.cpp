@@ -1,15 +1,16 @@
-// Per-frame cost of every stage of the radar chain (docs/performance.md), for the paper radar (64 chirps x
-// 512 samples at 10 MS/s) and the bench workload (128 chirps x 1024 samples; the sample rate is
-// raised to 20 MS/s so the 1024 samples fit the 51.2 us chirp, as in examples/long_chamber.toml).
-// Scene: the paper chamber (propagation::ChamberSpec defaults, all four layers on, default fog of
-// 900/km optical extinction) and the EVT rear (evt_rear_scene, floor multipath on), thermal noise
-// on. Stages as RadarChain::measure runs them: scene_tones, synthesize_frame given the processor's
-// window (with noise, the window is applied in the noise pass; without, after the tones), the range
-// and Doppler FFTs (RangeDopplerProcessor::transform_windowed), estimate_detections (|.|^2 and CFAR
-// row by row, grouping, interpolation, RCS), the full RadarChain::measure, and the floor: the range
-// and Doppler FFTs alone with FFTW_MEASURE plans (range FFT of every chirp, Doppler FFT in column
-// blocks: the candidate bench/throughput most often finds fastest; throughput takes the fastest of
-// four layouts, docs/performance.md). Arg 0: 0 = paper frame, 1 = bench frame. Run:
+// Per-frame cost of every stage of the radar chain (docs/performance.md), for the paper radar (64
+// chirps x 512 samples at 10 MS/s) and the bench workload (128 chirps x 1024 samples; the sample
+// rate is raised to 20 MS/s so the 1024 samples fit the 51.2 us chirp, as in
+// examples/long_chamber.toml). Scene: the paper chamber (propagation::ChamberSpec defaults, all
+// four layers on, default fog of 900/km optical extinction) and the EVT rear (evt_rear_scene, floor
+// multipath on), thermal noise on. Stages as RadarChain::measure runs them: scene_tones,
+// synthesize_frame given the processor's window (with noise, the window is applied in the noise
+// pass; without, after the tones), the range and Doppler FFTs
+// (RangeDopplerProcessor::transform_windowed), estimate_detections (|.|^2 and CFAR row by row,
+// grouping, interpolation, RCS), the full RadarChain::measure, and the floor: the range and Doppler
+// FFTs alone with FFTW_MEASURE plans (range FFT of every chirp, Doppler FFT in column blocks: the
+// candidate bench/throughput most often finds fastest; throughput takes the fastest of four
+// layouts, docs/performance.md). Arg 0: 0 = paper frame, 1 = bench frame. Run:
 //   ./build/chain-rel/bench/chain_bench --benchmark_repetitions=9
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
 // The last lines print each stage as a ratio to the FFT-only floor measured in the same run
@@ -30,6 +31,7 @@
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "run_times.hpp"
 
 namespace {
 
@@ -204,51 +206,34 @@ class RatioReporter : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      if (run.error_occurred) continue;
-      const std::string key = run.run_name.function_name + "/" + run.run_name.args;
-      Entry& entry = entries_[key];
-      entry.size = run.run_name.args.substr(0, run.run_name.args.find('/'));
-      if (run.run_type == Run::RT_Aggregate) {
-        if (run.aggregate_name == "median") entry.median_us = to_us(run);
-      } else {
-        entry.sum_us += to_us(run);
-        entry.count += 1;
-      }
-    }
+    times_.add(runs);
   }
   void Finalize() override {
     ConsoleReporter::Finalize();
+    const std::map<std::string, double> seconds = times_.seconds();
+    // Keys are "name/size/...": the first argument is the frame size.
+    const auto first_argument = [](const std::string& key) {
+      const std::size_t begin = key.find('/');
+      if (begin == std::string::npos) return std::string();
+      return key.substr(begin + 1, key.find('/', begin + 1) - begin - 1);
+    };
     std::printf("\nReal time per frame as a ratio to the FFT-only floor of the same run:\n");
-    for (const char* size : {"0", "1"}) {
-      const auto floor = entries_.find(std::string("BM_FftOnly/") + size);
-      if (floor == entries_.end()) continue;
+    for (const std::string size : {"0", "1"}) {
+      const auto floor = seconds.find("BM_FftOnly/" + size);
+      if (floor == seconds.end()) continue;
+      const double floor_us = floor->second * 1e6;
       std::printf("  %s frame: FFT-only %.1f us\n",
-                  size[0] == '0' ? "paper 64 x 512" : "bench 128 x 1024", floor->second.time_us());
-      for (const auto& [key, entry] : entries_) {
-        if (entry.size != size) continue;
-        std::printf("    %-22s %10.1f us  %6.2f x\n", key.c_str(), entry.time_us(),
-                    entry.time_us() / floor->second.time_us());
+                  size == "0" ? "paper 64 x 512" : "bench 128 x 1024", floor_us);
+      for (const auto& [key, time_s] : seconds) {
+        if (first_argument(key) != size) continue;
+        std::printf("    %-22s %10.1f us  %6.2f x\n", key.c_str(), time_s * 1e6,
+                    time_s * 1e6 / floor_us);
       }
     }
   }
 
  private:
-  struct Entry {
-    std::string size;
-    double median_us = -1.0;
-    double sum_us = 0.0;
-    int count = 0;
-    double time_us() const { return median_us >= 0.0 ? median_us : sum_us / count; }
-  };
-  static double to_us(const Run& run) {
-    const double seconds_per_unit = run.time_unit == benchmark::kNanosecond    ? 1e-9
-                                    : run.time_unit == benchmark::kMicrosecond ? 1e-6
-                                    : run.time_unit == benchmark::kMillisecond ? 1e-3
-                                                                               : 1.0;
-    return run.GetAdjustedRealTime() * seconds_per_unit * 1e6;
-  }
-  std::map<std::string, Entry> entries_;
+  fogradar::bench::RunTimes times_{fogradar::bench::RunTimes::Clock::real};
 };
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "fogradar/propagation/water.hpp"
 #include "fogradar/radar/measurement.hpp"
 #include "fogradar/radar/scene.hpp"
+#include "run_times.hpp"
 
 namespace {
 
@@ -94,50 +95,27 @@ class RatioReporter : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      if (run.error_occurred) continue;
-      Entry& entry = entries_[run.run_name.function_name +
-                              (run.run_name.args.empty() ? "" : "/" + run.run_name.args)];
-      const double seconds = run.GetAdjustedCPUTime() * unit_seconds(run.time_unit);
-      if (run.run_type == Run::RT_Aggregate) {
-        if (run.aggregate_name == "median") entry.median_s = seconds;
-      } else {
-        entry.sum_s += seconds;
-        entry.count += 1;
-      }
-    }
+    times_.add(runs);
   }
   void Finalize() override {
     ConsoleReporter::Finalize();
-    const auto frame = entries_.find("BM_RadarFrame");
-    if (frame == entries_.end()) return;
-    const double frame_s = frame->second.time_s();
+    const std::map<std::string, double> seconds = times_.seconds();
+    const auto frame = seconds.find("BM_RadarFrame");
+    if (frame == seconds.end()) return;
+    const double frame_s = frame->second;
     std::printf("\nCPU time as a ratio to one paper radar frame (%.1f us):\n", frame_s * 1e6);
-    for (const auto& [key, entry] : entries_) {
-      std::printf("  %-22s %12.1f us  %8.2f frames\n", key.c_str(), entry.time_s() * 1e6,
-                  entry.time_s() / frame_s);
+    for (const auto& [key, time_s] : seconds) {
+      std::printf("  %-22s %12.1f us  %8.2f frames\n", key.c_str(), time_s * 1e6, time_s / frame_s);
     }
-    const auto part = entries_.find("BM_PaperLidarPart");
-    if (part != entries_.end()) {
+    const auto part = seconds.find("BM_PaperLidarPart");
+    if (part != seconds.end()) {
       std::printf("paper lidar part / paper radar part (1000 frames): %.2f\n",
-                  part->second.time_s() / (1000.0 * frame_s));
+                  part->second / (1000.0 * frame_s));
     }
   }
 
  private:
-  struct Entry {
-    double median_s = -1.0;
-    double sum_s = 0.0;
-    int count = 0;
-    double time_s() const { return median_s >= 0.0 ? median_s : sum_s / count; }
-  };
-  static double unit_seconds(benchmark::TimeUnit unit) {
-    return unit == benchmark::kNanosecond    ? 1e-9
-           : unit == benchmark::kMicrosecond ? 1e-6
-           : unit == benchmark::kMillisecond ? 1e-3
-                                             : 1.0;
-  }
-  std::map<std::string, Entry> entries_;
+  fogradar::bench::RunTimes times_{fogradar::bench::RunTimes::Clock::cpu};
 };
 
 }  // namespace
