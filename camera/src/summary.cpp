@@ -22,6 +22,17 @@ std::string pad(const std::string& text, std::size_t width) {
   return text.size() >= width ? text : std::string(width - text.size(), ' ') + text;
 }
 
+// "3 layers", or "not reached" with the last step's contrast.
+std::string limit_verdict(const CameraSummary& summary) {
+  if (summary.sensor_limit_layers) {
+    return std::to_string(*summary.sensor_limit_layers) +
+           (*summary.sensor_limit_layers == 1 ? " layer" : " layers");
+  }
+  if (summary.steps.empty()) return "not reached";
+  return "not reached (|contrast| " +
+         format_fixed(std::abs(summary.steps.back().target_contrast), 3) + " at the last step)";
+}
+
 }  // namespace
 
 CameraSummary summarize(const CameraParams& params, const std::vector<CameraStepResult>& steps) {
@@ -141,7 +152,7 @@ std::string histograms_svg(const CameraSummary& summary) {
   options.x_axis_exact = true;
   options.caption = {
       "Dashed lines: each step's mean grey. Histograms summed over the step's frames.",
-      summary.criterion};
+      "Camera limit: " + limit_verdict(summary) + " (" + summary.criterion + ")."};
   return stats::line_plot_svg(series, options);
 }
 
@@ -168,18 +179,7 @@ std::string step_table(const CameraSummary& summary) {
              pad(format_fixed(s.edges_above_threshold, 1), 11) + " (" +
              std::to_string(s.clear_edges) + ")\n";
   }
-  std::string verdict;
-  if (summary.sensor_limit_layers) {
-    verdict = std::to_string(*summary.sensor_limit_layers) +
-              (*summary.sensor_limit_layers == 1 ? " layer" : " layers");
-  } else if (!summary.steps.empty()) {
-    verdict = "not reached (|contrast| " +
-              format_fixed(std::abs(summary.steps.back().target_contrast), 3) +
-              " at the last step)";
-  } else {
-    verdict = "not reached";
-  }
-  table += "camera limit (" + summary.criterion + "): " + verdict + "\n";
+  table += "camera limit (" + summary.criterion + "): " + limit_verdict(summary) + "\n";
   return table;
 }
 
