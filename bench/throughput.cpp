@@ -1,36 +1,32 @@
-// Throughput of a radar workload (the bench scenario by default) against its FFT floor (docs/architecture.md, Contracts),
-// all measured in one process, interleaved, so the ratios compare like with like on the same
-// (possibly shared) machine.
+// Throughput of a radar workload (the bench scenario by default) against its FFT floor
+// (docs/architecture.md, Contracts), all measured in one process, interleaved, so the ratios
+// compare like with like on the same (possibly shared) machine.
 //
-//   end to end     experiment::run_experiment (the code path of `fogradar run`: scenario check,
-//                  chamber, per frame scene paths, synthesis with noise and window, range and
-//                  Doppler FFTs, CFAR, grouping, peak interpolation, RCS) followed by
-//                  experiment::summarize. Writing the result files is NOT included.
-//   whole process  (with --fogradar PATH) `PATH run --scenario FILE --out DIR --threads N` as a
-//   child
-//                  process: start-up, the run and the result files, all included.
-//   FFT floor      the fastest range + Doppler transform of the frame that FFTW does on this
-//   machine in
-//                  complex double at the same thread count, over the layouts below, with
-//                  FFTW_MEASURE plans made before any timing (docs/performance.md).
-//                  Candidates, all in one FFTW planner (wisdom shared within this process):
-//                    MEASURE rows + columns    range FFT of every chirp, Doppler FFT down the
-//                    columns
-//                                              (one strided batch), both FFTW_MEASURE;
-//                    MEASURE rows + blocks     the same range plan, Doppler by
-//                    radar::ColumnBlockFft
-//                                              with FFTW_MEASURE (columns gathered in L1-sized
-//                                              blocks);
-//                    MEASURE 2-D in place      fftw_plan_dft_2d, in place;
-//                    MEASURE 2-D out of place  fftw_plan_dft_2d from one buffer into another.
-//                  The floor at a thread count is the smallest median of these, and each repeat's
-//                  ratio uses the smallest candidate of that repeat.
-//   ESTIMATE       for reference, not floor candidates: the old floor (FFTW_ESTIMATE rows + one
-//   strided
-//                  column batch, what the chain did before ColumnBlockFft) and the chain's own
-//                  transforms (ESTIMATE rows + ESTIMATE column blocks, RangeDopplerProcessor).
-//   noise alone    the thermal-noise stage, which no FFT bounds: ComplexNormalGenerator over every
-//                  sample of the same number of frames, into a buffer per thread.
+// end to end: experiment::run_experiment (the code path of `fogradar run`: scenario check,
+//   chamber, per frame scene paths, synthesis with noise and window, range and Doppler FFTs, CFAR,
+//   grouping, peak interpolation, RCS) followed by experiment::summarize. Writing the result files
+//   is NOT included.
+// whole process (with --fogradar PATH): `PATH run --scenario FILE --out DIR --threads N` as a
+//   child process: start-up, the run and the result files, all included.
+// FFT floor: the fastest range + Doppler transform of the frame that FFTW does on this machine in
+//   complex double at the same thread count, over the layouts below, with FFTW_MEASURE plans made
+//   before any timing (docs/performance.md). Candidates, all in one FFTW planner (wisdom shared
+//   within this process):
+//     MEASURE rows + columns     range FFT of every chirp, Doppler FFT down the columns (one
+//                                strided batch), both FFTW_MEASURE;
+//     MEASURE rows + blocks      the same range plan, Doppler by radar::ColumnBlockFft with
+//                                FFTW_MEASURE (columns gathered in L1-sized blocks);
+//     MEASURE 2-D in place       fftw_plan_dft_2d, in place;
+//     MEASURE 2-D out of place   fftw_plan_dft_2d from one buffer into another.
+//   The floor at a thread count is the smallest median of these, and each repeat's ratio uses the
+//   smallest candidate of that repeat.
+// ESTIMATE references, not floor candidates: the old floor (FFTW_ESTIMATE rows + one strided
+//   column batch, what the chain did before ColumnBlockFft) and the chain's plans batched
+//   (ESTIMATE rows in place + ESTIMATE column blocks). The chain itself runs the range FFT chirp by
+//   chirp inside the noise pass (same plans' bits, RangeDopplerProcessor::range_chirp_fft), which
+//   only end to end times.
+// noise alone: the thermal-noise stage, which no FFT bounds: ComplexNormalGenerator over every
+//   sample of the same number of frames, into a buffer per thread.
 //
 // Multi-threaded transforms: the frames are split into equal contiguous shares, each thread
 // transforms its own buffer, the plans are shared (new-array execute). Every measurement runs at 1
@@ -314,7 +310,7 @@ struct Transforms {
       estimate_rows.execute(span(b.current()));
       estimate_columns.execute(span(b.current()));
     });
-    add_variant("ESTIMATE rows + blocks (the chain)", false, [this, span](ThreadBuffers& b) {
+    add_variant("ESTIMATE rows + blocks (chain's plans)", false, [this, span](ThreadBuffers& b) {
       estimate_rows.execute(span(b.current()));
       estimate_blocks.execute(span(b.current()));
     });
