@@ -232,11 +232,29 @@ void add_cells_ahead(double* cells, std::size_t offset, std::size_t count) {
   for (; j < count; ++j) cells[j] += cells[j + offset];
 }
 
+// cells[j] = (cells[j] + cells[j + offset]) + (cells[j + 2 offset] + cells[j + 3 offset]) for
+// j < count, in place as add_cells_ahead: two doubling passes in one (the blocks of 2 b cells at j
+// and j + 2 b added as the second pass would add them).
+FOGRADAR_SIMD_CLONES
+void add_cells_ahead_twice(double* cells, std::size_t offset, std::size_t count) {
+  std::size_t j = 0;
+  for (; j + 4 <= count; j += 4) {
+    const detail::f64x4 near = detail::load4(cells + j) + detail::load4(cells + j + offset);
+    const detail::f64x4 far =
+        detail::load4(cells + j + 2 * offset) + detail::load4(cells + j + 3 * offset);
+    detail::store4(cells + j, near + far);
+  }
+  for (; j < count; ++j) {
+    cells[j] = (cells[j] + cells[j + offset]) + (cells[j + 2 * offset] + cells[j + 3 * offset]);
+  }
+}
+
 // window_sums for four interleaved profiles (cell j of profile r at 4 j + r, CfarFourWorkspace):
 // the same blocks and the same additions per profile, every index scaled by four. `pairs` holds the
-// first pass's blocks of two cells (formed with |X|^2) and takes the longer blocks in place, so
-// that the buffers of four profiles stay in the L1 cache; `sums` collects n's binary digits (unused
-// when n is a power of two).
+// first pass's blocks of two cells (formed with |X|^2) and takes the longer blocks in place, two
+// passes in one where the block between is not one of n's binary digits, so that the buffers of
+// four profiles stay in the L1 cache; `sums` collects n's binary digits (unused when n is a power
+// of two).
 std::span<const double> window_sums_four(std::span<const double> power, std::size_t n,
                                          std::vector<double>& pairs, std::vector<double>& sums) {
   constexpr std::size_t lanes = 4;
@@ -244,7 +262,8 @@ std::span<const double> window_sums_four(std::span<const double> power, std::siz
   const std::size_t count = values - lanes * (n - 1);
   const double* current = power.data();  // current[j] = power[j .. j + block) (in cells)
   std::size_t covered = 0;               // sums[j] holds power[j .. j + covered)
-  for (std::size_t block = 1; block <= n; block *= 2) {
+  std::size_t block = 1;
+  while (block <= n) {
     if ((n & block) != 0) {
       const double* from = current + lanes * covered;
       if (block == n) return {from, count};  // n a power of two: the blocks are the sums
@@ -256,11 +275,18 @@ std::span<const double> window_sums_four(std::span<const double> power, std::siz
       }
       covered += block;
     }
-    if (2 * block <= n) {  // next[j] = power[j .. j + 2 block) for j <= length - 2 block
-      if (block > 1)
-        add_cells_ahead(pairs.data(), lanes * block, values + lanes - 2 * lanes * block);
-      current = pairs.data();
+    if (2 * block > n) break;
+    // next[j] = power[j .. j + 2 block) for j <= length - 2 block (or 4 block)
+    if (block == 1) {
+      block = 2;
+    } else if (4 * block <= n && (n & (2 * block)) == 0) {
+      add_cells_ahead_twice(pairs.data(), lanes * block, values + lanes - 4 * lanes * block);
+      block *= 4;
+    } else {
+      add_cells_ahead(pairs.data(), lanes * block, values + lanes - 2 * lanes * block);
+      block *= 2;
     }
+    current = pairs.data();
   }
   return sums;
 }

@@ -442,7 +442,8 @@ TEST(CfarDetectorEdges, EdgeThresholdsAreTheRunByRunSumsBitForBit) {
 
 // Four rows at once (detect_four, which the chain's estimation runs) against the one-profile
 // detector on each row's |X|^2 (std::norm), bit for bit: every power value, threshold and detection
-// list, for CA, GO, SO and OS, guards 0/2/3, n 1/5/8 (5: n's binary digits collected in sums), odd
+// list, for CA, GO, SO and OS, guards 0/2/3, n 1/5/8/9/16 (5 and 9: n's binary digits collected in
+// sums; 8, 9 and 16: two doubling passes in one), odd
 // and even lengths, one workspace across them all. Strong cells at both profile ends, in a
 // different row each, put detections and strong reference cells into the edge cells of some lanes
 // only. The one-profile detector is pinned by EdgeThresholdsAreTheRunByRunSumsBitForBit and the Pfa
