@@ -107,17 +107,17 @@ struct CfarWorkspace {
 };
 
 // The |X|^2 profiles of four rows of one length side by side, for CfarDetector::detect_four: cell j
-// of profile r at index 4 j + r, so that each lane of a four-lane vector works on one profile.
-// Reusable per-thread buffers like CfarWorkspace.
+// of profile r at index 4 j + r, so that each lane of a four-lane vector works on one profile (all
+// buffers but `one` and `detections` are interleaved so). Reusable per-thread buffers like
+// CfarWorkspace.
 struct CfarFourWorkspace {
   static constexpr std::size_t profiles = 4;
   std::vector<double> power;      // the four profiles |X|^2, interleaved
   std::vector<double> threshold;  // threshold per cell, interleaved as power
   std::array<std::vector<std::size_t>, profiles> detections;  // per profile, ascending
-  std::vector<double> pairs;  // sums of 2, then 4, 8, ... adjacent cells (in place), interleaved
-  std::vector<double>
-      window_sums;    // CA/GO/SO: interleaved sums of training_cells consecutive cells
-  CfarWorkspace one;  // OS: one profile at a time
+  std::vector<double> pairs;        // sums of 2, then 4, 8, ... adjacent cells (in place)
+  std::vector<double> window_sums;  // CA/GO/SO: sums of training_cells adjacent cells
+  CfarWorkspace one;                // OS: one profile at a time
 };
 
 // A validated configuration with its threshold factors solved once: the hot-path object.
