@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -221,9 +222,84 @@ std::span<const double> window_sums(std::span<const double> power, std::size_t n
   return sums;
 }
 
+// cells[j] += cells[j + offset] for j < count, in place (ascending, four at a time: offset >= 4, so
+// every cell is read before it is written). Element-wise sums: the same bits in every clone.
+FOGRADAR_SIMD_CLONES
+void add_cells_ahead(double* cells, std::size_t offset, std::size_t count) {
+  std::size_t j = 0;
+  for (; j + 4 <= count; j += 4)
+    detail::store4(cells + j, detail::load4(cells + j) + detail::load4(cells + j + offset));
+  for (; j < count; ++j) cells[j] += cells[j + offset];
+}
+
+// cells[j] = (cells[j] + cells[j + offset]) + (cells[j + 2 offset] + cells[j + 3 offset]) for
+// j < count, in place as add_cells_ahead: two doubling passes in one (the blocks of 2 b cells at j
+// and j + 2 b added as the second pass would add them).
+FOGRADAR_SIMD_CLONES
+void add_cells_ahead_twice(double* cells, std::size_t offset, std::size_t count) {
+  std::size_t j = 0;
+  for (; j + 4 <= count; j += 4) {
+    const detail::f64x4 near = detail::load4(cells + j) + detail::load4(cells + j + offset);
+    const detail::f64x4 far =
+        detail::load4(cells + j + 2 * offset) + detail::load4(cells + j + 3 * offset);
+    detail::store4(cells + j, near + far);
+  }
+  for (; j < count; ++j) {
+    cells[j] = (cells[j] + cells[j + offset]) + (cells[j + 2 * offset] + cells[j + 3 * offset]);
+  }
+}
+
+// window_sums for four interleaved profiles (cell j of profile r at 4 j + r, CfarFourWorkspace):
+// the same blocks and the same additions per profile, every index scaled by four. `pairs` holds the
+// first pass's blocks of two cells (formed with |X|^2) and takes the longer blocks in place, two
+// passes in one where the block between is not one of n's binary digits, so that the buffers of
+// four profiles stay in the L1 cache; `sums` collects n's binary digits (unused when n is a power
+// of two).
+std::span<const double> window_sums_four(std::span<const double> power, std::size_t n,
+                                         std::vector<double>& pairs, std::vector<double>& sums) {
+  constexpr std::size_t lanes = 4;
+  const std::size_t values = power.size();
+  const std::size_t count = values - lanes * (n - 1);
+  const double* current = power.data();  // current[j] = power[j .. j + block) (in cells)
+  std::size_t covered = 0;               // sums[j] holds power[j .. j + covered)
+  std::size_t block = 1;
+  while (block <= n) {
+    if ((n & block) != 0) {
+      const double* from = current + lanes * covered;
+      if (block == n) return {from, count};  // n a power of two: the blocks are the sums
+      sums.resize(count);
+      if (covered == 0) {
+        std::copy(from, from + count, sums.begin());
+      } else {
+        accumulate_cells(sums.data(), from, count);
+      }
+      covered += block;
+    }
+    if (2 * block > n) break;
+    // next[j] = power[j .. j + 2 block) for j <= length - 2 block (or 4 block)
+    if (block == 1) {
+      block = 2;
+    } else if (4 * block <= n && (n & (2 * block)) == 0) {
+      add_cells_ahead_twice(pairs.data(), lanes * block, values + lanes - 4 * lanes * block);
+      block *= 4;
+    } else {
+      add_cells_ahead(pairs.data(), lanes * block, values + lanes - 2 * lanes * block);
+      block *= 2;
+    }
+    current = pairs.data();
+  }
+  return sums;
+}
+
 // How the two half sums of the reference cells make the noise estimate: CA adds them, GO takes
 // the greater, SO the smaller. One form for scalars and vectors (std::max is (a < b) ? b : a).
 enum class HalfSums { add, greater, smaller };
+
+HalfSums half_sums_rule(CfarKind kind) {
+  return kind == CfarKind::ca   ? HalfSums::add
+         : kind == CfarKind::go ? HalfSums::greater
+                                : HalfSums::smaller;
+}
 
 template <class T>
 [[gnu::always_inline]] inline T combine(HalfSums rule, T lead, T lag) {
@@ -273,6 +349,49 @@ void interior_thresholds_and_detect(HalfSums rule, const double* lead, const dou
   }
 }
 
+// Cell j of one profile, and of four interleaved profiles as a vector (CfarFourWorkspace).
+struct CellsOf {
+  const double* power;
+  [[gnu::always_inline]] double operator()(std::size_t j) const { return power[j]; }
+};
+struct FourCellsOf {
+  const double* power;
+  [[gnu::always_inline]] detail::f64x4 operator()(std::size_t j) const {
+    return detail::load4(power + 4 * j);
+  }
+};
+
+// cell(begin) + ... + cell(end - 1), added in range order from zero.
+template <class T, class Cells>
+[[gnu::always_inline]] inline T run_sum(const Cells& cell, std::size_t begin, std::size_t end) {
+  T total{};
+  for (std::size_t j = begin; j < end; ++j) total += cell(j);
+  return total;
+}
+
+template <class T>
+struct Halves {
+  T first, second;
+};
+
+// The two half sums of edge cell i: the first n and the last n reference cells in range order,
+// each contiguous run summed cell by cell in range order from zero and the runs' sums added in
+// order. `cell(j)` gives cell j (a double, or four profiles' cells as a vector: each lane then
+// makes the same additions as a single profile).
+template <class T, class Cells>
+[[gnu::always_inline]] inline Halves<T> edge_halves(std::size_t i, std::size_t length,
+                                                    std::size_t guard, std::size_t n,
+                                                    const Cells& cell) {
+  const ReferenceCells r = reference_cells(i, length, guard, n);
+  const std::size_t a = r.le - r.lb;
+  if (a >= n) {
+    return {run_sum<T>(cell, r.lb, r.lb + n),
+            run_sum<T>(cell, r.lb + n, r.le) + run_sum<T>(cell, r.rb, r.re)};
+  }
+  return {run_sum<T>(cell, r.lb, r.le) + run_sum<T>(cell, r.rb, r.rb + (n - a)),
+          run_sum<T>(cell, r.rb + (n - a), r.re)};
+}
+
 // CA/GO/SO thresholds, scale * combine(S_lead, S_lag) with S the sums of the two halves of the
 // reference cells (scale = alpha / N for CA, alpha / n for GO/SO), and the cells above them in
 // ascending order. Interior cells read the two window sums; the 2 (guard + n) edge cells add their
@@ -282,24 +401,8 @@ void two_sided_detect(std::span<const double> power, std::size_t guard, std::siz
                       std::span<const double> edge_scale, std::span<const double> sums, HalfSums rule,
                       std::vector<double>& threshold, std::vector<std::size_t>& cells) {
   const std::size_t length = power.size();
-  const auto add = [&power](std::size_t begin, std::size_t end) {
-    double total = 0.0;
-    for (std::size_t j = begin; j < end; ++j) total += power[j];
-    return total;
-  };
-  // Edge cells: the two halves are the first n and the last n reference cells in range order.
   const auto edge_cell = [&](std::size_t i) {
-    const ReferenceCells r = reference_cells(i, length, guard, n);
-    const std::size_t a = r.le - r.lb;
-    double first = 0.0;
-    double second = 0.0;
-    if (a >= n) {
-      first = add(r.lb, r.lb + n);
-      second = add(r.lb + n, r.le) + add(r.rb, r.re);
-    } else {
-      first = add(r.lb, r.le) + add(r.rb, r.rb + (n - a));
-      second = add(r.rb + (n - a), r.re);
-    }
+    const auto [first, second] = edge_halves<double>(i, length, guard, n, CellsOf{power.data()});
     threshold[i] = edge_scale[std::min(i, length - 1 - i)] * combine(rule, first, second);
     if (power[i] > threshold[i]) cells.push_back(i);
   };
@@ -311,6 +414,134 @@ void two_sided_detect(std::span<const double> power, std::size_t guard, std::siz
   interior_thresholds_and_detect(rule, lead, lag, power.data(), scale, threshold.data(), interior_begin, interior_end,
                                  cells);
   for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
+}
+
+// Appends i to cells[r] for each lane r with power > threshold.
+[[gnu::always_inline]] inline void append_lanes_above(
+    detail::f64x4 power, detail::f64x4 threshold, std::size_t i,
+    std::array<std::vector<std::size_t>, 4>& cells) {
+  const detail::u64x4 above = detail::lanes_as<detail::u64x4>(power > threshold);
+  for (std::size_t r = 0; r < 4; ++r) {
+    if (above[r] != 0) cells[r].push_back(i);
+  }
+}
+
+// The interior cells [begin, end) of two_sided_detect_four, the rule fixed at compile time: per
+// cell one vector of the four profiles' thresholds, stored and compared with their cells; blocks
+// of 16 cells are tested together and only a block that holds a detection is looked at lane by
+// lane (cells in ascending order within each profile).
+template <HalfSums rule>
+[[gnu::always_inline]] inline void interior_four(const double* power, const double* lead,
+                                                 const double* lag, double scale, double* threshold,
+                                                 std::size_t begin, std::size_t end,
+                                                 std::array<std::vector<std::size_t>, 4>& cells) {
+  constexpr std::size_t block = 16;
+  std::size_t i = begin;
+  for (; i + block <= end; i += block) {
+    detail::u64x4 above{};
+    for (std::size_t k = i; k < i + block; ++k) {
+      const detail::f64x4 four = scale * combine(rule, detail::load4(lead + 4 * (k - begin)),
+                                                 detail::load4(lag + 4 * (k - begin)));
+      detail::store4(threshold + 4 * k, four);
+      above |= detail::lanes_as<detail::u64x4>(detail::load4(power + 4 * k) > four);
+    }
+    if ((above[0] | above[1] | above[2] | above[3]) == 0) continue;
+    for (std::size_t k = i; k < i + block; ++k) {
+      append_lanes_above(detail::load4(power + 4 * k), detail::load4(threshold + 4 * k), k, cells);
+    }
+  }
+  for (; i < end; ++i) {
+    const detail::f64x4 four = scale * combine(rule, detail::load4(lead + 4 * (i - begin)),
+                                               detail::load4(lag + 4 * (i - begin)));
+    detail::store4(threshold + 4 * i, four);
+    append_lanes_above(detail::load4(power + 4 * i), four, i, cells);
+  }
+}
+
+// The edge cells [begin, end) of two_sided_detect_four.
+[[gnu::always_inline]] inline void edges_four(const double* power, std::size_t length,
+                                              std::size_t guard, std::size_t n,
+                                              const double* edge_scale, HalfSums rule,
+                                              double* threshold, std::size_t begin, std::size_t end,
+                                              std::array<std::vector<std::size_t>, 4>& cells) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const auto [first, second] =
+        edge_halves<detail::f64x4>(i, length, guard, n, FourCellsOf{power});
+    const detail::f64x4 four =
+        edge_scale[std::min(i, length - 1 - i)] * combine(rule, first, second);
+    detail::store4(threshold + 4 * i, four);
+    append_lanes_above(detail::load4(power + 4 * i), four, i, cells);
+  }
+}
+
+// two_sided_detect for four interleaved profiles of `length` cells (CfarFourWorkspace's layout),
+// one per vector lane: each lane makes the operations two_sided_detect makes for its profile, in
+// the same order (the edge cells' sums included), so the same bits.
+FOGRADAR_SIMD_CLONES
+void two_sided_detect_four(const double* power, std::size_t length, std::size_t guard,
+                           std::size_t n, double scale, const double* edge_scale,
+                           const double* sums, HalfSums rule, double* threshold,
+                           std::array<std::vector<std::size_t>, 4>& cells) {
+  const std::size_t interior_begin = guard + n;
+  const std::size_t interior_end = length - guard - n;
+  edges_four(power, length, guard, n, edge_scale, rule, threshold, 0, interior_begin, cells);
+  const double* lead = sums;                           // S_lead of cell i at 4 (i - guard - n)
+  const double* lag = sums + 4 * (2 * guard + n + 1);  // S_lag of cell i at 4 (i + guard + 1)
+  switch (rule) {
+    case HalfSums::add:
+      interior_four<HalfSums::add>(power, lead, lag, scale, threshold, interior_begin, interior_end,
+                                   cells);
+      break;
+    case HalfSums::greater:
+      interior_four<HalfSums::greater>(power, lead, lag, scale, threshold, interior_begin,
+                                       interior_end, cells);
+      break;
+    case HalfSums::smaller:
+      interior_four<HalfSums::smaller>(power, lead, lag, scale, threshold, interior_begin,
+                                       interior_end, cells);
+      break;
+  }
+  edges_four(power, length, guard, n, edge_scale, rule, threshold, interior_end, length, cells);
+}
+
+// |X|^2 of four rows of `length` values, interleaved: two cells of the four rows per step, squared
+// and their real and imaginary squares added (re^2 + im^2, as std::norm), then transposed into two
+// vectors of the four rows. While they are in registers, the sums of every two adjacent cells
+// (pairs[4 j + r] = power[4 j + r] + power[4 (j + 1) + r], window_sums' first pass) are formed too.
+FOGRADAR_SIMD_CLONES
+void interleave_norms(const std::complex<double>* rows, std::size_t length, double* power,
+                      double* pairs) {
+  const auto* values =
+      reinterpret_cast<const double*>(rows);  // re, im of each value ([complex.numbers.general])
+  std::size_t j = 0;
+  detail::f64x4 previous{};  // cell j - 1
+  for (; j + 2 <= length; j += 2) {
+    std::array<detail::f64x4, 4> squares;  // row r: re_j^2, im_j^2, re_j+1^2, im_j+1^2
+    for (std::size_t r = 0; r < 4; ++r) {
+      const detail::f64x4 v = detail::load4(values + 2 * (r * length + j));
+      squares[r] = v * v;
+    }
+    // Rows 0 and 1, 2 and 3: |x_j|^2 of both rows, then |x_j+1|^2 of both.
+    const detail::f64x4 norms01 =
+        __builtin_shuffle(squares[0], squares[1], detail::u64x4{0, 4, 2, 6}) +
+        __builtin_shuffle(squares[0], squares[1], detail::u64x4{1, 5, 3, 7});
+    const detail::f64x4 norms23 =
+        __builtin_shuffle(squares[2], squares[3], detail::u64x4{0, 4, 2, 6}) +
+        __builtin_shuffle(squares[2], squares[3], detail::u64x4{1, 5, 3, 7});
+    const detail::f64x4 cell = __builtin_shuffle(norms01, norms23, detail::u64x4{0, 1, 4, 5});
+    const detail::f64x4 next = __builtin_shuffle(norms01, norms23, detail::u64x4{2, 3, 6, 7});
+    detail::store4(power + 4 * j, cell);
+    detail::store4(power + 4 * (j + 1), next);
+    if (j > 0) detail::store4(pairs + 4 * (j - 1), previous + cell);
+    detail::store4(pairs + 4 * j, cell + next);
+    previous = next;
+  }
+  if (j < length) {  // an odd length's last cell
+    for (std::size_t r = 0; r < 4; ++r) {
+      power[4 * j + r] = std::norm(rows[r * length + j]);
+      if (j > 0) pairs[4 * (j - 1) + r] = power[4 * (j - 1) + r] + power[4 * j + r];
+    }
+  }
 }
 
 }  // namespace
@@ -527,11 +758,45 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
     const std::span<const double> sums = window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
     // CA divides by N, GO/SO by n (the sums are of n cells).
     const double scale = alpha / static_cast<double>(config_.kind == CfarKind::ca ? big_n : n);
-    const HalfSums rule = config_.kind == CfarKind::ca   ? HalfSums::add
-                          : config_.kind == CfarKind::go ? HalfSums::greater
-                                                         : HalfSums::smaller;
-    two_sided_detect(power, guard, n, scale, edge_scale_, sums, rule, workspace.threshold, workspace.detections);
+    two_sided_detect(power, guard, n, scale, edge_scale_, sums, half_sums_rule(config_.kind),
+                     workspace.threshold, workspace.detections);
   }
+}
+
+void CfarDetector::detect_four(std::span<const std::complex<double>> rows,
+                               CfarFourWorkspace& workspace) const {
+  constexpr std::size_t profiles = CfarFourWorkspace::profiles;
+  FOGRADAR_CHECK(rows.size() % profiles == 0);
+  const std::size_t length = rows.size() / profiles;
+  config_.validate_profile_length(length);
+  workspace.power.resize(profiles * length);
+  workspace.pairs.resize(profiles * (length - 1));  // length >= 3 (validated)
+  interleave_norms(rows.data(), length, workspace.power.data(), workspace.pairs.data());
+  workspace.threshold.resize(profiles * length);
+  for (std::vector<std::size_t>& cells : workspace.detections) {
+    cells.clear();
+    cells.reserve(length);
+  }
+  if (config_.kind == CfarKind::os) {
+    // The sorted window moves differently in every profile: one at a time.
+    std::vector<double>& profile = workspace.window_sums;
+    profile.resize(length);
+    for (std::size_t r = 0; r < profiles; ++r) {
+      for (std::size_t j = 0; j < length; ++j) profile[j] = workspace.power[profiles * j + r];
+      detect(profile, workspace.one);
+      for (std::size_t j = 0; j < length; ++j)
+        workspace.threshold[profiles * j + r] = workspace.one.threshold[j];
+      workspace.detections[r] = workspace.one.detections;
+    }
+    return;
+  }
+  const std::size_t n = config_.training_cells;
+  const std::span<const double> sums =
+      window_sums_four(workspace.power, n, workspace.pairs, workspace.window_sums);
+  const double scale = alpha_ / static_cast<double>(config_.kind == CfarKind::ca ? 2 * n : n);
+  two_sided_detect_four(workspace.power.data(), length, config_.guard_cells, n, scale,
+                        edge_scale_.data(), sums.data(), half_sums_rule(config_.kind),
+                        workspace.threshold.data(), workspace.detections);
 }
 
 std::vector<std::size_t> cfar_detect(std::span<const double> power, const CfarConfig& config,

@@ -440,6 +440,67 @@ TEST(CfarDetectorEdges, EdgeThresholdsAreTheRunByRunSumsBitForBit) {
   }
 }
 
+// Four rows at once (detect_four, which the chain's estimation runs) against the one-profile
+// detector on each row's |X|^2 (std::norm), bit for bit: every power value, threshold and detection
+// list, for CA, GO, SO and OS, guards 0/2/3, n 1/5/8/9/16 (5 and 9: n's binary digits collected in
+// sums; 8, 9 and 16: two doubling passes in one), odd
+// and even lengths, one workspace across them all. Strong cells at both profile ends, in a
+// different row each, put detections and strong reference cells into the edge cells of some lanes
+// only. The one-profile detector is pinned by EdgeThresholdsAreTheRunByRunSumsBitForBit and the Pfa
+// tests. Exact: each lane must make the same operations in the same order.
+TEST(CfarDetectorFour, SameBitsAsOneProfileAtATime) {
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  CfarFourWorkspace four;
+  CfarWorkspace one;
+  for (const CfarKind kind : {CfarKind::ca, CfarKind::go, CfarKind::so, CfarKind::os}) {
+    for (const unsigned guard : {0u, 2u, 3u}) {
+      for (const unsigned n : {1u, 5u, 8u}) {
+        const CfarConfig config{.kind = kind,
+                                .guard_cells = guard,
+                                .training_cells = n,
+                                .false_alarm_probability = 1e-3};
+        const CfarDetector detector(config);
+        for (const std::size_t extra : {0u, 1u, 2u, 7u, 300u, 2u}) {
+          const std::size_t length = config.window_length() + extra;
+          std::vector<std::complex<double>> rows(4 * length);
+          for (std::complex<double>& value : rows) value = {gaussian(rng), gaussian(rng)};
+          rows[0 * length + 0] = {300.0, 0.0};  // row 0: a detection at the first cell
+          rows[1 * length + 1] = {0.0, 3e4};    // row 1: inside its first cells' references
+          rows[2 * length + length - 1] = {-300.0, 1.0};  // row 2: a detection at the last cell
+          rows[3 * length + length - 2] = {2e3, -2e3};    // row 3: near the end
+          detector.detect_four(rows, four);
+          ASSERT_EQ(four.power.size(), 4 * length);
+          ASSERT_EQ(four.threshold.size(), 4 * length);
+          for (std::size_t r = 0; r < 4; ++r) {
+            std::vector<double> power(length);
+            for (std::size_t j = 0; j < length; ++j) power[j] = std::norm(rows[r * length + j]);
+            detector.detect(power, one);
+            for (std::size_t j = 0; j < length; ++j) {
+              ASSERT_EQ(four.power[4 * j + r], power[j]) << "row " << r << " cell " << j;
+              ASSERT_EQ(four.threshold[4 * j + r], one.threshold[j])
+                  << to_string(kind) << " row " << r << " cell " << j << " of " << length
+                  << " guard " << guard << " n " << n;
+            }
+            ASSERT_EQ(four.detections[r], one.detections) << to_string(kind) << " row " << r;
+          }
+          // The strong end cells are found (detections at both profile ends, in one lane each).
+          EXPECT_EQ(four.detections[0].front(), 0u);
+          EXPECT_EQ(four.detections[2].back(), length - 1);
+        }
+      }
+    }
+  }
+}
+
+TEST(CfarDetectorFour, RejectsRowsShorterThanTheWindow) {
+  const CfarConfig config{.guard_cells = 2, .training_cells = 8};
+  const CfarDetector detector(config);
+  CfarFourWorkspace four;
+  const std::vector<std::complex<double>> rows(4 * (config.window_length() - 1));
+  EXPECT_THROW(detector.detect_four(rows, four), InvalidParameter);
+}
+
 // --- False-alarm rate on noise ----------------------------------------------------------------
 
 // Two-sided 99.9 % binomial acceptance interval for `cells` independent trials at p: the

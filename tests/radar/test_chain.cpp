@@ -25,6 +25,7 @@
 #include <initializer_list>
 #include <limits>
 #include <numbers>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -482,6 +483,51 @@ TEST(Estimation, DirichletKernelInterpolatesTheDftToTheDtft) {
       }
       EXPECT_LT(std::abs(interpolated - direct), 1e-9 * std::abs(direct) + 1e-12)
           << "N=" << n << " nu=" << nu;
+    }
+  }
+}
+
+// The CFAR of estimate_detections runs four Doppler rows at a time and the last rows % 4 one by
+// one: every row must be searched, its detections in its own row. Reference: the construction.
+// Isolated cells of power 1 on a zero map, at least 30 cells apart within a row (beyond every
+// cell's reference cells, g + 2n = 18 away, and the edge cells' 2g + 3n - 1 = 29), never 8-adjacent
+// across rows (Doppler wraps): each such cell has a zero threshold and is detected, as its own
+// one-cell object, and no zero cell is. 3, 4, 7 and 8 rows: only the last rows, only batches, and
+// both; CA (the sums) and OS (one row at a time inside a batch); cells at the first and last range
+// cell.
+TEST(Estimation, EveryDopplerRowIsSearchedInBatchesOfFourAndTheRest) {
+  for (const CfarKind kind : {CfarKind::ca, CfarKind::os}) {
+    for (const std::size_t rows : {3u, 4u, 7u, 8u}) {
+      RadarParams p;
+      p.samples_per_chirp = 99;
+      p.chirps_per_frame = rows;
+      p.cfar.kind = kind;
+      const RangeDopplerProcessor processor(p);
+      const CfarDetector cfar(p.cfar);
+      const RadarDerived derived = derive(p);
+      const std::size_t columns = p.samples_per_chirp;
+      ComplexVector map(rows * columns);
+      std::set<std::pair<std::size_t, std::size_t>> placed;  // (Doppler cell, range cell)
+      for (std::size_t d = 0; d < rows; ++d) {
+        const bool odd_last = rows % 2 == 1 && d == rows - 1;  // next to row 0 across the wrap
+        const std::vector<std::size_t> cells = odd_last     ? std::vector<std::size_t>{45}
+                                               : d % 2 == 0 ? std::vector<std::size_t>{0, 60}
+                                                            : std::vector<std::size_t>{30, 98};
+        for (const std::size_t k : cells) {
+          map[d * columns + k] = {0.6, -0.8};
+          placed.insert({d, k});
+        }
+      }
+      EstimationWorkspace ws;
+      std::vector<Detection> detections;
+      estimate_detections(map, processor, cfar, p, derived, ws, detections);
+      std::set<std::pair<std::size_t, std::size_t>> found;
+      for (const Detection& det : detections) {
+        EXPECT_EQ(det.cells, 1u) << to_string(kind) << ", " << rows << " rows";
+        found.insert({det.doppler_cell, det.range_cell});
+      }
+      EXPECT_EQ(found, placed) << to_string(kind) << ", " << rows << " rows";
+      EXPECT_EQ(detections.size(), placed.size()) << to_string(kind) << ", " << rows << " rows";
     }
   }
 }

@@ -37,6 +37,8 @@
 // are rejected with InvalidParameter naming "cfar.training_cells" and its allowed range.
 #pragma once
 
+#include <array>
+#include <complex>
 #include <cstddef>
 #include <span>
 #include <string_view>
@@ -104,6 +106,20 @@ struct CfarWorkspace {
   std::vector<double> sum_scratch;       // CA/GO/SO: block sums while forming window_sums (2 profiles)
 };
 
+// The |X|^2 profiles of four rows of one length side by side, for CfarDetector::detect_four: cell j
+// of profile r at index 4 j + r, so that each lane of a four-lane vector works on one profile (all
+// buffers but `one` and `detections` are interleaved so). Reusable per-thread buffers like
+// CfarWorkspace.
+struct CfarFourWorkspace {
+  static constexpr std::size_t profiles = 4;
+  std::vector<double> power;      // the four profiles |X|^2, interleaved
+  std::vector<double> threshold;  // threshold per cell, interleaved as power
+  std::array<std::vector<std::size_t>, profiles> detections;  // per profile, ascending
+  std::vector<double> pairs;        // sums of 2, then 4, 8, ... adjacent cells (in place)
+  std::vector<double> window_sums;  // CA/GO/SO: sums of training_cells adjacent cells
+  CfarWorkspace one;                // OS: one profile at a time
+};
+
 // A validated configuration with its threshold factors solved once: the hot-path object.
 // Immutable after construction, so one detector may be shared by many threads, each with its
 // own CfarWorkspace.
@@ -130,6 +146,13 @@ class CfarDetector {
   // cell, about 10x faster than a selection per cell). `power` must be finite and non-negative (square-law detected). Throws
   // InvalidParameter via validate_profile_length.
   void detect(std::span<const double> power, CfarWorkspace& workspace) const;
+  // Square-law detection and CFAR of four consecutive rows of `rows` (rows.size() / 4 values each):
+  // workspace.power[4 j + r] = |rows[r L + j]|^2 (re^2 + im^2, as std::norm), then detect for each
+  // of the four profiles, with the same bits: every threshold and detection of profile r is what
+  // detect gives for it alone (each vector lane makes the operations detect makes on one profile,
+  // in the same order). The edge cells, summed cell by cell, cost a quarter per profile, and |X|^2
+  // forms the window sums' first pass while it is in registers. Throws as detect.
+  void detect_four(std::span<const std::complex<double>> rows, CfarFourWorkspace& workspace) const;
 
  private:
   CfarConfig config_;

@@ -60,8 +60,9 @@ struct InverseDft {
 
 // Reusable buffers, one per thread.
 struct EstimationWorkspace {
+  CfarFourWorkspace cfar_four;  // |X|^2 of four Doppler rows under CFAR, and its results
   CfarWorkspace cfar;
-  std::vector<double> row_power;        // |X|^2 of the Doppler row under CFAR
+  std::vector<double> row_power;        // |X|^2 of a Doppler row under CFAR (the last rows % 4)
   std::vector<std::uint8_t> detected;   // chirps x samples mask, all zero between frames
   std::vector<std::size_t> detected_cells;  // the cells set in the mask, ascending
   std::vector<std::size_t> stack;       // flood fill
