@@ -41,13 +41,17 @@ struct LaneStates {
 }
 
 // What the kernel does differently per instruction set: whether any lane of a comparison result
-// is set, and four floats to four doubles. GCC 12 compiles __builtin_convertvector from four floats
+// is set, four floats to four doubles, and whether the next group's look-ups are issued early
+// (add_complex_normal_body). GCC 12 compiles __builtin_convertvector from four floats
 // into two-lane conversions and inserts, and from eight floats into 512-bit registers in the
 // AVX-512 version (whose 512-bit instructions then also hold up the 256-bit ones); with either the
 // generator took ~1.25 times as long (alternated in one process) as with AVX's four-lane vcvtps2pd.
 // AvxLanes' target attribute keeps its functions from being always_inline (GCC refuses to inline
 // them into a function without it); the kernels' flatten inlines them.
 struct BaselineLanes {
+  // With 16 vector registers, two groups in flight spill: 1.07 times the time (alternated in one
+  // process) against 0.88 without.
+  static constexpr bool issue_next_early = false;
   // The two halves or-ed, then two 64-bit words (fewer extractions than four).
   [[gnu::always_inline]] static bool any(u32x8 mask) {
     using u32x4 = std::uint32_t __attribute__((vector_size(16)));
@@ -62,6 +66,7 @@ struct BaselineLanes {
 
 #if defined(FOGRADAR_SIMD_AVX2)
 struct AvxLanes {
+  static constexpr bool issue_next_early = true;
   [[gnu::target("avx")]] static bool any(u32x8 mask) {
     const auto bits = detail::lanes_as<__m256i>(mask);
     return _mm256_testz_si256(bits, bits) == 0;
@@ -218,24 +223,35 @@ template <bool weighted, class Lanes>
   }
 }
 
-// Software-pipelined: once a group's powers are final (its slow path has drawn its further words),
-// the next group's words are drawn and its table look-ups issued before this group's phase,
-// square root and stores, which then hide the look-ups' latency. The words are drawn in the same
-// order as group by group.
+// Software-pipelined where Lanes::issue_next_early: once a group's powers are final (its slow path
+// has drawn its further words), the next group's words are drawn and its table look-ups issued
+// before this group's phase, square root and stores, which then hide the look-ups' latency. The
+// words are drawn in the same order either way.
 template <bool weighted, class Lanes>
 [[gnu::always_inline]] inline void add_complex_normal_body(std::uint64_t* state_words, const double* base, double* out,
                                                            std::size_t count, double scale, double row_weight,
                                                            const double* weights) {
   if (count == 0) return;
   LaneStates state = load_states(state_words);
-  Group group = draw_group(state);
   std::size_t j = 0;
-  for (; j + 8 < count; j += 8) {
-    const f32x8 power = group_powers<Lanes>(group, state);
-    const u32x8 phase_words = group.phase_words;
+  Group group;
+  if constexpr (Lanes::issue_next_early) {
     group = draw_group(state);
-    add_group<weighted, Lanes>(phase_words, power, scale, base + 2 * j, out + 2 * j, row_weight,
-                               weighted ? weights + 2 * j : nullptr);
+    for (; j + 8 < count; j += 8) {
+      const f32x8 power = group_powers<Lanes>(group, state);
+      const u32x8 phase_words = group.phase_words;
+      group = draw_group(state);
+      add_group<weighted, Lanes>(phase_words, power, scale, base + 2 * j, out + 2 * j, row_weight,
+                                 weighted ? weights + 2 * j : nullptr);
+    }
+  } else {
+    for (; j + 8 < count; j += 8) {
+      group = draw_group(state);
+      add_group<weighted, Lanes>(group.phase_words, group_powers<Lanes>(group, state), scale,
+                                 base + 2 * j, out + 2 * j, row_weight,
+                                 weighted ? weights + 2 * j : nullptr);
+    }
+    group = draw_group(state);
   }
   const f32x8 power = group_powers<Lanes>(group, state);
   if (j + 8 == count) {

@@ -72,13 +72,6 @@ struct ZigguratTable {
   std::array<std::array<float, 2>, ziggurat_layers> fast{};
   std::array<double, ziggurat_layers + 1> x{};
   std::array<double, ziggurat_layers + 1> f{};  // f(x_i); f_0 = 0 (the strip reaches the x axis)
-  // The wedge squeeze of layer i >= 1 (wedge_below_curve; unused for i = 0): on [f_i, f_{i+1}] the
-  // chord c(y) = (y - f_i) slope - x_i of ln lies below it and c(y) + gap above it.
-  struct WedgeBounds {
-    double slope = 0.0;
-    double gap = 0.0;
-  };
-  std::array<WedgeBounds, ziggurat_layers> wedge{};
 };
 
 // x_1 = r, f_{i+1} = f_i + v / x_i (layer i has area x_i (f_{i+1} - f_i) = v),
@@ -100,13 +93,6 @@ constexpr ZigguratTable make_ziggurat_table() {
   for (std::size_t i = 0; i < ziggurat_layers; ++i) {
     table.fast[i] = {static_cast<float>(x[i]), static_cast<float>(x[i + 1])};
   }
-  // ln is concave, so its chord through (f_i, -x_i) and (f_{i+1}, -x_{i+1}) lies below it on the
-  // layer and its tangent of the same slope k, at y = 1/k: ln y <= -ln k + k y - 1, above it;
-  // the tangent minus the chord is the constant gap = x_i + k f_i - ln k - 1 >= 0.
-  for (std::size_t i = 1; i < ziggurat_layers; ++i) {
-    const double k = (x[i] - x[i + 1]) / (f[i + 1] - f[i]);
-    table.wedge[i] = {k, x[i] + k * f[i] - log_positive(k) - 1.0};
-  }
   return table;
 }
 
@@ -124,31 +110,7 @@ inline bool ziggurat_fast(std::uint32_t word, const ZigguratTable& table, float&
   return x < layer[1];
 }
 
-// The wedge's decision "ln y < -x" for a height y in layer i >= 1, as log_positive(y) < -x
-// decides it, but mostly without the logarithm: from the chord c and c + gap (WedgeBounds) when
-// -x lies outside [c - m, c + gap + m], with margin m = 2^-40; exactly otherwise (the tests
-// measure 0.1 % of random wedge points handed over).
-// Why m suffices: log_positive is within 1 ulp of ln (documented; the tests allow 2 ulp, which is
-// <= 2^-51 * 10.03 = 4.5e-15 for |ln| <= r), and c - e <= ln y <= c + gap + e with e the errors
-// below; so if c - m >= -x, log_positive(y) >= -x + m - e - 4.5e-15 >= -x, and if c + gap + m < -x,
-// log_positive(y) < -x, as long as e <= m - 4.5e-15. The errors, absolute: the table's
-// x_i = -log_positive(f_i) off -ln f_i by <= 4.5e-15 (x_1 = r, f_1 = exp(-r) correctly rounded),
-// which moves the chord by as much; slope's roundings (<= 3 2^-53 relative, times
-// |y - f_i| slope <= 0.75: 2.5e-16); c's three (<= 2^-53 (0.75 + 0.75 + 10.03) = 1.3e-15); gap's
-// four and its log (<= 2^-53 * 4 * 11 + 4.5e-15 = 9.4e-15; the line of slope k through -ln k at
-// 1/k is an exact tangent of ln whatever k's rounding); y off [f_i, f_{i+1}] by <= 2^-53 f_{i+1},
-// where the chord exceeds ln by < 1e-16. In all e < 1.6e-14, a 55th of m - 4.5e-15.
-// test_complex_normal.cpp checks the decisions against the exact test on every layer.
-inline bool wedge_below_curve(std::size_t i, float x, double y, const ZigguratTable& table) {
-  constexpr double margin = 0x1.0p-40;
-  const double minus_x = -static_cast<double>(x);
-  const double chord = (y - table.f[i]) * table.wedge[i].slope - table.x[i];
-  if (chord - margin >= minus_x) return false;
-  if (chord + table.wedge[i].gap + margin < minus_x) return true;
-  return log_positive(y) < minus_x;
-}
-
-// The rest of a sample whose fast path failed on `word`, with x = u x_i: the tail or the wedge,
+// The rest of a sample whose fast path failed on `word` with x = u x_i: the tail or the wedge,
 // then new layers, with further 64-bit words from `next_word` (in the order drawn; a new layer is
 // tried with the low 32 bits of a fresh word).
 template <class NextWord>
@@ -161,7 +123,7 @@ float ziggurat_slow(std::uint32_t word, float x, const ZigguratTable& table, Nex
     }
     // Wedge: a uniform height y in the layer lies under f at x iff ln y < -x.
     const double y = table.f[i] + (mantissa_in_one_two(next_word()) - 1.0) * (table.f[i + 1] - table.f[i]);
-    if (wedge_below_curve(i, x, y, table)) return x;
+    if (log_positive(y) < -static_cast<double>(x)) return x;
     word = static_cast<std::uint32_t>(next_word());
     if (ziggurat_fast(word, table, x)) return x;
   }
