@@ -41,13 +41,17 @@ struct LaneStates {
 }
 
 // What the kernel does differently per instruction set: whether any lane of a comparison result
-// is set, and four floats to four doubles. GCC 12 compiles __builtin_convertvector from four floats
+// is set, four floats to four doubles, and whether the next group's look-ups are issued early
+// (add_complex_normal_body). GCC 12 compiles __builtin_convertvector from four floats
 // into two-lane conversions and inserts, and from eight floats into 512-bit registers in the
 // AVX-512 version (whose 512-bit instructions then also hold up the 256-bit ones); with either the
 // generator took ~1.25 times as long (alternated in one process) as with AVX's four-lane vcvtps2pd.
 // AvxLanes' target attribute keeps its functions from being always_inline (GCC refuses to inline
 // them into a function without it); the kernels' flatten inlines them.
 struct BaselineLanes {
+  // With 16 vector registers, two groups in flight spill: 1.07 times the time (alternated in one
+  // process) against 0.88 without.
+  static constexpr bool issue_next_early = false;
   // The two halves or-ed, then two 64-bit words (fewer extractions than four).
   [[gnu::always_inline]] static bool any(u32x8 mask) {
     using u32x4 = std::uint32_t __attribute__((vector_size(16)));
@@ -62,6 +66,7 @@ struct BaselineLanes {
 
 #if defined(FOGRADAR_SIMD_AVX2)
 struct AvxLanes {
+  static constexpr bool issue_next_early = true;
   [[gnu::target("avx")]] static bool any(u32x8 mask) {
     const auto bits = detail::lanes_as<__m256i>(mask);
     return _mm256_testz_si256(bits, bits) == 0;
@@ -105,21 +110,48 @@ struct AvxLanes {
   store_lanes(words + 12, state.s3);
 }
 
-// The powers of a group whose fast path failed somewhere, in the vector order of add_eight (element
-// h holds sample 4 (h / 2 mod 2) + 2 (h / 4) + h mod 2, of lane 2 (h / 4) + h mod 2): finished in
-// sample order, each drawing its further words from its own lane. Out of line and in memory:
-// it runs for ~3 % of the groups, and the vector clones must not pass vector arguments to it
-// (their ABIs differ).
-[[gnu::noinline]] void finish_slow_powers(std::uint64_t* lane_words, const std::uint32_t* power_words, float* powers) {
+// `vector` with lane `lane` replaced by `value`, by a select: a vector reloaded from memory over
+// a scalar store would wait for the store.
+template <class Vector, class Scalar>
+[[gnu::always_inline]] inline Vector with_lane(Vector vector, std::size_t lane, Scalar value) {
+  using Mask = decltype(vector == vector);
+  using Index = decltype(Mask{}[0] + 0);
+  Mask lanes{};
+  for (std::size_t l = 0; l < sizeof(Vector) / sizeof(Scalar); ++l)
+    lanes[l] = static_cast<Index>(l);
+  return lanes == static_cast<Index>(lane) ? Vector{} + value : vector;
+}
+
+// The powers of a group whose fast path failed somewhere, in the vector order of Group (element
+// h holds sample 4 (h / 2 mod 2) + 2 (h / 4) + h mod 2, of lane 2 (h / 4) + h mod 2): the failed
+// ones finished in sample order, each drawing its further words from its own lane. Inlined into
+// each kernel (a call would pass the vectors through memory: the clones' ABIs differ), on its
+// cold path (~3 % of the groups). Its copies of the vectors in memory are its own: indexing the
+// vectors themselves would make GCC keep the lane states on the stack in the fast path too; the
+// results go back by selects.
+[[gnu::always_inline]] inline f32x8 finish_slow_powers(LaneStates& state, u32x8 power_words,
+                                                       f32x8 power, u32x8 failed) {
+  alignas(32) std::uint64_t lane_words[16];
+  alignas(32) std::uint32_t words[8];
+  alignas(32) std::uint32_t failures[8];
+  alignas(32) float powers[8];
+  store_states(lane_words, state);
+  std::memcpy(words, &power_words, sizeof words);
+  std::memcpy(failures, &failed, sizeof failures);
+  std::memcpy(powers, &power, sizeof powers);
   for (const std::size_t h : {0, 1, 4, 5, 2, 3, 6, 7}) {
-    float x = 0.0F;
-    if (detail::ziggurat_fast(power_words[h], kZiggurat, x)) continue;
+    if (failures[h] == 0) continue;
     const std::size_t lane = 2 * (h / 4) + h % 2;
-    std::array<std::uint64_t, 4> state{};
-    for (std::size_t w = 0; w < 4; ++w) state[w] = lane_words[w * 4 + lane];
-    powers[h] = detail::ziggurat_exponential(power_words[h], kZiggurat, [&] { return xoshiro256pp_next(state); });
-    for (std::size_t w = 0; w < 4; ++w) lane_words[w * 4 + lane] = state[w];
+    std::array<std::uint64_t, 4> lane_state{};
+    for (std::size_t w = 0; w < 4; ++w) lane_state[w] = lane_words[w * 4 + lane];
+    const float x = detail::ziggurat_slow(words[h], powers[h], kZiggurat,
+                                          [&] { return xoshiro256pp_next(lane_state); });
+    for (std::size_t w = 0; w < 4; ++w) lane_words[w * 4 + lane] = lane_state[w];
+    power = with_lane(power, h, x);
+    state = {with_lane(state.s0, lane, lane_state[0]), with_lane(state.s1, lane, lane_state[1]),
+             with_lane(state.s2, lane, lane_state[2]), with_lane(state.s3, lane, lane_state[3])};
   }
+  return power;
 }
 
 // The {x_i, x_{i+1}} floats of the layer that a power word picks, as one 64-bit word.
@@ -129,22 +161,21 @@ struct AvxLanes {
   return bits;
 }
 
-// Eight complex samples from two steps of the four lanes: sample 4s + l from lane l's word of step
-// s, its low half the power word, its high half the phase word; z = scale sqrt(E) e^{i theta}.
-// Weighted: each sum base + z is then multiplied by row_weight * weights[i] (the frame window
-// applied in the same pass, with the products the separate window pass would form).
-// The float vectors hold the samples in the order (0, 1, 4, 5 | 2, 3, 6, 7) (step 0 lanes 0-1,
-// step 1 lanes 0-1 | the same for lanes 2-3): every rearrangement below then stays within 128-bit
-// halves, and interleaving (re, im) gives the samples in order.
-template <bool weighted, class Lanes>
-[[gnu::always_inline]] inline void add_eight(LaneStates& state, double scale, const double* base, double* out,
-                                             double row_weight, const double* weights) {
+// A group of eight complex samples from two steps of the four lanes: sample 4s + l from lane l's
+// word of step s, its low half the power word, its high half the phase word. The vectors hold the
+// samples in the order (0, 1, 4, 5 | 2, 3, 6, 7) (step 0 lanes 0-1, step 1 lanes 0-1 | the same for
+// lanes 2-3): every rearrangement then stays within 128-bit halves, and interleaving (re, im)
+// gives the samples in order.
+struct Group {
+  u32x8 power_words, phase_words;
+  f32x8 width, covered;  // the layers' {x_i, x_{i+1}}
+};
+
+[[gnu::always_inline]] inline Group draw_group(LaneStates& state) {
   const u64x4 first = next(state);
   const u64x4 second = next(state);
   const u32x8 first_halves = detail::lanes_as<u32x8>(first);
   const u32x8 second_halves = detail::lanes_as<u32x8>(second);
-  const u32x8 power_words = __builtin_shufflevector(first_halves, second_halves, 0, 2, 8, 10, 4, 6, 12, 14);
-  const u32x8 phase_words = __builtin_shufflevector(first_halves, second_halves, 1, 3, 9, 11, 5, 7, 13, 15);
   // Each layer's {width, covered} pair as one 64-bit load per sample (the index from the 64-bit
   // word, whose low half is the power word), then split into two vectors.
   const f32x8 first_pairs = detail::lanes_as<f32x8>(
@@ -153,20 +184,29 @@ template <bool weighted, class Lanes>
   const f32x8 second_pairs = detail::lanes_as<f32x8>(
       u64x4{layer_bits(static_cast<std::uint32_t>(second[0])), layer_bits(static_cast<std::uint32_t>(second[1])),
             layer_bits(static_cast<std::uint32_t>(second[2])), layer_bits(static_cast<std::uint32_t>(second[3]))});
-  const f32x8 width = __builtin_shufflevector(first_pairs, second_pairs, 0, 2, 8, 10, 4, 6, 12, 14);
-  const f32x8 covered = __builtin_shufflevector(first_pairs, second_pairs, 1, 3, 9, 11, 5, 7, 13, 15);
-  f32x8 power = detail::layer_uniform<f32x8>(power_words) * width;
-  if (Lanes::any(detail::lanes_as<u32x8>(power >= covered))) [[unlikely]] {
-    alignas(32) std::uint64_t lane_words[16];
-    alignas(32) std::uint32_t words[8];
-    alignas(32) float powers[8];
-    store_states(lane_words, state);
-    std::memcpy(words, &power_words, sizeof words);
-    std::memcpy(powers, &power, sizeof powers);
-    finish_slow_powers(lane_words, words, powers);
-    state = load_states(lane_words);
-    std::memcpy(&power, powers, sizeof powers);
-  }
+  return {__builtin_shufflevector(first_halves, second_halves, 0, 2, 8, 10, 4, 6, 12, 14),
+          __builtin_shufflevector(first_halves, second_halves, 1, 3, 9, 11, 5, 7, 13, 15),
+          __builtin_shufflevector(first_pairs, second_pairs, 0, 2, 8, 10, 4, 6, 12, 14),
+          __builtin_shufflevector(first_pairs, second_pairs, 1, 3, 9, 11, 5, 7, 13, 15)};
+}
+
+// The group's powers E, the slow ones with further words from the lanes.
+template <class Lanes>
+[[gnu::always_inline]] inline f32x8 group_powers(const Group& group, LaneStates& state) {
+  const f32x8 power = detail::layer_uniform<f32x8>(group.power_words) * group.width;
+  const u32x8 failed = detail::lanes_as<u32x8>(power >= group.covered);
+  if (Lanes::any(failed)) [[unlikely]]
+    return finish_slow_powers(state, group.power_words, power, failed);
+  return power;
+}
+
+// The group's samples z = scale sqrt(E) e^{i theta} added to base. Weighted: each sum base + z is
+// then multiplied by row_weight * weights[i] (the frame window applied in the same pass, with the
+// products the separate window pass would form).
+template <bool weighted, class Lanes>
+[[gnu::always_inline]] inline void add_group(u32x8 phase_words, f32x8 power, double scale,
+                                             const double* base, double* out, double row_weight,
+                                             const double* weights) {
   f32x8 re, im;
   detail::polar(sqrt_lanes(power), phase_words, re, im);
   // (re, im) interleaved within 128-bit halves: samples 0-1 | 2-3 and 4-5 | 6-7.
@@ -183,20 +223,46 @@ template <bool weighted, class Lanes>
   }
 }
 
+// Software-pipelined where Lanes::issue_next_early: once a group's powers are final (its slow path
+// has drawn its further words), the next group's words are drawn and its table look-ups issued
+// before this group's phase, square root and stores, which then hide the look-ups' latency. The
+// words are drawn in the same order either way.
 template <bool weighted, class Lanes>
 [[gnu::always_inline]] inline void add_complex_normal_body(std::uint64_t* state_words, const double* base, double* out,
                                                            std::size_t count, double scale, double row_weight,
                                                            const double* weights) {
+  if (count == 0) return;
   LaneStates state = load_states(state_words);
   std::size_t j = 0;
-  for (; j + 8 <= count; j += 8) {
-    add_eight<weighted, Lanes>(state, scale, base + 2 * j, out + 2 * j, row_weight, weighted ? weights + 2 * j : nullptr);
+  Group group;
+  if constexpr (Lanes::issue_next_early) {
+    group = draw_group(state);
+    for (; j + 8 < count; j += 8) {
+      const f32x8 power = group_powers<Lanes>(group, state);
+      const u32x8 phase_words = group.phase_words;
+      group = draw_group(state);
+      add_group<weighted, Lanes>(phase_words, power, scale, base + 2 * j, out + 2 * j, row_weight,
+                                 weighted ? weights + 2 * j : nullptr);
+    }
+  } else {
+    for (; j + 8 < count; j += 8) {
+      group = draw_group(state);
+      add_group<weighted, Lanes>(group.phase_words, group_powers<Lanes>(group, state), scale,
+                                 base + 2 * j, out + 2 * j, row_weight,
+                                 weighted ? weights + 2 * j : nullptr);
+    }
+    group = draw_group(state);
   }
-  if (j < count) {
-    double tail[16] = {};
-    add_eight<false, Lanes>(state, scale, tail, tail, row_weight, nullptr);
+  const f32x8 power = group_powers<Lanes>(group, state);
+  if (j + 8 == count) {
+    add_group<weighted, Lanes>(group.phase_words, power, scale, base + 2 * j, out + 2 * j,
+                               row_weight, weighted ? weights + 2 * j : nullptr);
+  } else {
+    // A short last group: its unused samples are discarded.
+    double last[16] = {};
+    add_group<false, Lanes>(group.phase_words, power, scale, last, last, row_weight, nullptr);
     for (std::size_t i = 0; i < 2 * (count - j); ++i) {
-      const double sum = base[2 * j + i] + tail[i];
+      const double sum = base[2 * j + i] + last[i];
       out[2 * j + i] = weighted ? sum * (row_weight * weights[2 * j + i]) : sum;
     }
   }
@@ -205,15 +271,16 @@ template <bool weighted, class Lanes>
 
 // One body per instruction set, differing only in Lanes (above), as GCC's function multiversioning:
 // the loader picks the version as it picks the clones of detail/simd.hpp.
-#define FOGRADAR_NOISE_KERNELS(attributes, Lanes)                                                                    \
-  attributes void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, std::size_t count, \
-                                     double scale) {                                                                 \
-    add_complex_normal_body<false, Lanes>(state_words, base, out, count, scale, 1.0, nullptr);                      \
-  }                                                                                                                  \
-  attributes void add_weighted_complex_normal(std::uint64_t* state_words, const double* base, double* out,           \
-                                              std::size_t count, double scale, double row_weight,                    \
-                                              const double* weights) {                                               \
-    add_complex_normal_body<true, Lanes>(state_words, base, out, count, scale, row_weight, weights);                \
+#define FOGRADAR_NOISE_KERNELS(attributes, Lanes)                                                 \
+  attributes void add_complex_normal(std::uint64_t* state_words, const double* base, double* out, \
+                                     std::size_t count, double scale) {                           \
+    add_complex_normal_body<false, Lanes>(state_words, base, out, count, scale, 1.0, nullptr);    \
+  }                                                                                               \
+  attributes void add_weighted_complex_normal(std::uint64_t* state_words, const double* base,     \
+                                              double* out, std::size_t count, double scale,       \
+                                              double row_weight, const double* weights) {         \
+    add_complex_normal_body<true, Lanes>(state_words, base, out, count, scale, row_weight,        \
+                                         weights);                                                \
   }
 
 #if defined(FOGRADAR_SIMD_AVX2)

@@ -134,11 +134,13 @@ Xoshiro256pp seeded_xoshiro(std::uint64_t seed) {
 }
 
 // What the scalar reference saw: samples whose power left the fast path (drew further words),
-// powers from the tail (E > r), and further words drawn.
+// powers from the tail (E > r), further words drawn, and groups in which both samples of one lane
+// left the fast path (the second continues that lane's stream after the first's further words).
 struct SlowPathCounts {
   std::size_t slow_samples = 0;
   std::size_t tail_samples = 0;
   std::size_t extra_words = 0;
+  std::size_t slow_lane_pairs = 0;
 };
 
 // The documented generator, scalar: lane l's state words are the SplitMix64 sequence started at
@@ -163,8 +165,12 @@ class ScalarReference {
       for (std::size_t step = 0; step < 2; ++step) {
         for (std::size_t l = 0; l < 4; ++l) words[4 * step + l] = lanes_[l].next();
       }
+      std::array<bool, 8> slow{};
       for (std::size_t j = 0; j < 8; ++j) {
+        const std::size_t slow_before = counts_.slow_samples;
         const float power = exponential(static_cast<std::uint32_t>(words[j]), lanes_[j % 4]);
+        slow[j] = counts_.slow_samples > slow_before;
+        if (j >= 4 && slow[j] && slow[j - 4]) ++counts_.slow_lane_pairs;
         float re = 0.0F, im = 0.0F;
         detail::polar(std::sqrt(power), static_cast<std::uint32_t>(words[j] >> 32), re, im);
         if (group + j >= samples.size()) continue;  // the short group's unused samples: discarded
@@ -921,10 +927,12 @@ TEST(ComplexNormalGenerator, LongBufferEqualsScalarReferenceThroughSlowPathsAndT
   RecordProperty("slow_samples", std::to_string(counts.slow_samples));
   RecordProperty("tail_samples", std::to_string(counts.tail_samples));
   RecordProperty("extra_words", std::to_string(counts.extra_words));
+  RecordProperty("slow_lane_pairs", std::to_string(counts.slow_lane_pairs));
   EXPECT_EQ(mismatches, 0U);
   EXPECT_GT(counts.slow_samples, 1000U);
   EXPECT_GT(counts.tail_samples, 0U);
   EXPECT_GT(counts.extra_words, counts.slow_samples);  // some slow powers took several words
+  EXPECT_GT(counts.slow_lane_pairs, 0U);
   std::vector<cplx> actual_next(64), expected_next(64);
   generator.add(actual_next, 3.0);
   reference.add(expected_next, 3.0);

@@ -110,13 +110,12 @@ inline bool ziggurat_fast(std::uint32_t word, const ZigguratTable& table, float&
   return x < layer[1];
 }
 
-// One Exp(1) sample from `word` and, where the fast path fails, further 64-bit words from
-// `next_word` (in the order drawn; a new layer is tried with the low 32 bits of a fresh word).
+// The rest of a sample whose fast path failed on `word` with x = u x_i: the tail or the wedge,
+// then new layers, with further 64-bit words from `next_word` (in the order drawn; a new layer is
+// tried with the low 32 bits of a fresh word).
 template <class NextWord>
-float ziggurat_exponential(std::uint32_t word, const ZigguratTable& table, NextWord&& next_word) {
+float ziggurat_slow(std::uint32_t word, float x, const ZigguratTable& table, NextWord&& next_word) {
   for (;;) {
-    float x = 0.0F;
-    if (ziggurat_fast(word, table, x)) return x;
     const std::size_t i = word & (ziggurat_layers - 1);
     if (i == 0) {
       // Tail x > r: r - ln U with U in (0, 1].
@@ -126,7 +125,16 @@ float ziggurat_exponential(std::uint32_t word, const ZigguratTable& table, NextW
     const double y = table.f[i] + (mantissa_in_one_two(next_word()) - 1.0) * (table.f[i + 1] - table.f[i]);
     if (log_positive(y) < -static_cast<double>(x)) return x;
     word = static_cast<std::uint32_t>(next_word());
+    if (ziggurat_fast(word, table, x)) return x;
   }
+}
+
+// One Exp(1) sample from `word` and, where the fast path fails, further words from `next_word`.
+template <class NextWord>
+float ziggurat_exponential(std::uint32_t word, const ZigguratTable& table, NextWord&& next_word) {
+  float x = 0.0F;
+  if (ziggurat_fast(word, table, x)) return x;
+  return ziggurat_slow(word, x, table, next_word);
 }
 
 }  // namespace fogradar::detail
