@@ -12,6 +12,7 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/lidar/outputs.hpp"
+#include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/scene.hpp"
 
 namespace fogradar::experiment {
@@ -59,11 +60,17 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
   if (scenario.runs(SensorId::camera))
     e.camera_bytes = camera::memory_bytes(scenario.camera, steps);
 
-  // Per thread (MeasurementWorkspace): the complex frame and the chirps x samples detection mask.
-  const std::size_t frame = cells * complex_bytes + cells * sizeof(std::uint8_t);
+  // Per thread (MeasurementWorkspace): the complex frame, the chirps x samples detection mask and
+  // the one-chirp buffer of the range FFT chirp by chirp.
+  const std::size_t frame =
+      cells * complex_bytes + cells * sizeof(std::uint8_t) + samples * complex_bytes;
   // CFAR along one range row: the row's power, threshold, detections, window sums and two profiles
-  // of block sums (CfarWorkspace).
-  const std::size_t cfar = 6 * samples * double_bytes;
+  // of block sums (CfarWorkspace); along four rows at once (CfarFourWorkspace): their power,
+  // thresholds, detections, pair sums and window sums, four profiles each, and the one-row
+  // workspace OS uses for them.
+  const std::size_t one_row_cfar = 6 * samples * double_bytes;
+  const std::size_t cfar =
+      one_row_cfar + radar::CfarFourWorkspace::profiles * 5 * samples * double_bytes + one_row_cfar;
   // Estimation: range kernels (re, im; two values per sample; a batch of objects), the batch's
   // Doppler columns, the rotated peak-search buffers (4 of the longer axis), and per axis a
   // Dirichlet table and an inverse DFT with 2n cosines and 2n sines each.

@@ -32,15 +32,16 @@ TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
   ASSERT_EQ(sizeof(radar::Tone), 40u);
   const MemoryEstimate e = estimate_peak_memory(small_frame(), 2);
   EXPECT_EQ(e.threads, 2u);
-  // frame 64*16*16 = 16384, mask 1024; CFAR 6*64*8 = 3072; kernels 2*4*2*64*8 = 8192, Doppler
-  // columns 4*16*16 = 1024, peak search 4*64*8 = 2048, tables 8*80*8 = 5120; Doppler block
-  // 32*16*16 = 8192; tones 2*40*(4*64 + 64) = 25600. Sum 70656.
-  EXPECT_EQ(e.per_thread_bytes, 70656u);
+  // frame 64*16*16 = 16384, mask 1024, chirp 64*16 = 1024; CFAR one row 6*64*8 = 3072, four rows
+  // 4*5*64*8 = 10240 and their one-row workspace 3072; kernels 2*4*2*64*8 = 8192, Doppler columns
+  // 4*16*16 = 1024, peak search 4*64*8 = 2048, tables 8*80*8 = 5120; Doppler block 32*16*16 = 8192;
+  // tones 2*40*(4*64 + 64) = 25600. Sum 84992.
+  EXPECT_EQ(e.per_thread_bytes, 84992u);
   // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560; baseline 16 MiB.
   EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u + 16777216u);
   EXPECT_EQ(e.records_bytes, 15 * sizeof(MeasurementRecord));
   EXPECT_EQ(e.total_bytes(),
-            2 * 70656u + 1664u + 20992u + 2560u + 16777216u + 15 * sizeof(MeasurementRecord));
+            2 * 84992u + 1664u + 20992u + 2560u + 16777216u + 15 * sizeof(MeasurementRecord));
 }
 
 TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {
