@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <cstring>
 #include <limits>
 
 #include "fogradar/core/constants.hpp"
@@ -55,26 +56,68 @@ std::complex<double> sum_over_sines(const double* re, const double* im, const do
   return {detail::sum_lanes(sum_re) + tail_re, detail::sum_lanes(sum_im) + tail_im};
 }
 
+// Eight doubles: one AVX-512 register, for the x86-64-v4 body of rows_times_kernels only (GCC
+// splits it badly into AVX2 register pairs, so the other bodies keep f64x4).
+using f64x8 = double __attribute__((vector_size(64)));
+
+[[gnu::always_inline]] inline f64x8 load8(const double* from) {
+  f64x8 v;
+  std::memcpy(&v, from, sizeof v);
+  return v;
+}
+
+// The low and high four lanes of v.
+[[gnu::always_inline]] inline void split8(f64x8 v, f64x4& low, f64x4& high) {
+  double lanes[8];
+  std::memcpy(lanes, &v, sizeof v);
+  low = detail::load4(lanes);
+  high = detail::load4(lanes + 4);
+}
+
 // out[o] += sum_m x[m] K_o[m] over the interleaved (re, im) values [begin, end) of one row
 // (begin a multiple of 4), for the `objects` kernels at k_re/k_im + o * stride (stored as at
 // rows_times_kernels). Each load of x serves every kernel, and `groups` consecutive steps go to
 // separate partial sums so that at least 4 sums are in flight (one would make every step wait for
-// the previous addition, 4 cycles, instead of for its loads).
-template <std::size_t objects>
-[[gnu::always_inline]] inline void add_row_stretch(const double* x, const double* k_re, const double* k_im,
-                                                   std::size_t stride, std::size_t begin, std::size_t end,
+// the previous addition, 4 cycles, instead of for its loads). With width 8, one eight-lane sum
+// holds two consecutive four-lane partial sums (lanes 0-3 group g, lanes 4-7 group g + 1): the same
+// products added in the same order as with width 4, so the same bits, in half the instructions.
+template <std::size_t objects, std::size_t width>
+[[gnu::always_inline]] inline void add_row_stretch(const double* x, const double* k_re,
+                                                   const double* k_im, std::size_t stride,
+                                                   std::size_t begin, std::size_t end,
                                                    std::complex<double>* out) {
   constexpr std::size_t groups = objects == 1 ? 4 : 2;
+  static_assert(width == 4 || width == 8, "four or eight lanes");
   // by_re: (x_re K_re, x_im K_re, ...), by_im: (x_re K_im, x_im K_im, ...); value i of the stretch
   // in partial sum (i - begin) / 4 % groups (sum 0 past the last whole group).
   f64x4 by_re[objects][groups] = {}, by_im[objects][groups] = {};
   std::size_t i = begin;
-  for (; i + 4 * groups <= end; i += 4 * groups) {
-    for (std::size_t g = 0; g < groups; ++g) {
-      const f64x4 v = detail::load4(x + i + 4 * g);
-      for (std::size_t o = 0; o < objects; ++o) {
-        by_re[o][g] += v * detail::load4(k_re + o * stride + i + 4 * g);
-        by_im[o][g] += v * detail::load4(k_im + o * stride + i + 4 * g);
+  if constexpr (width == 8) {
+    constexpr std::size_t pairs = groups / 2;
+    f64x8 wide_re[objects][pairs] = {}, wide_im[objects][pairs] = {};
+    for (; i + 4 * groups <= end; i += 4 * groups) {
+      for (std::size_t p = 0; p < pairs; ++p) {
+        const f64x8 v = load8(x + i + 8 * p);
+        for (std::size_t o = 0; o < objects; ++o) {
+          wide_re[o][p] += v * load8(k_re + o * stride + i + 8 * p);
+          wide_im[o][p] += v * load8(k_im + o * stride + i + 8 * p);
+        }
+      }
+    }
+    for (std::size_t o = 0; o < objects; ++o) {
+      for (std::size_t p = 0; p < pairs; ++p) {
+        split8(wide_re[o][p], by_re[o][2 * p], by_re[o][2 * p + 1]);
+        split8(wide_im[o][p], by_im[o][2 * p], by_im[o][2 * p + 1]);
+      }
+    }
+  } else {
+    for (; i + 4 * groups <= end; i += 4 * groups) {
+      for (std::size_t g = 0; g < groups; ++g) {
+        const f64x4 v = detail::load4(x + i + 4 * g);
+        for (std::size_t o = 0; o < objects; ++o) {
+          by_re[o][g] += v * detail::load4(k_re + o * stride + i + 4 * g);
+          by_im[o][g] += v * detail::load4(k_im + o * stride + i + 4 * g);
+        }
       }
     }
   }
@@ -109,9 +152,11 @@ template <std::size_t objects>
 // The map is read once for all kernels, in stripes of columns narrow enough that every kernel's
 // stripe stays in the L1 cache while all rows pass (two or more whole kernels, 32 KiB each for
 // 1024 columns, would come from L2 for every row, and that bounded the loop).
-template <std::size_t objects>
-[[gnu::always_inline]] inline void rows_times_kernels_of(const double* map, std::size_t rows, std::size_t columns,
-                                                         const double* kernel_re, const double* kernel_im,
+template <std::size_t objects, std::size_t width>
+[[gnu::always_inline]] inline void rows_times_kernels_of(const double* map, std::size_t rows,
+                                                         std::size_t columns,
+                                                         const double* kernel_re,
+                                                         const double* kernel_im,
                                                          std::complex<double>* out) {
   // The kernels' stripes together 32 KiB (2 x 8 bytes per value per kernel), a multiple of 16
   // values: a whole row of 1024 columns for one object. Fewer, longer stripes read the map in
@@ -125,24 +170,51 @@ template <std::size_t objects>
     const std::size_t end = std::min(values, begin + stripe_values);
     for (std::size_t r = 0; r < rows; ++r) {
       std::fill(row_sums, row_sums + objects, std::complex<double>{});
-      add_row_stretch<objects>(map + r * values, kernel_re, kernel_im, values, begin, end, row_sums);
+      add_row_stretch<objects, width>(map + r * values, kernel_re, kernel_im, values, begin, end,
+                                      row_sums);
       for (std::size_t o = 0; o < objects; ++o) out[o * rows + r] += row_sums[o];
     }
   }
 }
 
-FOGRADAR_SIMD_CLONES
-void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
-                        const double* kernel_im, std::size_t objects, std::complex<double>* out) {
+template <std::size_t width>
+[[gnu::always_inline]] inline void rows_times_kernels_body(
+    const double* map, std::size_t rows, std::size_t columns, const double* kernel_re,
+    const double* kernel_im, std::size_t objects, std::complex<double>* out) {
   switch (objects) {
-    case 1: return rows_times_kernels_of<1>(map, rows, columns, kernel_re, kernel_im, out);
-    case 2: return rows_times_kernels_of<2>(map, rows, columns, kernel_re, kernel_im, out);
-    case 3: return rows_times_kernels_of<3>(map, rows, columns, kernel_re, kernel_im, out);
-    case 4: return rows_times_kernels_of<4>(map, rows, columns, kernel_re, kernel_im, out);
-    default: FOGRADAR_CHECK(objects == 0);
+    case 1:
+      return rows_times_kernels_of<1, width>(map, rows, columns, kernel_re, kernel_im, out);
+    case 2:
+      return rows_times_kernels_of<2, width>(map, rows, columns, kernel_re, kernel_im, out);
+    case 3:
+      return rows_times_kernels_of<3, width>(map, rows, columns, kernel_re, kernel_im, out);
+    case 4:
+      return rows_times_kernels_of<4, width>(map, rows, columns, kernel_re, kernel_im, out);
+    default:
+      FOGRADAR_CHECK(objects == 0);
   }
   static_assert(interpolation_batch == 4, "one case per batch size");
 }
+
+// One body per instruction set, differing only in the vector width, as GCC's function
+// multiversioning: the loader picks the version as it picks the clones of detail/simd.hpp.
+#define FOGRADAR_ROWS_TIMES_KERNELS(attributes, width)                                         \
+  attributes void rows_times_kernels(const double* map, std::size_t rows, std::size_t columns, \
+                                     const double* kernel_re, const double* kernel_im,         \
+                                     std::size_t objects, std::complex<double>* out) {         \
+    rows_times_kernels_body<width>(map, rows, columns, kernel_re, kernel_im, objects, out);    \
+  }
+
+#if defined(FOGRADAR_SIMD_AVX2)
+FOGRADAR_ROWS_TIMES_KERNELS(__attribute__((target("default"))), 4)
+FOGRADAR_ROWS_TIMES_KERNELS(__attribute__((target("avx2"))), 4)
+#if defined(FOGRADAR_SIMD_AVX512)
+FOGRADAR_ROWS_TIMES_KERNELS(__attribute__((target("arch=x86-64-v4"))), 8)
+#endif
+#else
+FOGRADAR_ROWS_TIMES_KERNELS(, 4)
+#endif
+#undef FOGRADAR_ROWS_TIMES_KERNELS
 
 // (j - 1) mod period and (j + step) mod period for 0 <= j, step < period: the table index of the
 // next column, without a division per column.
