@@ -74,6 +74,15 @@ using f64x8 = double __attribute__((vector_size(64)));
   high = detail::load4(lanes + 4);
 }
 
+// x, as a value the compiler cannot fuse with its uses: GCC 12 turned the odd last value's (re, im)
+// products and the add/subtract pair of add_row_stretch into one vfmaddsub where FMA exists, in
+// spite of -ffp-contract=off, so that the x86-64-v4 version rounded differently from the others
+// for odd column counts.
+[[gnu::always_inline]] inline double rounded(double x) {
+  asm("" : "+m"(x));
+  return x;
+}
+
 // out[o] += sum_m x[m] K_o[m] over the interleaved (re, im) values [begin, end) of one row
 // (begin a multiple of 4), for the `objects` kernels at k_re/k_im + o * stride (stored as at
 // rows_times_kernels). Each load of x serves every kernel, and `groups` consecutive steps go to
@@ -139,8 +148,8 @@ template <std::size_t objects, std::size_t width>
     if (i < end) {  // odd column count: one complex value left
       const double* kr = k_re + o * stride;
       const double* ki = k_im + o * stride;
-      re += x[i] * kr[i] - x[i + 1] * ki[i];
-      im += x[i] * ki[i] + x[i + 1] * kr[i];
+      re += rounded(x[i] * kr[i]) - rounded(x[i + 1] * ki[i]);
+      im += rounded(x[i] * ki[i]) + rounded(x[i + 1] * kr[i]);
     }
     out[o] += std::complex<double>(re, im);
   }
@@ -521,6 +530,13 @@ void DirichletTable::prepare(std::size_t n) {
     cos_[j + n] = -cos_[j];
     sin_[j + n] = -sin_[j];
   }
+}
+
+void rows_times_interleaved_kernels(const double* map, std::size_t rows, std::size_t columns,
+                                    const double* kernel_re, const double* kernel_im, std::size_t objects,
+                                    std::complex<double>* out) {
+  FOGRADAR_CHECK(objects <= interpolation_batch);
+  rows_times_kernels(map, rows, columns, kernel_re, kernel_im, objects, out);
 }
 
 void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel) {

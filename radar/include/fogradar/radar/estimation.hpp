@@ -84,6 +84,15 @@ struct EstimationWorkspace {
 void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel);
 void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::complex<double>> kernel);
 
+// The row interpolation inside estimate_detections, declared for its test: out[o * rows + r] =
+// sum_m map[r][m] K_o[m] for the `objects` (at most 4) kernels K_o, map the rows x columns complex
+// values as interleaved (re, im) doubles, kernel o at kernel_re/kernel_im + o * 2 columns with each
+// value stored twice (kernel_re[2m] = kernel_re[2m+1] = Re K_o[m], likewise Im). The sums are
+// formed in a fixed order (estimation.cpp), the same in every instruction-set version.
+void rows_times_interleaved_kernels(const double* map, std::size_t rows, std::size_t columns,
+                                    const double* kernel_re, const double* kernel_im, std::size_t objects,
+                                    std::complex<double>* out);
+
 // Detections of one processed frame (map = the complex range-Doppler map of
 // RangeDopplerProcessor; the CFAR runs on |map|^2, formed one Doppler row at a time).
 // `detections` is cleared and refilled.
