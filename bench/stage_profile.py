@@ -32,7 +32,7 @@ STAGES = [
     ("scene paths (scene_tones and its libm calls)",
      r"scene_tones|received_power_w|two_way|backscatter_cross_section|gaussian_beam|RandomStream"
      r"|^libm\S* .*(sincos|pow|exp|log|atan|hypot|sin|cos)"),
-    ("|X|^2 (and, four rows at a time, the first window-sum pass)", r"squared_magnitudes|interleave_norms"),
+    ("|X|^2 (with the first window-sum pass)", r"squared_magnitudes|interleave_norms"),
     ("CFAR", r"Cfar|cfar|interior_thresholds|add_cells|accumulate_cells|reference_cells|window_sums"
              r"|two_sided_detect|scan_cells"),
     ("row interpolation", r"rows_times_kernels|interpolate_rows|dirichlet_weights"),
