@@ -76,27 +76,36 @@ def main():
         subprocess.run(["perf", "record", "-q", "-F", str(args.frequency), "-o", data, args.fogradar, "run",
                         "--scenario", scenario, "--out", os.path.join(work, "out"), "--threads",
                         str(args.threads)], check=True, stdout=subprocess.DEVNULL)
-        report = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "dso,sym", "--stdio",
-                                 "--percent-limit", "0"], check=True, capture_output=True, text=True).stdout
+        # Sample counts (-n), not perf's rounded percentages: a stripped library such as FFTW shows
+        # every sampled address as its own entry, thousands of them under 0.01 %.
+        report = subprocess.run(["perf", "report", "-i", data, "--no-children", "-n", "--sort", "dso,sym",
+                                 "--stdio", "--percent-limit", "0"], check=True, capture_output=True,
+                                text=True).stdout
     if args.measurements:
         os.unlink(scenario)
 
     shares = {stage: 0.0 for stage, _ in STAGES}
     shares["other"] = 0.0
     unclaimed = []
-    line_pattern = re.compile(r"^\s*([\d.]+)%\s+(\S+)\s+\[[.k]\]\s+(.*)$")
+    line_pattern = re.compile(r"^\s*[\d.]+%\s+(\d+)\s+(\S+)\s+\[[.k]\]\s+(.*)$")
+    entries = []
     for line in report.splitlines():
         match = line_pattern.match(line)
-        if not match:
-            continue
-        share, library, symbol = float(match.group(1)), match.group(2), match.group(3).strip()
+        if match:
+            entries.append((int(match.group(1)), match.group(2), match.group(3).strip()))
+    total = sum(count for count, _, _ in entries)
+    if total == 0:
+        sys.exit("stage_profile.py: perf recorded no samples")
+    for count, library, symbol in entries:
+        share = 100.0 * count / total
         key = f"{library} {symbol}"
         stage = next((name for name, pattern in STAGES if re.search(pattern, key)), "other")
         shares[stage] += share
         if stage == "other":
             unclaimed.append((share, key))
 
-    print(f"{args.scenario}, {args.threads} thread(s), perf at {args.frequency} Hz; load {open('/proc/loadavg').read().strip()}")
+    print(f"{args.scenario}, {args.threads} thread(s), perf at {args.frequency} Hz, {total} samples; "
+          f"load {open('/proc/loadavg').read().strip()}")
     header = f"  {'stage':<52} {'share':>7}"
     if args.ratio:
         header += f" {'x floor':>8}"
