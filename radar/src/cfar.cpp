@@ -523,13 +523,13 @@ void interleave_norms(const std::complex<double>* rows, std::size_t length, doub
     }
     // Rows 0 and 1, 2 and 3: |x_j|^2 of both rows, then |x_j+1|^2 of both.
     const detail::f64x4 norms01 =
-        __builtin_shuffle(squares[0], squares[1], detail::u64x4{0, 4, 2, 6}) +
-        __builtin_shuffle(squares[0], squares[1], detail::u64x4{1, 5, 3, 7});
+        __builtin_shufflevector(squares[0], squares[1], 0, 4, 2, 6) +
+        __builtin_shufflevector(squares[0], squares[1], 1, 5, 3, 7);
     const detail::f64x4 norms23 =
-        __builtin_shuffle(squares[2], squares[3], detail::u64x4{0, 4, 2, 6}) +
-        __builtin_shuffle(squares[2], squares[3], detail::u64x4{1, 5, 3, 7});
-    const detail::f64x4 cell = __builtin_shuffle(norms01, norms23, detail::u64x4{0, 1, 4, 5});
-    const detail::f64x4 next = __builtin_shuffle(norms01, norms23, detail::u64x4{2, 3, 6, 7});
+        __builtin_shufflevector(squares[2], squares[3], 0, 4, 2, 6) +
+        __builtin_shufflevector(squares[2], squares[3], 1, 5, 3, 7);
+    const detail::f64x4 cell = __builtin_shufflevector(norms01, norms23, 0, 1, 4, 5);
+    const detail::f64x4 next = __builtin_shufflevector(norms01, norms23, 2, 3, 6, 7);
     detail::store4(power + 4 * j, cell);
     detail::store4(power + 4 * (j + 1), next);
     if (j > 0) detail::store4(pairs + 4 * (j - 1), previous + cell);
