@@ -57,17 +57,18 @@ std::complex<double> sum_over_sines(const double* re, const double* im, const do
 }
 
 // Eight doubles: one AVX-512 register, for the x86-64-v4 body of rows_times_kernels only (GCC
-// splits it badly into AVX2 register pairs, so the other bodies keep f64x4).
+// splits it badly into AVX2 register pairs, so the other bodies keep f64x4). The helpers below are
+// unused, hence maybe_unused, in builds without that body (the baseline-only and clang builds).
 using f64x8 = double __attribute__((vector_size(64)));
 
-[[gnu::always_inline]] inline f64x8 load8(const double* from) {
+[[maybe_unused, gnu::always_inline]] inline f64x8 load8(const double* from) {
   f64x8 v;
   std::memcpy(&v, from, sizeof v);
   return v;
 }
 
 // The low and high four lanes of v.
-[[gnu::always_inline]] inline void split8(f64x8 v, f64x4& low, f64x4& high) {
+[[maybe_unused, gnu::always_inline]] inline void split8(f64x8 v, f64x4& low, f64x4& high) {
   double lanes[8];
   std::memcpy(lanes, &v, sizeof v);
   low = detail::load4(lanes);
