@@ -1,9 +1,13 @@
 // `fogradar run` and `fogradar scenario` (docs/scenario.md).
+#include <poll.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/eventfd.h>
+#include <sys/signalfd.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -54,8 +58,10 @@ std::function<void(std::size_t, std::size_t)> terminal_progress() {
 }
 
 // SIGINT and SIGTERM are blocked in every thread (the workers inherit the mask) and taken by a
-// thread of its own with sigtimedwait, so no code runs in a signal handler. The first one is
-// recorded; the workers stop at their next measurement and the result set is not replaced.
+// thread of its own through a signalfd, so no code runs in a signal handler. The first one is
+// recorded; the workers stop at their next measurement and the result set is not replaced. The
+// thread also polls an eventfd the destructor writes, so the run ends as soon as its work does
+// (a timed wait would add up to its period to every run).
 class SignalWatch {
  public:
   SignalWatch() {
@@ -63,12 +69,21 @@ class SignalWatch {
     ::sigaddset(&signals_, SIGINT);
     ::sigaddset(&signals_, SIGTERM);
     ::pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
+    signal_fd_ = ::signalfd(-1, &signals_, SFD_CLOEXEC);
+    finished_fd_ = ::eventfd(0, EFD_CLOEXEC);
+    if (signal_fd_ < 0 || finished_fd_ < 0) {
+      close_fds();
+      throw InternalError("cannot watch SIGINT and SIGTERM: signalfd or eventfd failed");
+    }
     thread_ = std::thread([this] { watch(); });
   }
   // The signals stay blocked: one arriving from here on stays pending, unseen, until the exit.
   ~SignalWatch() {
-    finished_ = true;
+    const std::uint64_t one = 1;
+    // eventfd's counter cannot overflow from one write, so the write succeeds.
+    [[maybe_unused]] const ssize_t written = ::write(finished_fd_, &one, sizeof one);
     thread_.join();
+    close_fds();
   }
   SignalWatch(const SignalWatch&) = delete;
   SignalWatch& operator=(const SignalWatch&) = delete;
@@ -85,20 +100,29 @@ class SignalWatch {
 
  private:
   void watch() {
-    const timespec poll{.tv_sec = 0,
-                        .tv_nsec = 50'000'000};  // how soon the destructor's join returns
-    while (!finished_) {
-      const int signal_number = ::sigtimedwait(&signals_, nullptr, &poll);
-      if (signal_number > 0) {
-        signal_ = signal_number;
+    pollfd fds[2] = {{.fd = signal_fd_, .events = POLLIN, .revents = 0},
+                     {.fd = finished_fd_, .events = POLLIN, .revents = 0}};
+    for (;;) {
+      if (::poll(fds, 2, -1) < 0) continue;  // EINTR: nothing to do but wait again
+      if (fds[1].revents != 0 || (fds[0].revents & (POLLERR | POLLNVAL)) != 0) return;
+      signalfd_siginfo info{};
+      if ((fds[0].revents & POLLIN) != 0 &&
+          ::read(signal_fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
+        signal_ = static_cast<int>(info.ssi_signo);
         stop_ = true;
         return;
       }
     }
   }
 
+  void close_fds() {
+    if (signal_fd_ >= 0) ::close(signal_fd_);
+    if (finished_fd_ >= 0) ::close(finished_fd_);
+  }
+
   sigset_t signals_{};
-  std::atomic<bool> finished_{false}, stop_{false};
+  int signal_fd_ = -1, finished_fd_ = -1;
+  std::atomic<bool> stop_{false};
   std::atomic<int> signal_{0};
   std::thread thread_;
 };
