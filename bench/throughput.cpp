@@ -7,7 +7,8 @@
 //   grouping, peak interpolation, RCS) followed by experiment::summarize. Writing the result files
 //   is NOT included.
 // whole process (with --fogradar PATH): `PATH run --scenario FILE --out DIR --threads N` as a
-//   child process: start-up, the run and the result files, all included.
+//   child process: start-up, the run and the result files, all included. Its samples.csv must
+//   equal the in-process run's, bit for bit, or throughput stops: both time one computation.
 // FFT floor: the fastest range + Doppler transform of the frame that FFTW does on this machine in
 //   complex double at the same thread count, over the layouts below, with FFTW_MEASURE plans made
 //   before any timing (docs/performance.md). Candidates, all in one FFTW planner (wisdom shared
@@ -52,6 +53,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -61,6 +63,7 @@
 #include "fogradar/core/complex_normal_generator.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
+#include "fogradar/experiment/outputs.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
@@ -182,6 +185,7 @@ struct EndToEnd {
   double seconds = 0.0;
   double summarize_seconds = 0.0;
   std::size_t detections = 0;  // printed, so nothing can be optimised away
+  std::string samples_csv;     // the run's samples.csv, formed after the timing
 };
 
 EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads) {
@@ -194,7 +198,24 @@ EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads)
   e.seconds = seconds_since(start);
   e.summarize_seconds = seconds_since(summary_start);
   for (const experiment::StepSummary& step : summary.steps) e.detections += step.detections;
+  for (auto& [name, text] : experiment::result_files(scenario, result, summary)) {
+    if (name == "samples.csv") e.samples_csv = std::move(text);
+  }
   return e;
+}
+
+// The in-process run must be the computation `fogradar run` does: its samples.csv (every
+// measurement's RCS, SNR and detections, to the last bit) equal to the child's.
+void require_same_samples(const std::filesystem::path& out_dir, const std::string& in_process) {
+  std::ifstream file(out_dir / "samples.csv", std::ios::binary);
+  const std::string written{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  if (written != in_process) {
+    std::fprintf(stderr,
+                 "throughput: the in-process run's samples.csv differs from %s/samples.csv: the "
+                 "two timings are not of the same computation\n",
+                 out_dir.c_str());
+    std::exit(1);
+  }
 }
 
 // `fogradar run` as a child process writing its files into `out_dir` (replaced each time).
@@ -437,6 +458,13 @@ int run(const Options& options) {
 
   const Clock::time_point planning = Clock::now();
   Transforms transforms(rows, columns, rescale_exponent_for(rows, columns));
+  // FFTW answers an FFTW_ESTIMATE request from the wisdom of an FFTW_MEASURE plan of the same
+  // problem or sub-problem made earlier in the process (FFTW manual §4.7.1), and the candidates
+  // above measure the chain's own problems (the range batch, the column blocks). Without this, the
+  // in-process end to end ran measured plans: other operations and other output bits than
+  // `fogradar run`, which plans in a fresh FFTW (require_same_samples checks it). The plans made
+  // keep working; no other thread plans yet.
+  fftw_forget_wisdom();
   std::printf(
       "  planning      %.2f s (FFTW_MEASURE, before any timing); Doppler blocks of %zu columns\n\n",
       seconds_since(planning), transforms.measure_blocks.block_columns());
@@ -467,8 +495,10 @@ int run(const Options& options) {
       s.e2e.push_back(e.seconds / frames_d);
       detections = e.detections;
       summarize_s = std::max(summarize_s, e.summarize_seconds);
-      if (!options.fogradar_path.empty())
+      if (!options.fogradar_path.empty()) {
         s.process.push_back(time_process(options, out_dir, threads) / frames_d);
+        require_same_samples(out_dir, e.samples_csv);
+      }
       double best = 0.0;
       for (Variant& v : transforms.variants) {
         const double t = time_transform(transforms, v, buffers, v.frames, threads);
