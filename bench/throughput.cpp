@@ -53,8 +53,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <thread>
@@ -459,11 +459,12 @@ int run(const Options& options) {
   const Clock::time_point planning = Clock::now();
   Transforms transforms(rows, columns, rescale_exponent_for(rows, columns));
   // FFTW answers an FFTW_ESTIMATE request from the wisdom of an FFTW_MEASURE plan of the same
-  // problem or sub-problem made earlier in the process (FFTW manual §4.7.1), and the candidates
-  // above measure the chain's own problems (the range batch, the column blocks). Without this, the
-  // in-process end to end ran measured plans: other operations and other output bits than
-  // `fogradar run`, which plans in a fresh FFTW (require_same_samples checks it). The plans made
-  // keep working; no other thread plans yet.
+  // problem or sub-problem made earlier in the process (FFTW 3.3 manual §4.3.2, "Planner Flags":
+  // in estimate mode any available wisdom is used), and the candidates above measure the chain's
+  // own problems (the range batch, the column blocks). Without this, the in-process end to end ran
+  // measured plans: other operations and other output bits than `fogradar run`, which plans in a
+  // fresh FFTW (require_same_samples checks it). The plans made keep working; no other thread
+  // plans yet.
   fftw_forget_wisdom();
   std::printf(
       "  planning      %.2f s (FFTW_MEASURE, before any timing); Doppler blocks of %zu columns\n\n",

@@ -62,9 +62,10 @@ enum class FftDirection { forward, inverse };
 // algorithm in another run, which can change results in the last bits. Use estimate for
 // simulation runs that promise byte-identical output, measure for throughput benchmarks.
 // FFTW keeps one planner per process, and an estimate request takes a measured plan of the same
-// problem or sub-problem from it (wisdom, FFTW manual §4.7.1): after measure plans of the chain's
-// transforms (or imported wisdom), estimate plans are other algorithms with other bits until
-// fftw_forget_wisdom(). `fogradar run` never measures; bench/throughput forgets after its floor.
+// problem or sub-problem from it (wisdom; FFTW 3.3 manual §4.3.2): after measure plans of the
+// chain's transforms (or imported wisdom), estimate plans are other algorithms with other bits
+// until fftw_forget_wisdom(). `fogradar run` never measures; bench/throughput forgets after its
+// floor.
 enum class FftPlanner { estimate, measure };
 
 // Which buffers a plan accepts at execute time.
