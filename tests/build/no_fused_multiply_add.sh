@@ -9,8 +9,21 @@
 # Usage: no_fused_multiply_add.sh LIBRARY_OR_OBJECT...
 set -u
 found=0
+if [[ $# -eq 0 ]]; then
+  echo "FAIL: no library given" >&2
+  exit 2
+fi
 for file in "$@"; do
-  hits=$(objdump -d --no-show-raw-insn "$file" | grep -E '^\s*[0-9a-f]+:\s+vfn?m(add|sub)' || true)
+  # A disassembly that failed or holds no instruction would pass vacuously: both are failures.
+  if ! listing=$(objdump -d --no-show-raw-insn "$file"); then
+    echo "FAIL: objdump could not disassemble $file"
+    exit 2
+  fi
+  if ! grep -qE '^\s*[0-9a-f]+:\s+[a-z]' <<<"$listing"; then
+    echo "FAIL: no instruction found in the disassembly of $file"
+    exit 2
+  fi
+  hits=$(grep -E '^\s*[0-9a-f]+:\s+vfn?m(add|sub)' <<<"$listing" || true)
   if [[ -n $hits ]]; then
     echo "FAIL: $(basename "$file") holds $(wc -l <<<"$hits") fused multiply-add instruction(s), e.g.:"
     head -3 <<<"$hits"
