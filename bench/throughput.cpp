@@ -17,14 +17,18 @@
 //                                strided batch), both FFTW_MEASURE;
 //     MEASURE rows + blocks      the same range plan, Doppler by radar::ColumnBlockFft with
 //                                FFTW_MEASURE (columns gathered in L1-sized blocks);
+//     MEASURE chirps + blocks    the range FFT by a one-chirp out-of-place FFTW_MEASURE plan
+//                                from a copy of each chirp into its row, the same blocks;
 //     MEASURE 2-D in place       fftw_plan_dft_2d, in place;
 //     MEASURE 2-D out of place   fftw_plan_dft_2d from one buffer into another.
 //   The floor at a thread count is the smallest median of these, and each repeat's ratio uses the
 //   smallest candidate of that repeat.
-// ESTIMATE references, not floor candidates: the old floor (FFTW_ESTIMATE rows + one strided
-//   column batch, what the chain did before ColumnBlockFft) and the chain's plans batched
-//   (ESTIMATE rows in place + ESTIMATE column blocks). The chain itself runs the range FFT chirp by
-//   chirp inside the noise pass (same plans' bits, RangeDopplerProcessor::range_chirp_fft), which
+// References, not floor candidates: the old floor (FFTW_ESTIMATE rows + one strided column batch,
+//   what the chain did before ColumnBlockFft), the chain's plans before the shipped wisdom
+//   (ESTIMATE rows in place + ESTIMATE column blocks) and the chain's plans now (the one-chirp
+//   range plan and the column blocks, both FftPlanner::shipped_wisdom; the range plan from a copy
+//   of each chirp back into its row, as RangeDopplerProcessor::transform_windowed). The chain
+//   itself runs the range FFT chirp by chirp inside the noise pass (the same plan's bits), which
 //   only end to end times.
 // noise alone: the thermal-noise stage, which no FFT bounds: ComplexNormalGenerator over every
 //   sample of the same number of frames, into a buffer per thread.
@@ -286,7 +290,9 @@ struct Transforms {
   int rescale_exponent;
   radar::FftPlan estimate_rows, estimate_columns;
   radar::ColumnBlockFft estimate_blocks;
-  radar::FftPlan measure_rows, measure_columns;
+  radar::FftPlan shipped_chirp;
+  radar::ColumnBlockFft shipped_blocks;
+  radar::FftPlan measure_rows, measure_columns, measure_chirp;
   radar::ColumnBlockFft measure_blocks;
   std::unique_ptr<RawPlan> measure_2d_in_place, measure_2d_out_of_place;
   std::vector<Variant> variants;
@@ -309,12 +315,21 @@ struct Transforms {
         estimate_columns(radar::FftPlan::along_columns(
             r, c, radar::FftDirection::forward, {.placement = radar::FftPlacement::in_place})),
         estimate_blocks(r, c, radar::FftDirection::forward),
+        shipped_chirp(c, radar::FftDirection::forward,
+                      {.planner = radar::FftPlanner::shipped_wisdom,
+                       .alignment = radar::FftAlignment::aligned,
+                       .placement = radar::FftPlacement::out_of_place}),
+        shipped_blocks(r, c, radar::FftDirection::forward, radar::FftPlanner::shipped_wisdom),
         measure_rows(radar::FftPlan::along_rows(
             r, c, radar::FftDirection::forward,
             {.planner = radar::FftPlanner::measure, .placement = radar::FftPlacement::in_place})),
         measure_columns(radar::FftPlan::along_columns(
             r, c, radar::FftDirection::forward,
             {.planner = radar::FftPlanner::measure, .placement = radar::FftPlacement::in_place})),
+        measure_chirp(c, radar::FftDirection::forward,
+                      {.planner = radar::FftPlanner::measure,
+                       .alignment = radar::FftAlignment::aligned,
+                       .placement = radar::FftPlacement::out_of_place}),
         measure_blocks(r, c, radar::FftDirection::forward, radar::FftPlanner::measure) {
     // FFTW_MEASURE overwrites the arrays it plans on: plan on scratch, execute on the threads'
     // buffers.
@@ -331,10 +346,24 @@ struct Transforms {
       estimate_rows.execute(span(b.current()));
       estimate_columns.execute(span(b.current()));
     });
-    add_variant("ESTIMATE rows + blocks (chain's plans)", false, [this, span](ThreadBuffers& b) {
+    add_variant("ESTIMATE rows + blocks (chain before)", false, [this, span](ThreadBuffers& b) {
       estimate_rows.execute(span(b.current()));
       estimate_blocks.execute(span(b.current()));
     });
+    // The range FFT by a one-chirp out-of-place plan, from a copy of each chirp into its row.
+    const auto by_chirp = [this, span](const radar::FftPlan& chirp_plan,
+                                       const radar::ColumnBlockFft& blocks, ThreadBuffers& b) {
+      const std::span<Complex> frame = span(b.current());
+      radar::ComplexVector chirp(columns);
+      for (std::size_t row = 0; row < rows; ++row) {
+        const std::span<Complex> chirp_row = frame.subspan(row * columns, columns);
+        std::copy(chirp_row.begin(), chirp_row.end(), chirp.begin());
+        chirp_plan.execute(chirp, chirp_row);
+      }
+      blocks.execute(frame);
+    };
+    add_variant("shipped chirps + blocks (chain's plans)", false,
+                [this, by_chirp](ThreadBuffers& b) { by_chirp(shipped_chirp, shipped_blocks, b); });
     add_variant("MEASURE rows + columns", true, [this, span](ThreadBuffers& b) {
       measure_rows.execute(span(b.current()));
       measure_columns.execute(span(b.current()));
@@ -343,6 +372,8 @@ struct Transforms {
       measure_rows.execute(span(b.current()));
       measure_blocks.execute(span(b.current()));
     });
+    add_variant("MEASURE chirps + blocks", true,
+                [this, by_chirp](ThreadBuffers& b) { by_chirp(measure_chirp, measure_blocks, b); });
     add_variant("MEASURE 2-D in place", true, [this](ThreadBuffers& b) {
       fftw_execute_dft(measure_2d_in_place->plan, as_fftw(b.current()), as_fftw(b.current()));
     });
@@ -458,14 +489,9 @@ int run(const Options& options) {
 
   const Clock::time_point planning = Clock::now();
   Transforms transforms(rows, columns, rescale_exponent_for(rows, columns));
-  // FFTW answers an FFTW_ESTIMATE request from the wisdom of an FFTW_MEASURE plan of the same
-  // problem or sub-problem made earlier in the process (FFTW 3.3 manual §4.3.2, "Planner Flags":
-  // in estimate mode any available wisdom is used), and the candidates above measure the chain's
-  // own problems (the range batch, the column blocks). Without this, the in-process end to end ran
-  // measured plans: other operations and other output bits than `fogradar run`, which plans in a
-  // fresh FFTW (require_same_samples checks it). The plans made keep working; no other thread
-  // plans yet.
-  fftw_forget_wisdom();
+  // The MEASURE wisdom made here does not reach the in-process end to end: the chain plans with
+  // the shipped wisdom alone (FftPlanner::shipped_wisdom sets the process's wisdom aside while it
+  // plans), as `fogradar run` does in a fresh process; require_same_samples checks it.
   std::printf(
       "  planning      %.2f s (FFTW_MEASURE, before any timing); Doppler blocks of %zu columns\n\n",
       seconds_since(planning), transforms.measure_blocks.block_columns());

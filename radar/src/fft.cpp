@@ -10,12 +10,17 @@
 #include <new>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <utility>
 
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::radar {
+namespace detail {
+// Text of data/fftw_wisdom.txt, embedded at build time by cmake/EmbedText.cmake.
+std::string_view fftw_wisdom_text();
+}  // namespace detail
 
 namespace {
 
@@ -51,7 +56,49 @@ bool aligned_for(const FftOptions& options, const void* pointer) {
   return options.alignment == FftAlignment::unaligned || fft_is_aligned(pointer);
 }
 
+// For its lifetime the planner holds the shipped wisdom alone; the process's wisdom is exported
+// on entry and restored on exit (forget, then import: FFTW 3.3 manual §4.7). FFTW hashes its
+// solver set for every export and import (about 0.15 ms each here), so the export is one pass
+// through fftw_export_wisdom rather than fftw_export_wisdom_to_string's two. The caller holds
+// planner_mutex().
+class ShippedWisdomOnly {
+ public:
+  ShippedWisdomOnly() {
+    struct Export {
+      std::string text;
+      bool out_of_memory = false;
+    } exported;
+    // No exception may cross FFTW's C frames.
+    fftw_export_wisdom(
+        [](char c, void* data) {
+          auto& to = *static_cast<Export*>(data);
+          try {
+            if (!to.out_of_memory) to.text.push_back(c);
+          } catch (const std::bad_alloc&) {
+            to.out_of_memory = true;
+          }
+        },
+        &exported);
+    if (exported.out_of_memory) throw std::bad_alloc();
+    process_wisdom_ = std::move(exported.text);
+    fftw_forget_wisdom();
+    // Refused only by an FFTW with another solver set; its plans are then estimate's.
+    fftw_import_wisdom_from_string(fft_shipped_wisdom().data());
+  }
+  ~ShippedWisdomOnly() {
+    fftw_forget_wisdom();
+    fftw_import_wisdom_from_string(process_wisdom_.c_str());
+  }
+  ShippedWisdomOnly(const ShippedWisdomOnly&) = delete;
+  ShippedWisdomOnly& operator=(const ShippedWisdomOnly&) = delete;
+
+ private:
+  std::string process_wisdom_;
+};
+
 }  // namespace
+
+std::string_view fft_shipped_wisdom() { return detail::fftw_wisdom_text(); }
 
 void* fft_aligned_allocate(std::size_t bytes) {
   void* pointer = fftw_malloc(bytes == 0 ? 1 : bytes);
@@ -105,8 +152,20 @@ FftPlan::FftPlan(const FftLayout& layout, FftDirection direction, FftOptions opt
 
   {
     const std::lock_guard<std::mutex> lock(planner_mutex());
-    plan_ = fftw_plan_many_dft(1, &n, howmany, in.data, nullptr, stride, distance, out_data,
-                               nullptr, stride, distance, sign, flags);
+    const auto plan_with = [&](unsigned with_flags) {
+      return fftw_plan_many_dft(1, &n, howmany, in.data, nullptr, stride, distance, out_data,
+                                nullptr, stride, distance, sign, with_flags);
+    };
+    if (options.planner == FftPlanner::shipped_wisdom) {
+      const ShippedWisdomOnly shipped;
+      // FFTW_WISDOM_ONLY plans only from wisdom (FFTW 3.3 manual §4.3.2), which tells whether the
+      // shipped wisdom made the plan; the same wisdom entries that a plain estimate request uses.
+      plan_ = plan_with(flags | FFTW_WISDOM_ONLY);
+      from_shipped_wisdom_ = plan_ != nullptr;
+      if (plan_ == nullptr) plan_ = plan_with(flags);
+    } else {
+      plan_ = plan_with(flags);
+    }
   }
   if (plan_ == nullptr) throw InternalError("FFTW could not create a plan for the given layout");
 }
@@ -123,6 +182,7 @@ FftPlan FftPlan::along_columns(std::size_t rows, std::size_t columns, FftDirecti
 
 FftPlan::FftPlan(FftPlan&& other) noexcept
     : plan_(std::exchange(other.plan_, nullptr)),
+      from_shipped_wisdom_(other.from_shipped_wisdom_),
       layout_(other.layout_),
       direction_(other.direction_),
       options_(other.options_),
@@ -132,6 +192,7 @@ FftPlan& FftPlan::operator=(FftPlan&& other) noexcept {
   if (this != &other) {
     reset();
     plan_ = std::exchange(other.plan_, nullptr);
+    from_shipped_wisdom_ = other.from_shipped_wisdom_;
     layout_ = other.layout_;
     direction_ = other.direction_;
     options_ = other.options_;

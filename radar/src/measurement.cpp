@@ -63,7 +63,7 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
                                                      MeasurementWorkspace& ws) const {
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
   const FrameWindow window = processor_.window();
-  const ChirpTransform by_chirp{.fft = processor_.range_chirp_fft(), .chirp = ws.chirp};
+  const ChirpTransform by_chirp{.fft = &processor_.range_chirp_fft(), .chirp = ws.chirp};
   const SynthesisReport report =
       synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp);
   if (report.range_transformed) {

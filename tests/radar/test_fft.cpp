@@ -2,6 +2,7 @@
 // index j k mod n), and the DFT identities (Parseval, inverse, linearity of batching).
 // Tolerances: 1e-12 relative (max error / max magnitude), tighter than the 1e-9 the radar chain
 // needs; FFTW's measured error is ~1e-16 relative times log2 n.
+#include <fftw3.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,9 +10,13 @@
 #include <complex>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <numbers>
 #include <random>
+#include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -424,6 +429,119 @@ TEST(FftPlanner, MeasureMatchesEstimate) {
   FftPlan(256, FftDirection::forward).execute(x, estimate);
   FftPlan(256, FftDirection::forward, {.planner = FftPlanner::measure}).execute(x, measure);
   EXPECT_LE(relative_error(measure, estimate, 256), kRelTol);
+}
+
+// --- The shipped wisdom (FftPlanner::shipped_wisdom) ------------------------------------------
+
+FftOptions shipped_one_chirp() {
+  return {.planner = FftPlanner::shipped_wisdom,
+          .alignment = FftAlignment::aligned,
+          .placement = FftPlacement::out_of_place};
+}
+
+// The chain's plans at every power-of-two size the radar parameters allow (radar.samples_per_chirp
+// 16 ... 65536, radar.chirps_per_frame 1 ... 16384) come from the shipped wisdom: the one-chirp
+// range plan, and the Doppler column block at its default width, as RangeDopplerProcessor makes
+// them. A failure means FFTW ignored data/fftw_wisdom.txt (an FFTW with another solver set than
+// Debian 12's 3.3.10, or a CPU without the AVX codelets it names) and the chain planned as
+// estimate, or that bench/make_fftw_wisdom and the chain plan different problems.
+TEST(FftShippedWisdom, MakesEveryChainPlanOfAPowerOfTwoSize) {
+  for (std::size_t n = 16; n <= (std::size_t{1} << 16); n *= 2) {
+    EXPECT_TRUE(FftPlan(n, FftDirection::forward, shipped_one_chirp()).from_shipped_wisdom())
+        << "range, n = " << n;
+  }
+  for (std::size_t rows = 1; rows <= (std::size_t{1} << 14); rows *= 2) {
+    const ColumnBlockFft doppler(rows, 512, FftDirection::forward, FftPlanner::shipped_wisdom);
+    EXPECT_TRUE(doppler.block_plan().from_shipped_wisdom()) << "Doppler, rows = " << rows;
+  }
+  // Not for problems the wisdom lacks: the plan is then estimate's.
+  EXPECT_FALSE(FftPlan(1000, FftDirection::forward, shipped_one_chirp()).from_shipped_wisdom());
+  EXPECT_FALSE(FftPlan(512, FftDirection::inverse, shipped_one_chirp()).from_shipped_wisdom());
+  EXPECT_FALSE(FftPlan(512, FftDirection::forward).from_shipped_wisdom());
+}
+
+// Plans from the shipped wisdom compute the DFT: the range plan against the long-double DFT up to
+// 4096 points and, where that O(n^2) reference is too slow, against the estimate plan (itself
+// checked against the DFT above); the Doppler blocks against the DFT of every column, 1 ... 1024
+// rows of 20 columns (one block narrower than the default width, or full blocks and a narrower
+// last one). Tolerance kRelTol.
+TEST(FftShippedWisdom, PlansComputeTheDft) {
+  for (std::size_t n = 16; n <= (std::size_t{1} << 16); n *= 2) {
+    const ComplexVector x = random_signal(n, n + 7);
+    ComplexVector shipped(n);
+    FftPlan(n, FftDirection::forward, shipped_one_chirp()).execute(x, shipped);
+    if (n <= 4096) {
+      EXPECT_LE(relative_error(shipped, naive_dft(x, FftDirection::forward), n), kRelTol)
+          << "n = " << n;
+    } else {
+      ComplexVector estimate(n);
+      FftPlan(n, FftDirection::forward).execute(x, estimate);
+      EXPECT_LE(relative_error(shipped, estimate, n), kRelTol) << "n = " << n;
+    }
+  }
+  constexpr std::size_t columns = 20;
+  for (std::size_t rows = 1; rows <= 1024; rows *= 2) {
+    const ComplexVector input = random_signal(rows * columns, rows + 11);
+    ComplexVector data = input;
+    ColumnBlockFft(rows, columns, FftDirection::forward, FftPlanner::shipped_wisdom).execute(data);
+    for (std::size_t col = 0; col < columns; ++col) {
+      ComplexVector column(rows);
+      ComplexVector got(rows);
+      for (std::size_t r = 0; r < rows; ++r) {
+        column[r] = input[r * columns + col];
+        got[r] = data[r * columns + col];
+      }
+      EXPECT_LE(relative_error(got, naive_dft(column, FftDirection::forward), rows), kRelTol)
+          << "rows = " << rows << ", column " << col;
+    }
+  }
+}
+
+// FFTW's wisdom as a set of lines: one entry per line, in the order of FFTW's hash table, which
+// an import does not keep.
+std::vector<std::string> exported_wisdom() {
+  char* text = fftw_export_wisdom_to_string();
+  std::vector<std::string> lines;
+  std::istringstream stream(text != nullptr ? text : "");
+  std::free(text);  // allocated by FFTW with malloc
+  for (std::string line; std::getline(stream, line);) lines.push_back(line);
+  std::sort(lines.begin(), lines.end());
+  return lines;
+}
+
+// The process's own wisdom neither reaches a shipped_wisdom plan nor is changed by one. FFTW gives
+// an estimate request the plan of any wisdom it holds for the problem (manual §4.3.2), so after
+// FFTW_MEASURE plans of the chain's problems a plain estimate plan may be another algorithm; a
+// shipped plan made then must give the bits of one made before them, and the wisdom FFTW exports
+// must be the same before and after the shipped plan is made (the measured entries kept).
+TEST(FftShippedWisdom, IsIsolatedFromTheProcessWisdom) {
+  constexpr std::size_t rows = 64;
+  constexpr std::size_t samples = 512;
+  const ComplexVector chirp = random_signal(samples, 3);
+  const ComplexVector frame = random_signal(rows * samples, 4);
+  const auto shipped_bits = [&] {
+    ComplexVector range(samples);
+    FftPlan(samples, FftDirection::forward, shipped_one_chirp()).execute(chirp, range);
+    ComplexVector doppler = frame;
+    ColumnBlockFft(rows, samples, FftDirection::forward, FftPlanner::shipped_wisdom)
+        .execute(doppler);
+    range.insert(range.end(), doppler.begin(), doppler.end());
+    return range;
+  };
+  const ComplexVector before = shipped_bits();
+
+  const FftPlan measured_range(samples, FftDirection::forward,
+                               {.planner = FftPlanner::measure,
+                                .alignment = FftAlignment::aligned,
+                                .placement = FftPlacement::out_of_place});
+  const ColumnBlockFft measured_doppler(rows, samples, FftDirection::forward,
+                                        FftPlanner::measure);
+  const std::vector<std::string> process_wisdom = exported_wisdom();
+  ASSERT_GT(process_wisdom.size(), 2U);  // the header, measured entries, the closing parenthesis
+
+  const ComplexVector after = shipped_bits();
+  EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof before[0]), 0);
+  EXPECT_EQ(exported_wisdom(), process_wisdom);
 }
 
 }  // namespace

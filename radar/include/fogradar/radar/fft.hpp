@@ -11,6 +11,7 @@
 #include <limits>
 #include <new>
 #include <span>
+#include <string_view>
 #include <vector>
 
 struct fftw_plan_s;  // FFTW's opaque plan type (fftw_plan is fftw_plan_s*).
@@ -64,9 +65,19 @@ enum class FftDirection { forward, inverse };
 // FFTW keeps one planner per process, and an estimate request takes a measured plan of the same
 // problem or sub-problem from it (wisdom; FFTW 3.3 manual §4.3.2): after measure plans of the
 // chain's transforms (or imported wisdom), estimate plans are other algorithms with other bits
-// until fftw_forget_wisdom(). `fogradar run` never measures; bench/throughput forgets after its
-// floor.
-enum class FftPlanner { estimate, measure };
+// until fftw_forget_wisdom().
+// `shipped_wisdom` is FFTW_ESTIMATE given fft_shipped_wisdom() and no other wisdom: FFTW_MEASURE
+// plans of the radar chain's problems, made once and versioned with the source
+// (data/fftw_wisdom.txt, bench/make_fftw_wisdom.cpp). While the plan is made the process's
+// wisdom is set aside (exported, forgotten, re-imported after), so the plan, and its bits, are
+// the same in every process on a machine whatever else the process planned or imported. Where the
+// shipped wisdom does not apply (a problem it lacks, another FFTW build, a CPU without the
+// codelets it names) FFTW plans that problem as estimate does, again the same in every process.
+// The radar chain plans with it; `fogradar run` never measures.
+enum class FftPlanner { estimate, measure, shipped_wisdom };
+
+// The shipped wisdom (data/fftw_wisdom.txt, compiled in), in FFTW's wisdom format.
+std::string_view fft_shipped_wisdom();
 
 // Which buffers a plan accepts at execute time.
 //   aligned:   buffers must satisfy fft_is_aligned (AlignedVector, fft_aligned_allocate); FFTW
@@ -136,11 +147,15 @@ class FftPlan {
   const FftOptions& options() const noexcept { return options_; }
   // Smallest buffer the layout addresses: (howmany-1)*distance + (n-1)*stride + 1.
   std::size_t buffer_size() const noexcept { return buffer_size_; }
+  // A shipped_wisdom plan that FFTW made from the shipped wisdom; false where that wisdom did not
+  // apply (the plan is then estimate's) and for the other planners.
+  bool from_shipped_wisdom() const noexcept { return from_shipped_wisdom_; }
 
  private:
   void reset() noexcept;
 
   fftw_plan_s* plan_ = nullptr;
+  bool from_shipped_wisdom_ = false;
   FftLayout layout_{};
   FftDirection direction_ = FftDirection::forward;
   FftOptions options_{};
@@ -156,10 +171,11 @@ class FftPlan {
 // looped over all columns, reading `rows` elements `columns` * 16 bytes apart; at 1024 columns
 // every element of a column falls into the same L1 set, and range + Doppler took 2.0-2.2 x (64 x
 // 512, 128 x 1024) to 14-21 x (256 x 2048) the time of FFTW_MEASURE's best (docs/performance.md).
-// The block fits in L1 or L2; the plan applied to each column is the one ESTIMATE chose for the
-// whole batch (the same codelets, looped over `block` columns instead of all), so the results are
-// the same bits as along_columns' (pinned by tests/radar/test_fft.cpp for the frame sizes the
-// project uses). A last block narrower than `block` uses the same plan; the buffer's other columns
+// The block fits in L1 or L2; with `estimate` the plan applied to each column is the one ESTIMATE
+// chose for the whole batch (the same codelets, looped over `block` columns instead of all), so
+// the results are the same bits as along_columns' (pinned by tests/radar/test_fft.cpp for the
+// frame sizes the project uses). The radar chain plans the block with `shipped_wisdom`, whose
+// wisdom holds FFTW_MEASURE's plan of this block problem. A last block narrower than `block` uses the same plan; the buffer's other columns
 // still hold the previous block's (finite) results, or zeros, and FFTW transforms each column
 // independently, so they do not change the gathered columns' results.
 //
@@ -187,6 +203,8 @@ class ColumnBlockFft {
   std::size_t rows() const noexcept { return rows_; }
   std::size_t columns() const noexcept { return columns_; }
   std::size_t block_columns() const noexcept { return block_; }
+  // The plan applied to each block (rows transforms of `block` columns, in place).
+  const FftPlan& block_plan() const noexcept { return plan_; }
 
  private:
   std::size_t rows_;

@@ -36,7 +36,7 @@ struct MeasurementWorkspace {
 
 class RadarChain {
  public:
-  explicit RadarChain(const RadarParams& params, FftPlanner planner = FftPlanner::estimate);
+  explicit RadarChain(const RadarParams& params, FftPlanner planner = FftPlanner::shipped_wisdom);
 
   const RadarParams& params() const { return params_; }
   const RadarDerived& derived() const { return derived_; }

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <complex>
-#include <optional>
 #include <span>
 #include <vector>
 
@@ -19,8 +18,9 @@ void squared_magnitudes(std::span<const std::complex<double>> values, std::span<
 
 class RangeDopplerProcessor {
  public:
+  // The chain plans with the shipped FFTW wisdom (FftPlanner::shipped_wisdom).
   explicit RangeDopplerProcessor(const RadarParams& params,
-                                 FftPlanner planner = FftPlanner::estimate);
+                                 FftPlanner planner = FftPlanner::shipped_wisdom);
 
   std::size_t chirps() const { return chirps_; }
   std::size_t samples() const { return samples_; }
@@ -36,12 +36,10 @@ class RangeDopplerProcessor {
   // The Doppler FFT of transform_windowed alone, for a frame whose chirps are already range
   // transformed (by range_chirp_fft, as synthesize_frame does given it).
   void doppler_transform(std::span<std::complex<double>> frame) const;
-  // The range FFT of one chirp, out of place (from a buffer of one chirp into the frame's row):
-  // FFTW's plan for one row without the buffered first stage the in-place batch needs. Null
-  // unless it gives the batch's bits (checked when the processor is made: both plans transform the
-  // same pseudo-random frame and the first two and the last chirp must be equal in every bit) and
-  // every chirp of an aligned frame is aligned as the plan wants.
-  const FftPlan* range_chirp_fft() const { return range_chirp_fft_ ? &*range_chirp_fft_ : nullptr; }
+  // The range FFT of one chirp, out of place (from a one-chirp buffer into the frame's row; both
+  // FFTW-aligned): transform_windowed applies it to every chirp, the synthesis to each chirp as it
+  // finishes it, so both paths give the same bits.
+  const FftPlan& range_chirp_fft() const { return range_fft_; }
   // transform, and `power` receives |Y|^2 (same layout).
   void process(std::span<std::complex<double>> frame, std::span<double> power) const;
 
@@ -63,8 +61,7 @@ class RangeDopplerProcessor {
   std::vector<double> range_window_;
   std::vector<double> doppler_window_;
   std::vector<double> range_window_pairs_;  // w_r[n] at 2n and 2n + 1
-  FftPlan range_fft_;
-  std::optional<FftPlan> range_chirp_fft_;  // see range_chirp_fft()
+  FftPlan range_fft_;  // one chirp, out of place: see range_chirp_fft()
   ColumnBlockFft doppler_fft_;  // down the columns in cache-sized blocks: same bits, no cache cliff
   double coherent_amplitude_gain_;
   double noise_power_gain_;
