@@ -487,16 +487,19 @@ TEST(Estimation, DirichletKernelInterpolatesTheDftToTheDtft) {
   }
 }
 
-// The order in which rows_times_interleaved_kernels forms its sums (estimation.cpp), one double at a
-// time: per stripe of 2048 / objects / 16 * 16 doubles, per row and kernel, the products of value i
-// into partial sum (i - begin) / 4 % groups, lane i % 4 (groups 4 for one kernel, else 2; steps of 4
-// past the last whole group into sum 0), the sums added lane-wise in group order, the lanes paired
-// as (0 + 2, 1 + 3), an odd last complex value added after them, the row's sum then added to the
-// stripes before it. Every instruction-set version must form exactly these sums: the same bits.
-std::vector<std::complex<double>> rows_times_kernels_in_order(const std::vector<double>& map, std::size_t rows,
-                                                              std::size_t columns, const std::vector<double>& k_re,
-                                                              const std::vector<double>& k_im, std::size_t objects) {
-  const std::size_t values = 2 * columns, stripe = 2048 / objects / 16 * 16, groups = objects == 1 ? 4 : 2;
+// The order in which rows_times_interleaved_kernels forms its sums (estimation.cpp), one double at
+// a time: per stripe of 2048 / objects / 16 * 16 doubles, per row and kernel, the products of value
+// i into partial sum (i - begin) / 4 % groups, lane i % 4 (groups 4 for one kernel, else 2; steps
+// of 4 past the last whole group into sum 0), the sums added lane-wise in group order, the lanes
+// paired as (0 + 2, 1 + 3), an odd last complex value added after them, the row's sum then added to
+// the stripes before it. Every instruction-set version must form exactly these sums: the same bits.
+std::vector<std::complex<double>> rows_times_kernels_in_order(const std::vector<double>& map,
+                                                              std::size_t rows, std::size_t columns,
+                                                              const std::vector<double>& k_re,
+                                                              const std::vector<double>& k_im,
+                                                              std::size_t objects) {
+  const std::size_t values = 2 * columns, stripe = 2048 / objects / 16 * 16,
+                    groups = objects == 1 ? 4 : 2;
   std::vector<std::complex<double>> out(objects * rows);
   for (std::size_t begin = 0; begin < values; begin += stripe) {
     const std::size_t end = std::min(values, begin + stripe);
@@ -565,7 +568,8 @@ TEST(Estimation, RowsTimesKernelsFormsItsSumsInTheDocumentedOrder) {
           k_im[2 * j] = k_im[2 * j + 1] = k.imag();
         }
         std::vector<std::complex<double>> out(objects * rows);
-        rows_times_interleaved_kernels(map.data(), rows, columns, k_re.data(), k_im.data(), objects, out.data());
+        rows_times_interleaved_kernels(map.data(), rows, columns, k_re.data(), k_im.data(), objects,
+                                       out.data());
         const auto expected = rows_times_kernels_in_order(map, rows, columns, k_re, k_im, objects);
         EXPECT_EQ(std::memcmp(out.data(), expected.data(), out.size() * sizeof out[0]), 0)
             << objects << " kernels, " << columns << " columns, " << rows << " rows";

@@ -534,8 +534,7 @@ TEST(FftShippedWisdom, IsIsolatedFromTheProcessWisdom) {
                                {.planner = FftPlanner::measure,
                                 .alignment = FftAlignment::aligned,
                                 .placement = FftPlacement::out_of_place});
-  const ColumnBlockFft measured_doppler(rows, samples, FftDirection::forward,
-                                        FftPlanner::measure);
+  const ColumnBlockFft measured_doppler(rows, samples, FftDirection::forward, FftPlanner::measure);
   const std::vector<std::string> process_wisdom = exported_wisdom();
   ASSERT_GT(process_wisdom.size(), 2U);  // the header, measured entries, the closing parenthesis
 

@@ -175,9 +175,10 @@ class FftPlan {
 // chose for the whole batch (the same codelets, looped over `block` columns instead of all), so
 // the results are the same bits as along_columns' (pinned by tests/radar/test_fft.cpp for the
 // frame sizes the project uses). The radar chain plans the block with `shipped_wisdom`, whose
-// wisdom holds FFTW_MEASURE's plan of this block problem. A last block narrower than `block` uses the same plan; the buffer's other columns
-// still hold the previous block's (finite) results, or zeros, and FFTW transforms each column
-// independently, so they do not change the gathered columns' results.
+// wisdom holds FFTW_MEASURE's plan of this block problem. A last block narrower than `block` uses
+// the same plan; the buffer's other columns still hold the previous block's (finite) results, or
+// zeros, and FFTW transforms each column independently, so they do not change the gathered
+// columns' results.
 //
 // Thread safety as FftPlan: execute() is const and may run on many threads at once; each call
 // uses its own block buffer (one FFTW-aligned allocation of rows * block values per call).

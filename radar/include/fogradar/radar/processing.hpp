@@ -61,7 +61,7 @@ class RangeDopplerProcessor {
   std::vector<double> range_window_;
   std::vector<double> doppler_window_;
   std::vector<double> range_window_pairs_;  // w_r[n] at 2n and 2n + 1
-  FftPlan range_fft_;  // one chirp, out of place: see range_chirp_fft()
+  FftPlan range_fft_;                       // one chirp, out of place: see range_chirp_fft()
   ColumnBlockFft doppler_fft_;  // down the columns in cache-sized blocks: same bits, no cache cliff
   double coherent_amplitude_gain_;
   double noise_power_gain_;
