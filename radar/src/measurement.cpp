@@ -69,7 +69,7 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
   if (report.range_transformed) {
     processor_.doppler_transform(ws.frame);
   } else {
-    processor_.transform_windowed(ws.frame);
+    processor_.transform_windowed(ws.frame, ws.chirp);
   }
   return report;
 }

@@ -60,10 +60,15 @@ void RangeDopplerProcessor::transform(std::span<std::complex<double>> frame) con
 }
 
 void RangeDopplerProcessor::transform_windowed(std::span<std::complex<double>> frame) const {
-  FOGRADAR_CHECK(frame.size() == chirps_ * samples_);
+  ComplexVector chirp(samples_);
+  transform_windowed(frame, chirp);
+}
+
+void RangeDopplerProcessor::transform_windowed(std::span<std::complex<double>> frame,
+                                               std::span<std::complex<double>> chirp) const {
+  FOGRADAR_CHECK(frame.size() == chirps_ * samples_ && chirp.size() == samples_);
   // The one-chirp plan the synthesis uses, from an aligned copy of each chirp back into its row:
   // the same plan on the same alignment, so the same bits as the synthesis path.
-  ComplexVector chirp(samples_);
   for (std::size_t c = 0; c < chirps_; ++c) {
     const std::span<std::complex<double>> row = frame.subspan(c * samples_, samples_);
     std::copy(row.begin(), row.end(), chirp.begin());

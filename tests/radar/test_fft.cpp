@@ -73,6 +73,14 @@ double relative_error(const A& a, const B& b, std::size_t count) {
   return static_cast<double>(max_error / max_magnitude);
 }
 
+// Column c of a row-major rows x columns matrix.
+ComplexVector column_of(const ComplexVector& matrix, std::size_t rows, std::size_t columns,
+                        std::size_t c) {
+  ComplexVector column(rows);
+  for (std::size_t r = 0; r < rows; ++r) column[r] = matrix[r * columns + c];
+  return column;
+}
+
 // --- Against the naive DFT --------------------------------------------------------------------
 
 class FftSize : public testing::TestWithParam<std::size_t> {};
@@ -161,15 +169,9 @@ TEST(FftBatch, RowsAndColumnsEqualPerVectorTransforms) {
     FftPlan::along_columns(rows, columns, FftDirection::forward).execute(matrix, by_columns);
     const FftPlan column_plan(rows, FftDirection::forward);
     for (std::size_t c = 0; c < columns; ++c) {
-      ComplexVector column(rows);
-      ComplexVector got(rows);
-      for (std::size_t r = 0; r < rows; ++r) {
-        column[r] = matrix[r * columns + c];
-        got[r] = by_columns[r * columns + c];
-      }
       ComplexVector expected(rows);
-      column_plan.execute(column, expected);
-      EXPECT_LE(relative_error(got, expected, rows), kRelTol)
+      column_plan.execute(column_of(matrix, rows, columns, c), expected);
+      EXPECT_LE(relative_error(column_of(by_columns, rows, columns, c), expected, rows), kRelTol)
           << rows << "x" << columns << " column " << c;
     }
   }
@@ -222,12 +224,8 @@ TEST(FftColumnBlocks, MatchesNaiveDftOfEveryColumn) {
       ComplexVector data = input;
       ColumnBlockFft(c.rows, c.columns, direction, FftPlanner::estimate, c.block).execute(data);
       for (std::size_t col = 0; col < c.columns; ++col) {
-        ComplexVector column(c.rows);
-        ComplexVector got(c.rows);
-        for (std::size_t r = 0; r < c.rows; ++r) {
-          column[r] = input[r * c.columns + col];
-          got[r] = data[r * c.columns + col];
-        }
+        const ComplexVector column = column_of(input, c.rows, c.columns, col);
+        const ComplexVector got = column_of(data, c.rows, c.columns, col);
         EXPECT_LE(relative_error(got, naive_dft(column, direction), c.rows), kRelTol)
             << c.rows << "x" << c.columns << " block " << c.block << " column " << col;
       }
@@ -485,12 +483,8 @@ TEST(FftShippedWisdom, PlansComputeTheDft) {
     ComplexVector data = input;
     ColumnBlockFft(rows, columns, FftDirection::forward, FftPlanner::shipped_wisdom).execute(data);
     for (std::size_t col = 0; col < columns; ++col) {
-      ComplexVector column(rows);
-      ComplexVector got(rows);
-      for (std::size_t r = 0; r < rows; ++r) {
-        column[r] = input[r * columns + col];
-        got[r] = data[r * columns + col];
-      }
+      const ComplexVector column = column_of(input, rows, columns, col);
+      const ComplexVector got = column_of(data, rows, columns, col);
       EXPECT_LE(relative_error(got, naive_dft(column, FftDirection::forward), rows), kRelTol)
           << "rows = " << rows << ", column " << col;
     }

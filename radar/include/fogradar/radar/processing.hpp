@@ -33,6 +33,10 @@ class RangeDopplerProcessor {
   // The range and Doppler FFTs of transform, for a frame that already carries window() (as
   // synthesize_frame leaves it when given the window).
   void transform_windowed(std::span<std::complex<double>> frame) const;
+  // The same with a caller's one-chirp buffer (FFTW-aligned, samples() long) for the range FFT's
+  // copy of each chirp, so that a workspace's frames allocate nothing.
+  void transform_windowed(std::span<std::complex<double>> frame,
+                          std::span<std::complex<double>> chirp) const;
   // The Doppler FFT of transform_windowed alone, for a frame whose chirps are already range
   // transformed (by range_chirp_fft, as synthesize_frame does given it).
   void doppler_transform(std::span<std::complex<double>> frame) const;
