@@ -42,7 +42,7 @@ void BM_LidarScan(benchmark::State& state) {
   const lidar::FogFluctuationSeries fog = sensor.fog_fluctuation(RandomStream(1, 2, 3));
   std::uint64_t i = 0;
   for (auto _ : state) {
-    RandomStream stream = sensor_stream(1, SensorId::lidar, layers, i);
+    RandomStream stream = sensor_stream(1, lidar::stream_key, layers, i);
     benchmark::DoNotOptimize(sensor.measure(active, fog.scan(i % 40), stream));
     ++i;
   }
@@ -73,9 +73,9 @@ void BM_PaperLidarPart(benchmark::State& state) {
     for (std::size_t step = 0; step <= 4; ++step) {
       const auto active = propagation::first_layers_active(step, 4);
       const lidar::FogFluctuationSeries fog = sensor.fog_fluctuation(
-          sensor_stream(1, SensorId::lidar, step, sensor.fog_series_index()));
+          sensor_stream(1, lidar::stream_key, step, sensor.fog_series_index()));
       for (std::size_t s = 0; s < 40; ++s) {
-        RandomStream stream = sensor_stream(1, SensorId::lidar, step, s);
+        RandomStream stream = sensor_stream(1, lidar::stream_key, step, s);
         benchmark::DoNotOptimize(sensor.measure(active, fog.scan(s), stream));
       }
     }

@@ -1,7 +1,7 @@
 // The paper scenario's lidar part alone, at one thread: 5 steps (0-4 active layers) x 40 scans of
 // the default LidarParams in the default chamber (propagation::ChamberSpec defaults = the study's
 // chamber and fog, examples/paper.toml), seed 1, streams as experiment/ keys them
-// (sensor_stream(seed, SensorId::lidar, step, index)). Prints the lidar's table, the wall time of
+// (sensor_stream(seed, lidar::stream_key, step, index)). Prints the lidar's table, the wall time of
 // the measurement and of the result files, and writes the lidar's result files into the directory
 // given as the first argument (if any). Run:
 //   ./build/release/bench/lidar_paper [out-dir]
@@ -36,10 +36,10 @@ int main(int argc, char** argv) {
     const propagation::ActiveLayers active =
         propagation::first_layers_active(step, chamber.layers.size());
     const lidar::FogFluctuationSeries fog = sensor.fog_fluctuation(
-        sensor_stream(seed, SensorId::lidar, step, sensor.fog_series_index()));
+        sensor_stream(seed, lidar::stream_key, step, sensor.fog_series_index()));
     lidar::LidarStepResult result{.active_layers = step, .scans = {}};
     for (std::size_t s = 0; s < params.scans_per_step; ++s) {
-      RandomStream stream = sensor_stream(seed, SensorId::lidar, step, s);
+      RandomStream stream = sensor_stream(seed, lidar::stream_key, step, s);
       result.scans.push_back(sensor.measure(active, fog.scan(s), stream));
     }
     steps.push_back(std::move(result));

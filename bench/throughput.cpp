@@ -7,7 +7,7 @@
 //   grouping, peak interpolation, RCS) followed by experiment::summarize. Writing the result files
 //   is NOT included.
 // whole process (with --fogradar PATH): `PATH run --scenario FILE --out DIR --threads N` as a
-//   child process: start-up, the run and the result files, all included. Its samples.csv must
+//   child process: start-up, the run and the result files, all included. Its radar_samples.csv must
 //   equal the in-process run's, bit for bit, or throughput stops: both time one computation.
 // FFT floor: the fastest range + Doppler transform of the frame that FFTW does on this machine in
 //   complex double at the same thread count, over the layouts below, with FFTW_MEASURE plans made
@@ -72,6 +72,8 @@
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/radar/fft.hpp"
+#include "fogradar/radar/outputs.hpp"
+#include "fogradar/radar/sensor.hpp"
 
 #ifndef FOGRADAR_SOURCE_DIR
 #error "FOGRADAR_SOURCE_DIR must be defined (bench/CMakeLists.txt)"
@@ -189,7 +191,7 @@ struct EndToEnd {
   double seconds = 0.0;
   double summarize_seconds = 0.0;
   std::size_t detections = 0;  // printed, so nothing can be optimised away
-  std::string samples_csv;     // the run's samples.csv, formed after the timing
+  std::string samples_csv;     // the run's radar_samples.csv, formed after the timing
 };
 
 EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads) {
@@ -201,23 +203,24 @@ EndToEnd time_end_to_end(const experiment::Scenario& scenario, unsigned threads)
   EndToEnd e;
   e.seconds = seconds_since(start);
   e.summarize_seconds = seconds_since(summary_start);
-  for (const experiment::StepSummary& step : summary.steps) e.detections += step.detections;
-  for (auto& [name, text] : experiment::result_files(scenario, result, summary)) {
-    if (name == "samples.csv") e.samples_csv = std::move(text);
-  }
+  const auto& radar_report = summary.of<radar::RadarReport>("radar");
+  for (const radar::StepSummary& step : radar_report.summary().steps)
+    e.detections += step.detections;
+  e.samples_csv = radar::samples_csv(radar_report.steps());
   return e;
 }
 
-// The in-process run must be the computation `fogradar run` does: its samples.csv (every
+// The in-process run must be the computation `fogradar run` does: its radar_samples.csv (every
 // measurement's RCS, SNR and detections, to the last bit) equal to the child's.
 void require_same_samples(const std::filesystem::path& out_dir, const std::string& in_process) {
-  std::ifstream file(out_dir / "samples.csv", std::ios::binary);
+  std::ifstream file(out_dir / "radar_samples.csv", std::ios::binary);
   const std::string written{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
   if (written != in_process) {
-    std::fprintf(stderr,
-                 "throughput: the in-process run's samples.csv differs from %s/samples.csv: the "
-                 "two timings are not of the same computation\n",
-                 out_dir.c_str());
+    std::fprintf(
+        stderr,
+        "throughput: the in-process run's radar_samples.csv differs from %s/radar_samples.csv: the "
+        "two timings are not of the same computation\n",
+        out_dir.c_str());
     std::exit(1);
   }
 }
@@ -465,8 +468,8 @@ int run(const Options& options) {
   scenario.validate();
   const std::size_t steps = scenario.experiment.max_active_layers + 1;
   const std::size_t frames = steps * scenario.experiment.measurements_per_step;
-  const std::size_t rows = scenario.radar.chirps_per_frame,
-                    columns = scenario.radar.samples_per_chirp;
+  const radar::RadarParams& radar_params = scenario.params<radar::SensorParams>("radar").radar;
+  const std::size_t rows = radar_params.chirps_per_frame, columns = radar_params.samples_per_chirp;
   const unsigned all = std::max(1u, std::thread::hardware_concurrency());
   const auto frames_d = static_cast<double>(frames);
 

@@ -1,5 +1,5 @@
-// fogradar: 77 GHz FMCW radar in fog. Exit status 0 ok, 2 bad usage or bad input, 1 internal fault,
-// 130 / 143 `run` stopped by SIGINT / SIGTERM.
+// fogradar: automotive surround sensors in fog. Exit status 0 ok, 2 bad usage or bad input, 1
+// internal fault, 130 / 143 `run` stopped by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -11,7 +11,7 @@
 
 int main(int argc, char** argv) {
   constexpr int bad_input = 2;
-  CLI::App app{"fogradar: 77 GHz FMCW automotive radar in fog, simulated from physics"};
+  CLI::App app{"fogradar: automotive surround sensors in fog, simulated from physics"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(FOGRADAR_VERSION));
   const fogradar::cli::Action run = fogradar::cli::add_run_command(app);

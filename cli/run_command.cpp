@@ -15,7 +15,9 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "checks.hpp"
 #include "commands.hpp"
@@ -38,19 +40,17 @@ struct RunOptions {
 };
 
 // Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to
-// whole percents.
-std::function<void(std::size_t, std::size_t)> terminal_progress() {
+// whole percents. `items` says what is counted ("radar measurements and lidar scans").
+std::function<void(std::size_t, std::size_t)> terminal_progress(std::string items) {
   if (!::isatty(STDERR_FILENO)) return {};
   auto last_percent = std::make_shared<std::atomic<int>>(-1);
-  return [last_percent](std::size_t done, std::size_t total) {
+  return [last_percent, items](std::size_t done, std::size_t total) {
     const int percent = static_cast<int>(100 * done / total);
     int previous = last_percent->load();
     while (percent > previous) {
       if (last_percent->compare_exchange_weak(previous, percent)) {
-        std::fprintf(
-            stderr,
-            "\rfogradar: %3d %% (%zu of %zu radar measurements, lidar scans and camera frames)%s",
-            percent, done, total, done == total ? "\n" : "");
+        std::fprintf(stderr, "\rfogradar: %3d %% (%zu of %zu %s)%s", percent, done, total,
+                     items.c_str(), done == total ? "\n" : "");
         break;
       }
     }
@@ -142,18 +142,18 @@ void run(const RunOptions& options) {
   const std::filesystem::path dir(options.out_dir);
   // Before the output directory: the directory is released with the signals still held off.
   const SignalWatch signals;
-  experiment::OutputDirectory out(dir);
+  experiment::OutputDirectory out(dir, experiment::result_file_names(scenario));
   experiment::ExperimentResult result;
   try {
-    result =
-        experiment::run_experiment(scenario, {.threads = static_cast<unsigned>(options.threads),
-                                              .progress = terminal_progress(),
-                                              .stop = &signals.stop()});
+    result = experiment::run_experiment(
+        scenario, {.threads = static_cast<unsigned>(options.threads),
+                   .progress = terminal_progress(experiment::item_nouns(scenario)),
+                   .stop = &signals.stop()});
   } catch (const experiment::Interrupted&) {
     signals.throw_interrupted(dir);
   }
   const experiment::ExperimentSummary summary = experiment::summarize(result);
-  if (!out.replace(experiment::result_files(scenario, result, summary),
+  if (!out.replace(experiment::result_files(scenario, summary),
                    [&] { return signals.stop().load(); })) {
     signals.throw_interrupted(dir);
   }
@@ -192,8 +192,36 @@ Action add_run_command(CLI::App& app) {
 }
 
 Action add_scenario_command(CLI::App& app) {
-  app.add_subcommand("scenario", "Print the default (paper) scenario as TOML, every key commented");
-  return [] { std::cout << experiment::paper_scenario_toml(); };
+  auto sections = std::make_shared<std::vector<std::string>>();
+  auto keys = std::make_shared<bool>(false);
+  CLI::App* scenario = app.add_subcommand(
+      "scenario", "Print the default (paper) scenario as TOML, every key commented");
+  scenario->add_flag("--keys", *keys,
+                     "Print the key tables of docs/scenario.md instead: key, default, allowed "
+                     "values, meaning, one table per top-level section");
+  scenario->add_option("sections", *sections, "With --keys: only these top-level sections");
+  return [sections, keys] {
+    if (!*keys && sections->empty()) {
+      std::cout << experiment::paper_scenario_toml();
+      return;
+    }
+    if (!*keys) throw_invalid("sections", sections->front(), "given with --keys only");
+    // Every section is checked before anything is printed.
+    const experiment::Scenario paper = experiment::paper_scenario();
+    std::vector<std::string> tables;
+    for (const std::string& section : *sections) {
+      tables.push_back(experiment::key_table_markdown(paper, section));
+    }
+    if (sections->empty()) {
+      for (const std::string& section : experiment::top_level_sections(paper)) {
+        std::cout << (section == experiment::top_level_sections(paper).front() ? "" : "\n")
+                  << "### [" << section << "]\n\n"
+                  << experiment::key_table_markdown(paper, section);
+      }
+      return;
+    }
+    for (const std::string& table : tables) std::cout << table;
+  };
 }
 
 }  // namespace fogradar::cli

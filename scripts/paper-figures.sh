@@ -12,8 +12,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 "$fogradar" run --out "$work/seed1" >"$work/seed1.txt"
-cp "$work/seed1/summary.csv" "$root/docs/figures/paper_summary.csv"
-cp "$work/seed1/rcs_boxplot.svg" "$root/docs/figures/paper_rcs_boxplot.svg"
+cp "$work/seed1/radar_summary.csv" "$root/docs/figures/paper_summary.csv"
+cp "$work/seed1/radar_rcs_boxplot.svg" "$root/docs/figures/paper_rcs_boxplot.svg"
 for figure in lidar_intensity_boxplot lidar_scans camera_histograms benchmark; do
   cp "$work/seed1/$figure.svg" "$root/docs/figures/paper_$figure.svg"
 done
@@ -35,7 +35,7 @@ for seed in 2 3; do
   "$fogradar" run --seed "$seed" --out "$work/seed$seed" >/dev/null
   printf 'seed %s Hodges-Lehmann shifts (dB), steps 1-4:' "$seed"
   awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
-    $1 > 0 { printf " %+.3f", $col["median_shift_db"] } END { print "" }' "$work/seed$seed/summary.csv"
+    $1 > 0 { printf " %+.3f", $col["median_shift_db"] } END { print "" }' "$work/seed$seed/radar_summary.csv"
 done
 
 # One baseline variant: `decompose NAME TARGET-KEYS...` runs 200 measurements at 0 layers with the
@@ -53,7 +53,7 @@ decompose() {
   "$fogradar" run --scenario "$work/variant.toml" --out "$work/variant" >/dev/null
   awk -F, -v name="$name" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
     { printf "| %s | %.3f | %.3f |\n", name, $col["median_dbsm"], $col["q3_dbsm"] - $col["q1_dbsm"] }' \
-    "$work/variant/summary.csv"
+    "$work/variant/radar_summary.csv"
 }
 echo "| model | median (dBsm) | IQR (dB) |"
 echo "|---|---|---|"

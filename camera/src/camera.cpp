@@ -359,7 +359,7 @@ CameraStepResult Camera::measure_step(std::size_t step, const propagation::Activ
   result.active_layers = result.optics.active_layer_count;
   result.frames.reserve(params_.frames_per_step);
   for (std::size_t index = 0; index < params_.frames_per_step; ++index) {
-    RandomStream stream = sensor_stream(seed, SensorId::camera, step, index);
+    RandomStream stream = sensor_stream(seed, stream_key, step, index);
     result.frames.push_back(frame(result.optics, stream));
   }
   return result;

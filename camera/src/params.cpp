@@ -42,19 +42,6 @@ Enum parse_name(const std::array<std::pair<Enum, std::string_view>, N>& names,
   throw_invalid(field, text, allowed);
 }
 
-void require_count(const char* field, std::size_t value, std::size_t low, std::size_t high) {
-  require_in_range(field, static_cast<double>(value), static_cast<double>(low),
-                   static_cast<double>(high));
-}
-
-void validate_region(const RegionParams& region, const char* median_field,
-                     const char* sigma_field) {
-  // Reflectance factors of real surfaces under diffuse light: (0, 1.5] leaves room for retro-
-  // reflective or glossy patches; ln-spread up to 3 (a factor 20 per sigma).
-  require_in_range(median_field, region.median_reflectance, 1e-4, 1.5);
-  require_in_range(sigma_field, region.log_sigma, 0.0, 3.0);
-}
-
 }  // namespace
 
 std::string_view to_string(Band band) noexcept { return name_of(kBandNames, band); }
@@ -71,31 +58,94 @@ TransferCurve parse_transfer_curve(std::string_view text, std::string_view field
   return parse_name(kTransferNames, text, field, "one of srgb, gamma");
 }
 
-void CameraParams::validate() const {
+KeyTable<CameraParams> camera_keys() {
+  KeyTable<CameraParams> keys("camera.");
+  keys.choice(
+      "band", FOGRADAR_KEY_FIELD(band), {"photopic", "rgb", "monochromatic"},
+      [](std::string_view text, std::string_view key) { return parse_band(text, key); },
+      [](Band b) { return to_string(b); },
+      "spectral weighting: CIE photopic V(λ) (one grey channel), sRGB primaries to grey, "
+      "or one wavelength; the study's images are \"converted into gray scale\", and V(λ) "
+      "is the luminance weighting of a grey image");
   // The Segelstein table and the Mie sums cover it; a camera sees 380-780 nm, silicon to ~1100 nm.
-  require_in_range("camera.wavelength_nm", wavelength_nm, 300.0, 1100.0);
+  keys.number("wavelength_nm", FOGRADAR_KEY_FIELD(wavelength_nm), closed(300.0, 1100.0),
+              "band = monochromatic only; 550 nm = the visibility wavelength (paper sec. I)");
   // 5 nm is the CIE table's own spacing; 160 nm leaves 3 nodes over 400-720 nm.
-  require_in_range("camera.mie_step_nm", mie_step_nm, 5.0, 160.0);
+  keys.number("mie_step_nm", FOGRADAR_KEY_FIELD(mie_step_nm), closed(5.0, 160.0),
+              "spacing of the Mie wavelengths over the band (docs/camera.md §2: 2.6e-3 error of t "
+              "at 4 layers; Mie ≈ 4 ms per wavelength)");
+  keys.choice(
+      "transfer", FOGRADAR_KEY_FIELD(transfer), {"srgb", "gamma"},
+      [](std::string_view text, std::string_view key) { return parse_transfer_curve(text, key); },
+      [](TransferCurve c) { return to_string(c); },
+      "output encoding: IEC 61966-2-1 sRGB, the usual 8-bit encoding (assumption), or a "
+      "power law");
+  keys.number("gamma", FOGRADAR_KEY_FIELD(gamma), closed(1.0, 4.0), "transfer = gamma only");
+  keys.integer("frames_per_step", FOGRADAR_KEY_FIELD(frames_per_step), 1, 100000,
+               "the study records continuously; 10 × 19200 px fill the histograms");
+  keys.number("contrast_threshold", FOGRADAR_KEY_FIELD(contrast_threshold), closed(1e-3, 0.5),
+              "Weber contrast threshold of an edge and of the target: CIE 5 % (paper eq. 9)");
+  keys.boolean("write_roi_images", FOGRADAR_KEY_FIELD(write_roi_images),
+               "keep the first frame of each step as camera_roi_<step>.pgm (Fig. 8)");
+  keys.choice(
+      "exposure.mode", FOGRADAR_KEY_FIELD(exposure.mode), {"fixed", "auto"},
+      [](std::string_view text, std::string_view key) { return parse_exposure_mode(text, key); },
+      [](ExposureMode m) { return to_string(m); },
+      "fixed, or per step so that the noise-free ROI mean grey is auto_target_grey; the "
+      "study's means rise with fog: no ROI auto-exposure");
   // Above 1 every pixel of a white surface clips; 1e-4 is 0.03 grey levels of linear signal.
-  require_in_range("camera.exposure.ambient_level", exposure.ambient_level, 1e-4, 1.0);
-  require_in_range("camera.exposure.auto_target_grey", exposure.auto_target_grey, 1.0, 254.0);
-  require_in_range("camera.gamma", gamma, 1.0, 4.0);
-  require_in_range("camera.noise.full_well_electrons", noise.full_well_electrons, 100.0, 1e7);
-  require_in_range("camera.noise.read_noise_electrons", noise.read_noise_electrons, 0.0, 1000.0);
-  require_count("camera.roi.width_px", roi.width_px, 8, 4096);
-  require_count("camera.roi.height_px", roi.height_px, 8, 4096);
-  if (!(roi.cell_px >= 2 && roi.cell_px <= roi.width_px / 2 && roi.cell_px <= roi.height_px / 2)) {
-    throw_invalid("camera.roi.cell_px", static_cast<double>(roi.cell_px),
-                  "in [2, " + std::to_string(std::min(roi.width_px, roi.height_px) / 2) +
-                      "] (half of min(camera.roi.width_px, camera.roi.height_px))");
-  }
-  require_in_range("camera.roi.target_fraction", roi.target_fraction, 0.05, 0.95);
-  validate_region(roi.target, "camera.roi.target.median_reflectance",
-                  "camera.roi.target.log_sigma");
-  validate_region(roi.background, "camera.roi.background.median_reflectance",
-                  "camera.roi.background.log_sigma");
-  require_count("camera.frames_per_step", frames_per_step, 1, 100000);
-  require_in_range("camera.contrast_threshold", contrast_threshold, 1e-3, 0.5);
+  keys.number("exposure.ambient_level", FOGRADAR_KEY_FIELD(exposure.ambient_level),
+              closed(1e-4, 1.0),
+              "linear signal (fraction of full scale) of a white surface in the hall's light; "
+              "**calibrated** on the study's 0- and 2-layer means (docs/camera.md §6)");
+  keys.number("exposure.auto_target_grey", FOGRADAR_KEY_FIELD(exposure.auto_target_grey),
+              closed(1.0, 254.0), "auto mode only; the study's clear mean");
+  keys.boolean("noise.enabled", FOGRADAR_KEY_FIELD(noise.enabled), "shot and read noise");
+  keys.number("noise.full_well_electrons", FOGRADAR_KEY_FIELD(noise.full_well_electrons),
+              closed(100.0, 1e7),
+              "electrons at full scale (shot noise √N_e); assumption, order of automotive CMOS "
+              "pixels");
+  keys.number("noise.read_noise_electrons", FOGRADAR_KEY_FIELD(noise.read_noise_electrons),
+              closed(0.0, 1000.0), "rms, Gaussian, per pixel and channel; assumption, same");
+  keys.integer("roi.width_px", FOGRADAR_KEY_FIELD(roi.width_px), 8, 4096,
+               "assumption: the study gives no ROI size");
+  keys.integer("roi.height_px", FOGRADAR_KEY_FIELD(roi.height_px), 8, 4096,
+               "assumption: the study gives no ROI size");
+  keys.integer("roi.cell_px", FOGRADAR_KEY_FIELD(roi.cell_px), 2, 2048,
+               "square cells of one reflectance each: the scale of the scene's structure (edges)")
+      .also([](const CameraParams&) {
+        return std::string(
+            "with 2 x camera.roi.cell_px <= camera.roi.width_px and "
+            "camera.roi.height_px");
+      })
+      .with_check([](const CameraParams& p) {
+        const RoiParams& roi = p.roi;
+        if (!(roi.cell_px <= roi.width_px / 2 && roi.cell_px <= roi.height_px / 2)) {
+          throw_invalid("camera.roi.cell_px", static_cast<double>(roi.cell_px),
+                        "in [2, " + std::to_string(std::min(roi.width_px, roi.height_px) / 2) +
+                            "] (half of min(camera.roi.width_px, camera.roi.height_px))");
+        }
+      })
+      .documented_as("integer [2, min(width_px, height_px)/2]");
+  keys.number("roi.target_fraction", FOGRADAR_KEY_FIELD(roi.target_fraction), closed(0.05, 0.95),
+              "the target (EVT) is the central rectangle of cells holding this fraction; ROI = "
+              "\"area of the EVT\" with some background");
+  // Reflectance factors of real surfaces under diffuse light: (0, 1.5] leaves room for retro-
+  // reflective or glossy patches; ln-spread up to 3 (a factor 20 per sigma).
+  keys.number("roi.target.median_reflectance", FOGRADAR_KEY_FIELD(roi.target.median_reflectance),
+              closed(1e-4, 1.5),
+              "reflectance factor L₀/L_a, lognormal over the cells; **calibrated** "
+              "(docs/camera.md §6)");
+  keys.number("roi.target.log_sigma", FOGRADAR_KEY_FIELD(roi.target.log_sigma), closed(0.0, 3.0),
+              "standard deviation of ln ρ; assumption (EVT: dark body, lighter parts)");
+  keys.number("roi.background.median_reflectance",
+              FOGRADAR_KEY_FIELD(roi.background.median_reflectance), closed(1e-4, 1.5),
+              "assumption (a light hall); Fig. 8 shows dark and bright background");
+  keys.number("roi.background.log_sigma", FOGRADAR_KEY_FIELD(roi.background.log_sigma),
+              closed(0.0, 3.0), "assumption");
+  return keys;
 }
+
+void CameraParams::validate() const { camera_keys().check(*this); }
 
 }  // namespace fogradar::camera

@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "fogradar/core/error.hpp"
-#include "fogradar/core/units.hpp"
 #include "toml_bytes.hpp"
 
 namespace fogradar::experiment {
@@ -27,6 +26,8 @@ std::string_view paper_scenario_text();
 }  // namespace detail
 
 namespace {
+
+using ScenarioKey = Key<Scenario>;
 
 // Line of each key read from the file, to point error messages at it.
 using KeyLines = std::map<std::string, std::size_t>;
@@ -45,487 +46,142 @@ std::string as_written(const toml::node& node) {
   return text.str();
 }
 
-// Reads the keys of one TOML table into typed fields; anything left unread is an unknown key.
-class Section {
- public:
-  Section(const toml::table& root, std::string path, std::string_view source, KeyLines& lines)
-      : path_(std::move(path)), source_(source), lines_(lines) {
-    const toml::node* node = root.at_path(path_).node();
-    if (node == nullptr) return;
-    table_ = node->as_table();
-    if (table_ == nullptr) fail(*node, path_, "[" + path_ + "] must be a table");
-  }
-  // One table of an array of tables, named `path` ("lidar.background[2]").
-  Section(const toml::table* table, std::string path, std::string_view source, KeyLines& lines)
-      : table_(table), path_(std::move(path)), source_(source), lines_(lines) {}
+std::string format_toml_number(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  std::string text(buffer, result.ptr);
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
 
-  void read(std::string_view key, double& out) {
-    if (const toml::node* node = find(key)) {
-      const std::optional<double> value = node->is_number() ? node->value<double>() : std::nullopt;
-      if (!value)
-        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a number");
-      out = *value;
-    }
-  }
+std::string in_quotes(std::string_view text) { return "\"" + std::string(text) + "\""; }
 
-  // An integer key with its documented range (docs/scenario.md); ranges that depend on other keys
-  // pass their widest bound here and are checked with those keys by Scenario::validate().
-  template <class Integer>
-  requires std::is_integral_v<Integer>
-  // `also` states the bound that other keys set within [low, high].
-  void read(std::string_view key, Integer& out, std::int64_t low, std::int64_t high,
-            const std::string& also = "") {
-    if (const toml::node* node = find(key)) {
-      const std::string range = "an integer in [" + std::to_string(low) + ", " +
-                                std::to_string(high) + "]" + (also.empty() ? "" : " " + also);
-      if (!node->is_integer())
-        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be " + range);
-      const std::int64_t value = *node->value<std::int64_t>();
-      if (value < low || value > high) {
-        fail(*node, full(key), full(key) + " = " + std::to_string(value) + ": must be " + range);
+std::string joined(const std::vector<std::string>& items, std::string_view separator) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : std::string(separator)) + item;
+  return text;
+}
+
+// [chamber], [fog] and [experiment]: the keys of the experiment itself.
+KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names) {
+  KeyTable<Scenario> keys;
+  keys.number("chamber.sensor_gap_m", FOGRADAR_KEY_FIELD(chamber.sensor_gap_m),
+              closed(0.0, propagation::max_chamber_length_m),
+              "l_s, sensor to the first layer (0: the first layer touches the sensor)");
+  keys.integer("chamber.layer_count", FOGRADAR_KEY_FIELD(chamber.layer_count), 1,
+               static_cast<std::int64_t>(propagation::max_chamber_layers),
+               "switchable layers, all with the `[fog]` below");
+  keys.number("chamber.layer_length_m", FOGRADAR_KEY_FIELD(chamber.layer_length_m),
+              open_closed(0.0, propagation::max_chamber_length_m), "f_i");
+  keys.number("chamber.target_gap_m", FOGRADAR_KEY_FIELD(chamber.target_gap_m),
+              closed(0.0, propagation::max_chamber_length_m), "l_t, last layer to the target");
+  keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
+
+  std::vector<std::string> names_quoted;
+  for (const std::string& name : sensor_names) names_quoted.push_back(in_quotes(name));
+  const std::string allowed =
+      "a non-empty array of distinct names from " + joined(names_quoted, ", ");
+  ScenarioKey& sensors = keys.name_list(
+      "experiment.sensors", [](const Scenario& s) { return s.experiment.sensors; },
+      [](Scenario& s, const std::vector<std::string>& names) { s.experiment.sensors = names; },
+      allowed,
+      "the sensors that run, each on the same chamber and fog; results are reported in this "
+      "order");
+  sensors.choices = sensor_names;
+  sensors.with_check([allowed, sensor_names](const Scenario& s) {
+    const std::vector<std::string>& given = s.experiment.sensors;
+    std::string listed;
+    for (std::size_t i = 0; i < given.size(); ++i) {
+      listed += (listed.empty() ? "[" : ", ") + given[i];
+      const bool known =
+          std::find(sensor_names.begin(), sensor_names.end(), given[i]) != sensor_names.end();
+      if (!known || std::find(given.begin(), given.begin() + static_cast<std::ptrdiff_t>(i),
+                              given[i]) != given.begin() + static_cast<std::ptrdiff_t>(i)) {
+        throw_invalid("experiment.sensors", listed + ", ...]", allowed);
       }
-      out = static_cast<Integer>(value);
     }
+    if (given.empty()) throw_invalid("experiment.sensors", "[]", allowed);
+  });
+  keys.integer("experiment.measurements_per_step",
+               FOGRADAR_KEY_FIELD(experiment.measurements_per_step), 1, 1000000,
+               "the study's series length: measurements per step of the sensors that take its "
+               "measurements (the others count their own items)");
+  // Its upper bound is chamber.layer_count, checked with that key.
+  keys.integer("experiment.max_active_layers", FOGRADAR_KEY_FIELD(experiment.max_active_layers), 0,
+               std::numeric_limits<std::int64_t>::max(), "steps k = 0 … max_active_layers")
+      .with_check([](const Scenario& s) {
+        if (s.experiment.max_active_layers > s.chamber.layer_count) {
+          throw_invalid(
+              "experiment.max_active_layers", static_cast<double>(s.experiment.max_active_layers),
+              "an integer in [0, chamber.layer_count = " + std::to_string(s.chamber.layer_count) +
+                  "]");
+        }
+      })
+      .documented_as("integer [0, layer_count]");
+  // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
+  keys.integer("experiment.seed", FOGRADAR_KEY_FIELD(experiment.seed), 0,
+               std::numeric_limits<std::int64_t>::max(), "overridden by `--seed`");
+  return keys;
+}
+
+// The scenario's keys in file order (Scenario::keys): the first sensor's, the experiment's, the
+// other sensors'.
+std::vector<KeyTable<Scenario>> key_parts(const Scenario& s) {
+  std::vector<std::string> names;
+  for (const SensorSetting& setting : s.sensors) names.emplace_back(setting.type->name());
+  std::vector<KeyTable<Scenario>> parts;
+  for (std::size_t i = 0; i < s.sensors.size(); ++i) {
+    if (i == 1) parts.push_back(experiment_keys(names));
+    KeyTable<Scenario> part;
+    part.include(
+        s.sensors[i].type->keys(), [i](auto& scenario) -> auto& {
+          return scenario.sensors[i].params;
+        });
+    parts.push_back(std::move(part));
   }
+  if (s.sensors.size() < 2) parts.push_back(experiment_keys(names));
+  return parts;
+}
 
-  void read(std::string_view key, bool& out) {
-    if (const toml::node* node = find(key)) {
-      if (!node->is_boolean()) {
-        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be true or false");
-      }
-      out = *node->value<bool>();
-    }
-  }
-
-  void read(std::string_view key, std::string& out) {
-    if (const toml::node* node = find(key)) {
-      if (!node->is_string())
-        fail(*node, full(key), full(key) + " = " + as_written(*node) + ": must be a string");
-      out = *node->value<std::string>();
-    }
-  }
-
-  // An enumeration's name, absent when the key is not given; an empty string is given, and its
-  // parser refuses it with the allowed names.
-  void read(std::string_view key, std::optional<std::string>& out) {
-    std::string text;
-    if (find(key) == nullptr) return;
-    read(key, text);
-    out = text;
-  }
-
-  bool has(std::string_view key) const { return table_ != nullptr && table_->contains(key); }
-
-  // A key's node, marked as read; null when the table does not give it.
-  const toml::node* node(std::string_view key) { return find(key); }
-
-  [[noreturn]] void fail_at(const toml::node& node, std::string_view key,
-                            const std::string& message) const {
-    fail(node, full(key), message);
-  }
-
-  // Throws at the second of `keys` the table gives, naming each given one and its line.
-  void reject_more_than_one(std::initializer_list<std::string_view> keys,
-                            std::string_view what) const {
-    if (table_ == nullptr) return;
-    std::string all;
-    for (std::string_view key : keys) all += (all.empty() ? "" : ", ") + full(key);
-    std::string given;
-    bool seen = false;
-    for (std::string_view key : keys) {
-      const toml::node* node = table_->get(key);
-      if (node == nullptr) continue;
-      given += (given.empty() ? "" : " and ") + full(key) + " (line " +
-               std::to_string(node->source().begin.line) + ")";
-      if (seen) {
-        fail(*node, full(key),
-             given + " are both given: at most one " + std::string(what) + " of " + all +
-                 " per scenario");
-      }
-      seen = true;
-    }
-  }
-
-  // Throws if the table holds `old_key`, a key that is no longer read, saying what replaced it.
-  void reject_retired(std::string_view old_key, const std::string& replacement) const {
-    if (table_ == nullptr) return;
-    if (const toml::node* node = table_->get(old_key)) {
-      fail(*node, full(old_key), "'" + full(old_key) + "' is no longer read: " + replacement);
-    }
-  }
-
-  // Throws for the first key of this table that was not read and is not an expected sub-table.
-  void reject_unknown(std::initializer_list<std::string_view> subtables = {}) const {
-    if (table_ == nullptr) return;
-    for (const auto& [key, node] : *table_) {
-      const std::string name(key.str());
-      if (read_.count(name)) continue;
-      if (node.is_table() && std::find(subtables.begin(), subtables.end(), name) != subtables.end())
-        continue;
-      fail(node, full(name), "unknown key '" + full(name) + "'" + known_keys_hint());
-    }
-  }
-
- private:
-  const toml::node* find(std::string_view key) {
-    read_.insert(std::string(key));
-    if (table_ == nullptr) return nullptr;
-    const toml::node* node = table_->get(key);
-    if (node != nullptr) lines_[full(key)] = node->source().begin.line;
-    return node;
-  }
-
-  std::string full(std::string_view key) const { return path_ + "." + std::string(key); }
-
-  std::string known_keys_hint() const {
-    std::string hint = " (known keys of [" + path_ + "]:";
-    for (const std::string& key : read_) hint += " " + key;
-    return hint + ")";
-  }
-
-  [[noreturn]] void fail(const toml::node& node, const std::string& key,
-                         const std::string& message) const {
-    throw_at(source_, node.source().begin.line, key, message);
-  }
-
-  const toml::table* table_ = nullptr;
-  std::string path_;
-  std::string_view source_;
-  KeyLines& lines_;
-  std::set<std::string> read_;
+// The file's layout: each section (a TOML table) with its keys, in the order the file lists them.
+// A section belongs to the part that declares it first, the experiment's part before the sensors'
+// (so [fog] is the experiment's although the radar declares fog.clutter_scatterers_per_bin); a
+// section's own keys come first, keys other parts declare in it after them.
+struct Section {
+  std::string name;
+  std::size_t part = 0;
+  std::vector<const ScenarioKey*> keys;
 };
 
-void read_radar(const toml::table& root, std::string_view source, KeyLines& lines,
-                radar::RadarParams& r) {
-  Section s(root, "radar", source, lines);
-  // Its value was the start of a down-chirp, which a reader of "carrier" could not know.
-  s.reject_retired("carrier_frequency_hz",
-                   "give the sweep centre as radar.centre_frequency_hz and the direction as "
-                   "radar.sweep_direction = \"up\" | \"down\" (the old 77e9 meant a 77 -> 76 GHz "
-                   "down-chirp: centre_frequency_hz = 76.5e9, sweep_direction = \"down\")");
-  s.read("centre_frequency_hz", r.centre_frequency_hz);
-  std::optional<std::string> direction;
-  s.read("sweep_direction", direction);
-  if (direction)
-    r.sweep_direction = radar::parse_sweep_direction(*direction, "radar.sweep_direction");
-  s.read("sweep_bandwidth_hz", r.sweep_bandwidth_hz);
-  s.read("chirp_duration_s", r.chirp_duration_s);
-  s.read("chirp_interval_s", r.chirp_interval_s);
-  s.read("samples_per_chirp", r.samples_per_chirp, 16, 65536);
-  s.read("sample_rate_hz", r.sample_rate_hz);
-  s.read("chirps_per_frame", r.chirps_per_frame, 1, 16384);
-  s.read("tx_power_dbm", r.tx_power_dbm);
-  s.read("tx_gain_dbi", r.tx_gain_dbi);
-  s.read("rx_gain_dbi", r.rx_gain_dbi);
-  s.read("azimuth_beamwidth_deg", r.azimuth_beamwidth_deg);
-  s.read("elevation_beamwidth_deg", r.elevation_beamwidth_deg);
-  s.read("noise_figure_db", r.noise_figure_db);
-  s.read("reference_temperature_k", r.reference_temperature_k);
-  s.read("adc_bits", r.adc_bits, 0, 24);
-  s.read("adc_full_scale_dbm", r.adc_full_scale_dbm);
-  s.read("phase_noise_rms_rad", r.phase_noise_rms_rad);
-  s.reject_unknown();
-}
-
-void read_processing(const toml::table& root, std::string_view source, KeyLines& lines,
-                     radar::RadarParams& r) {
-  Section s(root, "processing", source, lines);
-  std::optional<std::string> window;
-  s.read("window", window);
-  if (window) r.window = radar::parse_window_type(*window, "processing.window");
-  s.read("association_gate_m", r.association_gate_m);
-  s.reject_unknown({"cfar"});
-
-  Section c(root, "processing.cfar", source, lines);
-  std::optional<std::string> kind;
-  c.read("kind", kind);
-  if (kind) r.cfar.kind = radar::parse_cfar_kind(*kind, "processing.cfar.kind");
-  const std::string window_rule =
-      "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
-      "radar.samples_per_chirp = " +
-      std::to_string(r.samples_per_chirp);
-  c.read("guard_cells", r.cfar.guard_cells, 0, 32766, window_rule);
-  c.read("training_cells", r.cfar.training_cells, 1, 32767, window_rule);
-  c.read("false_alarm_probability", r.cfar.false_alarm_probability);
-  c.read("os_rank", r.cfar.os_rank, 0, 65534,
-         "and 0 or at most 2 x processing.cfar.training_cells = " +
-             std::to_string(2 * r.cfar.training_cells));
-  std::optional<std::string> design;
-  c.read("threshold_design", design);
-  if (design) {
-    r.cfar.threshold_design =
-        radar::parse_cfar_threshold_design(*design, "processing.cfar.threshold_design");
-  }
-  c.reject_unknown();
-}
-
-void read_target(const toml::table& root, std::string_view source, KeyLines& lines, TargetSpec& t) {
-  Section s(root, "target", source, lines);
-  std::optional<std::string> model;
-  s.read("model", model);
-  if (model == "evt") {
-    t.model = TargetModel::evt;
-  } else if (model == "point") {
-    t.model = TargetModel::point;
-  } else if (model) {
-    throw_invalid("target.model", *model, "one of 'evt', 'point'");
-  }
-  s.read("rcs_dbsm", t.rcs_dbsm);
-  // Any integer reaches the parser, which names the allowed set (0, 1, 3).
-  std::int64_t swerling = static_cast<std::int64_t>(t.swerling);
-  s.read("swerling", swerling, std::numeric_limits<std::int64_t>::min(),
-         std::numeric_limits<std::int64_t>::max());
-  t.swerling = radar::parse_swerling(std::to_string(swerling), "target.swerling");
-  s.read("height_m", t.height_m);
-  s.read("sensor_height_m", t.sensor_height_m);
-  s.read("floor_multipath", t.floor_multipath);
-  s.read("floor_reflection_coefficient", t.floor_reflection_coefficient);
-  s.read("micro_motion_std_m", t.micro_motion_std_m);
-  s.reject_unknown();
-}
-
-void read_chamber(const toml::table& root, std::string_view source, KeyLines& lines,
-                  ChamberLayout& c) {
-  Section s(root, "chamber", source, lines);
-  s.read("sensor_gap_m", c.sensor_gap_m);
-  s.read("layer_count", c.layer_count, 1, 1000);
-  s.read("layer_length_m", c.layer_length_m);
-  s.read("target_gap_m", c.target_gap_m);
-  s.reject_unknown();
-}
-
-void read_droplets(const toml::table& root, std::string_view source, KeyLines& lines,
-                   propagation::DropSizeDistribution& droplets) {
-  Section s(root, "fog.droplets", source, lines);
-  std::string distribution(propagation::distribution_name(droplets));
-  s.read("distribution", distribution);
-  if (distribution == "lognormal") {
-    propagation::Lognormal d = std::holds_alternative<propagation::Lognormal>(droplets)
-                                   ? std::get<propagation::Lognormal>(droplets)
-                                   : propagation::Lognormal{};
-    s.read("median_diameter_m", d.median_diameter_m);
-    s.read("geometric_std", d.geometric_std);
-    droplets = d;
-  } else if (distribution == "monodisperse") {
-    propagation::Monodisperse d = std::holds_alternative<propagation::Monodisperse>(droplets)
-                                      ? std::get<propagation::Monodisperse>(droplets)
-                                      : propagation::Monodisperse{};
-    s.read("diameter_m", d.diameter_m);
-    droplets = d;
-  } else if (distribution == "advection" || distribution == "radiation" ||
-             distribution == "modified_gamma") {
-    propagation::ModifiedGamma d = distribution == "advection"   ? propagation::advection_fog()
-                                   : distribution == "radiation" ? propagation::radiation_fog()
-                                   : std::holds_alternative<propagation::ModifiedGamma>(droplets)
-                                       ? std::get<propagation::ModifiedGamma>(droplets)
-                                       : propagation::ModifiedGamma{};
-    s.read("alpha", d.alpha);
-    s.read("gamma", d.gamma);
-    s.read("b_per_um_gamma", d.b_per_um_gamma);
-    droplets = d;
-  } else {
-    throw_invalid("fog.droplets.distribution", distribution,
-                  "one of 'lognormal', 'monodisperse', 'advection', 'radiation', 'modified_gamma'");
-  }
-  s.reject_unknown();
-}
-
-void read_fog(const toml::table& root, std::string_view source, KeyLines& lines,
-              propagation::FogSpec& fog, unsigned& clutter_scatterers_per_bin) {
-  Section s(root, "fog", source, lines);
-  s.reject_more_than_one({"lwc_g_per_m3", "extinction_per_km", "visibility_m"}, "fog density");
-  if (s.has("lwc_g_per_m3")) {
-    propagation::LiquidWaterContent d;
-    s.read("lwc_g_per_m3", d.g_per_m3);
-    fog.density = d;
-  } else if (s.has("extinction_per_km")) {
-    propagation::OpticalExtinction d;
-    s.read("extinction_per_km", d.per_km);
-    fog.density = d;
-  } else if (s.has("visibility_m")) {
-    propagation::Visibility d;
-    s.read("visibility_m", d.m);
-    fog.density = d;
-  }
-  // Mark the alternatives as known keys even when absent.
-  double unused = 0.0;
-  s.read("lwc_g_per_m3", unused);
-  s.read("extinction_per_km", unused);
-  s.read("visibility_m", unused);
-  s.read("temperature_c", fog.temperature_c);
-  std::optional<std::string> model;
-  s.read("water_model", model);
-  if (model) fog.water_model = propagation::parse_water_model(*model, "fog.water_model");
-  s.read("clutter_scatterers_per_bin", clutter_scatterers_per_bin, 1, 64);
-  s.reject_unknown({"droplets"});
-  read_droplets(root, source, lines, fog.droplets);
-}
-
-const std::string sensors_allowed =
-    "a non-empty array of distinct names from \"radar\", \"lidar\", \"camera\"";
-
-std::vector<SensorId> read_sensors(Section& s) {
-  const toml::node* node = s.node("sensors");
-  if (node == nullptr) return {};
-  const std::string given =
-      "experiment.sensors = " + as_written(*node) + ": must be " + sensors_allowed;
-  const toml::array* array = node->as_array();
-  if (array == nullptr || array->empty()) s.fail_at(*node, "sensors", given);
-  std::vector<SensorId> sensors;
-  for (const toml::node& element : *array) {
-    const std::optional<std::string> name = element.value<std::string>();
-    if (!element.is_string())
-      s.fail_at(*node, "sensors", given + " (" + as_written(element) + " is not a string)");
-    const auto known = std::find_if(std::begin(all_sensors), std::end(all_sensors),
-                                    [&](SensorId id) { return sensor_name(id) == *name; });
-    if (known == std::end(all_sensors)) {
-      s.fail_at(*node, "sensors", given + " (\"" + *name + "\" is no sensor)");
-    }
-    if (std::find(sensors.begin(), sensors.end(), *known) != sensors.end()) {
-      s.fail_at(*node, "sensors", given + " (\"" + *name + "\" is named twice)");
-    }
-    sensors.push_back(*known);
-  }
-  return sensors;
-}
-
-void read_experiment(const toml::table& root, std::string_view source, KeyLines& lines,
-                     ExperimentSpec& e) {
-  Section s(root, "experiment", source, lines);
-  if (std::vector<SensorId> sensors = read_sensors(s); !sensors.empty())
-    e.sensors = std::move(sensors);
-  s.read("measurements_per_step", e.measurements_per_step, 1, 1000000);
-  // Its upper bound is chamber.layer_count, checked with that key by Scenario::validate().
-  s.read("max_active_layers", e.max_active_layers, 0, std::numeric_limits<std::int64_t>::max());
-  s.read("seed", e.seed, 0, std::numeric_limits<std::int64_t>::max());
-  s.reject_unknown();
-}
-
-void read_lidar_background(Section& lidar_section, std::string_view source, KeyLines& lines,
-                           std::vector<lidar::BackgroundSegment>& background) {
-  const toml::node* node = lidar_section.node("background");
-  if (node == nullptr) return;
-  const toml::array* array = node->as_array();
-  const std::string wanted =
-      "lidar.background: must be an array of tables [[lidar.background]] with keys "
-      "x0_m, y0_m, x1_m, y1_m, reflectivity";
-  if (array == nullptr) lidar_section.fail_at(*node, "background", wanted);
-  background.clear();
-  for (std::size_t i = 0; i < array->size(); ++i) {
-    const toml::table* table = (*array)[i].as_table();
-    if (table == nullptr) lidar_section.fail_at((*array)[i], "background", wanted);
-    Section s(table, "lidar.background[" + std::to_string(i) + "]", source, lines);
-    lidar::BackgroundSegment segment;
-    s.read("x0_m", segment.x0_m);
-    s.read("y0_m", segment.y0_m);
-    s.read("x1_m", segment.x1_m);
-    s.read("y1_m", segment.y1_m);
-    s.read("reflectivity", segment.reflectivity);
-    s.reject_unknown();
-    background.push_back(segment);
-  }
-}
-
-void read_lidar(const toml::table& root, std::string_view source, KeyLines& lines,
-                lidar::LidarParams& l) {
-  Section s(root, "lidar", source, lines);
-  s.read("wavelength_m", l.wavelength_m);
-  s.read("field_of_view_deg", l.field_of_view_deg);
-  s.read("angular_step_deg", l.angular_step_deg);
-  s.read("scan_rate_hz", l.scan_rate_hz);
-  s.read("scans_per_step", l.scans_per_step, 1, 100000);
-  s.read("min_range_m", l.min_range_m);
-  s.read("max_range_m", l.max_range_m);
-  s.read("pulse_width_ns", l.pulse_width_ns);
-  s.read("sample_interval_ns", l.sample_interval_ns);
-  s.read("overlap_range_m", l.overlap_range_m);
-  s.read("threshold_range_m", l.threshold_range_m);
-  s.read("threshold_reflectivity", l.threshold_reflectivity);
-  s.read("false_alarm_probability", l.false_alarm_probability);
-  s.read("max_echoes", l.max_echoes, 1, 8);
-  s.read("min_echo_separation_m", l.min_echo_separation_m);
-  s.read("intensity_scale", l.intensity_scale);
-  s.read("intensity_saturation", l.intensity_saturation);
-  s.read("target_width_m", l.target_width_m);
-  s.read("target_offset_m", l.target_offset_m);
-  s.read("target_reflectivity", l.target_reflectivity);
-  s.read("fog_width_m", l.fog_width_m);
-  read_lidar_background(s, source, lines, l.background);
-  s.reject_unknown({"fog_fluctuation"});
-
-  Section f(root, "lidar.fog_fluctuation", source, lines);
-  f.read("log_std", l.fog_fluctuation.log_std);
-  f.read("correlation_time_s", l.fog_fluctuation.correlation_time_s);
-  f.reject_unknown();
-}
-
-void read_camera_region(const toml::table& root, const std::string& path, std::string_view source,
-                        KeyLines& lines, camera::RegionParams& region) {
-  Section s(root, path, source, lines);
-  s.read("median_reflectance", region.median_reflectance);
-  s.read("log_sigma", region.log_sigma);
-  s.reject_unknown();
-}
-
-void read_camera(const toml::table& root, std::string_view source, KeyLines& lines,
-                 camera::CameraParams& c) {
-  Section s(root, "camera", source, lines);
-  std::optional<std::string> band, transfer;
-  s.read("band", band);
-  if (band) c.band = camera::parse_band(*band, "camera.band");
-  s.read("wavelength_nm", c.wavelength_nm);
-  s.read("mie_step_nm", c.mie_step_nm);
-  s.read("transfer", transfer);
-  if (transfer) c.transfer = camera::parse_transfer_curve(*transfer, "camera.transfer");
-  s.read("gamma", c.gamma);
-  s.read("frames_per_step", c.frames_per_step, 1, 100000);
-  s.read("contrast_threshold", c.contrast_threshold);
-  s.read("write_roi_images", c.write_roi_images);
-  s.reject_unknown({"exposure", "noise", "roi"});
-
-  Section e(root, "camera.exposure", source, lines);
-  std::optional<std::string> mode;
-  e.read("mode", mode);
-  if (mode) c.exposure.mode = camera::parse_exposure_mode(*mode, "camera.exposure.mode");
-  e.read("ambient_level", c.exposure.ambient_level);
-  e.read("auto_target_grey", c.exposure.auto_target_grey);
-  e.reject_unknown();
-
-  Section n(root, "camera.noise", source, lines);
-  n.read("enabled", c.noise.enabled);
-  n.read("full_well_electrons", c.noise.full_well_electrons);
-  n.read("read_noise_electrons", c.noise.read_noise_electrons);
-  n.reject_unknown();
-
-  Section r(root, "camera.roi", source, lines);
-  r.read("width_px", c.roi.width_px, 8, 4096);
-  r.read("height_px", c.roi.height_px, 8, 4096);
-  r.read("cell_px", c.roi.cell_px, 2, 2048,
-         "with 2 x camera.roi.cell_px <= camera.roi.width_px and camera.roi.height_px");
-  r.read("target_fraction", c.roi.target_fraction);
-  r.reject_unknown({"target", "background"});
-  read_camera_region(root, "camera.roi.target", source, lines, c.roi.target);
-  read_camera_region(root, "camera.roi.background", source, lines, c.roi.background);
-}
-
-// Validation errors name library fields; the user wrote scenario keys.
-std::string scenario_key(const std::string& field) {
-  static const std::pair<std::string_view, std::string_view> renames[] = {
-      {"radar.window", "processing.window"},
-      {"radar.association_gate_m", "processing.association_gate_m"},
-      {"cfar.", "processing.cfar."},
-      {"target.clutter_scatterers_per_bin", "fog.clutter_scatterers_per_bin"},
-      {"chamber.layers[", "chamber.layer_length_m"},
-      {"chamber.layers", "chamber.layer_count"},
-      {"chamber.target_range_m", "chamber.target_gap_m"},
+std::vector<Section> layout(const std::vector<KeyTable<Scenario>>& parts,
+                            std::size_t experiment_part) {
+  std::map<std::string, std::size_t> owner;
+  const auto claim = [&](std::size_t p) {
+    for (const ScenarioKey& key : parts[p].keys()) owner.emplace(std::string(key.section()), p);
   };
-  for (const auto& [from, to] : renames) {
-    if (field.rfind(from, 0) != 0) continue;
-    if (from.back() == '.') return std::string(to) + field.substr(from.size());
-    return std::string(to);
+  claim(experiment_part);
+  for (std::size_t p = 0; p < parts.size(); ++p) claim(p);
+  std::vector<Section> sections;
+  const auto section_of = [&](std::string_view name) -> Section& {
+    for (Section& s : sections) {
+      if (s.name == name) return s;
+    }
+    return sections.emplace_back(Section{std::string(name), owner.at(std::string(name)), {}});
+  };
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    for (const ScenarioKey& key : parts[p].keys()) {
+      if (owner.at(std::string(key.section())) == p) section_of(key.section()).keys.push_back(&key);
+    }
   }
-  return field;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    for (const ScenarioKey& key : parts[p].keys()) {
+      if (owner.at(std::string(key.section())) != p) section_of(key.section()).keys.push_back(&key);
+    }
+  }
+  return sections;
 }
+
+std::size_t experiment_part_index(const Scenario& s) { return s.sensors.empty() ? 0 : 1; }
 
 bool is_key_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
@@ -544,22 +200,6 @@ std::vector<std::size_t> key_positions(std::string_view text, std::string_view k
   return found;
 }
 
-// Library fields that other keys' messages name, as the scenario's keys.
-std::string scenario_keys_in(std::string message) {
-  static const std::pair<std::string_view, std::string_view> renames[] = {
-      {"radar.window", "processing.window"},
-      {"radar.association_gate_m", "processing.association_gate_m"},
-      {"cfar.", "processing.cfar."},
-      {"target.clutter_scatterers_per_bin", "fog.clutter_scatterers_per_bin"},
-  };
-  for (const auto& [from, to] : renames) {
-    const std::vector<std::size_t> positions = key_positions(message, from);
-    for (auto at = positions.rbegin(); at != positions.rend(); ++at)
-      message.replace(*at, from.size(), to);
-  }
-  return message;
-}
-
 // The lines of the other keys a combined check names, so every key involved can be found.
 std::string other_key_lines(const std::string& message, const std::string& key,
                             const KeyLines& lines) {
@@ -569,6 +209,270 @@ std::string other_key_lines(const std::string& message, const std::string& key,
     listed += (listed.empty() ? " (" : ", ") + other + " at line " + std::to_string(line);
   }
   return listed.empty() ? listed : listed + ")";
+}
+
+// Reads a scenario file's tables into a Scenario by its keys.
+class Reader {
+ public:
+  Reader(const toml::table& root, std::string_view source, Scenario& scenario)
+      : root_(root), source_(source), scenario_(scenario) {}
+
+  void read() {
+    const std::vector<KeyTable<Scenario>> parts = key_parts(scenario_);
+    const std::vector<Section> sections = layout(parts, experiment_part_index(scenario_));
+    for (const KeyTable<Scenario>& part : parts) {
+      for (const ScenarioKey& key : part.keys()) {
+        if (!key.group.empty()) groups_[key.group].push_back(key.name);
+      }
+    }
+    std::vector<std::string> top;
+    for (const Section& s : sections) {
+      declared_.insert(s.name);
+      for (std::size_t dot = s.name.find('.'); dot != std::string::npos;
+           dot = s.name.find('.', dot + 1)) {
+        declared_.insert(s.name.substr(0, dot));
+      }
+      const std::string first = s.name.substr(0, s.name.find('.'));
+      if (std::find(top.begin(), top.end(), first) == top.end()) top.push_back(first);
+    }
+    for (const auto& [name, node] : root_) {
+      const std::string key(name.str());
+      if (std::find(top.begin(), top.end(), key) == top.end()) {
+        throw_at(source_, node.source().begin.line, key,
+                 "unknown section or key '" + key + "' (sections: " + joined(top, ", ") + ")");
+      }
+    }
+    for (const Section& section : sections) {
+      const toml::node* node = root_.at_path(section.name).node();
+      if (node == nullptr) continue;
+      const toml::table* table = node->as_table();
+      if (table == nullptr) fail_not_table(*node, section.name);
+      read_table(*table, section.name, section.keys);
+    }
+  }
+
+  const KeyLines& lines() const { return lines_; }
+
+ private:
+  [[noreturn]] void fail(const toml::node& node, const std::string& key,
+                         const std::string& message) const {
+    throw_at(source_, node.source().begin.line, key, message);
+  }
+
+  [[noreturn]] void fail_not_table(const toml::node& node, const std::string& section) const {
+    fail(node, section, section + " = " + as_written(node) + ": must be a table [" + section + "]");
+  }
+
+  // Reads `keys` (all of section `section`) from `table`, then refuses what is left.
+  void read_table(const toml::table& table, const std::string& section,
+                  const std::vector<const ScenarioKey*>& keys) {
+    std::set<std::string> known;
+    for (const ScenarioKey* key : keys) {
+      if (key->type != KeyType::retired) known.emplace(key->short_name());
+      if (const toml::node* node = table.get(key->short_name())) read_key(*key, *node);
+    }
+    std::set<std::string> subsections;
+    for (const std::string& name : declared_) {
+      if (name.size() > section.size() + 1 && name.starts_with(section + ".") &&
+          name.find('.', section.size() + 1) == std::string::npos) {
+        subsections.insert(name.substr(section.size() + 1));
+      }
+    }
+    for (const auto& [name, node] : table) {
+      const std::string key(name.str()), full = section + "." + key;
+      if (known.contains(key)) continue;
+      if (subsections.contains(key)) {
+        if (!node.is_table()) fail_not_table(node, full);
+        continue;
+      }
+      std::set<std::string> all = known;
+      all.insert(subsections.begin(), subsections.end());
+      std::string hint;
+      for (const std::string& k : all) hint += " " + k;
+      fail(node, full, "unknown key '" + full + "' (known keys of [" + section + "]:" + hint + ")");
+    }
+  }
+
+  void read_key(const ScenarioKey& key, const toml::node& node) {
+    lines_[key.name] = node.source().begin.line;
+    if (key.type == KeyType::retired) {
+      fail(node, key.name, "'" + key.name + "' is no longer read: " + key.meaning);
+    }
+    if (!key.group.empty()) require_alone_in_group(key, node);
+    if (key.group.empty() && !key.takes_effect(scenario_)) {
+      fail(node, key.name,
+           key.name + " = " + as_written(node) + ": takes effect only " + key.applies_text);
+    }
+    const std::string given = key.name + " = " + as_written(node) + ": must be ";
+    switch (key.type) {
+      case KeyType::number: {
+        const std::optional<double> value = node.is_number() ? node.value<double>() : std::nullopt;
+        if (!value) fail(node, key.name, given + "a number");
+        key.set_number(scenario_, *value);
+        return;
+      }
+      case KeyType::integer: {
+        const bool custom = key.integer_low == std::numeric_limits<std::int64_t>::min();
+        std::string range = custom ? "an integer (" + key.allowed + ")"
+                                   : "an integer in [" + std::to_string(key.integer_low) + ", " +
+                                         std::to_string(key.integer_high) + "]";
+        if (key.integer_also) range += " " + key.integer_also(scenario_);
+        if (!node.is_integer()) fail(node, key.name, given + range);
+        const std::int64_t value = *node.value<std::int64_t>();
+        if (value < key.integer_low || value > key.integer_high) {
+          fail(node, key.name, key.name + " = " + std::to_string(value) + ": must be " + range);
+        }
+        key.set_integer(scenario_, value);
+        return;
+      }
+      case KeyType::boolean:
+        if (!node.is_boolean()) fail(node, key.name, given + "true or false");
+        key.set_boolean(scenario_, *node.value<bool>());
+        return;
+      case KeyType::choice:
+        if (!node.is_string()) fail(node, key.name, given + "a string");
+        key.set_text(scenario_, *node.value<std::string>());
+        return;
+      case KeyType::name_list:
+        key.set_list(scenario_, names_of(key, node, given + key.allowed));
+        return;
+      case KeyType::table_array:
+        read_array(key, node);
+        return;
+      case KeyType::retired:
+        return;
+    }
+  }
+
+  // Two keys of one group are alternatives: the second one given is refused.
+  void require_alone_in_group(const ScenarioKey& key, const toml::node& node) {
+    const auto [first, fresh] = given_in_group_.emplace(key.group, key.name);
+    if (fresh) return;
+    const std::vector<std::string>& members = groups_.at(key.group);
+    fail(node, key.name,
+         first->second + " (line " + std::to_string(lines_.at(first->second)) + ") and " +
+             key.name + " (line " + std::to_string(node.source().begin.line) +
+             ") are both given: at most one " + key.group + " of " + joined(members, ", ") +
+             " per scenario");
+  }
+
+  std::vector<std::string> names_of(const ScenarioKey& key, const toml::node& node,
+                                    const std::string& given) const {
+    const toml::array* array = node.as_array();
+    if (array == nullptr || array->empty()) fail(node, key.name, given);
+    std::vector<std::string> names;
+    for (const toml::node& element : *array) {
+      if (!element.is_string())
+        fail(node, key.name, given + " (" + as_written(element) + " is not a string)");
+      const std::string name = *element.value<std::string>();
+      if (std::find(key.choices.begin(), key.choices.end(), name) == key.choices.end()) {
+        fail(node, key.name, given + " (\"" + name + "\" is no sensor)");
+      }
+      if (std::find(names.begin(), names.end(), name) != names.end()) {
+        fail(node, key.name, given + " (\"" + name + "\" is named twice)");
+      }
+      names.push_back(name);
+    }
+    return names;
+  }
+
+  // An array of tables replaces the scenario's whole array; each element starts from its defaults.
+  void read_array(const ScenarioKey& key, const toml::node& node) {
+    KeyTable<Scenario> first;
+    key.array_element(0, first);
+    std::vector<std::string> element_keys;
+    for (const ScenarioKey& k : first.keys()) element_keys.emplace_back(k.short_name());
+    const std::string wanted = key.name + ": must be an array of tables [[" + key.name +
+                               "]] with keys " + joined(element_keys, ", ");
+    const toml::array* array = node.as_array();
+    if (array == nullptr) fail(node, key.name, wanted);
+    if (array->size() > key.array_max) {
+      fail(node, key.name, wanted + ", at most " + std::to_string(key.array_max));
+    }
+    key.array_resize(scenario_, 0);
+    key.array_resize(scenario_, array->size());
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      const toml::table* table = (*array)[i].as_table();
+      if (table == nullptr) fail((*array)[i], key.name, wanted);
+      KeyTable<Scenario> element;
+      key.array_element(i, element);
+      std::vector<const ScenarioKey*> keys;
+      for (const ScenarioKey& k : element.keys()) keys.push_back(&k);
+      read_table(*table, key.name + "[" + std::to_string(i) + "]", keys);
+    }
+  }
+
+  const toml::table& root_;
+  std::string_view source_;
+  Scenario& scenario_;
+  KeyLines lines_;
+  std::set<std::string> declared_;                          // every section and its parents
+  std::map<std::string, std::vector<std::string>> groups_;  // group -> its keys
+  std::map<std::string, std::string> given_in_group_;       // group -> the key given
+};
+
+// A key's value as scenario.toml writes it.
+std::string toml_value(const ScenarioKey& key, const Scenario& s) {
+  switch (key.type) {
+    case KeyType::number:
+      return format_toml_number(key.get_number(s));
+    case KeyType::integer:
+      return std::to_string(key.get_integer(s));
+    case KeyType::boolean:
+      return key.get_boolean(s) ? "true" : "false";
+    case KeyType::choice:
+      return in_quotes(key.get_text(s));
+    case KeyType::name_list: {
+      std::vector<std::string> names;
+      for (const std::string& name : key.get_list(s)) names.push_back(in_quotes(name));
+      return "[" + joined(names, ", ") + "]";
+    }
+    case KeyType::table_array:
+      return key.array_size(s) == 0 ? "[]" : "";
+    case KeyType::retired:
+      return "";
+  }
+  return "";
+}
+
+// Reads `toml_text` over `base`: keys the file gives replace the base's values.
+Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name) {
+  detail::require_toml_safe_bytes(toml_text, source_name);
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw_at(source_name, e.source().begin.line, "toml",
+             std::string("malformed TOML: ") + std::string(e.description()));
+  }
+  Reader reader(root, source_name, s);
+  try {
+    reader.read();
+    s.validate();
+  } catch (const InvalidParameter& e) {
+    const KeyLines& lines = reader.lines();
+    // A reader's error already names its key and line; it may name keys read before it.
+    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) {
+      throw InvalidParameter(e.field(), e.what() + other_key_lines(e.what(), e.field(), lines));
+    }
+    // A range check: point at the key as the user wrote it, and its line.
+    const std::string& key = e.field();
+    const std::string message = e.what() + other_key_lines(e.what(), key, lines);
+    // A key the file does not give keeps its paper value; a check combining it with keys the file
+    // gives points at the first of those.
+    std::size_t line = 0;
+    if (const auto given = lines.find(key); given != lines.end()) {
+      line = given->second;
+    } else {
+      for (const auto& [other, other_line] : lines) {
+        if (!key_positions(e.what(), other).empty() && (line == 0 || other_line < line))
+          line = other_line;
+      }
+    }
+    if (line == 0) throw InvalidParameter(key, std::string(source_name) + ": " + message);
+    throw_at(source_name, line, key, message);
+  }
+  return s;
 }
 
 // Closes the scenario file however reading it ends.
@@ -582,88 +486,65 @@ struct FileDescriptor {
   }
 };
 
-std::string format_toml_number(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  std::string text(buffer, result.ptr);
-  if (text.find_first_of(".e") == std::string::npos) text += ".0";
-  return text;
+// A default as docs/scenario.md shows it.
+std::string doc_value(const ScenarioKey& key, const Scenario& s) {
+  if (!key.takes_effect(s)) return "—";
+  switch (key.type) {
+    case KeyType::number:
+      return "`" + doc_number(key.get_number(s)) + "`";
+    case KeyType::table_array:
+      return std::to_string(key.array_size(s)) + " tables";
+    case KeyType::retired:
+      return "—";
+    default:
+      return "`" + toml_value(key, s) + "`";
+  }
+}
+
+std::string table_row(const ScenarioKey& key, std::string_view name, const std::string& value) {
+  return "| `" + std::string(name) + "` | " + value + " | " + key.allowed + " | " + key.meaning +
+         " |\n";
 }
 
 }  // namespace
 
-std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }
-
-std::string_view sensor_name(SensorId sensor) {
-  switch (sensor) {
-    case SensorId::radar:
-      return "radar";
-    case SensorId::lidar:
-      return "lidar";
-    case SensorId::camera:
-      return "camera";
+Scenario::Scenario(const SensorRegistry& registry) {
+  for (const auto& type : registry.types()) {
+    sensors.push_back({type, type->default_params()});
+    experiment.sensors.emplace_back(type->name());
   }
-  return "unknown";
 }
 
-bool Scenario::runs(SensorId sensor) const {
-  return std::find(experiment.sensors.begin(), experiment.sensors.end(), sensor) !=
+SensorSetting& Scenario::setting(std::string_view name) {
+  for (SensorSetting& s : sensors) {
+    if (s.type->name() == name) return s;
+  }
+  throw_invalid("experiment.sensors", name, "a registered sensor");
+}
+
+const SensorSetting& Scenario::setting(std::string_view name) const {
+  return const_cast<Scenario*>(this)->setting(name);
+}
+
+bool Scenario::runs(std::string_view name) const {
+  return std::find(experiment.sensors.begin(), experiment.sensors.end(), name) !=
          experiment.sensors.end();
 }
 
+KeyTable<Scenario> Scenario::keys() const {
+  KeyTable<Scenario> all;
+  for (const KeyTable<Scenario>& part : key_parts(*this)) {
+    all.include(
+        part, [](auto& s) -> auto& { return s; });
+  }
+  return all;
+}
+
 void Scenario::validate() const {
-  std::string names;
-  for (std::size_t i = 0; i < experiment.sensors.size(); ++i) {
-    const SensorId sensor = experiment.sensors[i];
-    names += (names.empty() ? "[" : ", ") + std::string(sensor_name(sensor));
-    if (std::find(experiment.sensors.begin(),
-                  experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i),
-                  sensor) != experiment.sensors.begin() + static_cast<std::ptrdiff_t>(i) ||
-        sensor_name(sensor) == "unknown") {
-      throw_invalid("experiment.sensors", names + ", ...]", sensors_allowed);
-    }
-  }
-  if (experiment.sensors.empty()) throw_invalid("experiment.sensors", "[]", sensors_allowed);
-  radar.validate();
-  require_in_range("target.rcs_dbsm", target.rcs_dbsm, -60.0, 60.0);
-  require_in_range("target.height_m", target.height_m, 0.0, 100.0);
-  require_in_range("experiment.measurements_per_step",
-                   static_cast<double>(experiment.measurements_per_step), 1.0, 1e6);
-  require_in_range("chamber.layer_count", static_cast<double>(chamber.layer_count), 1.0, 1000.0);
-  if (experiment.max_active_layers > chamber.layer_count) {
-    throw_invalid(
-        "experiment.max_active_layers", static_cast<double>(experiment.max_active_layers),
-        "an integer in [0, chamber.layer_count = " + std::to_string(chamber.layer_count) + "]");
-  }
-  // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
-  constexpr auto max_seed = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
-  if (experiment.seed > max_seed) {
-    throw_invalid("experiment.seed", std::to_string(experiment.seed),
-                  "an integer in [0, " + std::to_string(max_seed) + "]");
-  }
+  keys().check(*this);
   chamber_spec().validate();
-  lidar.validate();
-  camera.validate();
-  const radar::Scene target_scene = scene();
-  target_scene.validate();
-  // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps (docs/radar.md).
-  double farthest_m = chamber_spec().target_range_m();
-  for (const radar::ScatteringCentre& centre : target_scene.centres) {
-    farthest_m = std::max(farthest_m, chamber_spec().target_range_m() + centre.range_offset_m);
-  }
-  const double limit_m = radar::derive(radar).max_range_m - 1.0;
-  if (farthest_m > limit_m) {
-    std::ostringstream constraint;
-    constraint.precision(10);
-    constraint
-        << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
-           "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
-        << farthest_m
-        << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
-           "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
-        << limit_m << " m";
-    throw_invalid("chamber.target_gap_m", chamber.target_gap_m, constraint.str());
-  }
+  const sensor::Context shared = context();
+  for (const SensorSetting& s : sensors) s.type->validate(s.params, shared);
 }
 
 propagation::ChamberSpec Scenario::chamber_spec() const {
@@ -675,93 +556,25 @@ propagation::ChamberSpec Scenario::chamber_spec() const {
   return spec;
 }
 
-radar::Scene Scenario::scene() const {
-  radar::Scene scene = target.model == TargetModel::evt
-                           ? radar::evt_rear_scene(target.rcs_dbsm)
-                           : radar::point_target_scene(target.rcs_dbsm);
-  if (target.model == TargetModel::point) {
-    scene.centres.front().height_m = target.height_m;
-    scene.centres.front().swerling = target.swerling;
-  }
-  scene.sensor_height_m = target.sensor_height_m;
-  scene.floor.enabled = target.floor_multipath;
-  scene.floor.reflection_coefficient = target.floor_reflection_coefficient;
-  scene.micro_motion_std_m = target.micro_motion_std_m;
-  scene.clutter_scatterers_per_bin = clutter_scatterers_per_bin;
-  return scene;
+sensor::Context Scenario::context() const {
+  return {.chamber = chamber_spec(),
+          .steps = experiment.max_active_layers + 1,
+          .measurements_per_step = experiment.measurements_per_step,
+          .seed = experiment.seed};
 }
 
-namespace {
+std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }
 
-// Reads `toml_text` over `base`: keys the file gives replace the base's values.
-Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name) {
-  detail::require_toml_safe_bytes(toml_text, source_name);
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw_at(source_name, e.source().begin.line, "toml",
-             std::string("malformed TOML: ") + std::string(e.description()));
-  }
-  static const std::set<std::string_view> sections = {"radar", "processing", "target", "chamber",
-                                                      "fog",   "experiment", "lidar",  "camera"};
-  for (const auto& [key, node] : root) {
-    if (!sections.count(key.str())) {
-      throw_at(
-          source_name, node.source().begin.line, std::string(key.str()),
-          "unknown section or key '" + std::string(key.str()) +
-              "' (sections: radar, processing, target, chamber, fog, experiment, lidar, camera)");
-    }
-  }
-
-  KeyLines lines;
-  try {
-    read_radar(root, source_name, lines, s.radar);
-    read_processing(root, source_name, lines, s.radar);
-    read_target(root, source_name, lines, s.target);
-    read_chamber(root, source_name, lines, s.chamber);
-    read_fog(root, source_name, lines, s.fog, s.clutter_scatterers_per_bin);
-    read_experiment(root, source_name, lines, s.experiment);
-    read_lidar(root, source_name, lines, s.lidar);
-    read_camera(root, source_name, lines, s.camera);
-    s.validate();
-  } catch (const InvalidParameter& e) {
-    // A reader's error already names its key and line; it may name keys read before it.
-    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) {
-      throw InvalidParameter(e.field(), e.what() + other_key_lines(e.what(), e.field(), lines));
-    }
-    // A range or enumeration error: point at the key as the user wrote it, and its line.
-    const std::string key = scenario_key(e.field());
-    std::string message = e.what();
-    if (message.rfind(e.field(), 0) == 0) message = key + message.substr(e.field().size());
-    message = scenario_keys_in(message);
-    message += other_key_lines(message, key, lines);
-    // A key the file does not give keeps its paper value; a check combining it with keys the file
-    // gives points at the first of those.
-    std::size_t line = 0;
-    if (const auto given = lines.find(key); given != lines.end()) {
-      line = given->second;
-    } else {
-      for (const auto& [other, other_line] : lines) {
-        if (!key_positions(message, other).empty() && (line == 0 || other_line < line))
-          line = other_line;
-      }
-    }
-    if (line == 0) throw InvalidParameter(key, std::string(source_name) + ": " + message);
-    throw_at(source_name, line, key, message);
-  }
-  return s;
+Scenario paper_scenario(const SensorRegistry& registry) {
+  return parse_over(Scenario(registry), paper_scenario_toml(), "paper.toml");
 }
 
-}  // namespace
-
-Scenario paper_scenario() { return parse_over(Scenario{}, paper_scenario_toml(), "paper.toml"); }
-
-Scenario parse_scenario(std::string_view toml_text, std::string_view source_name) {
-  return parse_over(paper_scenario(), toml_text, source_name);
+Scenario parse_scenario(std::string_view toml_text, std::string_view source_name,
+                        const SensorRegistry& registry) {
+  return parse_over(paper_scenario(registry), toml_text, source_name);
 }
 
-Scenario load_scenario_file(const std::string& path) {
+Scenario load_scenario_file(const std::string& path, const SensorRegistry& registry) {
   const std::string wanted = "a readable regular TOML file of at most " +
                              std::to_string(max_scenario_file_bytes) + " bytes (1 MiB)";
   // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it unread.
@@ -794,174 +607,77 @@ Scenario load_scenario_file(const std::string& path) {
     got += static_cast<std::size_t>(n);
   }
   text.resize(got);
-  return parse_scenario(text, path);
+  return parse_scenario(text, path, registry);
 }
 
 std::string to_toml(const Scenario& s) {
-  std::ostringstream out;
-  const auto num = [](double v) { return format_toml_number(v); };
-  const auto str = [](std::string_view v) {
-    std::string quoted(1, '"');
-    quoted.append(v).push_back('"');
-    return quoted;
+  const std::vector<KeyTable<Scenario>> parts = key_parts(s);
+  const std::vector<Section> sections = layout(parts, experiment_part_index(s));
+  std::vector<std::string> blocks;
+  // Arrays of tables follow the last section of the part that declares them.
+  std::vector<std::string> arrays;
+  const auto flush_arrays = [&] {
+    blocks.insert(blocks.end(), arrays.begin(), arrays.end());
+    arrays.clear();
   };
-  const radar::RadarParams& r = s.radar;
-  out << "# fogradar resolved scenario: every key, as used by the run\n\n"
-      << "[radar]\n"
-      << "centre_frequency_hz = " << num(r.centre_frequency_hz) << '\n'
-      << "sweep_direction = " << str(radar::to_string(r.sweep_direction)) << '\n'
-      << "sweep_bandwidth_hz = " << num(r.sweep_bandwidth_hz) << '\n'
-      << "chirp_duration_s = " << num(r.chirp_duration_s) << '\n'
-      << "chirp_interval_s = " << num(r.chirp_interval_s) << '\n'
-      << "samples_per_chirp = " << r.samples_per_chirp << '\n'
-      << "sample_rate_hz = " << num(r.sample_rate_hz) << '\n'
-      << "chirps_per_frame = " << r.chirps_per_frame << '\n'
-      << "tx_power_dbm = " << num(r.tx_power_dbm) << '\n'
-      << "tx_gain_dbi = " << num(r.tx_gain_dbi) << '\n'
-      << "rx_gain_dbi = " << num(r.rx_gain_dbi) << '\n'
-      << "azimuth_beamwidth_deg = " << num(r.azimuth_beamwidth_deg) << '\n'
-      << "elevation_beamwidth_deg = " << num(r.elevation_beamwidth_deg) << '\n'
-      << "noise_figure_db = " << num(r.noise_figure_db) << '\n'
-      << "reference_temperature_k = " << num(r.reference_temperature_k) << '\n'
-      << "adc_bits = " << r.adc_bits << '\n'
-      << "adc_full_scale_dbm = " << num(r.adc_full_scale_dbm) << '\n'
-      << "phase_noise_rms_rad = " << num(r.phase_noise_rms_rad) << "\n\n"
-      << "[processing]\n"
-      << "window = " << str(radar::to_string(r.window)) << '\n'
-      << "association_gate_m = " << num(r.association_gate_m) << "\n\n"
-      << "[processing.cfar]\n"
-      << "kind = " << str(radar::to_string(r.cfar.kind)) << '\n'
-      << "guard_cells = " << r.cfar.guard_cells << '\n'
-      << "training_cells = " << r.cfar.training_cells << '\n'
-      << "false_alarm_probability = " << num(r.cfar.false_alarm_probability) << '\n'
-      << "os_rank = " << r.cfar.os_rank << '\n'
-      << "threshold_design = " << str(radar::to_string(r.cfar.threshold_design)) << "\n\n";
-  const TargetSpec& t = s.target;
-  out << "[target]\n"
-      << "model = " << str(t.model == TargetModel::evt ? "evt" : "point") << '\n'
-      << "rcs_dbsm = " << num(t.rcs_dbsm) << '\n'
-      << "swerling = " << radar::to_string(t.swerling) << '\n'
-      << "height_m = " << num(t.height_m) << '\n'
-      << "sensor_height_m = " << num(t.sensor_height_m) << '\n'
-      << "floor_multipath = " << (t.floor_multipath ? "true" : "false") << '\n'
-      << "floor_reflection_coefficient = " << num(t.floor_reflection_coefficient) << '\n'
-      << "micro_motion_std_m = " << num(t.micro_motion_std_m) << "\n\n"
-      << "[chamber]\n"
-      << "sensor_gap_m = " << num(s.chamber.sensor_gap_m) << '\n'
-      << "layer_count = " << s.chamber.layer_count << '\n'
-      << "layer_length_m = " << num(s.chamber.layer_length_m) << '\n'
-      << "target_gap_m = " << num(s.chamber.target_gap_m) << "\n\n"
-      << "[fog]\n";
-  struct Density {
-    std::string operator()(const propagation::LiquidWaterContent& d) const {
-      return "lwc_g_per_m3 = " + format_toml_number(d.g_per_m3);
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const Section& section = sections[i];
+    std::string block = "[" + section.name + "]\n";
+    for (const ScenarioKey* key : section.keys) {
+      if (key->type == KeyType::retired || !key->takes_effect(s)) continue;
+      if (key->type == KeyType::table_array && key->array_size(s) > 0) {
+        for (std::size_t e = 0; e < key->array_size(s); ++e) {
+          KeyTable<Scenario> element;
+          key->array_element(e, element);
+          std::string table = "[[" + key->name + "]]\n";
+          for (const ScenarioKey& k : element.keys()) {
+            table += std::string(k.short_name()) + " = " + toml_value(k, s) + "\n";
+          }
+          arrays.push_back(table);
+        }
+        continue;
+      }
+      block += std::string(key->short_name()) + " = " + toml_value(*key, s) + "\n";
     }
-    std::string operator()(const propagation::OpticalExtinction& d) const {
-      return "extinction_per_km = " + format_toml_number(d.per_km);
-    }
-    std::string operator()(const propagation::Visibility& d) const {
-      return "visibility_m = " + format_toml_number(d.m);
-    }
-  };
-  out << std::visit(Density{}, s.fog.density) << '\n'
-      << "temperature_c = " << num(s.fog.temperature_c) << '\n'
-      << "water_model = " << str(propagation::to_string(s.fog.water_model)) << '\n'
-      << "clutter_scatterers_per_bin = " << s.clutter_scatterers_per_bin << "\n\n"
-      << "[fog.droplets]\n";
-  struct Droplets {
-    std::string operator()(const propagation::Monodisperse& d) const {
-      return "distribution = \"monodisperse\"\ndiameter_m = " + format_toml_number(d.diameter_m) +
-             "\n";
-    }
-    std::string operator()(const propagation::Lognormal& d) const {
-      return "distribution = \"lognormal\"\nmedian_diameter_m = " +
-             format_toml_number(d.median_diameter_m) +
-             "\ngeometric_std = " + format_toml_number(d.geometric_std) + "\n";
-    }
-    std::string operator()(const propagation::ModifiedGamma& d) const {
-      return "distribution = \"modified_gamma\"\nalpha = " + format_toml_number(d.alpha) +
-             "\ngamma = " + format_toml_number(d.gamma) +
-             "\nb_per_um_gamma = " + format_toml_number(d.b_per_um_gamma) + "\n";
-    }
-  };
-  out << std::visit(Droplets{}, s.fog.droplets) << '\n'
-      << "[experiment]\n"
-      << "sensors = [";
-  for (std::size_t i = 0; i < s.experiment.sensors.size(); ++i) {
-    out << (i == 0 ? "" : ", ") << str(sensor_name(s.experiment.sensors[i]));
+    blocks.push_back(block);
+    if (i + 1 == sections.size() || sections[i + 1].part != section.part) flush_arrays();
   }
-  out << "]\n"
-      << "measurements_per_step = " << s.experiment.measurements_per_step << '\n'
-      << "max_active_layers = " << s.experiment.max_active_layers << '\n'
-      << "seed = " << s.experiment.seed << '\n';
+  return "# fogradar resolved scenario: every key, as used by the run\n\n" + joined(blocks, "\n");
+}
 
-  const lidar::LidarParams& l = s.lidar;
-  out << "\n[lidar]\n"
-      << "wavelength_m = " << num(l.wavelength_m) << '\n'
-      << "field_of_view_deg = " << num(l.field_of_view_deg) << '\n'
-      << "angular_step_deg = " << num(l.angular_step_deg) << '\n'
-      << "scan_rate_hz = " << num(l.scan_rate_hz) << '\n'
-      << "scans_per_step = " << l.scans_per_step << '\n'
-      << "min_range_m = " << num(l.min_range_m) << '\n'
-      << "max_range_m = " << num(l.max_range_m) << '\n'
-      << "pulse_width_ns = " << num(l.pulse_width_ns) << '\n'
-      << "sample_interval_ns = " << num(l.sample_interval_ns) << '\n'
-      << "overlap_range_m = " << num(l.overlap_range_m) << '\n'
-      << "threshold_range_m = " << num(l.threshold_range_m) << '\n'
-      << "threshold_reflectivity = " << num(l.threshold_reflectivity) << '\n'
-      << "false_alarm_probability = " << num(l.false_alarm_probability) << '\n'
-      << "max_echoes = " << l.max_echoes << '\n'
-      << "min_echo_separation_m = " << num(l.min_echo_separation_m) << '\n'
-      << "intensity_scale = " << num(l.intensity_scale) << '\n'
-      << "intensity_saturation = " << num(l.intensity_saturation) << '\n'
-      << "target_width_m = " << num(l.target_width_m) << '\n'
-      << "target_offset_m = " << num(l.target_offset_m) << '\n'
-      << "target_reflectivity = " << num(l.target_reflectivity) << '\n'
-      << "fog_width_m = " << num(l.fog_width_m) << '\n';
-  if (l.background.empty()) out << "background = []\n";
-  out << "\n[lidar.fog_fluctuation]\n"
-      << "log_std = " << num(l.fog_fluctuation.log_std) << '\n'
-      << "correlation_time_s = " << num(l.fog_fluctuation.correlation_time_s) << '\n';
-  for (const lidar::BackgroundSegment& b : l.background) {
-    out << "\n[[lidar.background]]\n"
-        << "x0_m = " << num(b.x0_m) << '\n'
-        << "y0_m = " << num(b.y0_m) << '\n'
-        << "x1_m = " << num(b.x1_m) << '\n'
-        << "y1_m = " << num(b.y1_m) << '\n'
-        << "reflectivity = " << num(b.reflectivity) << '\n';
+std::vector<std::string> top_level_sections(const Scenario& s) {
+  std::vector<std::string> top;
+  const std::vector<KeyTable<Scenario>> parts = key_parts(s);
+  for (const Section& section : layout(parts, experiment_part_index(s))) {
+    const std::string first = section.name.substr(0, section.name.find('.'));
+    if (std::find(top.begin(), top.end(), first) == top.end()) top.push_back(first);
   }
+  return top;
+}
 
-  const camera::CameraParams& c = s.camera;
-  const auto region = [&](const char* name, const camera::RegionParams& p) {
-    out << "\n[camera.roi." << name << "]\n"
-        << "median_reflectance = " << num(p.median_reflectance) << '\n'
-        << "log_sigma = " << num(p.log_sigma) << '\n';
-  };
-  out << "\n[camera]\n"
-      << "band = " << str(camera::to_string(c.band)) << '\n'
-      << "wavelength_nm = " << num(c.wavelength_nm) << '\n'
-      << "mie_step_nm = " << num(c.mie_step_nm) << '\n'
-      << "transfer = " << str(camera::to_string(c.transfer)) << '\n'
-      << "gamma = " << num(c.gamma) << '\n'
-      << "frames_per_step = " << c.frames_per_step << '\n'
-      << "contrast_threshold = " << num(c.contrast_threshold) << '\n'
-      << "write_roi_images = " << (c.write_roi_images ? "true" : "false") << "\n\n"
-      << "[camera.exposure]\n"
-      << "mode = " << str(camera::to_string(c.exposure.mode)) << '\n'
-      << "ambient_level = " << num(c.exposure.ambient_level) << '\n'
-      << "auto_target_grey = " << num(c.exposure.auto_target_grey) << "\n\n"
-      << "[camera.noise]\n"
-      << "enabled = " << (c.noise.enabled ? "true" : "false") << '\n'
-      << "full_well_electrons = " << num(c.noise.full_well_electrons) << '\n'
-      << "read_noise_electrons = " << num(c.noise.read_noise_electrons) << "\n\n"
-      << "[camera.roi]\n"
-      << "width_px = " << c.roi.width_px << '\n'
-      << "height_px = " << c.roi.height_px << '\n'
-      << "cell_px = " << c.roi.cell_px << '\n'
-      << "target_fraction = " << num(c.roi.target_fraction) << '\n';
-  region("target", c.roi.target);
-  region("background", c.roi.background);
-  return out.str();
+std::string key_table_markdown(const Scenario& defaults, std::string_view top) {
+  const std::string prefix = std::string(top) + ".";
+  std::string rows;
+  const std::vector<KeyTable<Scenario>> parts = key_parts(defaults);
+  for (const Section& section : layout(parts, experiment_part_index(defaults))) {
+    if (section.name != top && !section.name.starts_with(prefix)) continue;
+    for (const ScenarioKey* key : section.keys) {
+      if (key->type == KeyType::retired) continue;
+      const std::string_view name = std::string_view(key->name).substr(prefix.size());
+      rows += table_row(*key, name, doc_value(*key, defaults));
+      if (key->type != KeyType::table_array) continue;
+      KeyTable<Scenario> element;
+      key->array_element(0, element);
+      for (const ScenarioKey& k : element.keys()) {
+        rows += table_row(k, std::string(name) + "[]." + std::string(k.short_name()), "—");
+      }
+    }
+  }
+  if (rows.empty()) {
+    throw_invalid("--keys", top,
+                  "a section of the scenario: " + joined(top_level_sections(defaults), ", "));
+  }
+  return "| key | default | allowed | meaning |\n|---|---|---|---|\n" + rows;
 }
 
 }  // namespace fogradar::experiment

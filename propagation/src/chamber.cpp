@@ -11,11 +11,6 @@
 namespace fogradar::propagation {
 namespace {
 
-// A chamber of more layers than this is a typo, not a study (the study has 4,
-// examples/long_chamber.toml 40).
-constexpr std::size_t max_layers = 1000;
-constexpr double max_length_m = 1e4;
-
 // Length of [a, b] n [c, d].
 double overlap_m(double a, double b, double c, double d) {
   return std::max(0.0, std::min(b, d) - std::max(a, c));
@@ -24,17 +19,17 @@ double overlap_m(double a, double b, double c, double d) {
 }  // namespace
 
 void ChamberSpec::validate() const {
-  require_in_range("chamber.sensor_gap_m", sensor_gap_m, 0.0, max_length_m);
-  require_in_range("chamber.target_gap_m", target_gap_m, 0.0, max_length_m);
-  if (layers.empty() || layers.size() > max_layers) {
+  require_in_range("chamber.sensor_gap_m", sensor_gap_m, 0.0, max_chamber_length_m);
+  require_in_range("chamber.target_gap_m", target_gap_m, 0.0, max_chamber_length_m);
+  if (layers.empty() || layers.size() > max_chamber_layers) {
     throw_invalid("chamber.layers", static_cast<double>(layers.size()),
-                  "a layer count in [1, " + std::to_string(max_layers) + "]");
+                  "a layer count in [1, " + std::to_string(max_chamber_layers) + "]");
   }
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string field = "chamber.layers[" + std::to_string(i) + "].length_m";
-    if (!(layers[i].length_m > 0.0 && layers[i].length_m <= max_length_m)) {
+    if (!(layers[i].length_m > 0.0 && layers[i].length_m <= max_chamber_length_m)) {
       std::ostringstream range;
-      range << "in (0, " << max_length_m << "]";
+      range << "in (0, " << max_chamber_length_m << "]";
       throw_invalid(field, layers[i].length_m, range.str());
     }
     layers[i].fog.validate();

@@ -6,6 +6,7 @@
 #include <boost/math/special_functions/gamma.hpp>
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
@@ -56,29 +57,93 @@ std::string_view distribution_name(const DropSizeDistribution& dsd) {
   return std::visit(Name{}, dsd);
 }
 
-void validate(const DropSizeDistribution& dsd) {
-  struct Check {
-    void operator()(const Monodisperse& d) const {
-      require_in_range("fog.droplets.diameter_m", d.diameter_m, min_droplet_diameter_m, max_droplet_diameter_m);
-    }
-    void operator()(const Lognormal& d) const {
-      require_in_range("fog.droplets.median_diameter_m", d.median_diameter_m, min_droplet_diameter_m,
-                       max_droplet_diameter_m);
-      require_in_range("fog.droplets.geometric_std", d.geometric_std, 1.01, 3.0);
-    }
-    void operator()(const ModifiedGamma& d) const {
-      require_in_range("fog.droplets.alpha", d.alpha, 0.0, 20.0);
-      require_in_range("fog.droplets.gamma", d.gamma, 0.25, 4.0);
-      require_positive("fog.droplets.b_per_um_gamma", d.b_per_um_gamma);
-      const double mode_radius_um = std::pow(d.alpha / (d.b_per_um_gamma * d.gamma), 1.0 / d.gamma);
-      if (!(mode_radius_um <= 500.0)) {
-        throw_invalid("fog.droplets.b_per_um_gamma", d.b_per_um_gamma,
-                      "large enough that the mode radius (alpha / (b gamma))^(1/gamma) <= 500 um");
-      }
-    }
+KeyTable<DropSizeDistribution> droplet_keys(std::string prefix) {
+  KeyTable<DropSizeDistribution> keys(prefix);
+  const std::string family = prefix + "distribution";
+  const auto is = [](auto alternative) {
+    return [](const DropSizeDistribution& d) {
+      return std::holds_alternative<decltype(alternative)>(d);
+    };
   };
-  std::visit(Check{}, dsd);
+  const auto only_with = [&family](std::string_view name) {
+    return "with " + family + " = \"" + std::string(name) + "\"";
+  };
+  // A family given by name keeps the values already set for it (a file's keys over the paper's);
+  // a preset starts from its published values.
+  keys.choice(
+      "distribution",
+      [](const DropSizeDistribution& d) { return std::string(distribution_name(d)); },
+      [family](DropSizeDistribution& d, std::string_view name) {
+        if (name == "lognormal") {
+          if (!std::holds_alternative<Lognormal>(d)) d = Lognormal{};
+        } else if (name == "monodisperse") {
+          if (!std::holds_alternative<Monodisperse>(d)) d = Monodisperse{};
+        } else if (name == "advection") {
+          d = advection_fog();
+        } else if (name == "radiation") {
+          d = radiation_fog();
+        } else if (name == "modified_gamma") {
+          if (!std::holds_alternative<ModifiedGamma>(d)) d = ModifiedGamma{};
+        } else {
+          throw_invalid(family, name,
+                        "one of 'lognormal', 'monodisperse', 'advection', 'radiation', "
+                        "'modified_gamma'");
+        }
+      },
+      {"lognormal", "monodisperse", "advection", "radiation", "modified_gamma"},
+      "drop size distribution; `advection` and `radiation` are the modified-gamma presets of "
+      "Shettle & Fenn (Al Naboulsi et al. 2004, Table 1), written back as `modified_gamma`");
+  keys.number(
+          "median_diameter_m",
+          [](const DropSizeDistribution& d) { return std::get<Lognormal>(d).median_diameter_m; },
+          [](DropSizeDistribution& d, double v) { std::get<Lognormal>(d).median_diameter_m = v; },
+          closed(min_droplet_diameter_m, max_droplet_diameter_m), "lognormal median diameter")
+      .when(is(Lognormal{}), only_with("lognormal"));
+  keys.number(
+          "geometric_std",
+          [](const DropSizeDistribution& d) { return std::get<Lognormal>(d).geometric_std; },
+          [](DropSizeDistribution& d, double v) { std::get<Lognormal>(d).geometric_std = v; },
+          closed(1.01, 3.0), "lognormal geometric standard deviation σ_g")
+      .when(is(Lognormal{}), only_with("lognormal"));
+  keys.number(
+          "diameter_m",
+          [](const DropSizeDistribution& d) { return std::get<Monodisperse>(d).diameter_m; },
+          [](DropSizeDistribution& d, double v) { std::get<Monodisperse>(d).diameter_m = v; },
+          closed(min_droplet_diameter_m, max_droplet_diameter_m), "monodisperse diameter")
+      .when(is(Monodisperse{}), only_with("monodisperse"));
+  const std::string gamma_text = "with " + family + " = \"modified_gamma\" (or a preset)";
+  keys.number(
+          "alpha", [](const DropSizeDistribution& d) { return std::get<ModifiedGamma>(d).alpha; },
+          [](DropSizeDistribution& d, double v) { std::get<ModifiedGamma>(d).alpha = v; },
+          closed(0.0, 20.0), "modified gamma n(r) = a r^α exp(−b r^γ): α")
+      .when(is(ModifiedGamma{}), gamma_text);
+  keys.number(
+          "gamma", [](const DropSizeDistribution& d) { return std::get<ModifiedGamma>(d).gamma; },
+          [](DropSizeDistribution& d, double v) { std::get<ModifiedGamma>(d).gamma = v; },
+          closed(0.25, 4.0), "modified gamma: γ")
+      .when(is(ModifiedGamma{}), gamma_text);
+  const std::string b_key = prefix + "b_per_um_gamma";
+  keys.number(
+          "b_per_um_gamma",
+          [](const DropSizeDistribution& d) { return std::get<ModifiedGamma>(d).b_per_um_gamma; },
+          [](DropSizeDistribution& d, double v) { std::get<ModifiedGamma>(d).b_per_um_gamma = v; },
+          positive(), "modified gamma: b in µm^−γ, with the mode radius (α/(bγ))^(1/γ) ≤ 500 µm")
+      .when(is(ModifiedGamma{}), gamma_text)
+      .with_check([b_key](const DropSizeDistribution& dsd) {
+        const ModifiedGamma& d = std::get<ModifiedGamma>(dsd);
+        const double mode_radius_um =
+            std::pow(d.alpha / (d.b_per_um_gamma * d.gamma), 1.0 / d.gamma);
+        if (!(mode_radius_um <= 500.0)) {
+          throw_invalid(b_key, d.b_per_um_gamma,
+                        "large enough that the mode radius (alpha / (b gamma))^(1/gamma) <= 500 "
+                        "um");
+        }
+      })
+      .documented_as("> 0, mode radius ≤ 500 µm");
+  return keys;
 }
+
+void validate(const DropSizeDistribution& dsd) { droplet_keys("fog.droplets.").check(dsd); }
 
 double diameter_moment(const DropSizeDistribution& dsd, int k) {
   struct Moment {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
@@ -21,30 +22,63 @@ constexpr double max_visibility_m = 1e7;
 
 }  // namespace
 
-void FogSpec::validate() const {
-  struct CheckDensity {
-    void operator()(const LiquidWaterContent& d) const {
-      require_in_range("fog.lwc_g_per_m3", d.g_per_m3, 0.0, max_lwc_g_per_m3);
-    }
-    void operator()(const OpticalExtinction& d) const {
-      require_in_range("fog.extinction_per_km", d.per_km, 0.0, max_extinction_per_km);
-    }
-    void operator()(const Visibility& d) const {
-      require_in_range("fog.visibility_m", d.m, min_visibility_m, max_visibility_m);
-    }
+KeyTable<FogSpec> fog_keys(std::string prefix) {
+  KeyTable<FogSpec> keys(prefix);
+  const auto holds = [](auto alternative) {
+    return
+        [](const FogSpec& f) { return std::holds_alternative<decltype(alternative)>(f.density); };
   };
-  std::visit(CheckDensity{}, density);
-  propagation::validate(droplets);
-  // The Liebe model's range (ITU-R P.840).
-  require_in_range("fog.temperature_c", temperature_c, -20.0, 50.0);
-  // A table without temperature dependence cannot use any other temperature: refuse rather than
-  // ignore it.
-  if (water_model == WaterModel::segelstein && temperature_c != segelstein_table_temperature_c) {
-    throw_invalid("fog.temperature_c", temperature_c,
-                  "= 25 with fog.water_model = \"segelstein\" (a table for about 25 C without "
-                  "temperature dependence); fog.water_model = \"liebe\" takes [-20, 50]");
-  }
+  const std::string one_density = "another density of " + prefix + "lwc_g_per_m3, " + prefix +
+                                  "extinction_per_km, " + prefix + "visibility_m is given";
+  keys.number(
+          "lwc_g_per_m3",
+          [](const FogSpec& f) { return std::get<LiquidWaterContent>(f.density).g_per_m3; },
+          [](FogSpec& f, double v) { f.density = LiquidWaterContent{v}; },
+          closed(0.0, max_lwc_g_per_m3), "liquid water content")
+      .when(holds(LiquidWaterContent{}), one_density)
+      .in_group("fog density");
+  keys.number(
+          "extinction_per_km",
+          [](const FogSpec& f) { return std::get<OpticalExtinction>(f.density).per_km; },
+          [](FogSpec& f, double v) { f.density = OpticalExtinction{v}; },
+          closed(0.0, max_extinction_per_km),
+          "or: optical extinction β at 550 nm (the study's fog: 900 /km)")
+      .when(holds(OpticalExtinction{}), one_density)
+      .in_group("fog density");
+  keys.number(
+          "visibility_m", [](const FogSpec& f) { return std::get<Visibility>(f.density).m; },
+          [](FogSpec& f, double v) { f.density = Visibility{v}; },
+          closed(min_visibility_m, max_visibility_m), "or: visibility, eq. 6 (2 % contrast)")
+      .when(holds(Visibility{}), one_density)
+      .in_group("fog density");
+  // The Liebe model's range (ITU-R P.840). A table without temperature dependence cannot use any
+  // other temperature than its own: refused rather than ignored.
+  const std::string temperature_key = prefix + "temperature_c", model_key = prefix + "water_model";
+  keys.number("temperature_c", FOGRADAR_KEY_FIELD(temperature_c), closed(-20.0, 50.0),
+              "water temperature of the index at the radar frequency (20 °C: an assumed indoor "
+              "hall, the study gives none)")
+      .with_check([temperature_key, model_key](const FogSpec& f) {
+        if (f.water_model == WaterModel::segelstein &&
+            f.temperature_c != segelstein_table_temperature_c) {
+          throw_invalid(temperature_key, f.temperature_c,
+                        "= 25 with " + model_key +
+                            " = \"segelstein\" (a table for about 25 C without temperature "
+                            "dependence); " +
+                            model_key + " = \"liebe\" takes [-20, 50]");
+        }
+      })
+      .documented_as("[-20, 50] with `liebe`; only 25 with `segelstein`");
+  keys.choice(
+      "water_model", FOGRADAR_KEY_FIELD(water_model), {"liebe", "segelstein"}, parse_water_model,
+      [](WaterModel m) { return to_string(m); },
+      "water index at the radar frequency: `liebe` (Liebe 1991 / ITU-R P.840, "
+      "temperature dependent, up to 1 THz) or `segelstein` (a table for about 25 °C "
+      "without temperature dependence)");
+  keys.include(droplet_keys(prefix + "droplets."), FOGRADAR_KEY_FIELD(droplets));
+  return keys;
 }
+
+void FogSpec::validate() const { fog_keys("fog.").check(*this); }
 
 Fog::Fog(const FogSpec& spec, const SegelsteinTable& table) : spec_(spec), table_(&table) {
   spec_.validate();

@@ -595,39 +595,66 @@ unsigned CfarConfig::effective_os_rank() const noexcept {
   return static_cast<unsigned>(std::max<std::uint64_t>(1, (3 * big_n + 2) / 4));
 }
 
-void CfarConfig::validate() const {
-  if (training_cells < 1) throw_invalid("cfar.training_cells", training_cells, ">= 1");
-  if (!(false_alarm_probability > 0.0 && false_alarm_probability < 1.0)) {
-    throw_invalid("cfar.false_alarm_probability", false_alarm_probability,
-                  "finite and in (0, 1) (exclusive)");
-  }
-  const std::size_t big_n = reference_cells();
-  if (os_rank > big_n) {
-    throw_invalid("cfar.os_rank", os_rank,
-                  "0 (default round(3N/4)) or in [1, " + std::to_string(big_n) +
-                      "] (N = 2 x cfar.training_cells)");
-  }
+KeyTable<CfarConfig> cfar_keys(std::string prefix) {
+  KeyTable<CfarConfig> keys(prefix);
+  keys.choice(
+      "kind", FOGRADAR_KEY_FIELD(kind), {"ca", "go", "so", "os"}, parse_cfar_kind,
+      [](CfarKind k) { return to_string(k); }, "CFAR detector");
+  keys.integer("guard_cells", FOGRADAR_KEY_FIELD(guard_cells), 0, 32766, "per side");
+  keys.integer("training_cells", FOGRADAR_KEY_FIELD(training_cells), 1, 32767, "per side");
+  keys.number("false_alarm_probability", FOGRADAR_KEY_FIELD(false_alarm_probability),
+              open(0.0, 1.0), "design P_fa");
+  const std::string rank_key = prefix + "os_rank", training_key = prefix + "training_cells";
+  keys.integer("os_rank", FOGRADAR_KEY_FIELD(os_rank), 0, 65534,
+               "OS rank k; 0 = round(3/4 · 2·training)")
+      .also([training_key](const CfarConfig& c) {
+        return "and 0 or at most 2 x " + training_key + " = " + std::to_string(c.reference_cells());
+      })
+      .with_check([rank_key, training_key](const CfarConfig& c) {
+        const std::size_t big_n = c.reference_cells();
+        if (c.os_rank > big_n) {
+          throw_invalid(rank_key, c.os_rank,
+                        "0 (default round(3N/4)) or in [1, " + std::to_string(big_n) +
+                            "] (N = 2 x " + training_key + ")");
+        }
+      })
+      .documented_as("integer 0 or [1, 2·training]");
+  keys.choice(
+      "threshold_design", FOGRADAR_KEY_FIELD(threshold_design), {"correlated", "independent"},
+      parse_cfar_threshold_design, [](CfarThresholdDesign d) { return to_string(d); },
+      "threshold factors solved for the noise cells as the range window correlates them, "
+      "so the realised P_fa is the design value (one factor for the interior cells and "
+      "one per edge position; docs/radar.md §7); `independent` = the textbook iid factor, "
+      "whose realised P_fa with a tapered window is higher (Hann: 2.2× at 1e-3, 10× at "
+      "1e-6 for CA)");
+  return keys;
 }
 
-void CfarConfig::validate_profile_length(std::size_t profile_length) const {
+void CfarConfig::validate() const { cfar_keys("cfar.").check(*this); }
+
+void CfarConfig::validate_profile_length(std::size_t profile_length,
+                                         std::string_view prefix) const {
   if (profile_length >= window_length()) return;
+  const std::string guard_key = std::string(prefix) + "guard_cells",
+                    training_key = std::string(prefix) + "training_cells";
   // Largest guard + n with 2 (guard + n) + 1 <= profile_length.
   const std::size_t usable = profile_length >= 1 ? (profile_length - 1) / 2 : 0;
   const std::string rule = " (2 (guard + training) + 1 <= profile length)";
-  const std::string profile = "a profile of radar.samples_per_chirp = " + std::to_string(profile_length) + " cells";
+  const std::string profile =
+      "a profile of radar.samples_per_chirp = " + std::to_string(profile_length) + " cells";
   if (usable > guard_cells) {
-    throw_invalid("cfar.training_cells", training_cells,
-                  "in [1, " + std::to_string(usable - guard_cells) +
-                      "] with cfar.guard_cells = " + std::to_string(guard_cells) + " and " + profile + rule);
+    throw_invalid(training_key, training_cells,
+                  "in [1, " + std::to_string(usable - guard_cells) + "] with " + guard_key + " = " +
+                      std::to_string(guard_cells) + " and " + profile + rule);
   }
   // The guard cells alone fill the profile: they are what must shrink.
   const std::string constraint =
-      usable > training_cells ? "in [0, " + std::to_string(usable - training_cells) +
-                                    "] with cfar.training_cells = " + std::to_string(training_cells) +
-                                    " and " + profile + rule
-                              : "smaller: with cfar.training_cells = " + std::to_string(training_cells) +
-                                    " not even 0 guard cells fit in " + profile + rule;
-  throw_invalid("cfar.guard_cells", guard_cells, constraint);
+      usable > training_cells
+          ? "in [0, " + std::to_string(usable - training_cells) + "] with " + training_key + " = " +
+                std::to_string(training_cells) + " and " + profile + rule
+          : "smaller: with " + training_key + " = " + std::to_string(training_cells) +
+                " not even 0 guard cells fit in " + profile + rule;
+  throw_invalid(guard_key, guard_cells, constraint);
 }
 
 double cfar_false_alarm_probability(const CfarConfig& config, double alpha) {

@@ -15,10 +15,6 @@ namespace {
 
 constexpr double degree_rad = pi / 180.0;
 
-void require_count(const char* field, std::size_t value, std::size_t low, std::size_t high) {
-  require_in_range(field, static_cast<double>(value), static_cast<double>(low), static_cast<double>(high));
-}
-
 constexpr std::array<std::pair<SweepDirection, std::string_view>, 2> kDirectionNames{{
     {SweepDirection::up, "up"},
     {SweepDirection::down, "down"},
@@ -40,47 +36,115 @@ SweepDirection parse_sweep_direction(std::string_view text, std::string_view fie
   throw_invalid(field, text, "one of up, down");
 }
 
-void RadarParams::validate() const {
+KeyTable<RadarParams> radar_param_keys() {
+  KeyTable<RadarParams> keys;
+  // Its value was the start of a down-chirp, which a reader of "carrier" could not know.
+  keys.retired("radar.carrier_frequency_hz",
+               "give the sweep centre as radar.centre_frequency_hz and the direction as "
+               "radar.sweep_direction = \"up\" | \"down\" (the old 77e9 meant a 77 -> 76 GHz "
+               "down-chirp: centre_frequency_hz = 76.5e9, sweep_direction = \"down\")");
   // 1-300 GHz: the radar bands the water models cover (Liebe ends at 1 THz).
-  require_in_range("radar.centre_frequency_hz", centre_frequency_hz, 1e9, 300e9);
+  keys.number(
+      "radar.centre_frequency_hz", FOGRADAR_KEY_FIELD(centre_frequency_hz), closed(1e9, 300e9),
+      "f_c, the centre of the sweep: λ = c/f_c in eq. 7 and the Doppler scale, the phase of "
+      "echoes sharing a range cell, and the frequency the chamber's fog is resolved at; "
+      "the water models cover it");
+  keys.choice(
+      "radar.sweep_direction", FOGRADAR_KEY_FIELD(sweep_direction), {"up", "down"},
+      parse_sweep_direction, [](SweepDirection d) { return to_string(d); },
+      "up: f_c − B/2 → f_c + B/2 (most automotive front ends); down: the reverse "
+      "(docs/radar.md §3.2)");
   // B <= f_c / 2 keeps the whole sweep above 3 f_c / 4.
-  if (!(sweep_bandwidth_hz >= 1e6 && sweep_bandwidth_hz <= 0.5 * centre_frequency_hz)) {
-    std::ostringstream range;
-    range.precision(10);
-    range << "in [1e6, radar.centre_frequency_hz / 2 = " << 0.5 * centre_frequency_hz << "]";
-    throw_invalid("radar.sweep_bandwidth_hz", sweep_bandwidth_hz, range.str());
+  keys.number(
+      "radar.sweep_bandwidth_hz", FOGRADAR_KEY_FIELD(sweep_bandwidth_hz),
+      "[1e6, centre_frequency_hz/2]",
+      [](const RadarParams& p) {
+        if (!(p.sweep_bandwidth_hz >= 1e6 && p.sweep_bandwidth_hz <= 0.5 * p.centre_frequency_hz)) {
+          std::ostringstream range;
+          range.precision(10);
+          range << "in [1e6, radar.centre_frequency_hz / 2 = " << 0.5 * p.centre_frequency_hz
+                << "]";
+          throw_invalid("radar.sweep_bandwidth_hz", p.sweep_bandwidth_hz, range.str());
+        }
+      },
+      "B; range resolution c/(2B)");
+  keys.number("radar.chirp_duration_s", FOGRADAR_KEY_FIELD(chirp_duration_s), closed(1e-7, 1e-2),
+              "T_c; slope S = B/T_c");
+  keys.number(
+      "radar.chirp_interval_s", FOGRADAR_KEY_FIELD(chirp_interval_s), "[chirp_duration_s, 1]",
+      [](const RadarParams& p) {
+        if (!(p.chirp_interval_s >= p.chirp_duration_s && p.chirp_interval_s <= 1.0)) {
+          std::ostringstream range;
+          range.precision(10);
+          range << "in [radar.chirp_duration_s = " << p.chirp_duration_s << ", 1]";
+          throw_invalid("radar.chirp_interval_s", p.chirp_interval_s, range.str());
+        }
+      },
+      "chirp start to chirp start (Doppler sampling)");
+  keys.integer("radar.samples_per_chirp", FOGRADAR_KEY_FIELD(samples_per_chirp), 16, 1 << 16,
+               "complex I/Q samples per chirp")
+      .with_check([](const RadarParams& p) {
+        // The samples must fit inside the chirp: N / fs <= T_c.
+        const double sampling_time_s = static_cast<double>(p.samples_per_chirp) / p.sample_rate_hz;
+        if (sampling_time_s > p.chirp_duration_s * (1.0 + 1e-12)) {
+          throw_invalid("radar.samples_per_chirp", static_cast<double>(p.samples_per_chirp),
+                        "an integer <= radar.chirp_duration_s x radar.sample_rate_hz = " +
+                            std::to_string(p.chirp_duration_s * p.sample_rate_hz) +
+                            " (samples fit in the chirp)");
+        }
+      })
+      .documented_as("integer [16, 65536], ≤ chirp_duration_s · sample_rate_hz");
+  keys.number("radar.sample_rate_hz", FOGRADAR_KEY_FIELD(sample_rate_hz), closed(1e5, 1e10),
+              "complex sampling; unambiguous range c·fs/(2S)");
+  keys.integer("radar.chirps_per_frame", FOGRADAR_KEY_FIELD(chirps_per_frame), 1, 1 << 14,
+               "chirps per measurement");
+  keys.number("radar.tx_power_dbm", FOGRADAR_KEY_FIELD(tx_power_dbm), closed(-30.0, 50.0), "P_t");
+  keys.number("radar.tx_gain_dbi", FOGRADAR_KEY_FIELD(tx_gain_dbi), closed(0.0, 60.0),
+              "boresight transmit antenna gain");
+  keys.number("radar.rx_gain_dbi", FOGRADAR_KEY_FIELD(rx_gain_dbi), closed(0.0, 60.0),
+              "boresight receive antenna gain");
+  keys.number("radar.azimuth_beamwidth_deg", FOGRADAR_KEY_FIELD(azimuth_beamwidth_deg),
+              closed(0.1, 180.0), "one-way 3 dB azimuth beamwidth (Gaussian beam)");
+  keys.number("radar.elevation_beamwidth_deg", FOGRADAR_KEY_FIELD(elevation_beamwidth_deg),
+              closed(0.1, 180.0), "one-way 3 dB elevation beamwidth (Gaussian beam)");
+  keys.number("radar.noise_figure_db", FOGRADAR_KEY_FIELD(noise_figure_db), closed(0.0, 40.0),
+              "F; noise power k·T0·F·fs");
+  keys.number("radar.reference_temperature_k", FOGRADAR_KEY_FIELD(reference_temperature_k),
+              closed(1.0, 1000.0), "T0");
+  keys.integer("radar.adc_bits", FOGRADAR_KEY_FIELD(adc_bits), 0, 24,
+               "0: ideal ADC; else mid-rise quantiser per I/Q rail");
+  keys.number("radar.adc_full_scale_dbm", FOGRADAR_KEY_FIELD(adc_full_scale_dbm),
+              closed(-100.0, 30.0), "power of a full-scale complex tone");
+  keys.number("radar.phase_noise_rms_rad", FOGRADAR_KEY_FIELD(phase_noise_rms_rad), closed(0.0, pi),
+              "white phase noise per sample")
+      .documented_as("[0, π]");
+  keys.choice(
+      "processing.window", FOGRADAR_KEY_FIELD(window),
+      {"rectangular", "hann", "hamming", "blackman_harris", "chebyshev"}, parse_window_type,
+      [](WindowType w) { return to_string(w); }, "range and Doppler window");
+  keys.number("processing.association_gate_m", FOGRADAR_KEY_FIELD(association_gate_m),
+              closed(0.0, 1e3),
+              "the tracked target is the strongest detection within this of the chamber's target "
+              "range");
+  keys.include(cfar_keys("processing.cfar."), FOGRADAR_KEY_FIELD(cfar));
+  // The CFAR's window must fit in a range profile: validate() checks it with the key the user gave.
+  const auto window_rule = [](const RadarParams& p) {
+    return "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
+           "radar.samples_per_chirp = " +
+           std::to_string(p.samples_per_chirp);
+  };
+  for (const char* cells : {"processing.cfar.guard_cells", "processing.cfar.training_cells"}) {
+    Key<RadarParams>& key = keys.at(cells);
+    key.also(window_rule)
+        .documented_as(key.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
   }
-  require_in_range("radar.chirp_duration_s", chirp_duration_s, 1e-7, 1e-2);
-  if (!(chirp_interval_s >= chirp_duration_s && chirp_interval_s <= 1.0)) {
-    std::ostringstream range;
-    range.precision(10);
-    range << "in [radar.chirp_duration_s = " << chirp_duration_s << ", 1]";
-    throw_invalid("radar.chirp_interval_s", chirp_interval_s, range.str());
-  }
-  require_count("radar.samples_per_chirp", samples_per_chirp, 16, 1 << 16);
-  require_in_range("radar.sample_rate_hz", sample_rate_hz, 1e5, 1e10);
-  // The samples must fit inside the chirp: N / fs <= T_c.
-  const double sampling_time_s = static_cast<double>(samples_per_chirp) / sample_rate_hz;
-  if (sampling_time_s > chirp_duration_s * (1.0 + 1e-12)) {
-    throw_invalid("radar.samples_per_chirp", static_cast<double>(samples_per_chirp),
-                  "an integer <= radar.chirp_duration_s x radar.sample_rate_hz = " +
-                      std::to_string(chirp_duration_s * sample_rate_hz) + " (samples fit in the chirp)");
-  }
-  require_count("radar.chirps_per_frame", chirps_per_frame, 1, 1 << 14);
-  require_in_range("radar.tx_power_dbm", tx_power_dbm, -30.0, 50.0);
-  require_in_range("radar.tx_gain_dbi", tx_gain_dbi, 0.0, 60.0);
-  require_in_range("radar.rx_gain_dbi", rx_gain_dbi, 0.0, 60.0);
-  require_in_range("radar.azimuth_beamwidth_deg", azimuth_beamwidth_deg, 0.1, 180.0);
-  require_in_range("radar.elevation_beamwidth_deg", elevation_beamwidth_deg, 0.1, 180.0);
-  require_in_range("radar.noise_figure_db", noise_figure_db, 0.0, 40.0);
-  require_in_range("radar.reference_temperature_k", reference_temperature_k, 1.0, 1000.0);
-  require_in_range("radar.adc_bits", adc_bits, 0.0, 24.0);
-  require_in_range("radar.adc_full_scale_dbm", adc_full_scale_dbm, -100.0, 30.0);
-  require_in_range("radar.phase_noise_rms_rad", phase_noise_rms_rad, 0.0, pi);
-  require_in_range("radar.association_gate_m", association_gate_m, 0.0, 1e3);
-  cfar.validate();
+  return keys;
+}
+
+void RadarParams::validate() const {
+  radar_param_keys().check(*this);
   // CFAR slides along range, one Doppler bin at a time.
-  cfar.validate_profile_length(samples_per_chirp);
+  cfar.validate_profile_length(samples_per_chirp, "processing.cfar.");
 }
 
 RadarDerived derive(const RadarParams& p) {

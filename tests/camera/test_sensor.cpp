@@ -99,7 +99,7 @@ TEST(Pipeline, AutoExposureHoldsItsTarget) {
   for (std::size_t n = 0; n <= 4; ++n) {
     const StepOptics optics = camera.step_optics(propagation::first_layers_active(n, 4));
     EXPECT_NEAR(camera.expected_mean_grey(optics), 100.0, 1e-6) << n;
-    RandomStream stream(sensor_stream(5, SensorId::camera, n, 0));
+    RandomStream stream(sensor_stream(5, stream_key, n, 0));
     EXPECT_NEAR(camera.frame(optics, stream).mean_grey, 100.0, 1.0) << n;
   }
 }
@@ -161,7 +161,7 @@ TEST(Sensor, DeterministicAndIndependentOfFrameOrder) {
     }
   }
   EXPECT_NE(a[2].frames[0].histogram, c[2].frames[0].histogram);
-  RandomStream stream = sensor_stream(42, SensorId::camera, 3, 7);
+  RandomStream stream = sensor_stream(42, stream_key, 3, 7);
   const CameraFrame alone =
       camera.frame(camera.step_optics(propagation::first_layers_active(3, 4)), stream);
   EXPECT_EQ(alone.histogram, a[3].frames[7].histogram);

@@ -19,12 +19,12 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t2" --threads 2 >/dev/null 2>&1 \
   || fail "small run (2 threads) failed"
 # small.toml runs the paper scenario's three sensors: every sensor's files.
-for f in samples.csv summary.csv summary.json rcs_boxplot.svg scenario.toml lidar_echoes.csv lidar_summary.csv \
-  lidar_summary.json lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.csv camera_summary.csv \
-  camera_summary.json camera_histograms.svg benchmark.svg; do
+for f in radar_samples.csv radar_summary.csv radar_summary.json radar_rcs_boxplot.svg summary.json scenario.toml \
+  lidar_echoes.csv lidar_summary.csv lidar_summary.json lidar_intensity_boxplot.svg lidar_scans.svg \
+  camera_histograms.csv camera_summary.csv camera_summary.json camera_histograms.svg benchmark.svg; do
   if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
 done
-[ "$(ls -A "$work/t1" | wc -l)" -eq 15 ] && pass || fail "result set is not the 15 files: $(ls -A "$work/t1")"
+[ "$(ls -A "$work/t1" | wc -l)" -eq 16 ] && pass || fail "result set is not the 16 files: $(ls -A "$work/t1")"
 # One table per sensor, then the benchmark: layers to failure (or not reached) per sensor.
 for sensor in radar lidar camera; do
   grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
@@ -32,8 +32,8 @@ for sensor in radar lidar camera; do
 done
 head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'step,scan,angle_deg,echo,range_m,intensity,origin' && pass \
   || fail "lidar_echoes.csv header: $(head -1 "$work/t1/lidar_echoes.csv")"
-if command -v python3 >/dev/null; then
-  python3 - "$work/t1/summary.json" <<'PY' && pass || fail "summary.json lacks a sensor's limit"
+if [ -x /usr/bin/python3 ]; then
+  /usr/bin/python3 - "$work/t1/summary.json" <<'PY' && pass || fail "summary.json lacks a sensor's limit"
 import json, sys
 sensors = json.load(open(sys.argv[1]))["sensors"]
 assert sorted(sensors) == ["camera", "lidar", "radar"], sensors
@@ -41,17 +41,17 @@ for name, entry in sensors.items():
     assert "sensor_limit_layers" in entry and entry["criterion"], name
 PY
 fi
-head -1 "$work/t1/samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms' && pass \
-  || fail "samples.csv header"
-head -1 "$work/t1/summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame' \
-  && pass || fail "summary.csv header"
-[ "$(wc -l <"$work/t1/samples.csv")" -eq 31 ] && pass || fail "samples.csv should have 5 x 6 rows"
+head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms' && pass \
+  || fail "radar_samples.csv header"
+head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame' \
+  && pass || fail "radar_summary.csv header"
+[ "$(wc -l <"$work/t1/radar_samples.csv")" -eq 31 ] && pass || fail "radar_samples.csv should have 5 x 6 rows"
 grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary.json lacks sensor_limit_layers"
-grep -q '<svg' "$work/t1/rcs_boxplot.svg" && pass || fail "no svg element"
+grep -q '<svg' "$work/t1/radar_rcs_boxplot.svg" && pass || fail "no svg element"
 # An XML parser independent of the C++ tests' checker, where Python is installed.
-if command -v python3 >/dev/null; then
-  for svg in rcs_boxplot.svg lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.svg benchmark.svg; do
-    python3 -c 'import sys, xml.etree.ElementTree as ET; ET.parse(sys.argv[1])' "$work/t1/$svg" && pass \
+if [ -x /usr/bin/python3 ]; then
+  for svg in radar_rcs_boxplot.svg lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.svg benchmark.svg; do
+    /usr/bin/python3 -c 'import sys, xml.etree.ElementTree as ET; ET.parse(sys.argv[1])' "$work/t1/$svg" && pass \
       || fail "$svg is not well-formed XML"
   done
 fi
@@ -64,7 +64,7 @@ ls -A "$work/t1" | grep -q '\.tmp' && fail "temporary files left behind" || pass
 printf '[experiment]\nsensors = ["camera"]\n[camera]\nframes_per_step = 2\nwrite_roi_images = true\n' >"$work/roi.toml"
 "$fogradar" run --scenario "$work/roi.toml" --out "$work/roi" >/dev/null 2>&1 || fail "camera run with ROI images failed"
 [ "$(ls "$work/roi" | grep -c '^camera_roi_[0-4]\.pgm$')" -eq 5 ] && [ "$(head -c 2 "$work/roi/camera_roi_0.pgm")" = P5 ] \
-  && [ ! -e "$work/roi/samples.csv" ] && pass || fail "camera ROI set: $(ls "$work/roi")"
+  && [ ! -e "$work/roi/radar_samples.csv" ] && pass || fail "camera ROI set: $(ls "$work/roi")"
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/roi" >/dev/null 2>&1 && ! ls "$work/roi" | grep -q pgm \
   && pass || fail "ROI images not replaced by the next set: $(ls "$work/roi")"
 
@@ -114,11 +114,11 @@ make_old() {
 # (b) A set fogradar may not replace: a file of the user's (here a non-empty directory under a result
 # file's name, which no one, root included, can replace by a file) is refused before the run, exit 2.
 make_old foreign
-mkdir -p "$work/foreign-extra/samples.csv/keep" && rm -f "$parent/out/samples.csv" && mv "$work/foreign-extra/samples.csv" "$parent/out/"
+mkdir -p "$work/foreign-extra/radar_samples.csv/keep" && rm -f "$parent/out/radar_samples.csv" && mv "$work/foreign-extra/radar_samples.csv" "$parent/out/"
 before=$(digest "$parent/out")
 "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err"
 expect_kept foreign-file "$parent" "$before" $? "$work/err" 2 "--out"
-[ -d "$parent/out/samples.csv/keep" ] && pass || fail "the user's directory was touched"
+[ -d "$parent/out/radar_samples.csv/keep" ] && pass || fail "the user's directory was touched"
 # Writing fails half-way (the file-size limit, EFBIG, also binds root; SIGXFSZ ignored so write()
 # reports it): the first set stays.
 make_old write-fails
@@ -364,8 +364,8 @@ done
 # the lidar's 10 log10(e) 2 alpha L (Beer-Lambert); the camera's photopic band-weighted extinction is
 # within 2 % of the 550 nm value the fog was given by (V(lambda) peaks at 555 nm and beta of 1 um
 # drops changes by a few % over its width), and its transmittance is exp(-beta_eff L).
-if command -v python3 >/dev/null; then
-  "$fogradar" fog --extinction-per-km 900 --layer-length-m 2 --json | python3 -c '
+if [ -x /usr/bin/python3 ]; then
+  "$fogradar" fog --extinction-per-km 900 --layer-length-m 2 --json | /usr/bin/python3 -c '
 import json, math, sys
 j = json.load(sys.stdin)
 s = j["sensors"]
@@ -391,6 +391,9 @@ echo "$json" | grep -q '"optical_water_temperature_c": 25' && pass || fail "opti
 "$fogradar" fog --lwc 1 --water-model segelstein | grep -q 'Segelstein table, for its own 25 C' && pass \
   || fail "fog text does not state the table's temperature"
 "$fogradar" scenario | grep -q '^\[experiment\]' && pass || fail "fogradar scenario prints no [experiment]"
+# The key tables of the docs are the keys' declarations as `fogradar scenario --keys` prints them.
+"$src/scripts/update-docs.sh" --check "$fogradar" 2>"$work/stale" && pass || fail "$(cat "$work/stale")"
+expect_bad keys-unknown-section "--keys" "a section of the scenario: radar, processing, target" scenario --keys radr
 
 # --- memory limit (docs/scenario.md, "Memory limit"): refused up front, before any frame exists -----
 printf '[radar]\nsamples_per_chirp = 65536\nchirps_per_frame = 16384\nchirp_duration_s = 6.5536e-3\nchirp_interval_s = 6.5536e-3\n' \

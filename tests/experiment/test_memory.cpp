@@ -10,16 +10,17 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/lidar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
+#include "sensors.hpp"
 
 namespace fogradar::experiment {
 namespace {
 
 Scenario small_frame() {
   Scenario s = paper_scenario();
-  s.experiment.sensors = {SensorId::radar};  // the radar's subject; test_multisensor.cpp runs all
-  s.radar.samples_per_chirp = 64;
-  s.radar.chirps_per_frame = 16;
-  s.clutter_scatterers_per_bin = 4;
+  s.experiment.sensors = {"radar"};  // the radar's subject; test_multisensor.cpp runs all
+  radar_of(s).radar.samples_per_chirp = 64;
+  radar_of(s).radar.chirps_per_frame = 16;
+  radar_of(s).clutter_scatterers_per_bin = 4;
   s.experiment.measurements_per_step = 3;
   s.experiment.max_active_layers = 4;  // 5 steps: 15 measurements
   return s;
@@ -30,18 +31,22 @@ Scenario small_frame() {
 TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
   static_assert(sizeof(std::complex<double>) == 16 && sizeof(double) == 8);
   ASSERT_EQ(sizeof(radar::Tone), 40u);
-  const MemoryEstimate e = estimate_peak_memory(small_frame(), 2);
-  EXPECT_EQ(e.threads, 2u);
+  const Scenario s = small_frame();
+  const radar::MemoryEstimate e = radar::memory_estimate(radar_of(s), 15);
   // frame 64*16*16 = 16384, mask 1024, chirp 64*16 = 1024; CFAR one row 6*64*8 = 3072, four rows
   // 4*5*64*8 = 10240 and their one-row workspace 3072; kernels 2*4*2*64*8 = 8192, Doppler columns
   // 4*16*16 = 1024, peak search 4*64*8 = 2048, tables 8*80*8 = 5120; Doppler block 32*16*16 = 8192;
   // tones 2*40*(4*64 + 64) = 25600. Sum 84992.
   EXPECT_EQ(e.per_thread_bytes, 84992u);
-  // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560; baseline 16 MiB.
-  EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u + 16777216u);
-  EXPECT_EQ(e.records_bytes, 15 * sizeof(MeasurementRecord));
-  EXPECT_EQ(e.total_bytes(),
-            2 * 84992u + 1664u + 20992u + 2560u + 16777216u + 15 * sizeof(MeasurementRecord));
+  // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560.
+  EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u);
+  EXPECT_EQ(e.records_bytes, 15 * sizeof(radar::MeasurementRecord));
+  // The run's estimate: two workers' frames, the shared part, the records and the process (16 MiB).
+  const MemoryEstimate run = estimate_peak_memory(s, 2);
+  EXPECT_EQ(run.threads, 2u);
+  ASSERT_EQ(run.sensors.size(), 1u);
+  EXPECT_EQ(run.total_bytes(), 2 * 84992u + 1664u + 20992u + 2560u + 16777216u +
+                                   15 * sizeof(radar::MeasurementRecord));
 }
 
 TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {
@@ -53,8 +58,8 @@ TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {
 
 TEST(MemoryEstimate, TheFrameDominatesALargeRun) {
   Scenario s = small_frame();
-  s.radar.samples_per_chirp = 65536;
-  s.radar.chirps_per_frame = 16384;
+  radar_of(s).radar.samples_per_chirp = 65536;
+  radar_of(s).radar.chirps_per_frame = 16384;
   const MemoryEstimate e = estimate_peak_memory(s, 1);
   const double frame_bytes = 65536.0 * 16384.0 * 17.0;  // complex frame plus 1-byte mask per cell
   EXPECT_GT(static_cast<double>(e.total_bytes()), frame_bytes);
@@ -81,16 +86,19 @@ TEST(MemoryEstimate, RefusalNamesTheKeysAndTheLimit) {
 // items count for the threads; a refusal driven by the lidar names its keys and is filed under it.
 TEST(MemoryEstimate, AddsTheLidarAndTheCamera) {
   Scenario s = small_frame();
-  const MemoryEstimate radar_only = estimate_peak_memory(s, 100);
-  s.experiment.sensors = {SensorId::radar, SensorId::lidar, SensorId::camera};
+  s.experiment.sensors = {"radar", "lidar", "camera"};
   const MemoryEstimate all = estimate_peak_memory(s, 100);
-  const std::size_t items = 5 * (3 + s.lidar.scans_per_step + s.camera.frames_per_step);
+  const std::size_t items = 5 * (3 + lidar_of(s).scans_per_step + camera_of(s).frames_per_step);
   EXPECT_EQ(all.threads, worker_threads(100, items));
-  EXPECT_EQ(all.lidar_bytes, lidar::lidar_memory_bytes(s.lidar, 5, all.threads));
-  EXPECT_EQ(all.camera_bytes, camera::memory_bytes(s.camera, 5));
-  EXPECT_EQ(all.total_bytes(), all.threads * radar_only.per_thread_bytes + radar_only.shared_bytes +
-                                   radar_only.records_bytes + all.lidar_bytes + all.camera_bytes);
-  s.lidar.scans_per_step = 100000;
+  const radar::MemoryEstimate radar_part = radar::memory_estimate(radar_of(s), 15);
+  ASSERT_EQ(all.sensors.size(), 3u);
+  EXPECT_EQ(all.sensors[0].memory.bytes, all.threads * radar_part.per_thread_bytes +
+                                             radar_part.shared_bytes + radar_part.records_bytes);
+  EXPECT_EQ(all.sensors[1].memory.bytes, lidar::lidar_memory_bytes(lidar_of(s), 5, all.threads));
+  EXPECT_EQ(all.sensors[2].memory.bytes, camera::memory_bytes(camera_of(s), 5));
+  EXPECT_EQ(all.total_bytes(), all.sensors[0].memory.bytes + all.sensors[1].memory.bytes +
+                                   all.sensors[2].memory.bytes + process_baseline_bytes);
+  lidar_of(s).scans_per_step = 100000;
   try {
     require_memory_within(s, 1, estimate_peak_memory(s, 1).total_bytes() - 1);
     FAIL() << "no refusal one byte below the estimate";

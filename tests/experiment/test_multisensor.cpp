@@ -17,6 +17,7 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/lidar/outputs.hpp"
+#include "sensors.hpp"
 
 namespace fogradar::experiment {
 namespace {
@@ -28,31 +29,42 @@ using Files = std::map<std::string, std::string>;
 // 64 x 48 ROI per step.
 Scenario small_three_sensors() {
   Scenario s = paper_scenario();
-  s.experiment.sensors = {SensorId::radar, SensorId::lidar, SensorId::camera};
-  s.radar.chirps_per_frame = 16;
+  s.experiment.sensors = {"radar", "lidar", "camera"};
+  radar_of(s).radar.chirps_per_frame = 16;
   s.experiment.measurements_per_step = 4;
-  s.lidar.scans_per_step = 3;
-  s.lidar.field_of_view_deg = 12.0;
-  s.camera.frames_per_step = 2;
-  s.camera.roi.width_px = 64;
-  s.camera.roi.height_px = 48;
+  lidar_of(s).scans_per_step = 3;
+  lidar_of(s).field_of_view_deg = 12.0;
+  camera_of(s).frames_per_step = 2;
+  camera_of(s).roi.width_px = 64;
+  camera_of(s).roi.height_px = 48;
   return s;
 }
 
 Files files_of(const Scenario& s, unsigned threads) {
-  const ExperimentResult result = run_experiment(s, {.threads = threads, .progress = {}});
-  const std::vector<std::pair<std::string, std::string>> files =
-      result_files(s, result, summarize(result));
-  return {files.begin(), files.end()};
+  Files files;
+  const ExperimentSummary summary =
+      summarize(run_experiment(s, {.threads = threads, .progress = {}}));
+  for (sensor::ResultFile& file : result_files(s, summary)) files[file.name] = file.content;
+  return files;
 }
+
+// The files of the three sensors (docs/scenario.md, Results).
+const char* const radar_files[] = {"radar_samples.csv", "radar_summary.csv", "radar_summary.json",
+                                   "radar_rcs_boxplot.svg"};
+const char* const lidar_files[] = {"lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
+                                   "lidar_intensity_boxplot.svg", "lidar_scans.svg"};
+const char* const camera_files[] = {"camera_histograms.csv", "camera_summary.csv",
+                                    "camera_summary.json", "camera_histograms.svg"};
 
 TEST(MultiSensor, EveryFileIsTheSameBytesForAnyThreadCount) {
   const Scenario s = small_three_sensors();
   const Files one = files_of(s, 1), three = files_of(s, 3);
-  EXPECT_EQ(one.size(), result_file_names().size());  // every fixed name (no ROI images asked for)
-  for (const std::string& name : result_file_names()) {
-    ASSERT_TRUE(one.contains(name)) << name;
-    EXPECT_EQ(one.at(name), three.at(name)) << name;
+  // Every sensor's files and summary.json, scenario.toml, benchmark.svg (no ROI images asked for).
+  EXPECT_EQ(one.size(), 4u + 5u + 4u + 3u);
+  for (const auto& [name, content] : one) {
+    ASSERT_TRUE(three.contains(name)) << name;
+    EXPECT_EQ(content, three.at(name)) << name;
+    EXPECT_TRUE(result_file_names(s)(name)) << name;
   }
 }
 
@@ -61,51 +73,45 @@ TEST(MultiSensor, EveryFileIsTheSameBytesForAnyThreadCount) {
 // scenario (and so scenario.toml and summary.json) differ only in experiment.sensors.
 TEST(MultiSensor, AddingASensorLeavesTheOthersFilesUnchanged) {
   Scenario radar_only = small_three_sensors();
-  radar_only.experiment.sensors = {SensorId::radar};
+  radar_only.experiment.sensors = {"radar"};
   Scenario radar_lidar = radar_only;
-  radar_lidar.experiment.sensors = {SensorId::radar, SensorId::lidar};
+  radar_lidar.experiment.sensors = {"radar", "lidar"};
   Scenario lidar_only = radar_only;
-  lidar_only.experiment.sensors = {SensorId::lidar};
+  lidar_only.experiment.sensors = {"lidar"};
   Scenario camera_first = radar_only;
-  camera_first.experiment.sensors = {SensorId::camera, SensorId::radar};
+  camera_first.experiment.sensors = {"camera", "radar"};
   const Files all = files_of(small_three_sensors(), 2), r = files_of(radar_only, 2),
               rl = files_of(radar_lidar, 2), l = files_of(lidar_only, 2),
               cr = files_of(camera_first, 2);
-  EXPECT_EQ(r.size(), 6u);  // samples, summary.csv/.json, rcs_boxplot, scenario, benchmark
-  EXPECT_FALSE(l.contains("samples.csv"));
-  for (const char* radar_file : {"samples.csv", "summary.csv", "rcs_boxplot.svg"}) {
+  EXPECT_EQ(r.size(), 7u);  // its 4 files, summary.json, scenario.toml, benchmark.svg
+  EXPECT_FALSE(l.contains("radar_samples.csv"));
+  for (const char* radar_file : radar_files) {
     EXPECT_EQ(r.at(radar_file), rl.at(radar_file)) << radar_file;
     EXPECT_EQ(r.at(radar_file), all.at(radar_file)) << radar_file;
     EXPECT_EQ(r.at(radar_file), cr.at(radar_file)) << radar_file;
   }
-  for (const char* lidar_file : {"lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
-                                 "lidar_intensity_boxplot.svg", "lidar_scans.svg"}) {
+  for (const char* lidar_file : lidar_files) {
     EXPECT_EQ(l.at(lidar_file), rl.at(lidar_file)) << lidar_file;
     EXPECT_EQ(l.at(lidar_file), all.at(lidar_file)) << lidar_file;
   }
-  for (const char* camera_file : {"camera_histograms.csv", "camera_summary.csv",
-                                  "camera_summary.json", "camera_histograms.svg"}) {
+  for (const char* camera_file : camera_files) {
     EXPECT_EQ(cr.at(camera_file), all.at(camera_file)) << camera_file;
   }
-  // The radar's part of summary.json is the same whichever sensors ran beside it.
-  nlohmann::json radar_part = nlohmann::json::parse(r.at("summary.json")),
-                 with_all = nlohmann::json::parse(all.at("summary.json"));
-  for (nlohmann::json* j : {&radar_part, &with_all}) {
-    j->erase("scenario");
-    j->erase("sensors");
-  }
-  EXPECT_EQ(radar_part, with_all);
+  // The radar's entry in summary.json is the same whichever sensors ran beside it.
+  EXPECT_EQ(nlohmann::json::parse(r.at("summary.json")).at("sensors").at("radar"),
+            nlohmann::json::parse(all.at("summary.json")).at("sensors").at("radar"));
 }
 
-// summary.json's "sensors" object (docs/scenario.md, Results): one entry per sensor that ran with
-// its limit, criterion and margin; the lidar's and the camera's summaries embedded as their own
-// files hold them; the radar's limit is the top-level sensor_limit_layers.
+// summary.json (docs/scenario.md, Results): the resolved scenario and one entry per sensor that ran
+// with its limit, criterion, margin and summary, each summary as the sensor's own
+// <name>_summary.json holds it.
 TEST(MultiSensor, SummaryJsonCarriesEverySensorsLimitAndSummary) {
   const Scenario s = small_three_sensors();
-  const ExperimentResult result = run_experiment(s);
-  const ExperimentSummary summary = summarize(result);
+  const ExperimentSummary summary = summarize(run_experiment(s));
   const Files files = files_of(s, 2);
   const nlohmann::json json = nlohmann::json::parse(files.at("summary.json"));
+  EXPECT_EQ(json.size(), 2u);
+  EXPECT_TRUE(json.contains("scenario"));
   ASSERT_TRUE(json.contains("sensors"));
   const nlohmann::json& sensors = json.at("sensors");
   EXPECT_EQ(sensors.size(), 3u);
@@ -118,41 +124,40 @@ TEST(MultiSensor, SummaryJsonCarriesEverySensorsLimitAndSummary) {
               !sensors.at(name).at("margin").get<std::string>().empty())
         << name;
   }
-  EXPECT_EQ(sensors.at("radar").at("sensor_limit_layers"), json.at("sensor_limit_layers"));
-  EXPECT_EQ(sensors.at("lidar").at("summary"),
-            nlohmann::json::parse(files.at("lidar_summary.json")));
-  EXPECT_EQ(sensors.at("camera").at("summary"),
-            nlohmann::json::parse(files.at("camera_summary.json")));
-  ASSERT_TRUE(summary.lidar.has_value());
+  for (const char* name : {"radar", "lidar", "camera"}) {
+    EXPECT_EQ(sensors.at(name).at("summary"),
+              nlohmann::json::parse(files.at(std::string(name) + "_summary.json")))
+        << name;
+  }
+  EXPECT_EQ(sensors.at("radar").at("sensor_limit_layers"),
+            sensors.at("radar").at("summary").at("sensor_limit_layers"));
   EXPECT_EQ(sensors.at("lidar").at("sensor_limit_layers").is_null(),
-            !summary.lidar->sensor_limit_layers);
+            !lidar_report(summary).summary().sensor_limit_layers);
   // One benchmark line per sensor, in experiment.sensors' order.
   const std::string table = benchmark_table(summary);
   EXPECT_LT(table.find("radar "), table.find("lidar "));
   EXPECT_LT(table.find("lidar "), table.find("camera "));
 }
 
-// A run without the radar writes no radar file and no radar field in summary.json.
+// A run without the radar writes no radar file and no radar entry in summary.json.
 TEST(MultiSensor, WithoutTheRadarNoRadarFiles) {
   Scenario s = small_three_sensors();
-  s.experiment.sensors = {SensorId::camera};
+  s.experiment.sensors = {"camera"};
   const Files files = files_of(s, 1);
-  EXPECT_FALSE(files.contains("samples.csv"));
-  EXPECT_FALSE(files.contains("rcs_boxplot.svg"));
+  for (const char* radar_file : radar_files) EXPECT_FALSE(files.contains(radar_file));
   const nlohmann::json json = nlohmann::json::parse(files.at("summary.json"));
-  EXPECT_FALSE(json.contains("steps"));
   EXPECT_EQ(json.at("sensors").size(), 1u);
+  EXPECT_TRUE(json.at("sensors").contains("camera"));
 }
 
 // The paper scenario file lists the [lidar] and [camera] keys with the modules' own defaults
 // (lidar/params.hpp, camera/params.hpp), so the two cannot drift apart unnoticed.
 TEST(MultiSensor, PaperScenarioHoldsTheSensorsDefaults) {
   const Scenario paper = paper_scenario();
-  EXPECT_EQ(paper.experiment.sensors,
-            (std::vector<SensorId>{SensorId::radar, SensorId::lidar, SensorId::camera}));
+  EXPECT_EQ(paper.experiment.sensors, (std::vector<std::string>{"radar", "lidar", "camera"}));
   Scenario defaults = paper;
-  defaults.lidar = lidar::LidarParams{};
-  defaults.camera = camera::CameraParams{};
+  lidar_of(defaults) = lidar::LidarParams{};
+  camera_of(defaults) = camera::CameraParams{};
   EXPECT_EQ(to_toml(paper), to_toml(defaults));
 }
 
@@ -163,17 +168,18 @@ TEST(MultiSensor, SensorSectionsRoundTrip) {
   Scenario s = paper_scenario();
   const std::string paper = to_toml(s);
   EXPECT_EQ(to_toml(parse_scenario(paper, "paper.toml")), paper);
-  EXPECT_EQ(parse_scenario(paper, "paper.toml").lidar.background.size(), s.lidar.background.size());
-  s.lidar.background.clear();
-  s.lidar.fog_fluctuation.log_std = 0.0;
-  s.camera.band = camera::Band::rgb;
-  s.camera.exposure.mode = camera::ExposureMode::automatic;
-  s.camera.transfer = camera::TransferCurve::gamma;
-  s.camera.roi.background.log_sigma = 1.25;
+  EXPECT_EQ(lidar_of(parse_scenario(paper, "paper.toml")).background.size(),
+            lidar_of(s).background.size());
+  lidar_of(s).background.clear();
+  lidar_of(s).fog_fluctuation.log_std = 0.0;
+  camera_of(s).band = camera::Band::rgb;
+  camera_of(s).exposure.mode = camera::ExposureMode::automatic;
+  camera_of(s).transfer = camera::TransferCurve::gamma;
+  camera_of(s).roi.background.log_sigma = 1.25;
   const std::string changed = to_toml(s);
   const Scenario read = parse_scenario(changed, "changed.toml");
-  EXPECT_TRUE(read.lidar.background.empty());
-  EXPECT_EQ(read.camera.band, camera::Band::rgb);
+  EXPECT_TRUE(lidar_of(read).background.empty());
+  EXPECT_EQ(camera_of(read).band, camera::Band::rgb);
   EXPECT_EQ(to_toml(read), changed);
 }
 

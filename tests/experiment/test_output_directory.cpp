@@ -20,14 +20,19 @@ namespace fogradar::experiment {
 namespace {
 
 namespace fs = std::filesystem;
-using Files = std::vector<std::pair<std::string, std::string>>;
+using Files = std::vector<sensor::ResultFile>;
 
 Files result_set(const std::string& tag) {
-  return {{"samples.csv", "samples " + tag},
-          {"summary.csv", "summary " + tag},
+  return {{"radar_samples.csv", "samples " + tag},
+          {"radar_summary.csv", "summary " + tag},
           {"summary.json", "{\"" + tag + "\": 1}"},
-          {"rcs_boxplot.svg", "<svg>" + tag + "</svg>"},
+          {"radar_rcs_boxplot.svg", "<svg>" + tag + "</svg>"},
           {"scenario.toml", "# " + tag}};
+}
+
+// The result set of the paper scenario's sensors.
+OutputDirectory output_directory(const fs::path& dir) {
+  return OutputDirectory(dir, result_file_names(paper_scenario()));
 }
 
 // Every entry of `dir` with its content ("<dir>" for a directory).
@@ -42,7 +47,9 @@ std::map<std::string, std::string> listing(const fs::path& dir) {
 }
 
 std::map<std::string, std::string> as_listing(const Files& files) {
-  return {files.begin(), files.end()};
+  std::map<std::string, std::string> out;
+  for (const sensor::ResultFile& file : files) out[file.name] = file.content;
+  return out;
 }
 
 class OutputDirectoryTest : public ::testing::Test {
@@ -67,31 +74,31 @@ class OutputDirectoryTest : public ::testing::Test {
 
 TEST_F(OutputDirectoryTest, CreatesThenReplacesTheWholeSet) {
   const fs::path dir = parent_ / "out";
-  EXPECT_TRUE(OutputDirectory(dir).replace(result_set("first")));
+  EXPECT_TRUE(output_directory(dir).replace(result_set("first")));
   EXPECT_EQ(listing(dir), as_listing(result_set("first")));
   // A second set with one file fewer: the replacement leaves no file of the first behind.
   Files second = result_set("second");
   second.pop_back();
-  EXPECT_TRUE(OutputDirectory(dir).replace(second));
+  EXPECT_TRUE(output_directory(dir).replace(second));
   EXPECT_EQ(listing(dir), as_listing(second));
   expect_only_result_directory();
 }
 
 TEST_F(OutputDirectoryTest, AnAbandonedReplacementLeavesThePreviousSet) {
   const fs::path dir = parent_ / "out";
-  OutputDirectory(dir).replace(result_set("first"));
-  EXPECT_FALSE(OutputDirectory(dir).replace(result_set("second"), [] { return true; }));
+  output_directory(dir).replace(result_set("first"));
+  EXPECT_FALSE(output_directory(dir).replace(result_set("second"), [] { return true; }));
   EXPECT_EQ(listing(dir), as_listing(result_set("first")));
   expect_only_result_directory();
 }
 
 TEST_F(OutputDirectoryTest, AFailedWriteLeavesThePreviousSet) {
   const fs::path dir = parent_ / "out";
-  OutputDirectory(dir).replace(result_set("first"));
+  output_directory(dir).replace(result_set("first"));
   Files bad = result_set("second");
   bad.emplace_back("missing/sub.csv",
                    "x");  // a name in a directory that does not exist: open fails
-  EXPECT_THROW(OutputDirectory(dir).replace(bad), InvalidParameter);
+  EXPECT_THROW(output_directory(dir).replace(bad), InvalidParameter);
   EXPECT_EQ(listing(dir), as_listing(result_set("first")));
   expect_only_result_directory();
 }
@@ -101,7 +108,7 @@ TEST_F(OutputDirectoryTest, RefusesADirectoryHoldingOtherFiles) {
   fs::create_directories(dir / "samples.csv");  // a result file's name, but a directory
   std::ofstream(dir / "notes.txt") << "mine";
   try {
-    OutputDirectory refused(dir);
+    OutputDirectory refused(dir, result_file_names(paper_scenario()));
     FAIL() << "a directory with a user's files was accepted";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.field(), "--out");
@@ -115,8 +122,8 @@ TEST_F(OutputDirectoryTest, RefusesADirectoryHoldingOtherFiles) {
 // previous set: the replacement is refused and both stay.
 TEST_F(OutputDirectoryTest, AFileAddedDuringTheRunKeepsThePreviousSet) {
   const fs::path dir = parent_ / "out";
-  OutputDirectory(dir).replace(result_set("first"));
-  OutputDirectory second(dir);
+  output_directory(dir).replace(result_set("first"));
+  OutputDirectory second(dir, result_file_names(paper_scenario()));
   std::ofstream(dir / "notes.txt") << "mine";
   EXPECT_THROW(second.replace(result_set("second")), InvalidParameter);
   std::map<std::string, std::string> expected = as_listing(result_set("first"));
@@ -127,9 +134,9 @@ TEST_F(OutputDirectoryTest, AFileAddedDuringTheRunKeepsThePreviousSet) {
 TEST_F(OutputDirectoryTest, OneHolderAtATime) {
   const fs::path dir = parent_ / "out";
   {
-    OutputDirectory first(dir);
+    OutputDirectory first(dir, result_file_names(paper_scenario()));
     try {
-      OutputDirectory second(dir);
+      OutputDirectory second(dir, result_file_names(paper_scenario()));
       FAIL() << "two holders of one directory";
     } catch (const InvalidParameter& e) {
       EXPECT_EQ(e.field(), "--out");
@@ -137,27 +144,34 @@ TEST_F(OutputDirectoryTest, OneHolderAtATime) {
     EXPECT_TRUE(first.replace(result_set("first")));
   }
   // Released: the next one takes it.
-  EXPECT_TRUE(OutputDirectory(dir).replace(result_set("second")));
+  EXPECT_TRUE(output_directory(dir).replace(result_set("second")));
   EXPECT_EQ(listing(dir), as_listing(result_set("second")));
   expect_only_result_directory();
 }
 
-// A set written by a run of other sensors (every sensor's file names) is an earlier result set: a
-// radar-only run replaces it whole, leaving none of its files; a file of another name is still
-// refused.
+// A set written by a run of other sensors (every sensor's file names as docs/scenario.md lists
+// them, and the radar's names of fogradar 0.1) is an earlier result set: a radar-only run replaces
+// it whole, leaving none of its files; a file of another name is still refused.
 TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
   const fs::path dir = parent_ / "out";
   Files every = {{"camera_roi_0.pgm", "P5"},
                  {"camera_roi_12.pgm", "P5"}};  // camera.write_roi_images
-  for (const std::string& name : result_file_names()) every.emplace_back(name, "earlier " + name);
-  // Two ROI images and the radar's 5, the lidar's 5, the camera's 4 files and benchmark.svg.
-  EXPECT_EQ(every.size(), 17u);
-  ASSERT_TRUE(OutputDirectory(dir).replace(every));
-  EXPECT_TRUE(OutputDirectory(dir).replace(result_set("radar only")));
+  for (const char* name :
+       {"radar_samples.csv", "radar_summary.csv", "radar_summary.json", "radar_rcs_boxplot.svg",
+        "samples.csv", "summary.csv", "rcs_boxplot.svg", "lidar_echoes.csv", "lidar_summary.csv",
+        "lidar_summary.json", "lidar_intensity_boxplot.svg", "lidar_scans.svg",
+        "camera_histograms.csv", "camera_summary.csv", "camera_summary.json",
+        "camera_histograms.svg", "summary.json", "scenario.toml", "benchmark.svg"}) {
+    every.push_back({name, "earlier " + std::string(name)});
+  }
+  ASSERT_TRUE(output_directory(dir).replace(every));
+  EXPECT_TRUE(output_directory(dir).replace(result_set("radar only")));
   EXPECT_EQ(listing(dir), as_listing(result_set("radar only")));
   for (const char* foreign : {"lidar_notes.csv", "camera_roi_x.pgm", "camera_roi_.pgm"}) {
     std::ofstream(dir / foreign) << "mine";
-    EXPECT_THROW(OutputDirectory refused(dir), InvalidParameter) << foreign;
+    EXPECT_THROW(OutputDirectory refused(dir, result_file_names(paper_scenario())),
+                 InvalidParameter)
+        << foreign;
     fs::remove(dir / foreign);
   }
   expect_only_result_directory();
@@ -165,7 +179,7 @@ TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
 
 TEST_F(OutputDirectoryTest, RefusesAFile) {
   std::ofstream(parent_ / "out") << "a file";
-  EXPECT_THROW(OutputDirectory(parent_ / "out"), InvalidParameter);
+  EXPECT_THROW(output_directory(parent_ / "out"), InvalidParameter);
   expect_only_result_directory();
 }
 

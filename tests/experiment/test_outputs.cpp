@@ -1,6 +1,6 @@
-// The result files: every number in samples.csv and summary.csv reads back to exactly the double
-// the run computed, and summary.csv carries every per-step field of summary.json with the same
-// values.
+// The radar's result files: every number in radar_samples.csv and radar_summary.csv reads back to
+// exactly the double the run computed, and radar_summary.csv carries every per-step field of
+// radar_summary.json with the same values.
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -11,23 +11,27 @@
 #include <string>
 #include <vector>
 
-#include "fogradar/experiment/outputs.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
+#include "fogradar/radar/outputs.hpp"
+#include "sensors.hpp"
 
 namespace fogradar::experiment {
 namespace {
+
+using radar::MeasurementRecord;
+using radar::StepResult;
 
 // A small run with everything the files can hold: target detections and misses of a weak target
 // (-55 dBsm, about 10 dB SNR), noise false alarms and gate associations (P_fa = 1e-2), fog
 // detections (a dense 0.5 mm fog), intervals unbounded for want of detections.
 Scenario mixed_scenario() {
   Scenario s = paper_scenario();
-  s.experiment.sensors = {SensorId::radar};  // the radar's subject; test_multisensor.cpp runs all
-  s.radar.chirps_per_frame = 16;
-  s.radar.cfar.false_alarm_probability = 1e-2;
+  s.experiment.sensors = {"radar"};  // the radar's subject; test_multisensor.cpp runs all
+  radar_of(s).radar.chirps_per_frame = 16;
+  radar_of(s).radar.cfar.false_alarm_probability = 1e-2;
   s.experiment.measurements_per_step = 8;
-  s.target.rcs_dbsm = -55.0;
+  radar_of(s).target.rcs_dbsm = -55.0;
   s.fog.density = propagation::LiquidWaterContent{100.0};
   s.fog.droplets = propagation::Monodisperse{0.5e-3};
   return s;
@@ -74,26 +78,18 @@ void expect_same(double csv, const nlohmann::json& json, const std::string& what
 class Outputs : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    scenario_ = new Scenario(mixed_scenario());
-    result_ = new ExperimentResult(run_experiment(*scenario_));
-    summary_ = new ExperimentSummary(summarize(*result_));
+    summary_ = new ExperimentSummary(summarize(run_experiment(mixed_scenario())));
   }
-  static void TearDownTestSuite() {
-    delete summary_;
-    delete result_;
-    delete scenario_;
-  }
-  static Scenario* scenario_;
-  static ExperimentResult* result_;
+  static void TearDownTestSuite() { delete summary_; }
+  static const std::vector<StepResult>& steps() { return radar_report(*summary_).steps(); }
+  static const radar::RadarSummary& radar_summary() { return radar_report(*summary_).summary(); }
   static ExperimentSummary* summary_;
 };
-Scenario* Outputs::scenario_ = nullptr;
-ExperimentResult* Outputs::result_ = nullptr;
 ExperimentSummary* Outputs::summary_ = nullptr;
 
 TEST_F(Outputs, TheRunHoldsEveryKindOfRecord) {
   std::size_t detected = 0, false_associations = 0, fog = 0, false_alarms = 0, missed = 0;
-  for (const StepResult& step : result_->steps) {
+  for (const StepResult& step : steps()) {
     for (const MeasurementRecord& r : step.records) {
       detected += r.detected ? 1 : 0;
       false_associations += r.associated && !r.detected ? 1 : 0;
@@ -113,15 +109,16 @@ TEST_F(Outputs, TheRunHoldsEveryKindOfRecord) {
       detected, false_associations, missed, fog, false_alarms);
 }
 
-// samples.csv: one row per measurement; range, RCS and SNR of the associated detection read back to
+// radar_samples.csv: one row per measurement; range, RCS and SNR of the associated detection read
+// back to
 // exactly the record's doubles, the origin is the associated detection's, counts are exact.
 TEST_F(Outputs, SamplesCsvNumbersReadBackExactly) {
-  const std::vector<std::string> lines = lines_of(samples_csv(*result_));
+  const std::vector<std::string> lines = lines_of(radar::samples_csv(steps()));
   ASSERT_EQ(lines.front(),
             "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,"
             "false_alarms");
   std::size_t row = 1;
-  for (const StepResult& step : result_->steps) {
+  for (const StepResult& step : steps()) {
     for (std::size_t i = 0; i < step.records.size(); ++i, ++row) {
       const MeasurementRecord& r = step.records[i];
       ASSERT_LT(row, lines.size());
@@ -145,12 +142,12 @@ TEST_F(Outputs, SamplesCsvNumbersReadBackExactly) {
   EXPECT_EQ(row, lines.size());
 }
 
-// summary.csv against summary.json, step by step: the same fields (the JSON interval
+// radar_summary.csv against radar_summary.json, step by step: the same fields (the JSON interval
 // median_shift_ci95_db = [low, high] is the CSV's median_shift_ci95_low_db and _high_db, the JSON
 // outlier array the CSV's ';'-list) with the same doubles, and no CSV column without a JSON field.
 TEST_F(Outputs, SummaryCsvHasEveryPerStepFieldOfSummaryJson) {
-  const nlohmann::json json = nlohmann::json::parse(summary_json(*scenario_, *summary_));
-  const std::vector<std::string> lines = lines_of(summary_csv(*summary_));
+  const nlohmann::json json = radar::summary_json(radar_summary());
+  const std::vector<std::string> lines = lines_of(radar::summary_csv(radar_summary()));
   const std::vector<std::string> header = split(lines.front(), ',');
   const nlohmann::json& steps = json.at("steps");
   ASSERT_EQ(lines.size(), steps.size() + 1);
@@ -176,12 +173,12 @@ TEST_F(Outputs, SummaryCsvHasEveryPerStepFieldOfSummaryJson) {
         expect_same(parse(csv.at(stem + "_high_db")), value[1], key + " high");
         matched += 2;
       } else {
-        ASSERT_TRUE(csv.contains(key)) << "summary.csv lacks " << key;
+        ASSERT_TRUE(csv.contains(key)) << "radar_summary.csv lacks " << key;
         expect_same(parse(csv.at(key)), value, key);
         ++matched;
       }
     }
-    EXPECT_EQ(matched, header.size()) << "summary.csv has columns summary.json lacks";
+    EXPECT_EQ(matched, header.size()) << "radar_summary.csv has columns radar_summary.json lacks";
   }
 }
 

@@ -1,20 +1,23 @@
-// The RCS box plot of a run (rcs_boxplot.svg) from a hand-made summary: well-formed XML, scenario
-// text in the title and caption, "n" the measurements per step as in the printed table (detections
-// stated separately), the detection-rate strip, the sensor-limit mark at its step, steps without a
-// target detection marked, legend entries, no "tracked" wording, and labels of a 41-step and a
-// 101-step chamber that do not overlap.
+// The radar's RCS box plot of a run (radar_rcs_boxplot.svg) from a hand-made summary: well-formed
+// XML, scenario text in the title and caption, "n" the measurements per step as in the printed
+// table (detections stated separately), the detection-rate strip, the sensor-limit mark at its
+// step, steps without a target detection marked, legend entries, no "tracked" wording, and labels
+// of a 41-step and a 101-step chamber that do not overlap.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "fogradar/experiment/outputs.hpp"
+#include "fogradar/radar/outputs.hpp"
 #include "fogradar/stats/box_plot.hpp"
+#include "sensors.hpp"
 #include "svg_check.hpp"
 
 namespace fogradar::experiment {
 namespace {
 
+using radar::RadarSummary;
+using radar::StepSummary;
 using test_support::count;
 using test_support::elements_of_class;
 using test_support::texts_of_class;
@@ -22,8 +25,8 @@ using test_support::texts_of_class;
 // Steps 0 .. steps-1 with 200 measurements each; `detections(k)` of them detect the target with the
 // RCS values 10 - k + 0.01 j, j = 0 .. detections - 1.
 template <class Detections>
-ExperimentSummary summary_of(std::size_t steps, Detections&& detections) {
-  ExperimentSummary summary;
+RadarSummary summary_of(std::size_t steps, Detections&& detections) {
+  RadarSummary summary;
   for (std::size_t k = 0; k < steps; ++k) {
     StepSummary s{};
     s.active_layers = k;
@@ -39,10 +42,15 @@ ExperimentSummary summary_of(std::size_t steps, Detections&& detections) {
   return summary;
 }
 
+// The box plot of `summary` as the radar of scenario `s` draws it.
+std::string rcs_boxplot_svg(const Scenario& s, const RadarSummary& summary) {
+  return radar::rcs_boxplot_svg(radar_of(s), s.context(), summary);
+}
+
 // The paper scenario's five steps: detections 200, 150, 50, 0, 0; the limit at 2 layers.
-ExperimentSummary losing_summary() {
+RadarSummary losing_summary() {
   const std::size_t detections[] = {200, 150, 50, 0, 0};
-  ExperimentSummary summary = summary_of(5, [&](std::size_t k) { return detections[k]; });
+  RadarSummary summary = summary_of(5, [&](std::size_t k) { return detections[k]; });
   summary.sensor_limit_layers = 2;
   return summary;
 }
@@ -120,7 +128,7 @@ TEST(RcsBoxplot, SensorLimitMarkedAtItsStep) {
   }
   EXPECT_EQ(count(svg, ">sensor limit: 2 layers</text>"), 1u);
 
-  ExperimentSummary unlimited = losing_summary();
+  RadarSummary unlimited = losing_summary();
   unlimited.sensor_limit_layers.reset();
   const std::string plain = rcs_boxplot_svg(paper_scenario(), unlimited);
   EXPECT_EQ(count(plain, "class=\"mark\""), 0u);
@@ -148,7 +156,7 @@ TEST(RcsBoxplot, StepsWithoutDetectionAreMarked) {
 
 TEST(RcsBoxplot, LongChambersKeepLabelsApart) {
   for (const std::size_t steps : {41u, 101u}) {
-    const ExperimentSummary summary =
+    const RadarSummary summary =
         summary_of(steps, [&](std::size_t k) { return k < steps / 2 ? 20u : 0u; });
     Scenario s = paper_scenario();
     s.chamber.layer_count = steps - 1;

@@ -9,27 +9,34 @@
 #include "fogradar/core/units.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
+#include "sensors.hpp"
 
 namespace fogradar::experiment {
 namespace {
 
+using radar::MeasurementRecord;
+using radar::StepResult;
+using radar::StepSummary;
+
 Scenario small_scenario() {
   Scenario s = paper_scenario();
-  s.experiment.sensors = {SensorId::radar};  // the radar's subject; test_multisensor.cpp runs all
-  s.radar.chirps_per_frame = 16;
+  s.experiment.sensors = {"radar"};  // the radar's subject; test_multisensor.cpp runs all
+  radar_of(s).radar.chirps_per_frame = 16;
   s.experiment.measurements_per_step = 12;
   return s;
 }
 
 TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
   const Scenario s = small_scenario();
-  const ExperimentResult one = run_experiment(s, {.threads = 1, .progress = {}});
-  const ExperimentResult three = run_experiment(s, {.threads = 3, .progress = {}});
-  ASSERT_EQ(one.steps.size(), 5u);
-  for (std::size_t k = 0; k < one.steps.size(); ++k) {
-    for (std::size_t i = 0; i < one.steps[k].records.size(); ++i) {
-      const MeasurementRecord& a = one.steps[k].records[i];
-      const MeasurementRecord& b = three.steps[k].records[i];
+  const ExperimentResult one_run = run_experiment(s, {.threads = 1, .progress = {}});
+  const ExperimentResult three_run = run_experiment(s, {.threads = 3, .progress = {}});
+  const std::vector<StepResult>& one = radar_run(one_run).steps();
+  const std::vector<StepResult>& three = radar_run(three_run).steps();
+  ASSERT_EQ(one.size(), 5u);
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    for (std::size_t i = 0; i < one[k].records.size(); ++i) {
+      const MeasurementRecord& a = one[k].records[i];
+      const MeasurementRecord& b = three[k].records[i];
       EXPECT_EQ(a.detected, b.detected);
       EXPECT_EQ(a.associated, b.associated);
       EXPECT_EQ(a.associated_origin, b.associated_origin);
@@ -42,8 +49,8 @@ TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
   }
   Scenario other_seed = s;
   other_seed.experiment.seed = 2;
-  EXPECT_NE(run_experiment(other_seed, {.threads = 2, .progress = {}}).steps[0].records[0].rcs_dbsm,
-            one.steps[0].records[0].rcs_dbsm);
+  const ExperimentResult other = run_experiment(other_seed, {.threads = 2, .progress = {}});
+  EXPECT_NE(radar_run(other).steps()[0].records[0].rcs_dbsm, one[0].records[0].rcs_dbsm);
 }
 
 // A non-fluctuating 10 dBsm point target at the chamber's 10 m, no multipath, no micro-motion:
@@ -51,10 +58,11 @@ TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
 // criterion), the paper fog's two-way loss (< 0.01 dB) included.
 TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
   Scenario s = small_scenario();
-  s.target.model = TargetModel::point;
-  s.target.floor_multipath = false;
-  s.target.micro_motion_std_m = 0.0;
-  const ExperimentSummary summary = summarize(run_experiment(s));
+  radar::TargetSpec& target = radar_of(s).target;
+  target.model = radar::TargetModel::point;
+  target.floor_multipath = false;
+  target.micro_motion_std_m = 0.0;
+  const radar::RadarSummary summary = radar_report(summarize(run_experiment(s))).summary();
   ASSERT_EQ(summary.steps.size(), 5u);
   for (const StepSummary& step : summary.steps) {
     EXPECT_EQ(step.detection_rate, 1.0);
@@ -76,14 +84,15 @@ TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
 // whatever the 12 measurements of this test draw.
 TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
   Scenario s = small_scenario();
-  s.radar.tx_power_dbm = -19.0;
-  s.target.model = TargetModel::point;
-  s.target.floor_multipath = false;
-  s.target.rcs_dbsm = -8.0;  // a pedestrian
+  radar_of(s).radar.tx_power_dbm = -19.0;
+  radar::TargetSpec& target = radar_of(s).target;
+  target.model = radar::TargetModel::point;
+  target.floor_multipath = false;
+  target.rcs_dbsm = -8.0;  // a pedestrian
   s.chamber.layer_length_m = 3.0;
   s.fog.density = propagation::LiquidWaterContent{100.0};
   s.fog.droplets = propagation::Monodisperse{0.5e-3};
-  const ExperimentSummary summary = summarize(run_experiment(s));
+  const radar::RadarSummary summary = radar_report(summarize(run_experiment(s))).summary();
   EXPECT_EQ(summary.steps[0].detection_rate, 1.0);
   ASSERT_TRUE(summary.sensor_limit_layers.has_value());
   EXPECT_GE(*summary.sensor_limit_layers, 1u);
@@ -103,15 +112,17 @@ TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
 // layers.
 TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   Scenario s = small_scenario();
-  s.target.model = TargetModel::point;
-  s.target.floor_multipath = false;
-  s.target.rcs_dbsm = -60.0;
-  s.radar.tx_power_dbm = -30.0;
-  s.radar.cfar.false_alarm_probability = 1e-2;
-  const ExperimentResult result = run_experiment(s, {.threads = 2, .progress = {}});
-  EXPECT_DOUBLE_EQ(result.expected_false_alarm_cells_per_frame, 1e-2 * 16 * 512);
+  radar::TargetSpec& target = radar_of(s).target;
+  target.model = radar::TargetModel::point;
+  target.floor_multipath = false;
+  target.rcs_dbsm = -60.0;
+  radar_of(s).radar.tx_power_dbm = -30.0;
+  radar_of(s).radar.cfar.false_alarm_probability = 1e-2;
+  const ExperimentResult run = run_experiment(s, {.threads = 2, .progress = {}});
+  EXPECT_DOUBLE_EQ(radar_run(run).expected_false_alarm_cells_per_frame(), 1e-2 * 16 * 512);
+  const std::vector<StepResult>& steps = radar_run(run).steps();
   std::size_t associations = 0, false_alarms = 0;
-  for (const StepResult& step : result.steps) {
+  for (const StepResult& step : steps) {
     for (const MeasurementRecord& r : step.records) {
       EXPECT_FALSE(r.detected);
       if (r.associated) {
@@ -123,12 +134,12 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   }
   EXPECT_GT(associations, 0u);
   EXPECT_GE(false_alarms, associations);  // every association is one of the frame's false alarms
-  const ExperimentSummary summary = summarize(result);
+  const radar::RadarSummary summary = radar_report(summarize(run)).summary();
   double false_association_sum = 0.0;
   for (std::size_t k = 0; k < summary.steps.size(); ++k) {
     const StepSummary& step = summary.steps[k];
     std::size_t associated = 0;
-    for (const MeasurementRecord& r : result.steps[k].records) associated += r.associated ? 1 : 0;
+    for (const MeasurementRecord& r : steps[k].records) associated += r.associated ? 1 : 0;
     EXPECT_EQ(step.detections, 0u);
     EXPECT_EQ(step.detection_rate, 0.0);
     EXPECT_EQ(step.false_association_rate,
@@ -171,7 +182,8 @@ TEST(Runner, StopFlagEndsTheRunWithoutAResult) {
 
   stop = false;
   const ExperimentResult full = run_experiment(s, {.threads = 2, .progress = {}, .stop = &stop});
-  EXPECT_EQ(full.steps.size() * full.steps.front().records.size(),
+  const std::vector<StepResult>& steps = radar_run(full).steps();
+  EXPECT_EQ(steps.size() * steps.front().records.size(),
             (s.experiment.max_active_layers + 1) * s.experiment.measurements_per_step);
 }
 

@@ -6,6 +6,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/scenario.hpp"
+#include "sensors.hpp"
 
 namespace fogradar::experiment {
 namespace {
@@ -13,22 +14,23 @@ namespace {
 // The paper-scenario values docs/scenario.md documents, checked against the compiled-in file.
 TEST(Scenario, PaperScenarioIsDesignSection4) {
   const Scenario s = paper_scenario();
-  EXPECT_EQ(s.radar.centre_frequency_hz, 77e9);  // "sweep centred on 77 GHz"
-  EXPECT_EQ(s.radar.sweep_direction, radar::SweepDirection::up);
-  EXPECT_EQ(s.radar.sweep_bandwidth_hz, 1e9);
-  EXPECT_EQ(s.radar.chirp_duration_s, 51.2e-6);
-  EXPECT_EQ(s.radar.samples_per_chirp, 512u);
-  EXPECT_EQ(s.radar.sample_rate_hz, 10e6);
-  EXPECT_EQ(s.radar.chirps_per_frame, 64u);
-  EXPECT_EQ(s.radar.tx_power_dbm, 10.0);
-  EXPECT_EQ(s.radar.tx_gain_dbi, 25.0);
-  EXPECT_EQ(s.radar.rx_gain_dbi, 25.0);
-  EXPECT_EQ(s.radar.azimuth_beamwidth_deg, 10.0);
-  EXPECT_EQ(s.radar.elevation_beamwidth_deg, 10.0);
-  EXPECT_EQ(s.radar.noise_figure_db, 12.0);
-  EXPECT_EQ(s.radar.window, radar::WindowType::hann);
-  EXPECT_EQ(s.radar.cfar.kind, radar::CfarKind::ca);
-  EXPECT_EQ(s.radar.cfar.false_alarm_probability, 1e-6);
+  const radar::RadarParams& r = radar_of(s).radar;
+  EXPECT_EQ(r.centre_frequency_hz, 77e9);  // "sweep centred on 77 GHz"
+  EXPECT_EQ(r.sweep_direction, radar::SweepDirection::up);
+  EXPECT_EQ(r.sweep_bandwidth_hz, 1e9);
+  EXPECT_EQ(r.chirp_duration_s, 51.2e-6);
+  EXPECT_EQ(r.samples_per_chirp, 512u);
+  EXPECT_EQ(r.sample_rate_hz, 10e6);
+  EXPECT_EQ(r.chirps_per_frame, 64u);
+  EXPECT_EQ(r.tx_power_dbm, 10.0);
+  EXPECT_EQ(r.tx_gain_dbi, 25.0);
+  EXPECT_EQ(r.rx_gain_dbi, 25.0);
+  EXPECT_EQ(r.azimuth_beamwidth_deg, 10.0);
+  EXPECT_EQ(r.elevation_beamwidth_deg, 10.0);
+  EXPECT_EQ(r.noise_figure_db, 12.0);
+  EXPECT_EQ(r.window, radar::WindowType::hann);
+  EXPECT_EQ(r.cfar.kind, radar::CfarKind::ca);
+  EXPECT_EQ(r.cfar.false_alarm_probability, 1e-6);
   EXPECT_EQ(s.chamber.sensor_gap_m, 2.0);
   EXPECT_EQ(s.chamber.layer_count, 4u);
   EXPECT_EQ(s.chamber.layer_length_m, 1.0);
@@ -38,8 +40,8 @@ TEST(Scenario, PaperScenarioIsDesignSection4) {
   EXPECT_EQ(s.fog.temperature_c, 20.0);
   // 20 C reaches the radar-frequency index only through the temperature-dependent model.
   EXPECT_EQ(s.fog.water_model, propagation::WaterModel::liebe);
-  EXPECT_EQ(s.target.model, TargetModel::evt);
-  EXPECT_EQ(s.target.rcs_dbsm, 10.0);
+  EXPECT_EQ(radar_of(s).target.model, radar::TargetModel::evt);
+  EXPECT_EQ(radar_of(s).target.rcs_dbsm, 10.0);
   EXPECT_EQ(s.experiment.measurements_per_step, 200u);
   EXPECT_EQ(s.experiment.max_active_layers, 4u);
   EXPECT_EQ(s.experiment.seed, 1u);
@@ -49,14 +51,14 @@ TEST(Scenario, ResolvedTomlRoundTrips) {
   Scenario s = paper_scenario();
   s.fog.droplets = propagation::advection_fog();
   s.fog.density = propagation::Visibility{37.5};
-  s.target.model = TargetModel::point;
-  s.radar.cfar.kind = radar::CfarKind::os;
-  s.radar.sweep_direction = radar::SweepDirection::down;
-  s.radar.centre_frequency_hz = 76.5e9;
+  radar_of(s).target.model = radar::TargetModel::point;
+  radar_of(s).radar.cfar.kind = radar::CfarKind::os;
+  radar_of(s).radar.sweep_direction = radar::SweepDirection::down;
+  radar_of(s).radar.centre_frequency_hz = 76.5e9;
   s.fog.water_model = propagation::WaterModel::segelstein;
   s.fog.temperature_c = propagation::segelstein_table_temperature_c;
-  s.radar.cfar.threshold_design = radar::CfarThresholdDesign::independent;
-  s.experiment.sensors = {SensorId::camera, SensorId::radar};
+  radar_of(s).radar.cfar.threshold_design = radar::CfarThresholdDesign::independent;
+  s.experiment.sensors = {"camera", "radar"};
   const std::string text = to_toml(s);
   EXPECT_EQ(to_toml(parse_scenario(text, "resolved.toml")), text);
   EXPECT_EQ(parse_scenario(text, "resolved.toml").experiment.sensors, s.experiment.sensors);
@@ -66,11 +68,11 @@ TEST(Scenario, ResolvedTomlRoundTrips) {
 // valid, and a Scenario built in code is checked like a file.
 TEST(Scenario, SensorsAreChosenByName) {
   const Scenario s = parse_scenario("[experiment]\nsensors = [\"lidar\", \"radar\"]\n", "s.toml");
-  EXPECT_EQ(s.experiment.sensors, (std::vector<SensorId>{SensorId::lidar, SensorId::radar}));
-  EXPECT_TRUE(s.runs(SensorId::radar));
-  EXPECT_FALSE(s.runs(SensorId::camera));
+  EXPECT_EQ(s.experiment.sensors, (std::vector<std::string>{"lidar", "radar"}));
+  EXPECT_TRUE(s.runs("radar"));
+  EXPECT_FALSE(s.runs("camera"));
   Scenario twice = paper_scenario();
-  twice.experiment.sensors = {SensorId::radar, SensorId::radar};
+  twice.experiment.sensors = {"radar", "radar"};
   EXPECT_THROW(twice.validate(), InvalidParameter);
   Scenario none = paper_scenario();
   none.experiment.sensors.clear();
@@ -113,9 +115,9 @@ TEST(Scenario, RetiredCarrierKeyAndUnusedTemperatureAreRefused) {
 TEST(Scenario, FileOnlyNeedsTheKeysItChanges) {
   const Scenario s =
       parse_scenario("[radar]\ntx_power_dbm = 12\n[experiment]\nseed = 7\n", "mine.toml");
-  EXPECT_EQ(s.radar.tx_power_dbm, 12.0);
+  EXPECT_EQ(radar_of(s).radar.tx_power_dbm, 12.0);
   EXPECT_EQ(s.experiment.seed, 7u);
-  EXPECT_EQ(s.radar.samples_per_chirp, 512u);  // untouched paper value
+  EXPECT_EQ(radar_of(s).radar.samples_per_chirp, 512u);  // untouched paper value
 }
 
 // A bad scenario input and what its one message must say: the key as written (the exception's
@@ -309,6 +311,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"droplet_too_big",
                  "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 0.01\n",
                  "fog.droplets.diameter_m", 3, "[1e-08, 0.001]"},
+        // A key of another droplet family than the one chosen takes no effect: refused, saying which.
+        BadInput{"droplet_key_of_another_family", "[fog.droplets]\ndiameter_m = 1e-5\n",
+                 "fog.droplets.diameter_m", 2,
+                 "takes effect only with fog.droplets.distribution = \"monodisperse\""},
+        // A sub-table given a plain value is named as that sub-table.
+        BadInput{"sub_table_as_value", "[lidar]\nfog_fluctuation = 3\n", "lidar.fog_fluctuation", 2,
+                 "lidar.fog_fluctuation = 3: must be a table [lidar.fog_fluctuation]"},
+        BadInput{"section_as_value", "radar = 5\n", "radar", 1, "radar = 5: must be a table [radar]"},
         BadInput{"unknown_lidar_key", "[lidar]\npulse_width_s = 5e-9\n", "lidar.pulse_width_s", 2,
                  "known keys of [lidar]"},
         BadInput{"unknown_camera_key", "[camera.roi]\nsize_px = 3\n", "camera.roi.size_px", 2,
@@ -348,9 +358,9 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
   EXPECT_EQ(
       parse_scenario("[experiment]\nseed = 9223372036854775807\n", "seed.toml").experiment.seed,
       9223372036854775807u);
-  EXPECT_EQ(
-      parse_scenario("[processing.cfar]\nguard_cells = 247\n", "guard.toml").radar.cfar.guard_cells,
-      247u);
+  EXPECT_EQ(radar_of(parse_scenario("[processing.cfar]\nguard_cells = 247\n", "guard.toml"))
+                .radar.cfar.guard_cells,
+            247u);
   // Each number key at both ends of its docs/scenario.md range (the others at their paper values).
   const char* bounds[] = {
       "[radar]\ncentre_frequency_hz = 300e9\n",

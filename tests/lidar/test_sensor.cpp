@@ -54,7 +54,7 @@ TEST(LidarSensor, FalseAlarmRateOnNoiseAloneMatchesTheDesign) {
   const std::size_t scans = 20;
   std::size_t echoes = 0;
   for (std::size_t s = 0; s < scans; ++s) {
-    RandomStream stream = sensor_stream(3, SensorId::lidar, 0, s);
+    RandomStream stream = sensor_stream(3, stream_key, 0, s);
     const LidarScan scan =
         lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
     for (const LidarEcho& e : scan.echoes) EXPECT_EQ(e.origin, EchoOrigin::noise);
@@ -108,13 +108,13 @@ TEST(LidarSensor, FogFluctuationSeriesHasTheStatedDistributionAndCorrelation) {
 std::vector<LidarScan> scans_of_step(const Lidar& lidar, std::size_t step, unsigned threads) {
   const auto active = propagation::first_layers_active(step, 4);
   const FogFluctuationSeries fog =
-      lidar.fog_fluctuation(sensor_stream(5, SensorId::lidar, step, lidar.fog_series_index()));
+      lidar.fog_fluctuation(sensor_stream(5, stream_key, step, lidar.fog_series_index()));
   std::vector<LidarScan> scans(lidar.params().scans_per_step);
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) {
     pool.emplace_back([&, t] {
       for (std::size_t s = t; s < scans.size(); s += threads) {
-        RandomStream stream = sensor_stream(5, SensorId::lidar, step, s);
+        RandomStream stream = sensor_stream(5, stream_key, step, s);
         scans[s] = lidar.measure(active, fog.scan(s), stream);
       }
     });

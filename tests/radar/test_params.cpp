@@ -66,7 +66,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
       {"radar.reference_temperature_k", &RadarParams::reference_temperature_k, 0.0, 2000.0},
       {"radar.adc_full_scale_dbm", &RadarParams::adc_full_scale_dbm, -200.0, 40.0},
       {"radar.phase_noise_rms_rad", &RadarParams::phase_noise_rms_rad, -0.1, 4.0},
-      {"radar.association_gate_m", &RadarParams::association_gate_m, -1.0, 2e3},
+      {"processing.association_gate_m", &RadarParams::association_gate_m, -1.0, 2e3},
   };
   for (const DoubleField& f : fields) {
     for (const double bad : {f.too_low, f.too_high, kNaN, -kInf, kInf}) {
@@ -79,25 +79,27 @@ TEST(RadarParams, RejectsEveryInvalidField) {
   expect_rejected([](RadarParams& p) { p.adc_bits = 25; }, "radar.adc_bits");
   // The samples must fit in the chirp: 1024 samples at 10 MS/s need 102.4 us > 51.2 us.
   expect_rejected([](RadarParams& p) { p.samples_per_chirp = 1024; }, "radar.samples_per_chirp");
-  // CFAR fields keep their own names.
-  expect_rejected([](RadarParams& p) { p.cfar.training_cells = 0; }, "cfar.training_cells");
+  // Every field is named by its scenario key (radar_param_keys), the CFAR's under
+  // [processing.cfar].
+  expect_rejected([](RadarParams& p) { p.cfar.training_cells = 0; },
+                  "processing.cfar.training_cells");
   expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = 1.0; },
-                  "cfar.false_alarm_probability");
+                  "processing.cfar.false_alarm_probability");
   expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = kNaN; },
-                  "cfar.false_alarm_probability");
+                  "processing.cfar.false_alarm_probability");
   expect_rejected(
       [](RadarParams& p) {
         p.cfar.kind = CfarKind::os;
         p.cfar.os_rank = 17;
       },
-      "cfar.os_rank");
+      "processing.cfar.os_rank");
   // A CFAR window (2 (g + n) + 1 = 21 cells) longer than the range profile (16 samples).
   expect_rejected(
       [](RadarParams& p) {
         p.samples_per_chirp = 16;
         p.sample_rate_hz = 1e6;
       },
-      "cfar.training_cells");
+      "processing.cfar.training_cells");
 }
 
 // Paper radar (examples/paper.toml): the derived quantities by the textbook relations [Ri14, PJ62].

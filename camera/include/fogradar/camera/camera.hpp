@@ -19,6 +19,9 @@
 
 namespace fogradar::camera {
 
+// The camera's random streams: sensor_stream(seed, stream_key, step, frame).
+inline constexpr std::uint64_t stream_key = 2;
+
 inline constexpr std::size_t grey_levels = 256;
 using Histogram = std::array<std::uint64_t, grey_levels>;
 
@@ -95,7 +98,7 @@ class Camera {
   // computed once per step, shared by that step's frames.
   StepOptics step_optics(const propagation::ActiveLayers& active) const;
   // One frame: draws shot and read noise from `stream` (experiment/ passes
-  // sensor_stream(seed, SensorId::camera, step, frame)).
+  // sensor_stream(seed, stream_key, step, frame)).
   CameraFrame frame(const StepOptics& optics, RandomStream& stream) const;
   // The frames of one step from sensor_stream(seed, camera, step, index), index = frame: what
   // experiment/ does frame by frame; for tests and benchmarks.

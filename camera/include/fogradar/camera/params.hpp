@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <string_view>
 
+#include "fogradar/core/keys.hpp"
+
 namespace fogradar::camera {
 
 // Spectral weighting of the pixels (docs/camera.md §2): the CIE photopic luminous efficiency
@@ -82,8 +84,11 @@ struct CameraParams {
   bool write_roi_images = false;  // keep the first frame of each step (camera_roi_<step>.pgm)
 
   // Throws InvalidParameter naming "camera.<key>" (nested keys dotted, e.g.
-  // "camera.roi.target.log_sigma") with the value and the allowed range.
+  // "camera.roi.target.log_sigma") with the value and the allowed range (camera_keys).
   void validate() const;
 };
+
+// The keys of [camera] and its sub-tables, each with its unit, range and source.
+KeyTable<CameraParams> camera_keys();
 
 }  // namespace fogradar::camera

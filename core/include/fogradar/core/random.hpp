@@ -80,19 +80,16 @@ class RandomStream {
   std::array<std::uint64_t, 4> state_{};
 };
 
-// The sensors of one run. Each draws its randomness from streams keyed (seed, sensor, step, index)
-// (sensor_stream), so adding a sensor to a scenario never changes another sensor's numbers.
-enum class SensorId : std::uint64_t { radar = 0, lidar = 1, camera = 2 };
-
 // The stream of item `index` (a measurement, a scan, a frame, or a per-step series the sensor
-// defines) at step `step` of `sensor`. The radar's streams are RandomStream(seed, step, index), the
-// streams of every earlier version, so radar results stay byte-identical; another sensor's seed word
-// is first mixed with its id by one more SplitMix64 step, which makes its triples distinct from the
-// radar's.
-inline RandomStream sensor_stream(std::uint64_t seed, SensorId sensor, std::uint64_t step,
+// defines) at step `step` of the sensor whose stream key is `sensor_key` (sensor/sensor.hpp: each
+// sensor declares its own, distinct in one registry), so adding a sensor to a scenario never
+// changes another sensor's numbers. Key 0's streams (the radar's) are RandomStream(seed, step,
+// index), the streams of every earlier version; another key's seed word is first mixed with the key
+// by one more SplitMix64 step, which makes its triples distinct from key 0's.
+inline RandomStream sensor_stream(std::uint64_t seed, std::uint64_t sensor_key, std::uint64_t step,
                                   std::uint64_t index) {
-  if (sensor == SensorId::radar) return RandomStream(seed, step, index);
-  std::uint64_t mix = seed ^ (static_cast<std::uint64_t>(sensor) << 56);
+  if (sensor_key == 0) return RandomStream(seed, step, index);
+  std::uint64_t mix = seed ^ (sensor_key << 56);
   return RandomStream(splitmix64(mix), step, index);
 }
 

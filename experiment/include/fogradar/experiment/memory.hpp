@@ -4,32 +4,37 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/sensor/sensor.hpp"
 
 namespace fogradar::experiment {
 
-// Peak memory of run_experiment plus write_outputs, by part. An upper estimate from the sizes of
-// the buffers the chain keeps (radar/include/fogradar/radar/measurement.hpp, estimation.hpp,
-// cfar.hpp, attribution.hpp), not a measurement; docs/scenario.md gives its ratio to measured peak
+// Code, the shared libraries' data, the Segelstein table and thread stacks as touched: the resident
+// size of `fogradar run` on a 16 x 1 frame is about 8 MiB (docs/scenario.md); twice that for
+// margin.
+inline constexpr std::size_t process_baseline_bytes = std::size_t{16} << 20;
+
+// Peak memory of run_experiment plus writing the results: each running sensor's own estimate
+// (sensor::SensorType::memory) with the threads the run starts, and the process itself. An upper
+// estimate from buffer sizes, not a measurement; docs/scenario.md gives its ratio to measured peak
 // RSS.
 struct MemoryEstimate {
-  unsigned threads = 0;              // worker threads the run will use
-  std::size_t per_thread_bytes = 0;  // frame, detection mask, CFAR and estimation workspaces, tones
-  std::size_t shared_bytes = 0;      // windows, window spectra, FFT plans, process baseline
-  std::size_t records_bytes = 0;     // one MeasurementRecord per measurement
-  // The lidar's and the camera's own estimates (lidar_memory_bytes, camera::memory_bytes), threads
-  // included; 0 when they do not run.
-  std::size_t lidar_bytes = 0;
-  std::size_t camera_bytes = 0;
-  std::size_t total_bytes() const {
-    return threads * per_thread_bytes + shared_bytes + records_bytes + lidar_bytes + camera_bytes;
-  }
+  struct Part {
+    std::string sensor;
+    sensor::MemoryPart memory;
+  };
+  unsigned threads = 0;  // worker threads the run will use
+  std::vector<Part> sensors;
+  std::size_t process_bytes = process_baseline_bytes;
+  std::size_t total_bytes() const;
 };
 
 // The threads run_experiment starts: `requested` (0: all hardware threads), at most one per item
-// (radar measurements, lidar scans and camera frames together).
-unsigned worker_threads(unsigned requested, std::size_t measurements);
+// (every running sensor's items together).
+unsigned worker_threads(unsigned requested, std::size_t items);
 
 // Estimate for `scenario` run with `requested_threads` (as RunOptions::threads). The scenario must
 // be valid.
@@ -40,11 +45,8 @@ std::size_t default_memory_limit_bytes();
 
 // Throws InvalidParameter, when estimate_peak_memory(scenario, requested_threads) exceeds
 // limit_bytes, naming the estimate, the limit, --threads and each running sensor's part with its
-// keys and values: the radar's radar.samples_per_chirp, radar.chirps_per_frame and
-// experiment.measurements_per_step, the lidar's lidar.scans_per_step and its beams
-// (lidar.field_of_view_deg / lidar.angular_step_deg), the camera's camera.frames_per_step and
-// camera.roi.width_px x camera.roi.height_px. Its field is the first key of the largest part
-// ("radar.samples_per_chirp", "lidar.scans_per_step" or "camera.frames_per_step").
+// keys and values (e.g. the radar's radar.samples_per_chirp, radar.chirps_per_frame and
+// experiment.measurements_per_step). Its field is the key of the largest part.
 void require_memory_within(const Scenario& scenario, unsigned requested_threads,
                            std::size_t limit_bytes);
 

@@ -1,37 +1,26 @@
-// A scenario: everything one run of the study's methodology needs, as read from a TOML file with
-// the sections [radar], [processing], [target], [chamber], [fog], [experiment] and one section per
-// further sensor (docs/scenario.md). Keys carry their units in their names; docs/scenario.md lists
-// them with defaults and ranges. The paper scenario (examples/paper.toml) is compiled in and is the
-// base every scenario file overrides.
+// A scenario: everything one run of the study's methodology needs, as read from a TOML file: the
+// chamber ([chamber]), its fog ([fog]), the methodology ([experiment]) and every registered
+// sensor's own sections (the radar's [radar], [processing], [target]; [lidar]; [camera]), each
+// sensor's parameters read and written by the keys it declares (sensor/sensor.hpp,
+// core/keys.hpp). Keys carry their units in their names; docs/scenario.md lists them with
+// defaults and ranges (`fogradar scenario --keys`). The paper scenario (examples/paper.toml) is
+// compiled in and is the base every scenario file overrides.
 #pragma once
 
+#include <any>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "fogradar/camera/params.hpp"
-#include "fogradar/core/random.hpp"
-#include "fogradar/lidar/params.hpp"
+#include "fogradar/core/keys.hpp"
+#include "fogradar/experiment/registry.hpp"
 #include "fogradar/propagation/chamber.hpp"
-#include "fogradar/radar/params.hpp"
-#include "fogradar/radar/scene.hpp"
+#include "fogradar/sensor/sensor.hpp"
 
 namespace fogradar::experiment {
-
-enum class TargetModel { evt, point };
-
-struct TargetSpec {
-  TargetModel model = TargetModel::evt;
-  double rcs_dbsm = 10.0;
-  radar::Swerling swerling = radar::Swerling::zero;  // point target only
-  double height_m = 0.5;                             // point target only
-  double sensor_height_m = 0.5;
-  bool floor_multipath = true;
-  double floor_reflection_coefficient = -0.7;
-  double micro_motion_std_m = 0.2e-3;
-};
 
 // The chamber as the scenario file gives it: n identical layers, all with the scenario's fog.
 struct ChamberLayout {
@@ -41,44 +30,64 @@ struct ChamberLayout {
   double target_gap_m = 4.0;
 };
 
-// The sensors a scenario can run, by their scenario names ("radar", "lidar", "camera"), in the
-// order their results are reported.
-inline constexpr SensorId all_sensors[] = {SensorId::radar, SensorId::lidar, SensorId::camera};
-std::string_view sensor_name(SensorId sensor);
-
 struct ExperimentSpec {
-  // Which sensors run (experiment.sensors): non-empty, no repeats; each sees the same chamber.
-  std::vector<SensorId> sensors = {SensorId::radar};
+  // Which sensors run, by name (experiment.sensors): non-empty, no repeats, each registered; each
+  // sees the same chamber, and their results are reported in this order. Scenario's constructor
+  // names every registered sensor.
+  std::vector<std::string> sensors;
   std::size_t measurements_per_step = 200;
   std::size_t max_active_layers = 4;  // steps k = 0 .. max_active_layers
   std::uint64_t seed = 1;
 };
 
+// One registered sensor's parameters (its own struct, sensor::params_of).
+struct SensorSetting {
+  std::shared_ptr<const sensor::SensorType> type;
+  std::any params;
+};
+
 struct Scenario {
-  radar::RadarParams radar;
-  TargetSpec target;
+  // Every sensor of `registry` at its defaults, each of them running.
+  explicit Scenario(const SensorRegistry& registry = standard_registry());
+
   ChamberLayout chamber;
   propagation::FogSpec fog;
-  unsigned clutter_scatterers_per_bin = 4;
   ExperimentSpec experiment;
-  lidar::LidarParams lidar;     // [lidar], keys = field names (docs/lidar.md)
-  camera::CameraParams camera;  // [camera], keys = field names (docs/camera.md)
+  std::vector<SensorSetting> sensors;  // every registered sensor, in the registry's order
 
+  // The parameters of the sensor named `name`, as its own struct (throws std::bad_any_cast for
+  // another type, InvalidParameter for an unregistered name).
+  template <class Params>
+  Params& params(std::string_view name) {
+    return sensor::params_of<Params>(setting(name).params);
+  }
+  template <class Params>
+  const Params& params(std::string_view name) const {
+    return sensor::params_of<Params>(setting(name).params);
+  }
+  SensorSetting& setting(std::string_view name);
+  const SensorSetting& setting(std::string_view name) const;
+
+  bool runs(std::string_view name) const;
   // Throws InvalidParameter naming the scenario key (e.g. "processing.cfar.training_cells").
   void validate() const;
-  bool runs(SensorId sensor) const;
   propagation::ChamberSpec chamber_spec() const;
-  radar::Scene scene() const;
+  // What every sensor is given besides its own keys.
+  sensor::Context context() const;
+  // Every key of the scenario, as the file lays them out: the first sensor's sections, then
+  // [chamber], [fog] and [experiment], then the other sensors' (the paper scenario's order).
+  KeyTable<Scenario> keys() const;
 };
 
 // The compiled-in paper scenario file (examples/paper.toml), verbatim.
 std::string_view paper_scenario_toml();
-Scenario paper_scenario();
+Scenario paper_scenario(const SensorRegistry& registry = standard_registry());
 
 // Reads a scenario file's text over the paper scenario. Malformed TOML, unknown keys or sections,
 // wrong types and out-of-range values throw InvalidParameter whose message starts with
 // "<source_name>:<line>: " and names the key; its field() is the key ("radar.tx_power_dbm").
-Scenario parse_scenario(std::string_view toml_text, std::string_view source_name);
+Scenario parse_scenario(std::string_view toml_text, std::string_view source_name,
+                        const SensorRegistry& registry = standard_registry());
 
 // Largest scenario file read: a scenario is a few kB; anything larger is refused before it is read.
 inline constexpr std::size_t max_scenario_file_bytes = std::size_t{1} << 20;
@@ -86,10 +95,20 @@ inline constexpr std::size_t max_scenario_file_bytes = std::size_t{1} << 20;
 // Reads a scenario file. A path that cannot be opened, that is not a regular file (a directory, a
 // FIFO, a device) or that holds more than max_scenario_file_bytes throws InvalidParameter naming
 // "--scenario"; nothing is read from it then, and a FIFO is never waited on.
-Scenario load_scenario_file(const std::string& path);
+Scenario load_scenario_file(const std::string& path,
+                            const SensorRegistry& registry = standard_registry());
 
-// The fully resolved scenario as TOML (every key), so that a run can be repeated exactly:
-// parse_scenario(to_toml(s)) == s.
+// The fully resolved scenario as TOML (every key that takes effect), so that a run can be repeated
+// exactly: parse_scenario(to_toml(s)) == s.
 std::string to_toml(const Scenario& scenario);
+
+// The top-level sections of the scenario's keys, in file order ("radar", "processing", ...).
+std::vector<std::string> top_level_sections(const Scenario& scenario);
+
+// docs/scenario.md's table of the keys under top-level section `section` (with its sub-sections
+// and arrays of tables): key (relative to the section), default (this scenario's value, "—" where
+// the key takes no effect), allowed values and meaning, in Markdown. Throws InvalidParameter
+// naming "--keys" for a section no key is in.
+std::string key_table_markdown(const Scenario& defaults, std::string_view section);
 
 }  // namespace fogradar::experiment

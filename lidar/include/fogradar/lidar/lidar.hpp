@@ -3,12 +3,12 @@
 // distribution, and measures scans: per beam the received waveform (waveform.hpp), receiver noise,
 // echo extraction, and each echo's origin from the simulation's ground truth.
 //
-// How experiment/ runs it, per step with `active` layers (all randomness from
-// fogradar::sensor_stream(seed, SensorId::lidar, step, index)):
+// How experiment/ runs it (lidar/sensor.hpp), per step with `active` layers (all randomness from
+// fogradar::sensor_stream(seed, stream_key, step, index)):
 //   FogFluctuationSeries fog = lidar.fog_fluctuation(
-//       sensor_stream(seed, SensorId::lidar, step, lidar.fog_series_index()));
+//       sensor_stream(seed, stream_key, step, lidar.fog_series_index()));
 //   for each scan s in [0, scans_per_step), on any thread:
-//     RandomStream stream = sensor_stream(seed, SensorId::lidar, step, s);
+//     RandomStream stream = sensor_stream(seed, stream_key, step, s);
 //     step_result.scans[s] = lidar.measure(active, fog.scan(s), stream);
 // The results depend on (seed, step, scan) only: byte-identical for any thread count.
 #pragma once
@@ -26,6 +26,9 @@
 #include "fogradar/propagation/water.hpp"
 
 namespace fogradar::lidar {
+
+// The lidar's random streams: sensor_stream(seed, stream_key, step, index).
+inline constexpr std::uint64_t stream_key = 1;
 
 // What produced an echo: the noise-free contribution largest at the echo's peak sample (target:
 // the EVT; fog: the active layers' volume backscatter; background: a static segment), or noise when

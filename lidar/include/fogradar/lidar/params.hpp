@@ -9,7 +9,10 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
+
+#include "fogradar/core/keys.hpp"
 
 namespace fogradar::lidar {
 
@@ -71,10 +74,17 @@ struct LidarParams {
   FogFluctuation fog_fluctuation;
 
   // Throws InvalidParameter naming "lidar.<key>" (e.g. "lidar.pulse_width_ns",
-  // "lidar.fog_fluctuation.log_std", "lidar.background[2].reflectivity") and the allowed range.
+  // "lidar.fog_fluctuation.log_std", "lidar.background[2].reflectivity") and the allowed range
+  // (lidar_keys).
   void validate() const;
 
   std::size_t beam_count() const;  // floor(field_of_view_deg / angular_step_deg + 1e-9) + 1
 };
+
+// The keys of [lidar], [lidar.fog_fluctuation] and [[lidar.background]], each with its unit,
+// range and source (datasheet, the study, or an assumption with its reasoning).
+KeyTable<LidarParams> lidar_keys();
+// The keys of one background segment under `prefix` ("lidar.background[2].").
+KeyTable<BackgroundSegment> background_segment_keys(std::string prefix);
 
 }  // namespace fogradar::lidar

@@ -10,6 +10,11 @@
 
 namespace fogradar::propagation {
 
+// A chamber of more layers than this is a typo, not a study (the study has 4,
+// examples/long_chamber.toml 40); likewise a gap or layer longer than 10 km.
+inline constexpr std::size_t max_chamber_layers = 1000;
+inline constexpr double max_chamber_length_m = 1e4;
+
 struct FogLayerSpec {
   double length_m = 1.0;
   FogSpec fog;

@@ -3,9 +3,12 @@
 // from LWC = rho_w N (pi/6) <D^3>.
 #pragma once
 
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
+
+#include "fogradar/core/keys.hpp"
 
 namespace fogradar::propagation {
 
@@ -49,7 +52,13 @@ DropSizeDistribution default_fog_droplets();
 // Short name of the distribution family: "monodisperse", "lognormal" or "modified_gamma".
 std::string_view distribution_name(const DropSizeDistribution& dsd);
 
-// Throws InvalidParameter naming the field (e.g. "Lognormal.geometric_std") if out of range.
+// The scenario keys of a distribution under `prefix` ("fog.droplets."): `distribution` chooses the
+// family (the modified-gamma presets `advection` and `radiation` by name), and each family's own
+// keys take effect only with it.
+KeyTable<DropSizeDistribution> droplet_keys(std::string prefix);
+
+// Throws InvalidParameter naming the key under "fog.droplets." (e.g. "fog.droplets.geometric_std")
+// if out of range (droplet_keys).
 void validate(const DropSizeDistribution& dsd);
 
 // k-th raw moment <D^k> of the normalised, untruncated distribution (m^k), closed form.

@@ -39,9 +39,14 @@ struct FogSpec {
   // docs/physics.md §2 quantifies what the optical temperature dependence would change).
   double temperature_c = 20.0;
   WaterModel water_model = WaterModel::liebe;
-  void validate() const;  // throws InvalidParameter naming the field
+  void validate() const;  // throws InvalidParameter naming the key under "fog." (fog_keys)
   bool operator==(const FogSpec&) const = default;
 };
+
+// The scenario keys of a fog under `prefix` ("fog."): one density of the group lwc_g_per_m3,
+// extinction_per_km, visibility_m (the one given replaces the others), the temperature and water
+// model of the index at radar frequencies, and the droplets under "droplets." (droplet_keys).
+KeyTable<FogSpec> fog_keys(std::string prefix);
 
 // Bulk properties of a fog at one frequency (sums over the drop size distribution, Mie per droplet).
 struct FogOptics {

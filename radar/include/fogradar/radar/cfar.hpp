@@ -41,9 +41,11 @@
 #include <complex>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
+#include "fogradar/core/keys.hpp"
 #include "fogradar/radar/noise_correlation.hpp"
 
 namespace fogradar::radar {
@@ -72,12 +74,13 @@ struct CfarConfig {
   unsigned os_rank = 0;  // OS: k in [1, N]; 0 selects the default k = round(3N/4) (Rohling 1983)
   CfarThresholdDesign threshold_design = CfarThresholdDesign::correlated;
 
-  // Throws InvalidParameter naming "cfar.training_cells" (must be >= 1),
-  // "cfar.false_alarm_probability" (in (0, 1), finite) or "cfar.os_rank" (0 or in [1, N]).
+  // Throws InvalidParameter naming the key of cfar_keys("cfar.") it breaks: "cfar.training_cells"
+  // (in [1, 32767]), "cfar.false_alarm_probability" (in (0, 1)), "cfar.os_rank" (0 or in [1, N]).
   void validate() const;
-  // Throws InvalidParameter naming "cfar.training_cells" (with the allowed range) when a
-  // profile of `profile_length` cells is shorter than the full window 2 (guard + training) + 1.
-  void validate_profile_length(std::size_t profile_length) const;
+  // Throws InvalidParameter naming "<prefix>training_cells" (with the allowed range) when a
+  // profile of `profile_length` cells is shorter than the full window 2 (guard + training) + 1, or
+  // "<prefix>guard_cells" when the guard cells alone fill it.
+  void validate_profile_length(std::size_t profile_length, std::string_view prefix = "cfar.") const;
 
   std::size_t reference_cells() const noexcept { return 2 * std::size_t{training_cells}; }
   std::size_t window_length() const noexcept {
@@ -86,6 +89,10 @@ struct CfarConfig {
   // The rank k used by OS: os_rank, or round(3N/4) (at least 1) when os_rank == 0.
   unsigned effective_os_rank() const noexcept;
 };
+
+// The scenario keys of a CFAR under `prefix` ("processing.cfar."): kind, guard and training cells
+// per side, design P_fa, OS rank and threshold design.
+KeyTable<CfarConfig> cfar_keys(std::string prefix);
 
 // Threshold factor alpha for the config's kind, N and design Pfa for independent cells (see the
 // header comment for the conventions and formulas). Validates the config.

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "fogradar/core/keys.hpp"
 #include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/window.hpp"
 
@@ -47,9 +48,15 @@ struct RadarParams {
                   .false_alarm_probability = 1e-6, .os_rank = 0};
   double association_gate_m = 0.5;  // |R_detected - R_expected| for the tracked target
 
-  // Throws InvalidParameter naming "radar.<field>" (or "cfar.<field>") and the allowed range.
+  // Throws InvalidParameter naming the scenario key (radar_param_keys: "radar.<field>",
+  // "processing.window", "processing.association_gate_m", "processing.cfar.<field>") and the
+  // allowed range.
   void validate() const;
 };
+
+// The scenario keys of the radar and its processing chain: [radar], [processing] and
+// [processing.cfar] (docs/scenario.md). thermal_noise is no key (tests switch it off).
+KeyTable<RadarParams> radar_param_keys();
 
 // Everything the chain derives from RadarParams.
 struct RadarDerived {

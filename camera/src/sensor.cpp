@@ -1,0 +1,216 @@
+#include "fogradar/camera/sensor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "fogradar/stats/format.hpp"
+
+namespace fogradar::camera {
+namespace {
+
+const char* const file_names[] = {"camera_histograms.csv", "camera_summary.csv",
+                                  "camera_summary.json", "camera_histograms.svg"};
+
+// camera_roi_<step>.pgm: the first frame of each step, when camera.write_roi_images.
+std::string roi_file_name(std::size_t step) {
+  return "camera_roi_" + std::to_string(step) + ".pgm";
+}
+
+bool is_roi_file_name(std::string_view name) {
+  const std::string_view prefix = "camera_roi_", suffix = ".pgm";
+  if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) ||
+      !name.ends_with(suffix)) {
+    return false;
+  }
+  const std::string_view digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return digits.size() <= 7 &&
+         std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+std::string counted_layers(std::size_t count) {
+  return std::to_string(count) + (count == 1 ? " layer" : " layers");
+}
+
+class Report : public CameraReport {
+ public:
+  Report(const CameraParams& params, std::shared_ptr<const std::vector<CameraStepResult>> steps)
+      : params_(params), steps_(std::move(steps)), summary_(summarize(params, *steps_)) {}
+
+  const std::vector<CameraStepResult>& steps() const override { return *steps_; }
+  const CameraSummary& summary() const override { return summary_; }
+
+  sensor::Verdict verdict() const override {
+    sensor::Verdict v{.layers_to_failure = summary_.sensor_limit_layers,
+                      .criterion = summary_.criterion,
+                      .margin = {}};
+    if (!v.layers_to_failure && !summary_.steps.empty()) {
+      const CameraStepSummary& last = summary_.steps.back();
+      v.margin = "target contrast " + stats::format_fixed(last.target_contrast, 3) + " (" +
+                 stats::format_fixed(100.0 * last.relative_contrast, 1) +
+                 " % of clear weather) at " + counted_layers(last.active_layers);
+    }
+    return v;
+  }
+
+  std::string table() const override { return step_table(summary_); }
+  nlohmann::json json() const override { return summary_json(summary_); }
+
+  std::vector<sensor::ResultFile> files() const override {
+    std::vector<sensor::ResultFile> files = {{"camera_histograms.csv", histograms_csv(summary_)},
+                                             {"camera_summary.csv", summary_csv(summary_)},
+                                             {"camera_summary.json", json().dump(2) + '\n'},
+                                             {"camera_histograms.svg", histograms_svg(summary_)}};
+    if (params_.write_roi_images) {
+      for (const CameraStepResult& step : *steps_) {
+        if (step.frames.empty() || step.frames.front().pixels.empty()) continue;
+        files.push_back({roi_file_name(step.active_layers), roi_pgm(params_, step.frames.front())});
+      }
+    }
+    return files;
+  }
+
+  // The target contrast over its noise-free clear-weather contrast.
+  sensor::Curve curve() const override {
+    sensor::Curve c{.metric = "contrast",
+                    .active_layers = {},
+                    .relative_value = {},
+                    .limit = summary_.sensor_limit_layers};
+    for (const CameraStepSummary& s : summary_.steps) {
+      c.active_layers.push_back(static_cast<double>(s.active_layers));
+      c.relative_value.push_back(s.relative_contrast);
+    }
+    return c;
+  }
+
+ private:
+  CameraParams params_;
+  std::shared_ptr<const std::vector<CameraStepResult>> steps_;
+  CameraSummary summary_;
+};
+
+class Run : public sensor::SensorRun {
+ public:
+  Run(const CameraParams& params, const sensor::Context& context,
+      const propagation::SegelsteinTable& water)
+      : camera_(std::make_shared<const Camera>(params, context.chamber, water)),
+        steps_(std::make_shared<std::vector<CameraStepResult>>(context.steps)) {
+    for (std::size_t k = 0; k < context.steps; ++k) {
+      active_.push_back(context.active(k));
+      (*steps_)[k].active_layers = k;
+      (*steps_)[k].frames.resize(params.frames_per_step);
+    }
+  }
+
+  std::size_t items_per_step() const override { return camera_->params().frames_per_step; }
+
+  // The band's optics and the exposure: once per step, shared by its frames.
+  void prepare_step(std::size_t step) override {
+    (*steps_)[step].optics = camera_->step_optics(active_[step]);
+  }
+
+  std::unique_ptr<sensor::Worker> make_worker() const override {
+    return std::make_unique<FrameWorker>(*this);
+  }
+
+  std::unique_ptr<const sensor::SensorSummary> summarize() const override {
+    return std::make_unique<Report>(camera_->params(), steps_);
+  }
+
+ private:
+  class FrameWorker : public sensor::Worker {
+   public:
+    explicit FrameWorker(const Run& run) : run_(run) {}
+    void measure(std::size_t step, std::size_t index, RandomStream& stream,
+                 sensor::RawSink*) override {
+      CameraStepResult& result = (*run_.steps_)[step];
+      result.frames[index] = run_.camera_->frame(result.optics, stream);
+    }
+
+   private:
+    const Run& run_;
+  };
+
+  std::shared_ptr<const Camera> camera_;
+  std::vector<propagation::ActiveLayers> active_;
+  std::shared_ptr<std::vector<CameraStepResult>> steps_;
+};
+
+class Type : public sensor::SensorType {
+ public:
+  std::string_view name() const override { return "camera"; }
+  std::uint64_t stream_key() const override { return camera::stream_key; }
+  std::string_view item_noun() const override { return "camera frames"; }
+  std::string_view curve_caption() const override { return "target contrast"; }
+  std::any default_params() const override { return CameraParams{}; }
+  KeyTable<std::any> keys() const override { return sensor::erase_keys(camera_keys()); }
+
+  void validate(const std::any& params, const sensor::Context&) const override {
+    sensor::params_of<CameraParams>(params).validate();
+  }
+
+  std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {
+    return sensor::params_of<CameraParams>(params).frames_per_step;
+  }
+
+  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
+                            unsigned) const override {
+    const CameraParams& p = sensor::params_of<CameraParams>(params);
+    std::ostringstream detail;
+    detail << "camera.frames_per_step = " << p.frames_per_step
+           << " of camera.roi.width_px = " << p.roi.width_px
+           << " x camera.roi.height_px = " << p.roi.height_px;
+    return {.bytes = memory_bytes(p, context.steps),
+            .detail = detail.str(),
+            .key = "camera.frames_per_step"};
+  }
+
+  std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
+    return {};
+  }
+
+  bool owns_file_name(std::string_view file_name) const override {
+    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
+               std::end(file_names) ||
+           is_roi_file_name(file_name);
+  }
+
+  // The layer's band-weighted transmittance t (the camera's own band quadrature), the band's
+  // effective extinction -ln t / L and the one-way loss -10 log10 t.
+  sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
+                               double layer_length_m,
+                               const propagation::SegelsteinTable& water) const override {
+    const CameraParams& p = sensor::params_of<CameraParams>(params);
+    propagation::ChamberSpec chamber;
+    chamber.layers = {propagation::FogLayerSpec{.length_m = layer_length_m, .fog = spec}};
+    const Camera camera(p, chamber, water);
+    const double t = camera.step_optics(propagation::ActiveLayers{true}).transmittance.front();
+    const double extinction = -std::log(t) / layer_length_m;
+    const double loss_db = -10.0 * std::log10(t);
+    const auto number_or_null = [](double v) {
+      return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
+    std::ostringstream line;
+    line << "  camera (" << to_string(p.band) << ")       transmittance " << t
+         << " (effective extinction " << extinction << " 1/m), 1-way loss " << loss_db << " dB";
+    return {.json = {{"band", std::string(to_string(p.band))},
+                     {"extinction_per_m", number_or_null(extinction)},
+                     {"transmittance_per_layer", t},
+                     {"one_way_loss_db_per_layer", number_or_null(loss_db)}},
+            .line = line.str()};
+  }
+
+  std::unique_ptr<sensor::SensorRun> start(
+      const std::any& params, const sensor::Context& context,
+      const propagation::SegelsteinTable& water) const override {
+    return std::make_unique<Run>(sensor::params_of<CameraParams>(params), context, water);
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+
+}  // namespace fogradar::camera

@@ -1,0 +1,38 @@
+// The one place that names the sensors (DESIGN §10): the registry of sensor types a scenario can
+// run. Everything else in experiment/ and cli/ loops over it. A fourth sensor is one folder that
+// implements sensor::SensorType and one line in standard_registry(); a test can add its own with
+// add().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fogradar/sensor/sensor.hpp"
+
+namespace fogradar::experiment {
+
+class SensorRegistry {
+ public:
+  SensorRegistry() = default;
+  explicit SensorRegistry(std::vector<std::shared_ptr<const sensor::SensorType>> types);
+
+  // Appends a sensor type. Throws InternalError when its name or stream key is already taken or
+  // one of its keys is another's.
+  void add(std::shared_ptr<const sensor::SensorType> type);
+
+  const std::vector<std::shared_ptr<const sensor::SensorType>>& types() const { return types_; }
+  // Null when no sensor has this name.
+  std::shared_ptr<const sensor::SensorType> find(std::string_view name) const;
+  std::vector<std::string> names() const;
+
+ private:
+  std::vector<std::shared_ptr<const sensor::SensorType>> types_;
+};
+
+// The study's sensors, in the order their sections are written and their results reported: the
+// radar, the lidar, the camera.
+SensorRegistry standard_registry();
+
+}  // namespace fogradar::experiment

@@ -1,0 +1,28 @@
+// The lidar as a sensor of the experiment (DESIGN §10, sensor/sensor.hpp): its keys ([lidar] and
+// its sub-tables), one run on the chamber (the Lidar built once, a fog series per step, one scan
+// per item), and its result files lidar_echoes.csv, lidar_summary.csv, lidar_summary.json,
+// lidar_intensity_boxplot.svg and lidar_scans.svg.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "fogradar/lidar/lidar.hpp"
+#include "fogradar/lidar/summary.hpp"
+#include "fogradar/sensor/sensor.hpp"
+
+namespace fogradar::lidar {
+
+// The lidar's entry in the registry.
+std::shared_ptr<const sensor::SensorType> sensor_type();
+
+// What a run of the lidar found: the sensor as built (its files need its geometry and derived
+// figures), one result per step with the scans by index, and their summary.
+class LidarReport : public sensor::SensorSummary {
+ public:
+  virtual const Lidar& lidar() const = 0;
+  virtual const std::vector<LidarStepResult>& steps() const = 0;
+  virtual const LidarSummary& summary() const = 0;
+};
+
+}  // namespace fogradar::lidar

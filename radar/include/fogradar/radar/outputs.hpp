@@ -1,0 +1,31 @@
+// The radar's result files as strings (experiment/ writes them into the run's result set) and its
+// terminal table.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "fogradar/radar/results.hpp"
+#include "fogradar/radar/sensor.hpp"
+#include "fogradar/sensor/sensor.hpp"
+
+namespace fogradar::radar {
+
+// radar_samples.csv: one row per measurement, "active_layers,measurement,detected,range_m,rcs_dbsm,
+// snr_db,origin,fog_detections,false_alarms"; numbers in shortest round-trip form.
+std::string samples_csv(const std::vector<StepResult>& steps);
+// radar_summary.csv: one row per step with every per-step field of summary_json.
+std::string summary_csv(const RadarSummary& summary);
+// radar_summary.json (and summary.json's sensors.radar.summary): the steps, the limit with its
+// criterion, the CFAR's design false alarms, the attenuation margin and the statistics used.
+nlohmann::json summary_json(const RadarSummary& summary);
+// radar_rcs_boxplot.svg: RCS box plots per step with the detection rate under them, the sensor
+// limit marked, and title and caption from the scenario (target, chamber, fog as given, droplets,
+// CFAR, n, seed).
+std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& context,
+                            const RadarSummary& summary);
+// The per-layer table `fogradar run` prints for the radar.
+std::string summary_table(const RadarSummary& summary);
+
+}  // namespace fogradar::radar

@@ -1,0 +1,96 @@
+// What the radar finds in one run of the study's methodology: one record per measurement (what a
+// tracker associates, with the simulation's ground truth beside it), and per step the statistics
+// of the target detections' RCS (Tukey box plot, shift against the 0-layer series) and the sensor
+// limit: the number of active layers at which the radar can no longer tell the target from the fog.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/origin.hpp"
+#include "fogradar/stats/box_plot.hpp"
+#include "fogradar/stats/median_interval.hpp"
+
+namespace fogradar::radar {
+
+// What the tracker reports for one measurement, with the simulation's ground truth beside it.
+struct MeasurementRecord {
+  // A detection inside the association gate (the strongest there): what a tracker associates.
+  bool associated = false;
+  Origin associated_origin = Origin::noise;  // only meaningful when associated
+  // A target detection: associated, and the associated detection's origin is target. A fog or
+  // noise detection in the gate is a false association and counts as a miss.
+  bool detected = false;
+  double range_m = 0.0;  // of the associated detection; only meaningful when associated
+  double rcs_dbsm = 0.0;
+  double snr_db = 0.0;
+  // A fog-origin detection echoes at least as strongly (received power) as the target detection,
+  // or there is no target detection at all: the sensor cannot tell target from fog.
+  bool fog_rivals_target = false;
+  std::size_t fog_detections = 0;  // fog-origin detections anywhere in the map
+  std::size_t false_alarms = 0;    // noise-origin detections anywhere in the map
+};
+
+// The record of one measured frame.
+MeasurementRecord record_of(const Measurement& measurement);
+
+struct StepResult {
+  std::size_t active_layers = 0;
+  double two_way_attenuation_db = 0.0;  // to the target through the active layers
+  std::vector<MeasurementRecord> records;
+};
+
+struct StepSummary {
+  std::size_t active_layers = 0;
+  std::size_t n = 0;           // measurements
+  std::size_t detections = 0;  // with a target detection (target origin, in the gate)
+  double detection_rate = 0.0;
+  // Measurements whose gate association is a fog or a noise detection (counted as misses).
+  double false_association_rate = 0.0;
+  double false_alarms_per_frame = 0.0;    // mean noise-origin detections per measurement
+  double fog_detections_per_frame = 0.0;  // mean fog-origin detections per measurement
+  stats::BoxPlot rcs;                     // of the target detections' rcs_dbsm values
+  // Against the 0-layer series: the Hodges-Lehmann shift (median of all pairwise differences
+  // x_i - y_j), its distribution-free 95 % interval (the inverted Mann-Whitney test) and the
+  // Mann-Whitney U p-value; shift 0 and interval and p NaN for the baseline itself, all NaN when
+  // either series has no target detection.
+  double median_shift_db = 0.0;
+  stats::Interval median_shift_ci95;
+  double p_value = 0.0;
+  double median_snr_db = 0.0;  // of the target detections
+  double two_way_attenuation_db = 0.0;
+  double confusion_rate = 0.0;  // measurements without a target detection or with fog rivalling it
+};
+
+struct RadarSummary {
+  std::vector<StepSummary> steps;
+  // First layer count at which fewer than half the measurements detect the target (target origin)
+  // with no fog-origin detection at least as strong (docs/scenario.md); empty if never reached.
+  std::optional<std::size_t> sensor_limit_layers;
+  // At the last step: median target SNR minus the CFAR threshold factor (dB), i.e. roughly how
+  // much more two-way attenuation the median echo could take before it drops below the threshold.
+  std::optional<double> attenuation_margin_db;
+  // The CFAR's design: P_fa times the cells it tests per frame (every cell of the map). Counts
+  // cells; a detection is an 8-connected object of cells, so noise detections per frame come out
+  // at most this (fewer where the window correlates neighbouring cells).
+  double expected_false_alarm_cells_per_frame = 0.0;
+};
+
+inline constexpr double sensor_limit_success_fraction = 0.5;
+
+inline constexpr const char* sensor_limit_criterion =
+    "first active-layer count at which fewer than 50 % of the measurements detect the target "
+    "(a target-origin detection within the association gate) with no fog-origin detection echoing "
+    "at least as strongly";
+
+inline constexpr const char* sensor_limit_criterion_short =
+    "target detected (no fog detection as strong) in < 50 % of the measurements";
+
+// The steps' statistics and the limit; `cfar_threshold_db` = 10 log10(alpha), the SNR a detection
+// needs, for the attenuation margin.
+RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_threshold_db,
+                       double expected_false_alarm_cells_per_frame);
+
+}  // namespace fogradar::radar

@@ -1,0 +1,38 @@
+// The radar's target as a scenario gives it (section [target], docs/scenario.md): the EVT rear or
+// one point, its RCS and fluctuation, the floor multipath and micro-motion, and the scene the
+// radar looks at made from it.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "fogradar/core/keys.hpp"
+#include "fogradar/radar/scene.hpp"
+
+namespace fogradar::radar {
+
+enum class TargetModel { evt, point };
+std::string_view to_string(TargetModel model) noexcept;  // "evt", "point"
+// Inverse of to_string; throws InvalidParameter naming `field` otherwise.
+TargetModel parse_target_model(std::string_view text, std::string_view field = "target.model");
+
+struct TargetSpec {
+  TargetModel model = TargetModel::evt;
+  double rcs_dbsm = 10.0;
+  Swerling swerling = Swerling::zero;  // point target only
+  double height_m = 0.5;               // point target only
+  double sensor_height_m = 0.5;
+  bool floor_multipath = true;
+  double floor_reflection_coefficient = -0.7;
+  double micro_motion_std_m = 0.2e-3;
+};
+
+// The keys of [target].
+KeyTable<TargetSpec> target_keys();
+
+// The scene of `target`: the EVT rear (evt_rear_scene) or one point (point_target_scene) at its
+// height with its fluctuation, the floor and the micro-motion as given, and the fog clutter's
+// scatterers per range bin.
+Scene make_scene(const TargetSpec& target, unsigned clutter_scatterers_per_bin);
+
+}  // namespace fogradar::radar

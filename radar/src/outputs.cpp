@@ -1,0 +1,356 @@
+#include "fogradar/radar/outputs.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "fogradar/stats/format.hpp"
+#include "fogradar/stats/svg_plot.hpp"
+
+namespace fogradar::radar {
+namespace {
+
+nlohmann::json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+// Shortest text that reads back to exactly `value` (std::to_chars); NaN -> "" (docs/scenario.md).
+std::string exact(double value) { return stats::format_number(value, 0); }
+
+std::string joined_outliers(const std::vector<double>& outliers) {
+  std::string text;
+  for (double v : outliers) {
+    if (!text.empty()) text += ';';
+    text += exact(v);
+  }
+  return text;
+}
+
+// Scenario numbers in captions: three significant digits ("0.2", "1e-06").
+std::string num(double value) { return stats::format_number(value, 3); }
+
+std::string micrometres(double metres) { return num(metres * 1e6) + " \u00b5m"; }
+
+std::string target_name(const TargetSpec& target) {
+  return (target.model == TargetModel::evt ? "EVT rear " : "point target ") + num(target.rcs_dbsm) +
+         " dBsm";
+}
+
+// The fog density as the scenario gives it (one of beta_550, LWC, visibility).
+std::string fog_density(const propagation::FogDensity& density) {
+  struct Describe {
+    std::string operator()(const propagation::OpticalExtinction& d) const {
+      return "\u03b2(550 nm) = " + num(d.per_km) + " /km";
+    }
+    std::string operator()(const propagation::LiquidWaterContent& d) const {
+      return "LWC = " + num(d.g_per_m3) + " g/m\u00b3";
+    }
+    std::string operator()(const propagation::Visibility& d) const {
+      return "visibility " + num(d.m) + " m";
+    }
+  };
+  return std::visit(Describe{}, density);
+}
+
+std::string droplets(const propagation::DropSizeDistribution& dsd) {
+  struct Describe {
+    std::string operator()(const propagation::Monodisperse& d) const {
+      return "monodisperse droplets of " + micrometres(d.diameter_m);
+    }
+    std::string operator()(const propagation::Lognormal& d) const {
+      return "lognormal droplets, median diameter " + micrometres(d.median_diameter_m) +
+             ", \u03c3g = " + num(d.geometric_std);
+    }
+    std::string operator()(const propagation::ModifiedGamma& d) const {
+      const std::string family = d == propagation::advection_fog()   ? "advection-fog "
+                                 : d == propagation::radiation_fog() ? "radiation-fog "
+                                                                     : "";
+      return family + "modified-gamma droplets (\u03b1 = " + num(d.alpha) +
+             ", \u03b3 = " + num(d.gamma) + ", b = " + num(d.b_per_um_gamma) + " \u00b5m^-\u03b3)";
+    }
+  };
+  return std::visit(Describe{}, dsd);
+}
+
+std::string upper(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// A window's name as a proper noun: "hann" -> "Hann", "blackman_harris" -> "Blackman-Harris".
+std::string window_name(WindowType window) {
+  std::string out(to_string(window));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (out[i] == '_') out[i] = '-';
+    if (i == 0 || out[i - 1] == '-')
+      out[i] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[i])));
+  }
+  return out;
+}
+
+// Caption lines of at most this many characters fit the 960 px plot in a 12 px sans-serif face
+// (measured in Chromium with Debian's fonts: 143 characters took 816 px).
+constexpr std::size_t caption_line_chars = 140;
+
+// Breaks `text` at spaces into lines of at most `width` characters (UTF-8 characters counted); a
+// word longer than `width` gets a line of its own.
+std::vector<std::string> wrap(std::string_view text, std::size_t width) {
+  const auto chars = [](std::string_view s) {
+    return static_cast<std::size_t>(std::count_if(
+        s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  };
+  std::vector<std::string> lines;
+  std::string current;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(' ', start), text.size());
+    const std::string_view word = text.substr(start, end - start);
+    if (!current.empty() && chars(current) + 1 + chars(word) > width) {
+      lines.push_back(current);
+      current.clear();
+    }
+    if (!current.empty()) current += ' ';
+    current += word;
+    start = end + 1;
+  }
+  if (!current.empty()) lines.push_back(current);
+  return lines;
+}
+
+// "1 active layer", "3 active layers".
+std::string counted(std::size_t count, std::string_view noun) {
+  return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
+}
+
+std::vector<std::string> plot_caption(const SensorParams& params, const sensor::Context& context,
+                                      const RadarSummary& summary) {
+  const TargetSpec& t = params.target;
+  const propagation::ChamberSpec& c = context.chamber;
+  const RadarParams& r = params.radar;
+  const propagation::FogSpec& fog = c.layers.front().fog;
+  const double target_range_m = c.target_range_m();
+  std::string target = "Target: " + target_name(t);
+  if (t.model == TargetModel::evt) {
+    target += " (five scattering centres)";
+  } else {
+    target +=
+        ", Swerling " + std::string(to_string(t.swerling)) + ", " + num(t.height_m) + " m high";
+  }
+  target += t.floor_multipath
+                ? ", floor multipath (reflection " + num(t.floor_reflection_coefficient) + ")"
+                : ", no floor multipath";
+  target += "; " + num(target_range_m) + " m from the radar behind " +
+            std::to_string(c.layers.size()) + " \u00d7 " + num(c.layers.front().length_m) +
+            " m fog layers";
+  std::string cfar = "CFAR " + upper(to_string(r.cfar.kind)) + " (" +
+                     std::to_string(r.cfar.guard_cells) + " guard + " +
+                     std::to_string(r.cfar.training_cells) + " training cells per side";
+  if (r.cfar.kind == CfarKind::os) {
+    cfar += ", rank " + std::to_string(r.cfar.effective_os_rank());
+  }
+  cfar += "), P_fa = " + num(r.cfar.false_alarm_probability);
+  const std::string limit =
+      summary.sensor_limit_layers
+          ? counted(*summary.sensor_limit_layers, "active layer")
+          : "not reached within " + counted(context.steps - 1, "active layer");
+  const std::vector<std::string> paragraphs = {
+      "Boxes: RCS of each measurement's associated target detection; "
+      "detection rate = detections / n.",
+      target + ".",
+      "Fog in each active layer: " + fog_density(fog.density) + "; " + droplets(fog.droplets) +
+          "; " + num(fog.temperature_c) + " \u00b0C.",
+      "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
+          std::string(to_string(r.sweep_direction)) + "-sweep centred on " +
+          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
+          cfar + ".",
+      "n = " + std::to_string(context.measurements_per_step) + " measurements per step, seed " +
+          std::to_string(context.seed) + ".",
+      "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
+  };
+  std::vector<std::string> lines;
+  for (const std::string& paragraph : paragraphs) {
+    const std::vector<std::string> wrapped = wrap(paragraph, caption_line_chars);
+    lines.insert(lines.end(), wrapped.begin(), wrapped.end());
+  }
+  return lines;
+}
+
+// The category's tooltip: the table's numbers for this step.
+std::string step_note(const StepSummary& s) {
+  std::string note = counted(s.active_layers, "active layer") + ": n = " + std::to_string(s.n) +
+                     " measurements, " + std::to_string(s.detections) +
+                     " with an associated target detection (" +
+                     stats::format_fixed(100.0 * s.detection_rate, 1) + " %)";
+  if (s.rcs.n > 0) note += ", median RCS " + stats::format_fixed(s.rcs.median, 2) + " dBsm";
+  return note + ", two-way fog loss " + stats::format_fixed(s.two_way_attenuation_db, 3) + " dB";
+}
+
+}  // namespace
+
+std::string samples_csv(const std::vector<StepResult>& steps) {
+  std::string out =
+      "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,"
+      "origin,fog_detections,false_alarms\n";
+  for (const StepResult& step : steps) {
+    for (std::size_t i = 0; i < step.records.size(); ++i) {
+      const MeasurementRecord& r = step.records[i];
+      out += std::to_string(step.active_layers) + ',' + std::to_string(i) + ',' +
+             (r.detected ? "1," : "0,");
+      if (r.associated) {
+        out += exact(r.range_m) + ',' + exact(r.rcs_dbsm) + ',' + exact(r.snr_db) + ',' +
+               std::string(to_string(r.associated_origin));
+      } else {
+        out += ",,,";
+      }
+      out += ',' + std::to_string(r.fog_detections) + ',' + std::to_string(r.false_alarms) + '\n';
+    }
+  }
+  return out;
+}
+
+std::string summary_csv(const RadarSummary& summary) {
+  std::string out =
+      "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,"
+      "q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,"
+      "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
+      "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame\n";
+  for (const StepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.rcs;
+    const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
+                              b.median,         b.q3,   b.max,     b.whisker_low, b.whisker_high};
+    const double after_outliers[] = {s.median_shift_db,        s.p_value,
+                                     s.median_shift_ci95.low,  s.median_shift_ci95.high,
+                                     s.median_snr_db,          s.two_way_attenuation_db,
+                                     s.confusion_rate,         s.false_association_rate,
+                                     s.false_alarms_per_frame, s.fog_detections_per_frame};
+    out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
+           std::to_string(s.detections);
+    for (double v : numbers) out += ',' + exact(v);
+    out += ',' + joined_outliers(b.outliers);
+    for (double v : after_outliers) out += ',' + exact(v);
+    out += '\n';
+  }
+  return out;
+}
+
+nlohmann::json summary_json(const RadarSummary& summary) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const StepSummary& s : summary.steps) {
+    const stats::BoxPlot& b = s.rcs;
+    steps.push_back(
+        {{"active_layers", s.active_layers},
+         {"n", s.n},
+         {"detections", s.detections},
+         {"detection_rate", s.detection_rate},
+         {"mean_dbsm", number_or_null(b.mean)},
+         {"std_db", number_or_null(b.std_dev)},
+         {"min_dbsm", number_or_null(b.min)},
+         {"q1_dbsm", number_or_null(b.q1)},
+         {"median_dbsm", number_or_null(b.median)},
+         {"q3_dbsm", number_or_null(b.q3)},
+         {"max_dbsm", number_or_null(b.max)},
+         {"whisker_low_dbsm", number_or_null(b.whisker_low)},
+         {"whisker_high_dbsm", number_or_null(b.whisker_high)},
+         {"outliers", b.outliers},
+         {"median_shift_db", number_or_null(s.median_shift_db)},
+         {"median_shift_ci95_db",
+          {number_or_null(s.median_shift_ci95.low), number_or_null(s.median_shift_ci95.high)}},
+         {"p_value", number_or_null(s.p_value)},
+         {"median_snr_db", number_or_null(s.median_snr_db)},
+         {"two_way_attenuation_db", s.two_way_attenuation_db},
+         {"confusion_rate", s.confusion_rate},
+         {"false_association_rate", s.false_association_rate},
+         {"false_alarms_per_frame", s.false_alarms_per_frame},
+         {"fog_detections_per_frame", s.fog_detections_per_frame}});
+  }
+  return {
+      {"steps", steps},
+      {"sensor_limit_layers", summary.sensor_limit_layers
+                                  ? nlohmann::json(*summary.sensor_limit_layers)
+                                  : nlohmann::json(nullptr)},
+      {"sensor_limit_criterion", sensor_limit_criterion},
+      {"expected_false_alarm_cells_per_frame", summary.expected_false_alarm_cells_per_frame},
+      {"attenuation_margin_db", summary.attenuation_margin_db
+                                    ? number_or_null(*summary.attenuation_margin_db)
+                                    : nlohmann::json(nullptr)},
+      {"statistics",
+       {{"quantiles", "Hyndman & Fan (1996) type 7 (R's default)"},
+        {"whiskers", "Tukey: most extreme values within 1.5 IQR of the quartiles"},
+        {"shift", "Hodges-Lehmann: median of all pairwise differences against the 0-layer series"},
+        {"shift_interval",
+         "distribution-free 95 %: order statistics of the pairwise differences from the "
+         "Mann-Whitney U null distribution (Bauer 1972)"},
+        {"shift_test", "Mann-Whitney U (two-sided) against the 0-layer series"},
+        {"detections",
+         "target detections only: a fog- or noise-origin detection in the gate is a miss"}}},
+  };
+}
+
+std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& context,
+                            const RadarSummary& summary) {
+  std::vector<stats::BoxPlotSeries> series;
+  stats::SvgPlotOptions options;
+  for (std::size_t i = 0; i < summary.steps.size(); ++i) {
+    const StepSummary& s = summary.steps[i];
+    series.push_back({std::to_string(s.active_layers), s.rcs, s.detection_rate, step_note(s)});
+    if (summary.sensor_limit_layers == s.active_layers) options.marked_category = i;
+  }
+  options.title = "Target RCS against active fog layers: " + target_name(params.target) + ", fog " +
+                  fog_density(context.chamber.layers.front().fog.density);
+  options.caption = plot_caption(params, context, summary);
+  options.x_label = "active fog layers";
+  options.y_label = "RCS of the associated target detection (dBsm)";
+  // The plot area keeps its 406 px however many caption lines there are.
+  options.height_px = 604.0 + 16.0 * static_cast<double>(options.caption.size());
+  options.empty_label = "no target detection";
+  options.rate_label = "detection rate";
+  if (summary.sensor_limit_layers) {
+    options.mark_label = "sensor limit: " + counted(*summary.sensor_limit_layers, "layer");
+  }
+  return stats::box_plot_svg(series, options);
+}
+
+std::string summary_table(const RadarSummary& summary) {
+  std::ostringstream out;
+  char line[320];
+  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
+  std::snprintf(line, sizeof line, header, "layers", "n", "target", "false", "false", "design",
+                "median", "IQR", "mean", "std", "shift", "95 % interval", "p", "loss");
+  out << line;
+  std::snprintf(line, sizeof line, header, "", "", "det. %", "assoc %", "alarms/f", "/frame",
+                "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
+  out << line;
+  for (const StepSummary& s : summary.steps) {
+    std::snprintf(
+        line, sizeof line,
+        "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3g %8.4f\n",
+        s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
+        s.false_alarms_per_frame, summary.expected_false_alarm_cells_per_frame, s.rcs.median,
+        s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev, s.median_shift_db, s.median_shift_ci95.low,
+        s.median_shift_ci95.high, s.p_value, s.two_way_attenuation_db);
+    out << line;
+  }
+  out << "target det. %: a target-origin detection in the gate; false assoc. %: a fog or noise\n"
+         "detection there instead (a miss); false alarms/f: noise-origin detections per frame;\n"
+         "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
+         "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
+  out << "sensor limit: ";
+  if (summary.sensor_limit_layers)
+    out << counted(*summary.sensor_limit_layers, "active layer") << "\n";
+  else
+    out << "not reached\n";
+  if (summary.attenuation_margin_db) {
+    std::snprintf(line, sizeof line, "attenuation margin at the last step: %.1f dB\n",
+                  *summary.attenuation_margin_db);
+    out << line;
+  }
+  return out.str();
+}
+
+}  // namespace fogradar::radar

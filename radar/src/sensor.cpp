@@ -1,0 +1,306 @@
+#include "fogradar/radar/sensor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/core/units.hpp"
+#include "fogradar/radar/outputs.hpp"
+#include "fogradar/radar/scene.hpp"
+#include "fogradar/stats/format.hpp"
+
+namespace fogradar::radar {
+namespace {
+
+constexpr std::size_t complex_bytes = sizeof(std::complex<double>);
+constexpr std::size_t double_bytes = sizeof(double);
+// Doppler transforms run on blocks of at most this many columns (fft.cpp, ColumnBlockFft).
+constexpr std::size_t doppler_block_columns = 32;
+// Objects whose rows the estimator interpolates in one pass (estimation.cpp).
+constexpr std::size_t interpolation_batch = 4;
+
+double mib(std::size_t bytes) {
+  return static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 20);
+}
+
+// "1 active layer", "3 layers".
+std::string counted(std::size_t count, std::string_view noun) {
+  return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
+}
+
+const char* const file_names[] = {"radar_samples.csv", "radar_summary.csv", "radar_summary.json",
+                                  "radar_rcs_boxplot.svg"};
+// The radar's files as fogradar 0.1 named them: an earlier result set is still replaced whole.
+const char* const earlier_file_names[] = {"samples.csv", "summary.csv", "rcs_boxplot.svg"};
+
+class Report : public RadarReport {
+ public:
+  Report(const SensorParams& params, const sensor::Context& context,
+         std::shared_ptr<const std::vector<StepResult>> steps, RadarSummary summary)
+      : params_(params),
+        context_(context),
+        steps_(std::move(steps)),
+        summary_(std::move(summary)) {}
+
+  const RadarSummary& summary() const override { return summary_; }
+  const std::vector<StepResult>& steps() const override { return *steps_; }
+
+  sensor::Verdict verdict() const override {
+    sensor::Verdict v{.layers_to_failure = summary_.sensor_limit_layers,
+                      .criterion = sensor_limit_criterion_short,
+                      .margin = {}};
+    if (v.layers_to_failure) return v;
+    if (summary_.attenuation_margin_db) {
+      v.margin = "median target SNR " + stats::format_fixed(*summary_.attenuation_margin_db, 1) +
+                 " dB above the CFAR threshold at " +
+                 counted(summary_.steps.empty() ? 0 : summary_.steps.back().active_layers, "layer");
+    } else {
+      v.margin = "no target detection at the last step";
+    }
+    return v;
+  }
+
+  std::string table() const override { return summary_table(summary_); }
+  nlohmann::json json() const override { return summary_json(summary_); }
+
+  std::vector<sensor::ResultFile> files() const override {
+    return {{"radar_samples.csv", samples_csv(*steps_)},
+            {"radar_summary.csv", summary_csv(summary_)},
+            {"radar_summary.json", json().dump(2) + '\n'},
+            {"radar_rcs_boxplot.svg", rcs_boxplot_svg(params_, context_, summary_)}};
+  }
+
+  // The median target RCS as a linear power ratio to clear weather: 10^((m_k - m_0) / 10); 0 at a
+  // step without target detections.
+  sensor::Curve curve() const override {
+    sensor::Curve c{.metric = "RCS",
+                    .active_layers = {},
+                    .relative_value = {},
+                    .limit = summary_.sensor_limit_layers};
+    const double clear = summary_.steps.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                : summary_.steps.front().rcs.median;
+    for (const StepSummary& s : summary_.steps) {
+      c.active_layers.push_back(static_cast<double>(s.active_layers));
+      const bool known = s.rcs.n > 0 && std::isfinite(clear);
+      c.relative_value.push_back(known ? std::pow(10.0, (s.rcs.median - clear) / 10.0) : 0.0);
+    }
+    return c;
+  }
+
+ private:
+  SensorParams params_;
+  sensor::Context context_;
+  std::shared_ptr<const std::vector<StepResult>> steps_;
+  RadarSummary summary_;
+};
+
+class Type : public sensor::SensorType {
+ public:
+  std::string_view name() const override { return "radar"; }
+  std::uint64_t stream_key() const override { return radar::stream_key; }
+  std::string_view item_noun() const override { return "radar measurements"; }
+  std::string_view curve_caption() const override { return "median target RCS as a power ratio"; }
+  std::any default_params() const override { return SensorParams{}; }
+  KeyTable<std::any> keys() const override { return sensor::erase_keys(sensor_keys()); }
+
+  void validate(const std::any& params, const sensor::Context& context) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    p.radar.validate();
+    sensor_keys().check(p);
+    const Scene scene = make_scene(p.target, p.clutter_scatterers_per_bin);
+    scene.validate();
+    // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
+    // (docs/radar.md).
+    const double target_range_m = context.chamber.target_range_m();
+    double farthest_m = target_range_m;
+    for (const ScatteringCentre& centre : scene.centres) {
+      farthest_m = std::max(farthest_m, target_range_m + centre.range_offset_m);
+    }
+    const double limit_m = derive(p.radar).max_range_m - 1.0;
+    if (farthest_m > limit_m) {
+      std::ostringstream constraint;
+      constraint.precision(10);
+      constraint
+          << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
+             "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
+          << farthest_m
+          << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
+             "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
+          << limit_m << " m";
+      throw_invalid("chamber.target_gap_m", context.chamber.target_gap_m, constraint.str());
+    }
+  }
+
+  std::size_t items_per_step(const std::any&, const sensor::Context& context) const override {
+    return context.measurements_per_step;
+  }
+
+  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
+                            unsigned threads) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    const MemoryEstimate e = memory_estimate(p, context.steps * context.measurements_per_step);
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << "radar.samples_per_chirp = " << p.radar.samples_per_chirp
+           << " x radar.chirps_per_frame = " << p.radar.chirps_per_frame << ": " << threads << " x "
+           << mib(e.per_thread_bytes) << " MiB frame workspace; experiment.measurements_per_step = "
+           << context.measurements_per_step << ": " << mib(e.records_bytes)
+           << " MiB per-measurement records; " << mib(e.shared_bytes) << " MiB windows and plans";
+    return {.bytes = threads * e.per_thread_bytes + e.shared_bytes + e.records_bytes,
+            .detail = detail.str(),
+            .key = "radar.samples_per_chirp"};
+  }
+
+  std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
+    return {};
+  }
+
+  bool owns_file_name(std::string_view file_name) const override {
+    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
+               std::end(file_names) ||
+           std::find(std::begin(earlier_file_names), std::end(earlier_file_names), file_name) !=
+               std::end(earlier_file_names);
+  }
+
+  // The fog at the radar's sweep centre: specific attenuation, backscatter, and the two-way loss
+  // through one layer, 2 A L.
+  sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
+                               double layer_length_m,
+                               const propagation::SegelsteinTable& water) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    const propagation::Fog fog(spec, water);
+    const propagation::FogOptics o = fog.at_frequency(p.radar.centre_frequency_hz);
+    const double loss_db = 2.0 * o.specific_attenuation_db_per_km * layer_length_m * 1e-3;
+    std::ostringstream line;
+    line << "  radar (" << o.frequency_hz * 1e-9 << " GHz)         2-way loss " << loss_db << " dB";
+    return {.json = {{"frequency_hz", o.frequency_hz},
+                     {"specific_attenuation_db_per_km", o.specific_attenuation_db_per_km},
+                     {"volume_backscatter_m2_per_m3", o.volume_backscatter_m2_per_m3},
+                     {"two_way_loss_db_per_layer", loss_db}},
+            .line = line.str()};
+  }
+
+  std::unique_ptr<sensor::SensorRun> start(
+      const std::any& params, const sensor::Context& context,
+      const propagation::SegelsteinTable& water) const override {
+    return std::make_unique<RadarRun>(sensor::params_of<SensorParams>(params), context, water);
+  }
+};
+
+}  // namespace
+
+class RadarWorker : public sensor::Worker {
+ public:
+  explicit RadarWorker(const RadarRun& run) : run_(run), workspace_(run.chain().make_workspace()) {}
+
+  void measure(std::size_t step, std::size_t index, RandomStream& stream,
+               sensor::RawSink* raw) override;
+
+ private:
+  const RadarRun& run_;
+  MeasurementWorkspace workspace_;
+  Measurement measurement_;
+};
+
+KeyTable<SensorParams> sensor_keys() {
+  KeyTable<SensorParams> keys;
+  keys.include(radar_param_keys(), FOGRADAR_KEY_FIELD(radar));
+  keys.include(target_keys(), FOGRADAR_KEY_FIELD(target));
+  keys.integer("fog.clutter_scatterers_per_bin", FOGRADAR_KEY_FIELD(clutter_scatterers_per_bin), 1,
+               64, "random point scatterers per range bin that make up the radar's fog clutter");
+  return keys;
+}
+
+MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measurements) {
+  const std::size_t samples = params.radar.samples_per_chirp,
+                    chirps = params.radar.chirps_per_frame;
+  const std::size_t cells = samples * chirps;
+  MemoryEstimate e;
+  // Per thread (MeasurementWorkspace): the complex frame, the chirps x samples detection mask and
+  // the one-chirp buffer of the range FFT chirp by chirp.
+  const std::size_t frame =
+      cells * complex_bytes + cells * sizeof(std::uint8_t) + samples * complex_bytes;
+  // CFAR along one range row: the row's power, threshold, detections, window sums and two profiles
+  // of block sums (CfarWorkspace); along four rows at once (CfarFourWorkspace): their power,
+  // thresholds, detections, pair sums and window sums, four profiles each, and the one-row
+  // workspace OS uses for them.
+  const std::size_t one_row_cfar = 6 * samples * double_bytes;
+  const std::size_t cfar =
+      one_row_cfar + CfarFourWorkspace::profiles * 5 * samples * double_bytes + one_row_cfar;
+  // Estimation: range kernels (re, im; two values per sample; a batch of objects), the batch's
+  // Doppler columns, the rotated peak-search buffers (4 of the longer axis), and per axis a
+  // Dirichlet table and an inverse DFT with 2n cosines and 2n sines each.
+  const std::size_t estimation = 2 * interpolation_batch * 2 * samples * double_bytes +
+                                 interpolation_batch * chirps * complex_bytes +
+                                 4 * std::max(samples, chirps) * double_bytes +
+                                 2 * 4 * (samples + chirps) * double_bytes;
+  // The Doppler transform's packed block buffer.
+  const std::size_t doppler_block = doppler_block_columns * chirps * complex_bytes;
+  // Tones: every centre's paths plus the fog clutter, at most clutter_scatterers_per_bin per range
+  // bin of the unambiguous range; twice for the vector's growth.
+  const std::size_t tones = 2 * sizeof(Tone) * (params.clutter_scatterers_per_bin * samples + 64);
+  e.per_thread_bytes = frame + cfar + estimation + doppler_block + tones;
+  // Shared: the windows (range, Doppler, range pairs), both window spectra (16 x oversampled
+  // complex tables, OriginClassifier) and the FFT plans (about two complex twiddles per point and
+  // axis).
+  const std::size_t windows = (3 * samples + chirps) * double_bytes;
+  const std::size_t spectra = 16 * (samples + chirps + 2) * complex_bytes;
+  const std::size_t plans = 2 * (samples + chirps) * complex_bytes;
+  e.shared_bytes = windows + spectra + plans;
+  e.records_bytes = measurements * sizeof(MeasurementRecord);
+  return e;
+}
+
+std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+
+RadarRun::RadarRun(const SensorParams& params, const sensor::Context& context,
+                   const propagation::SegelsteinTable& water)
+    : params_(params),
+      context_(context),
+      scene_(make_scene(params.target, params.clutter_scatterers_per_bin)),
+      chamber_(context.chamber, params.radar.centre_frequency_hz, water),
+      chain_(params.radar),
+      steps_(std::make_shared<std::vector<StepResult>>(context.steps)) {
+  chain_.check_compatible(scene_, chamber_);
+  for (std::size_t k = 0; k < context.steps; ++k) {
+    active_.push_back(context.active(k));
+    StepResult& step = (*steps_)[k];
+    step.active_layers = k;
+    step.two_way_attenuation_db =
+        chamber_.two_way_attenuation_db(chamber_.target_range_m(), active_.back());
+    step.records.resize(context.measurements_per_step);
+  }
+}
+
+double RadarRun::cfar_threshold_db() const {
+  return power_ratio_to_db(chain_.cfar().threshold_factor());
+}
+
+double RadarRun::expected_false_alarm_cells_per_frame() const {
+  return chain_.cfar().config().false_alarm_probability *
+         static_cast<double>(params_.radar.chirps_per_frame * params_.radar.samples_per_chirp);
+}
+
+std::unique_ptr<sensor::Worker> RadarRun::make_worker() const {
+  return std::make_unique<RadarWorker>(*this);
+}
+
+void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& stream,
+                          sensor::RawSink* /*raw*/) {
+  run_.chain().measure(run_.scene_, run_.chamber_, run_.active_[step], stream, workspace_,
+                       measurement_);
+  (*run_.steps_)[step].records[index] = record_of(measurement_);
+}
+
+std::unique_ptr<const sensor::SensorSummary> RadarRun::summarize() const {
+  return std::make_unique<Report>(
+      params_, context_, steps_,
+      radar::summarize(*steps_, cfar_threshold_db(), expected_false_alarm_cells_per_frame()));
+}
+
+}  // namespace fogradar::radar

@@ -1,0 +1,59 @@
+#include "fogradar/radar/target.hpp"
+
+#include "fogradar/core/error.hpp"
+
+namespace fogradar::radar {
+
+std::string_view to_string(TargetModel model) noexcept {
+  return model == TargetModel::evt ? "evt" : "point";
+}
+
+TargetModel parse_target_model(std::string_view text, std::string_view field) {
+  if (text == "evt") return TargetModel::evt;
+  if (text == "point") return TargetModel::point;
+  throw_invalid(field, text, "one of 'evt', 'point'");
+}
+
+KeyTable<TargetSpec> target_keys() {
+  KeyTable<TargetSpec> keys("target.");
+  keys.choice(
+      "model", FOGRADAR_KEY_FIELD(model), {"evt", "point"}, parse_target_model,
+      [](TargetModel m) { return to_string(m); },
+      "EVT rear as five scattering centres, or one point");
+  keys.number("rcs_dbsm", FOGRADAR_KEY_FIELD(rcs_dbsm), closed(-60.0, 60.0),
+              "mean RCS (sum over the EVT's centres)");
+  // Any integer reaches the parser, which names the allowed set (0, 1, 3).
+  keys.integer(
+      "swerling", [](const TargetSpec& t) { return static_cast<std::int64_t>(t.swerling); },
+      [](TargetSpec& t, std::int64_t v) {
+        t.swerling = parse_swerling(std::to_string(v), "target.swerling");
+      },
+      "integer 0, 1, 3", "point target fluctuation from measurement to measurement");
+  keys.number("height_m", FOGRADAR_KEY_FIELD(height_m), closed(0.0, 100.0),
+              "point target height above the floor");
+  keys.number("sensor_height_m", FOGRADAR_KEY_FIELD(sensor_height_m), closed(0.0, 100.0),
+              "radar height; boresight is horizontal");
+  keys.boolean("floor_multipath", FOGRADAR_KEY_FIELD(floor_multipath), "two-ray floor reflection");
+  keys.number("floor_reflection_coefficient", FOGRADAR_KEY_FIELD(floor_reflection_coefficient),
+              closed(-1.0, 1.0), "real amplitude reflection coefficient of the floor");
+  keys.number("micro_motion_std_m", FOGRADAR_KEY_FIELD(micro_motion_std_m), closed(0.0, 0.1),
+              "rms line-of-sight jitter of each centre per measurement");
+  return keys;
+}
+
+Scene make_scene(const TargetSpec& target, unsigned clutter_scatterers_per_bin) {
+  Scene scene = target.model == TargetModel::evt ? evt_rear_scene(target.rcs_dbsm)
+                                                 : point_target_scene(target.rcs_dbsm);
+  if (target.model == TargetModel::point) {
+    scene.centres.front().height_m = target.height_m;
+    scene.centres.front().swerling = target.swerling;
+  }
+  scene.sensor_height_m = target.sensor_height_m;
+  scene.floor.enabled = target.floor_multipath;
+  scene.floor.reflection_coefficient = target.floor_reflection_coefficient;
+  scene.micro_motion_std_m = target.micro_motion_std_m;
+  scene.clutter_scatterers_per_bin = clutter_scatterers_per_bin;
+  return scene;
+}
+
+}  // namespace fogradar::radar

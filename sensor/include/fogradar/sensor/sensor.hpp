@@ -1,0 +1,220 @@
+// The one shape every sensor has (DESIGN §10): experiment/, cli/ and python/ know a sensor only
+// through this interface, and one registry in experiment/ names the sensors that implement it
+// (pbrt-v4's Medium: a small interface, one factory that names the types). A sensor folder
+// (radar/, lidar/, camera/) provides:
+//
+//   SensorType                 its name, scenario keys, validation, memory estimate, raw data
+//   kinds,
+//                              result file names and its view of a fog (`fogradar fog`), and makes
+//   SensorRun                  one run of it on one chamber: per-step state, then items measured by
+//   Worker                     per-thread workers from their own random streams, then
+//   SensorSummary              its per-step statistics, limit verdict, printed table, JSON summary,
+//                              result files and benchmark curve.
+//
+// A sensor's parameters travel through experiment/ as a std::any holding its own struct; its keys
+// (core/keys.hpp) read and write them. Items are keyed (seed, sensor's stream key, step, index), so
+// a run is byte-identical for any thread count and adding a sensor never changes another's numbers.
+#pragma once
+
+#include <any>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fogradar/core/keys.hpp"
+#include "fogradar/core/random.hpp"
+#include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/water.hpp"
+
+namespace fogradar::sensor {
+
+// What a scenario gives every sensor besides its own keys: the chamber, the methodology's steps
+// (k = 0 .. steps - 1 active layers, switched on from the sensor) and the seed.
+struct Context {
+  propagation::ChamberSpec chamber;
+  std::size_t steps = 5;
+  std::size_t measurements_per_step = 200;  // experiment.measurements_per_step: the study's series
+  std::uint64_t seed = 1;
+
+  // The layers switched on at `step` (propagation::first_layers_active).
+  propagation::ActiveLayers active(std::size_t step) const;
+};
+
+// The study's benchmark line of one sensor: layers to failure by its own criterion, or how far from
+// failure it stayed at the last step.
+struct Verdict {
+  std::optional<std::size_t> layers_to_failure;
+  std::string criterion;  // as the benchmark table and summary.json state it
+  std::string margin;     // empty when the limit is reached
+};
+
+// The sensor's metric relative to clear weather (step 0) per step, for benchmark.svg.
+struct Curve {
+  std::string metric;  // the legend's word: "RCS", "intensity", "contrast"
+  std::vector<double> active_layers;
+  std::vector<double> relative_value;
+  std::optional<std::size_t> limit;
+};
+
+struct ResultFile {
+  std::string name;  // in the result set, prefixed with the sensor's name
+  std::string content;
+};
+
+// The bytes a run holds for one sensor with `threads` workers, and what they are made of (the keys
+// and values a refusal over the memory limit names).
+struct MemoryPart {
+  std::size_t bytes = 0;
+  std::string detail;  // "radar.samples_per_chirp = 512 x radar.chirps_per_frame = 64: ..."
+  std::string key;     // the key the refusal names when this part is the largest
+};
+
+// The fog of one layer as the sensor sees it (`fogradar fog`): one JSON object and one line of
+// text.
+struct FogReport {
+  nlohmann::json json;
+  std::string line;
+};
+
+// One kind of raw data a sensor can write per item (DESIGN §11): an array of `shape` per item, or a
+// table of rows per item (element = table). The run's HDF5 file holds it as /<sensor>/<name>,
+// indexed [step, item, ...].
+enum class RawElement { complex128, float64, uint8, table };
+
+struct RawAxis {
+  std::string name;  // dataset /<sensor>/<name>, attached to its dimension
+  std::string units;
+  std::vector<double> values;
+};
+
+struct RawColumn {
+  std::string name;
+  std::string units;
+  bool integer = false;             // stored as a 64-bit integer
+  std::vector<std::string> labels;  // non-empty: an enumeration, the value its label's index
+};
+
+struct RawKind {
+  std::string name;
+  std::string description;
+  std::string units;
+  RawElement element = RawElement::float64;
+  std::vector<std::string> dimensions;  // names of an item's dimensions
+  std::vector<std::size_t> shape;       // an item's shape
+  std::vector<RawAxis> axes;            // one per dimension; an axis without values has no dataset
+  std::vector<RawColumn> columns;       // table kinds
+  std::size_t rows_per_item = 0;        // table kinds: the size estimate's rows per item
+
+  std::size_t item_values() const;  // product of `shape`
+  std::size_t item_bytes() const;   // of one item (tables: rows_per_item rows)
+};
+
+// Where a worker puts one item's raw data, as the run was asked for it (null when none is).
+class RawSink {
+ public:
+  virtual ~RawSink() = default;
+  // Whether kind `kind` (an index into the sensor's raw_kinds()) is wanted for this item.
+  virtual bool wants(std::size_t kind) const = 0;
+  virtual void write(std::size_t kind, std::span<const std::complex<double>> values) = 0;
+  virtual void write(std::size_t kind, std::span<const double> values) = 0;
+  virtual void write(std::size_t kind, std::span<const std::uint8_t> values) = 0;
+  // Table rows, row-major, one value per column (integers and labels by their index).
+  virtual void append_rows(std::size_t kind, std::span<const double> rows) = 0;
+};
+
+class SensorSummary {
+ public:
+  virtual ~SensorSummary() = default;
+  virtual Verdict verdict() const = 0;
+  // The per-step table `fogradar run` prints under the sensor's name.
+  virtual std::string table() const = 0;
+  // <name>_summary.json, embedded in summary.json as sensors.<name>.summary.
+  virtual nlohmann::json json() const = 0;
+  // Every result file of the sensor's own.
+  virtual std::vector<ResultFile> files() const = 0;
+  virtual Curve curve() const = 0;
+};
+
+class Worker {
+ public:
+  virtual ~Worker() = default;
+  // Measures item `index` of step `step`, every random draw from `stream`, and stores its record at
+  // its index; writes its raw data into `raw` when given.
+  virtual void measure(std::size_t step, std::size_t index, RandomStream& stream, RawSink* raw) = 0;
+};
+
+// One sensor in one run: made once, then its steps prepared, its items measured by workers on any
+// thread, and summarised.
+class SensorRun {
+ public:
+  virtual ~SensorRun() = default;
+  virtual std::size_t items_per_step() const = 0;
+  // The step's own state (a fog series, band optics), made once on the calling thread before any of
+  // the step's items.
+  virtual void prepare_step(std::size_t step) = 0;
+  // A worker holding one thread's workspace; made by the thread that uses it.
+  virtual std::unique_ptr<Worker> make_worker() const = 0;
+  // After every item: what the run found.
+  virtual std::unique_ptr<const SensorSummary> summarize() const = 0;
+};
+
+class SensorType {
+ public:
+  virtual ~SensorType() = default;
+  // The scenario's name of the sensor ("radar"): experiment.sensors, its section, its files'
+  // prefix.
+  virtual std::string_view name() const = 0;
+  // Its random streams' key (sensor_stream); distinct in one registry.
+  virtual std::uint64_t stream_key() const = 0;
+  // Its items in words, for progress: "radar measurements".
+  virtual std::string_view item_noun() const = 0;
+  // What its benchmark curve shows, for benchmark.svg's caption: "median target RCS as a power
+  // ratio".
+  virtual std::string_view curve_caption() const = 0;
+
+  // Its parameters with every key at its default, and its keys over them.
+  virtual std::any default_params() const = 0;
+  virtual KeyTable<std::any> keys() const = 0;
+  // Throws InvalidParameter naming the scenario key (its own or the chamber's).
+  virtual void validate(const std::any& params, const Context& context) const = 0;
+  virtual std::size_t items_per_step(const std::any& params, const Context& context) const = 0;
+  virtual MemoryPart memory(const std::any& params, const Context& context,
+                            unsigned threads) const = 0;
+  virtual std::vector<RawKind> raw_kinds(const std::any& params, const Context& context) const = 0;
+  // Whether a file of this name in a result directory is one of the sensor's result files.
+  virtual bool owns_file_name(std::string_view file_name) const = 0;
+  virtual FogReport fog_report(const std::any& params, const propagation::FogSpec& fog,
+                               double layer_length_m,
+                               const propagation::SegelsteinTable& water) const = 0;
+  // Builds the sensor for one run (valid params and context).
+  virtual std::unique_ptr<SensorRun> start(const std::any& params, const Context& context,
+                                           const propagation::SegelsteinTable& water) const = 0;
+};
+
+// A sensor's parameters inside the std::any experiment/ carries.
+template <class Params>
+Params& params_of(std::any& params) {
+  return std::any_cast<Params&>(params);
+}
+template <class Params>
+const Params& params_of(const std::any& params) {
+  return std::any_cast<const Params&>(params);
+}
+
+// A sensor's key table over its parameters, lifted to the std::any that holds them.
+template <class Params>
+KeyTable<std::any> erase_keys(const KeyTable<Params>& keys) {
+  KeyTable<std::any> table;
+  table.include(
+      keys, [](auto& params) -> auto& { return params_of<Params>(params); });
+  return table;
+}
+
+}  // namespace fogradar::sensor

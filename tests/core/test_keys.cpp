@@ -1,0 +1,147 @@
+// Key declarations (core/keys.hpp): the allowed intervals as messages and docs state them, and a
+// table's keys named in full, reached through projections into nested structs and arrays, checked
+// in declaration order with the bad-input messages core/error.hpp's checks give.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/core/keys.hpp"
+
+namespace fogradar {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+TEST(Keys, DocNumbersAreShortestWithPlainExponents) {
+  EXPECT_EQ(doc_number(77e9), "7.7e10");
+  EXPECT_EQ(doc_number(1e-6), "1e-6");
+  EXPECT_EQ(doc_number(2.5e-7), "2.5e-7");
+  EXPECT_EQ(doc_number(0.5), "0.5");
+  EXPECT_EQ(doc_number(-20.0), "-20");
+  EXPECT_EQ(doc_number(1e10), "1e10");
+  EXPECT_EQ(doc_number(10000.0), "10000");
+}
+
+TEST(Keys, IntervalsAsMessagesAndDocsStateThem) {
+  const Interval c = closed(0.0, 40.0);
+  EXPECT_EQ(c.constraint(), "in [0, 40]");
+  EXPECT_EQ(c.doc(), "[0, 40]");
+  EXPECT_TRUE(c.contains(0.0) && c.contains(40.0));
+  EXPECT_FALSE(c.contains(-1e-300) || c.contains(nan) || c.contains(inf));
+  const Interval oc = open_closed(0.0, 1e4);
+  EXPECT_EQ(oc.constraint(), "in (0, 10000]");
+  EXPECT_FALSE(oc.contains(0.0));
+  EXPECT_TRUE(oc.contains(1e4));
+  EXPECT_EQ(open(0.0, 1.0).constraint(), "in (0, 1)");
+  EXPECT_FALSE(open(0.0, 1.0).contains(1.0));
+  // The wording of require_positive; infinity is no positive number of a scenario.
+  EXPECT_EQ(positive().constraint(), "finite and > 0");
+  EXPECT_EQ(positive().doc(), "> 0");
+  EXPECT_FALSE(positive().contains(inf));
+  EXPECT_TRUE(positive().contains(1e-300));
+  // Ten significant digits, as require_in_range writes them.
+  EXPECT_EQ(closed(1e9, 300e9).constraint(), "in [1000000000, 3e+11]");
+}
+
+struct Point {
+  double x_m = 1.0;
+  unsigned count = 2;
+};
+
+struct Plan {
+  Point origin;
+  std::vector<Point> points = std::vector<Point>(3);
+  bool fine = false;
+};
+
+KeyTable<Point> point_keys(std::string prefix) {
+  KeyTable<Point> keys(std::move(prefix));
+  keys.number("x_m", FOGRADAR_KEY_FIELD(x_m), closed(0.0, 10.0), "distance");
+  keys.integer("count", FOGRADAR_KEY_FIELD(count), 1, 9, "how many");
+  return keys;
+}
+
+KeyTable<Plan> plan_keys() {
+  KeyTable<Plan> keys("plan.");
+  keys.include(point_keys("plan.origin."), FOGRADAR_KEY_FIELD(origin));
+  keys.table_array("points", FOGRADAR_KEY_FIELD(points), &point_keys, 4, "≤ 4", "the points");
+  keys.boolean("fine", FOGRADAR_KEY_FIELD(fine), "fine grid").with_check([](const Plan& p) {
+    if (p.fine && p.origin.count < 2) throw_invalid("plan.fine", "true", "false with count 1");
+  });
+  return keys;
+}
+
+std::string rejected(const Plan& plan) {
+  try {
+    plan_keys().check(plan);
+  } catch (const InvalidParameter& e) {
+    return e.field() + " | " + e.what();
+  }
+  return "accepted";
+}
+
+TEST(Keys, IncludedKeysAreNamedInFullAndReachTheirField) {
+  const KeyTable<Plan> keys = plan_keys();
+  std::vector<std::string> names;
+  for (const Key<Plan>& key : keys.keys()) names.push_back(key.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"plan.origin.x_m", "plan.origin.count", "plan.points",
+                                             "plan.fine"}));
+  EXPECT_EQ(keys.keys()[0].section(), "plan.origin");
+  EXPECT_EQ(keys.keys()[0].short_name(), "x_m");
+  Plan plan;
+  keys.keys()[0].set_number(plan, 7.5);
+  keys.keys()[1].set_integer(plan, 4);
+  EXPECT_EQ(plan.origin.x_m, 7.5);
+  EXPECT_EQ(plan.origin.count, 4u);
+  const Plan& read_only = plan;
+  EXPECT_EQ(keys.keys()[0].get_number(read_only), 7.5);
+  EXPECT_EQ(keys.keys()[2].array_size(read_only), 3u);
+  // An element's keys are named with its index and reach that element.
+  KeyTable<Plan> second;
+  keys.keys()[2].array_element(1, second);
+  ASSERT_EQ(second.keys().size(), 2u);
+  EXPECT_EQ(second.keys()[0].name, "plan.points[1].x_m");
+  second.keys()[0].set_number(plan, 3.0);
+  EXPECT_EQ(plan.points[1].x_m, 3.0);
+  EXPECT_EQ(plan.points[0].x_m, 1.0);
+}
+
+TEST(Keys, ChecksNameTheKeyTheValueAndTheRange) {
+  EXPECT_EQ(rejected(Plan{}), "accepted");
+  Plan far;
+  far.origin.x_m = 12.0;
+  EXPECT_EQ(rejected(far), "plan.origin.x_m | plan.origin.x_m = 12: must be in [0, 10]");
+  Plan none;
+  none.points[2].count = 0;
+  EXPECT_EQ(rejected(none),
+            "plan.points[2].count | plan.points[2].count = 0: must be an integer in [1, 9]");
+  Plan many;
+  many.points.resize(5);
+  EXPECT_EQ(rejected(many), "plan.points | plan.points = 5: must be a count in [0, 4]");
+  Plan fine;
+  fine.fine = true;
+  fine.origin.count = 1;
+  EXPECT_EQ(rejected(fine), "plan.fine | plan.fine = 'true': must be false with count 1");
+  // Declaration order: the first key that breaks its range is the one named.
+  Plan both = far;
+  both.points[0].x_m = nan;
+  EXPECT_EQ(rejected(both).substr(0, 16), "plan.origin.x_m ");
+}
+
+TEST(Keys, AKeyThatTakesNoEffectIsNotChecked) {
+  KeyTable<Point> keys;
+  keys.number("x_m", FOGRADAR_KEY_FIELD(x_m), closed(0.0, 10.0), "distance")
+      .when([](const Point& p) { return p.count > 1; }, "with count > 1");
+  Point p{.x_m = -5.0, .count = 1};
+  EXPECT_FALSE(keys.keys()[0].takes_effect(p));
+  EXPECT_NO_THROW(keys.check(p));
+  p.count = 2;
+  EXPECT_THROW(keys.check(p), InvalidParameter);
+}
+
+}  // namespace
+}  // namespace fogradar
