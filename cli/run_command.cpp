@@ -6,6 +6,7 @@
 #include <sys/signalfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +25,7 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/outputs.hpp"
+#include "fogradar/experiment/raw.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
@@ -37,7 +39,23 @@ struct RunOptions {
   std::optional<std::int64_t> seed;  // signed: CLI11 would wrap "-4" into an unsigned
   int threads = 0;
   std::optional<double> memory_limit_mib;  // default: experiment::default_memory_limit_bytes()
+  std::optional<std::string> raw_path;     // --raw: the raw data out (docs/data-out.md)
+  // --raw-select, --raw-steps, --raw-items, --raw-limit-mib
+  experiment::RawRequest raw;
 };
+
+// --raw must not lie inside --out, which is replaced whole.
+void require_raw_outside(const std::filesystem::path& raw, const std::filesystem::path& out) {
+  std::error_code error;
+  const std::filesystem::path file = std::filesystem::absolute(raw, error).lexically_normal();
+  const std::filesystem::path dir = std::filesystem::absolute(out, error).lexically_normal();
+  const auto [d, f] = std::mismatch(dir.begin(), dir.end(), file.begin(), file.end());
+  if (d == dir.end() || (std::next(d) == dir.end() && d->empty())) {
+    throw_invalid(
+        "--raw", raw.string(),
+        "a file outside --out = '" + out.string() + "' (the result set is replaced whole)");
+  }
+}
 
 // Progress on stderr only when it is a terminal (docs/architecture.md, Contracts); throttled to
 // whole percents. `items` says what is counted ("radar measurements and lidar scans").
@@ -140,25 +158,39 @@ void run(const RunOptions& options) {
                                : experiment::default_memory_limit_bytes());
 
   const std::filesystem::path dir(options.out_dir);
+  std::optional<experiment::RawPlan> raw_plan;
+  if (options.raw_path) {
+    require_raw_outside(*options.raw_path, dir);
+    experiment::RawRequest request = options.raw;
+    request.path = *options.raw_path;
+    raw_plan = experiment::resolve_raw(scenario, request);
+  }
   // Before the output directory: the directory is released with the signals still held off.
   const SignalWatch signals;
   experiment::OutputDirectory out(dir, experiment::result_file_names(scenario));
+  std::optional<experiment::RawFile> raw;
+  if (raw_plan) raw.emplace(*raw_plan, scenario);
   experiment::ExperimentResult result;
   try {
     result = experiment::run_experiment(
         scenario, {.threads = static_cast<unsigned>(options.threads),
                    .progress = terminal_progress(experiment::item_nouns(scenario)),
-                   .stop = &signals.stop()});
+                   .stop = &signals.stop(),
+                   .raw = raw ? &*raw : nullptr});
   } catch (const experiment::Interrupted&) {
     signals.throw_interrupted(dir);
   }
   const experiment::ExperimentSummary summary = experiment::summarize(result);
+  // The raw file complete on disk before the result set is swapped, named only after it.
+  if (raw) raw->finish();
   if (!out.replace(experiment::result_files(scenario, summary),
                    [&] { return signals.stop().load(); })) {
     signals.throw_interrupted(dir);
   }
+  if (raw) raw->publish();
   std::cout << experiment::sensor_tables(summary) << experiment::benchmark_table(summary)
             << "results in " << dir.string() << "/\n";
+  if (raw) std::cout << "raw data in " << options.raw_path->c_str() << "\n";
 }
 
 }  // namespace
@@ -188,6 +220,33 @@ Action add_run_command(CLI::App& app) {
                    "Refuse a run whose estimated peak memory exceeds this many MiB [1, 1e9] "
                    "(default: half the physical memory)")
       ->check(number_in("--memory-limit-mib", 1.0, 1e9, "in [1, 1e9]"));
+  CLI::Option* raw =
+      run_app
+          ->add_option("--raw", options->raw_path,
+                       "Write every measurement's raw data asked for into this HDF5 file "
+                       "(docs/data-out.md); a new file or one fogradar wrote, outside --out")
+          ->check(non_empty_path("--raw"));
+  run_app
+      ->add_option("--raw-select", options->raw.kinds,
+                   "With --raw: the kinds, sensor.kind separated by commas (docs/data-out.md; a "
+                   "wrong one is refused with the running sensors' kinds) (default: every kind "
+                   "of the sensors that run)")
+      ->needs(raw);
+  run_app
+      ->add_option("--raw-steps", options->raw.steps,
+                   "With --raw: the steps (active layers), e.g. 0,4 or 0-2 (default: every step)")
+      ->needs(raw);
+  run_app
+      ->add_option("--raw-items", options->raw.items,
+                   "With --raw: the items of each step (measurements, scans, frames), e.g. 0-9 "
+                   "(default: the first ten)")
+      ->needs(raw);
+  run_app
+      ->add_option("--raw-limit-mib", options->raw.limit_mib,
+                   "With --raw: refuse a raw file estimated larger than this many MiB [1, 1e9]")
+      ->capture_default_str()
+      ->check(number_in("--raw-limit-mib", 1.0, 1e9, "in [1, 1e9]"))
+      ->needs(raw);
   return [options] { run(*options); };
 }
 

@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libfftw3-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libhdf5-dev hdf5-tools python3-numpy python3-h5py
   "$@"
 )
 missing=()

@@ -276,7 +276,7 @@ std::uint8_t Camera::quantise(double linear) const {
   return static_cast<std::uint8_t>(walk_level(thresholds_, linear, low + 1u));
 }
 
-CameraFrame Camera::frame(const StepOptics& optics, RandomStream& stream) const {
+CameraFrame Camera::frame(const StepOptics& optics, RandomStream& stream, bool keep_pixels) const {
   FOGRADAR_CHECK(optics.transmittance.size() == channel_count_);
   const RoiParams& roi = params_.roi;
   const NoiseParams& noise = params_.noise;
@@ -293,7 +293,7 @@ CameraFrame Camera::frame(const StepOptics& optics, RandomStream& stream) const 
   const double* normal = reinterpret_cast<const double*>(normals.data());
 
   CameraFrame result;
-  if (params_.write_roi_images) result.pixels.assign(pixels, 0);
+  if (keep_pixels) result.pixels.assign(pixels, 0);
   std::vector<double> cell_linear(cells_.size(), 0.0);
   double target_sum = 0.0;
   double background_sum = 0.0;

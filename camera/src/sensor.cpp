@@ -124,9 +124,15 @@ class Run : public sensor::SensorRun {
    public:
     explicit FrameWorker(const Run& run) : run_(run) {}
     void measure(std::size_t step, std::size_t index, RandomStream& stream,
-                 sensor::RawSink*) override {
+                 sensor::RawSink* raw) override {
       CameraStepResult& result = (*run_.steps_)[step];
-      result.frames[index] = run_.camera_->frame(result.optics, stream);
+      const bool keep = run_.camera_->params().write_roi_images;
+      const bool image = raw != nullptr && raw->wants(raw_images);
+      CameraFrame& frame = result.frames[index];
+      frame = run_.camera_->frame(result.optics, stream, keep || image);
+      if (!image) return;
+      raw->write(raw_images, std::span<const std::uint8_t>(frame.pixels));
+      if (!keep) frame.pixels = {};
     }
 
    private:
@@ -145,10 +151,10 @@ class Type : public sensor::SensorType {
   std::string_view item_noun() const override { return "camera frames"; }
   std::string_view curve_caption() const override { return "target contrast"; }
   std::any default_params() const override { return CameraParams{}; }
-  KeyTable<std::any> keys() const override { return sensor::erase_keys(camera_keys()); }
+  const KeyTable<std::any>& keys() const override { return keys_; }
 
   void validate(const std::any& params, const sensor::Context&) const override {
-    sensor::params_of<CameraParams>(params).validate();
+    keys_.check(params);
   }
 
   std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {
@@ -167,8 +173,24 @@ class Type : public sensor::SensorType {
             .key = "camera.frames_per_step"};
   }
 
-  std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
-    return {};
+  std::vector<sensor::RawKind> raw_kinds(const std::any& params,
+                                         const sensor::Context&) const override {
+    const CameraParams& p = sensor::params_of<CameraParams>(params);
+    std::vector<sensor::RawKind> kinds(1);
+    kinds[raw_images] = {
+        .name = "images",
+        .description =
+            "every frame's grey image of the region of interest, row-major, as the "
+            "histograms count it (camera_roi_<step>.pgm holds the first)",
+        .units = "grey level",
+        .element = sensor::RawElement::uint8,
+        .dimensions = {"y", "x"},
+        .shape = {p.roi.height_px, p.roi.width_px},
+        .axes = {},
+        .columns = {},
+        .rows_per_item = 0,
+        .attributes = {}};
+    return kinds;
   }
 
   bool owns_file_name(std::string_view file_name) const override {
@@ -207,6 +229,9 @@ class Type : public sensor::SensorType {
       const propagation::SegelsteinTable& water) const override {
     return std::make_unique<Run>(sensor::params_of<CameraParams>(params), context, water);
   }
+
+ private:
+  KeyTable<std::any> keys_ = sensor::erase_keys(camera_keys());
 };
 
 }  // namespace

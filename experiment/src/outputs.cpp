@@ -15,12 +15,16 @@
 #include <string_view>
 #include <vector>
 
+#include "files.hpp"
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::experiment {
 namespace {
 
 namespace fs = std::filesystem;
+using detail::Descriptor;
+using detail::errno_text;
+using detail::sync_path;
 
 // The files of a result set that belong to no one sensor.
 const char* const common_file_names[] = {"summary.json", "scenario.toml", "benchmark.svg"};
@@ -28,19 +32,6 @@ const char* const common_file_names[] = {"summary.json", "scenario.toml", "bench
 [[noreturn]] void refuse(const fs::path& path, const std::string& constraint) {
   throw_invalid("--out", path.string(), constraint);
 }
-
-std::string errno_text() { return std::strerror(errno); }
-
-// Closes a file descriptor when it goes out of scope.
-struct Descriptor {
-  int fd;
-  explicit Descriptor(int descriptor) : fd(descriptor) {}
-  ~Descriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-  Descriptor(const Descriptor&) = delete;
-  Descriptor& operator=(const Descriptor&) = delete;
-};
 
 // Writes `content` to a new file and fsyncs it, so the data is on disk before the rename that
 // publishes it (a crash after the rename must not expose an empty file).
@@ -54,11 +45,6 @@ void write_file(const fs::path& path, const std::string& content) {
     written += static_cast<std::size_t>(n);
   }
   if (::fsync(file.fd) != 0) refuse(path, "a writable location (" + errno_text() + ")");
-}
-
-bool sync_directory(const fs::path& path) {
-  const Descriptor directory(::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  return directory.fd >= 0 && ::fsync(directory.fd) == 0;
 }
 
 bool is_result_file(const fs::directory_entry& entry, const ResultFileNames& names) {
@@ -168,59 +154,25 @@ OutputDirectory::OutputDirectory(fs::path dir, ResultFileNames names) : names_(s
   fs::create_directories(parent_, error);
   if (error) refuse(given, "a directory that can be created (" + error.message() + ")");
 
-  // The lock file is unlinked by its holder before it lets go, so a run that locked a file someone
-  // has since unlinked holds nothing: it checks that the name still leads to its file, else
-  // retries.
-  lock_path_ = parent_ / ("." + name + ".lock");
-  for (;;) {
-    lock_fd_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0) refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
-    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-      const bool busy = errno == EWOULDBLOCK;
-      const std::string why = errno_text();
-      ::close(lock_fd_);
-      lock_fd_ = -1;
-      if (busy)
-        refuse(given, "a directory no other fogradar run is writing to (" + lock_path_.string() +
-                          " is locked)");
-      refuse(given, "a directory that can be locked (" + why + ")");
-    }
-    struct stat held {
-    }, named{};
-    if (::fstat(lock_fd_, &held) == 0 && ::stat(lock_path_.c_str(), &named) == 0 &&
-        held.st_dev == named.st_dev && held.st_ino == named.st_ino) {
-      break;
-    }
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+  lock_ = std::make_unique<detail::PathLock>(dir_, "--out", given.string(), "a directory");
+  require_only_result_files(dir_, given, names_);
+  std::string staging =
+      (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
+  if (::mkdtemp(staging.data()) == nullptr) {
+    refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
   }
-
-  try {
-    require_only_result_files(dir_, given, names_);
-    std::string staging =
-        (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
-    if (::mkdtemp(staging.data()) == nullptr) {
-      refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
-    }
-    staging_ = staging;
-  } catch (...) {
-    ::unlink(lock_path_.c_str());
-    ::close(lock_fd_);
-    throw;
-  }
+  staging_ = staging;
 }
 
 OutputDirectory::~OutputDirectory() {
   std::error_code ignored;
   if (!staging_.empty()) fs::remove_all(staging_, ignored);
-  ::unlink(lock_path_.c_str());
-  ::close(lock_fd_);
 }
 
 bool OutputDirectory::replace(const std::vector<sensor::ResultFile>& files,
                               const std::function<bool()>& abandon) {
   for (const sensor::ResultFile& file : files) write_file(staging_ / file.name, file.content);
-  if (!sync_directory(staging_))
+  if (!sync_path(staging_, true))
     refuse(staging_, "a directory that can be synced (" + errno_text() + ")");
   if (abandon && abandon()) return false;
   if (fs::exists(fs::symlink_status(dir_))) {
@@ -237,7 +189,7 @@ bool OutputDirectory::replace(const std::vector<sensor::ResultFile>& files,
   }
   // The set is in place; a failed sync of the rename is the kernel's to retry, not the run's
   // failure.
-  sync_directory(parent_);
+  sync_path(parent_, true);
   // The previous set, now under the staging name: its result files by name, then the directory if
   // that left it empty (only a file put into `dir` in the instant of the swap would keep it).
   if (!staging_.empty()) {

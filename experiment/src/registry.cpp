@@ -19,11 +19,9 @@ void SensorRegistry::add(std::shared_ptr<const sensor::SensorType> type) {
   for (const auto& other : types_) {
     FOGRADAR_CHECK(other->name() != type->name());
     FOGRADAR_CHECK(other->stream_key() != type->stream_key());
-    const KeyTable<std::any> declared = other->keys();
-    for (const Key<std::any>& key : declared.keys()) keys.insert(key.name);
+    for (const Key<std::any>& key : other->keys().keys()) keys.insert(key.name);
   }
-  const KeyTable<std::any> declared = type->keys();
-  for (const Key<std::any>& key : declared.keys()) FOGRADAR_CHECK(!keys.contains(key.name));
+  for (const Key<std::any>& key : type->keys().keys()) FOGRADAR_CHECK(!keys.contains(key.name));
   types_.push_back(std::move(type));
 }
 

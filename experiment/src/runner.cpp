@@ -43,7 +43,9 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
         if (!measure[s]) measure[s] = sensors[s].run->make_worker();
         const std::size_t step = local / per_step, index = local % per_step;
         RandomStream stream = sensor_stream(seed, sensors[s].type->stream_key(), step, index);
-        measure[s]->measure(step, index, stream, nullptr);
+        const std::unique_ptr<sensor::RawSink> raw =
+            options.raw != nullptr ? options.raw->sink(s, step, index) : nullptr;
+        measure[s]->measure(step, index, stream, raw.get());
         const std::size_t finished = ++done;
         if (options.progress) options.progress(finished, total);
       }

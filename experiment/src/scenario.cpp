@@ -17,6 +17,7 @@
 #include <sstream>
 #include <vector>
 
+#include "files.hpp"
 #include "fogradar/core/error.hpp"
 #include "toml_bytes.hpp"
 
@@ -124,64 +125,94 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
   return keys;
 }
 
-// The scenario's keys in file order (Scenario::keys): the first sensor's, the experiment's, the
+// The scenario's keys in file order, one table per part: the first sensor's, the experiment's, the
 // other sensors'.
-std::vector<KeyTable<Scenario>> key_parts(const Scenario& s) {
+std::vector<KeyTable<Scenario>> key_parts(const std::vector<SensorSetting>& sensors) {
   std::vector<std::string> names;
-  for (const SensorSetting& setting : s.sensors) names.emplace_back(setting.type->name());
+  for (const SensorSetting& setting : sensors) names.emplace_back(setting.type->name());
   std::vector<KeyTable<Scenario>> parts;
-  for (std::size_t i = 0; i < s.sensors.size(); ++i) {
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
     if (i == 1) parts.push_back(experiment_keys(names));
     KeyTable<Scenario> part;
     part.include(
-        s.sensors[i].type->keys(), [i](auto& scenario) -> auto& {
+        sensors[i].type->keys(), [i](auto& scenario) -> auto& {
           return scenario.sensors[i].params;
         });
     parts.push_back(std::move(part));
   }
-  if (s.sensors.size() < 2) parts.push_back(experiment_keys(names));
+  if (sensors.size() < 2) parts.push_back(experiment_keys(names));
   return parts;
 }
 
-// The file's layout: each section (a TOML table) with its keys, in the order the file lists them.
+}  // namespace
+
+namespace detail {
+
+// A section of the file (a TOML table) with its keys, in the order the file lists them.
+struct Section {
+  std::string name;
+  std::size_t part = 0;  // of key_parts()
+  std::vector<const Key<Scenario>*> keys;
+};
+
+// A scenario's keys and the file's layout of them, made once from its sensors (Scenario's
+// constructor) and shared by its copies.
+struct ScenarioKeys {
+  explicit ScenarioKeys(const std::vector<SensorSetting>& sensors);
+
+  std::vector<const sensor::SensorType*> types;  // the sensors they were made for, in order
+  KeyTable<Scenario> all;                        // every key, in part order
+  std::vector<Section> sections;
+};
+
 // A section belongs to the part that declares it first, the experiment's part before the sensors'
 // (so [fog] is the experiment's although the radar declares fog.clutter_scatterers_per_bin); a
 // section's own keys come first, keys other parts declare in it after them.
-struct Section {
-  std::string name;
-  std::size_t part = 0;
-  std::vector<const ScenarioKey*> keys;
-};
-
-std::vector<Section> layout(const std::vector<KeyTable<Scenario>>& parts,
-                            std::size_t experiment_part) {
-  std::map<std::string, std::size_t> owner;
-  const auto claim = [&](std::size_t p) {
-    for (const ScenarioKey& key : parts[p].keys()) owner.emplace(std::string(key.section()), p);
-  };
-  claim(experiment_part);
-  for (std::size_t p = 0; p < parts.size(); ++p) claim(p);
-  std::vector<Section> sections;
+ScenarioKeys::ScenarioKeys(const std::vector<SensorSetting>& sensors) {
+  for (const SensorSetting& setting : sensors) types.push_back(setting.type.get());
+  const std::size_t experiment_part = sensors.empty() ? 0 : 1;
+  std::vector<std::size_t> part_of;
+  std::vector<KeyTable<Scenario>> parts = key_parts(sensors);
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    part_of.insert(part_of.end(), parts[p].keys().size(), p);
+    all.append(std::move(parts[p]));
+  }
+  const std::vector<Key<Scenario>>& keys = all.keys();
+  std::map<std::string, std::size_t, std::less<>> owner;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (part_of[i] == experiment_part) owner.emplace(keys[i].section(), experiment_part);
+  }
+  for (std::size_t i = 0; i < keys.size(); ++i) owner.emplace(keys[i].section(), part_of[i]);
   const auto section_of = [&](std::string_view name) -> Section& {
     for (Section& s : sections) {
       if (s.name == name) return s;
     }
-    return sections.emplace_back(Section{std::string(name), owner.at(std::string(name)), {}});
+    return sections.emplace_back(Section{std::string(name), owner.find(name)->second, {}});
   };
-  for (std::size_t p = 0; p < parts.size(); ++p) {
-    for (const ScenarioKey& key : parts[p].keys()) {
-      if (owner.at(std::string(key.section())) == p) section_of(key.section()).keys.push_back(&key);
+  for (const bool own : {true, false}) {
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if ((owner.find(keys[i].section())->second == part_of[i]) == own) {
+        section_of(keys[i].section()).keys.push_back(&keys[i]);
+      }
     }
   }
-  for (std::size_t p = 0; p < parts.size(); ++p) {
-    for (const ScenarioKey& key : parts[p].keys()) {
-      if (owner.at(std::string(key.section())) != p) section_of(key.section()).keys.push_back(&key);
-    }
-  }
-  return sections;
 }
 
-std::size_t experiment_part_index(const Scenario& s) { return s.sensors.empty() ? 0 : 1; }
+const ScenarioKeys& keys_of(const Scenario& s) {
+  const ScenarioKeys& keys = *s.keys_;
+  // The tables read and write sensors[i] by index.
+  FOGRADAR_CHECK(keys.types.size() == s.sensors.size());
+  for (std::size_t i = 0; i < s.sensors.size(); ++i) {
+    FOGRADAR_CHECK(keys.types[i] == s.sensors[i].type.get());
+  }
+  return keys;
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::Section;
 
 bool is_key_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
@@ -218,12 +249,10 @@ class Reader {
       : root_(root), source_(source), scenario_(scenario) {}
 
   void read() {
-    const std::vector<KeyTable<Scenario>> parts = key_parts(scenario_);
-    const std::vector<Section> sections = layout(parts, experiment_part_index(scenario_));
-    for (const KeyTable<Scenario>& part : parts) {
-      for (const ScenarioKey& key : part.keys()) {
-        if (!key.group.empty()) groups_[key.group].push_back(key.name);
-      }
+    const detail::ScenarioKeys& keys = detail::keys_of(scenario_);
+    const std::vector<Section>& sections = keys.sections;
+    for (const ScenarioKey& key : keys.all.keys()) {
+      if (!key.group.empty()) groups_[key.group].push_back(key.name);
     }
     std::vector<std::string> top;
     for (const Section& s : sections) {
@@ -475,17 +504,6 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
   return s;
 }
 
-// Closes the scenario file however reading it ends.
-struct FileDescriptor {
-  int fd;
-  explicit FileDescriptor(int descriptor) : fd(descriptor) {}
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  ~FileDescriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
 // A default as docs/scenario.md shows it.
 std::string doc_value(const ScenarioKey& key, const Scenario& s) {
   if (!key.takes_effect(s)) return "—";
@@ -513,6 +531,7 @@ Scenario::Scenario(const SensorRegistry& registry) {
     sensors.push_back({type, type->default_params()});
     experiment.sensors.emplace_back(type->name());
   }
+  keys_ = std::make_shared<const detail::ScenarioKeys>(sensors);
 }
 
 SensorSetting& Scenario::setting(std::string_view name) {
@@ -531,18 +550,12 @@ bool Scenario::runs(std::string_view name) const {
          experiment.sensors.end();
 }
 
-KeyTable<Scenario> Scenario::keys() const {
-  KeyTable<Scenario> all;
-  for (const KeyTable<Scenario>& part : key_parts(*this)) {
-    all.include(
-        part, [](auto& s) -> auto& { return s; });
-  }
-  return all;
-}
+const KeyTable<Scenario>& Scenario::keys() const { return detail::keys_of(*this).all; }
 
+// The keys in file order first, then what each sensor checks beyond its keys (a sensor's keys are
+// checked twice: checks are cheap, the tables are made once).
 void Scenario::validate() const {
   keys().check(*this);
-  chamber_spec().validate();
   const sensor::Context shared = context();
   for (const SensorSetting& s : sensors) s.type->validate(s.params, shared);
 }
@@ -578,7 +591,7 @@ Scenario load_scenario_file(const std::string& path, const SensorRegistry& regis
   const std::string wanted = "a readable regular TOML file of at most " +
                              std::to_string(max_scenario_file_bytes) + " bytes (1 MiB)";
   // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it unread.
-  const FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  const detail::Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   const int fd = file.fd;
   if (fd < 0) throw_invalid("--scenario", path, wanted + " (" + std::strerror(errno) + ")");
   struct stat info {};
@@ -611,8 +624,7 @@ Scenario load_scenario_file(const std::string& path, const SensorRegistry& regis
 }
 
 std::string to_toml(const Scenario& s) {
-  const std::vector<KeyTable<Scenario>> parts = key_parts(s);
-  const std::vector<Section> sections = layout(parts, experiment_part_index(s));
+  const std::vector<Section>& sections = detail::keys_of(s).sections;
   std::vector<std::string> blocks;
   // Arrays of tables follow the last section of the part that declares them.
   std::vector<std::string> arrays;
@@ -647,8 +659,7 @@ std::string to_toml(const Scenario& s) {
 
 std::vector<std::string> top_level_sections(const Scenario& s) {
   std::vector<std::string> top;
-  const std::vector<KeyTable<Scenario>> parts = key_parts(s);
-  for (const Section& section : layout(parts, experiment_part_index(s))) {
+  for (const Section& section : detail::keys_of(s).sections) {
     const std::string first = section.name.substr(0, section.name.find('.'));
     if (std::find(top.begin(), top.end(), first) == top.end()) top.push_back(first);
   }
@@ -658,8 +669,7 @@ std::vector<std::string> top_level_sections(const Scenario& s) {
 std::string key_table_markdown(const Scenario& defaults, std::string_view top) {
   const std::string prefix = std::string(top) + ".";
   std::string rows;
-  const std::vector<KeyTable<Scenario>> parts = key_parts(defaults);
-  for (const Section& section : layout(parts, experiment_part_index(defaults))) {
+  for (const Section& section : detail::keys_of(defaults).sections) {
     if (section.name != top && !section.name.starts_with(prefix)) continue;
     for (const ScenarioKey* key : section.keys) {
       if (key->type == KeyType::retired) continue;

@@ -101,9 +101,7 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
   grid_ = {.sample_interval_s = params_.sample_interval_ns * 1e-9,
            .pulse_fwhm_s = params_.pulse_width_ns * 1e-9,
            .full_overlap_range_m = params_.overlap_range_m};
-  samples_ = static_cast<std::size_t>(std::floor(
-                 2.0 * params_.max_range_m / speed_of_light_m_per_s / grid_.sample_interval_s)) +
-             1;
+  samples_ = params_.samples_per_beam();
   // The datasheet's detection range: a Lambertian target of threshold_reflectivity at
   // threshold_range_m, normal incidence, clear air, peaks exactly at the threshold.
   const double threshold =
@@ -121,9 +119,7 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
                .max_echoes = params_.max_echoes};
 }
 
-double Lidar::beam_angle_deg(std::size_t beam) const {
-  return -0.5 * params_.field_of_view_deg + static_cast<double>(beam) * params_.angular_step_deg;
-}
+double Lidar::beam_angle_deg(std::size_t beam) const { return params_.beam_angle_deg(beam); }
 
 double Lidar::layer_start_m(std::size_t layer) const { return layers_.at(layer).start_m; }
 double Lidar::layer_end_m(std::size_t layer) const { return layers_.at(layer).end_m; }
@@ -243,9 +239,10 @@ BeamWaveform Lidar::waveform(std::size_t beam, const propagation::ActiveLayers& 
 }
 
 LidarScan Lidar::measure(const propagation::ActiveLayers& active,
-                         std::span<const double> optical_depth_factors,
-                         RandomStream& stream) const {
+                         std::span<const double> optical_depth_factors, RandomStream& stream,
+                         std::span<double> waveforms) const {
   check_inputs(active, optical_depth_factors);
+  FOGRADAR_CHECK(waveforms.empty() || waveforms.size() == beam_count_ * samples_);
   LidarScan scan;
   ComplexNormalGenerator generator(stream);
   // Two real samples per complex one: each part of CN(0, 2 sigma^2) is N(0, sigma^2), read as the
@@ -282,6 +279,9 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
     }
     hi = std::min(hi, samples_);
     for (std::size_t k = lo; k < hi; ++k) received[k] += target[k] + fog[k] + background[k];
+    if (!waveforms.empty()) {
+      std::copy(received.begin(), received.end(), waveforms.begin() + beam * samples_);
+    }
     if (through_fog) ++scan.beams_through_fog;
     const bool exceeds =
         lo < hi || *std::max_element(received.begin(), received.end()) >= detector_.threshold;

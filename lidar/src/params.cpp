@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/stats/format.hpp"
 
@@ -151,6 +152,16 @@ KeyTable<LidarParams> lidar_keys() {
 }
 
 void LidarParams::validate() const { lidar_keys().check(*this); }
+
+double LidarParams::beam_angle_deg(std::size_t beam) const {
+  return -0.5 * field_of_view_deg + static_cast<double>(beam) * angular_step_deg;
+}
+
+std::size_t LidarParams::samples_per_beam() const {
+  return static_cast<std::size_t>(
+             std::floor(2.0 * max_range_m / speed_of_light_m_per_s / (sample_interval_ns * 1e-9))) +
+         1;
+}
 
 std::size_t LidarParams::beam_count() const {
   return static_cast<std::size_t>(std::floor(field_of_view_deg / angular_step_deg + 1e-9)) + 1;

@@ -112,13 +112,30 @@ class Run : public sensor::SensorRun {
    public:
     explicit ScanWorker(const Run& run) : run_(run) {}
     void measure(std::size_t step, std::size_t index, RandomStream& stream,
-                 sensor::RawSink*) override {
-      (*run_.steps_)[step].scans[index] =
-          run_.lidar_->measure(run_.active_[step], run_.fog_[step].scan(index), stream);
+                 sensor::RawSink* raw) override {
+      const bool waveforms = raw != nullptr && raw->wants(raw_waveforms);
+      if (waveforms) {
+        waveforms_.resize(run_.lidar_->beam_count() * run_.lidar_->samples_per_beam());
+      }
+      LidarScan& scan = (*run_.steps_)[step].scans[index];
+      scan = run_.lidar_->measure(run_.active_[step], run_.fog_[step].scan(index), stream,
+                                  waveforms ? std::span<double>(waveforms_) : std::span<double>());
+      if (waveforms) raw->write(raw_waveforms, std::span<const double>(waveforms_));
+      if (raw != nullptr && raw->wants(raw_echoes)) {
+        rows_.clear();
+        for (const LidarEcho& e : scan.echoes) {
+          rows_.insert(rows_.end(),
+                       {static_cast<double>(e.beam), run_.lidar_->beam_angle_deg(e.beam),
+                        static_cast<double>(e.index), e.range_m, e.intensity,
+                        static_cast<double>(e.origin)});
+        }
+        raw->append_rows(raw_echoes, rows_);
+      }
     }
 
    private:
     const Run& run_;
+    std::vector<double> waveforms_, rows_;  // asked for as raw data
   };
 
   sensor::Context context_;
@@ -137,10 +154,10 @@ class Type : public sensor::SensorType {
     return "median target intensity (a missing target counted as 0)";
   }
   std::any default_params() const override { return LidarParams{}; }
-  KeyTable<std::any> keys() const override { return sensor::erase_keys(lidar_keys()); }
+  const KeyTable<std::any>& keys() const override { return keys_; }
 
   void validate(const std::any& params, const sensor::Context&) const override {
-    sensor::params_of<LidarParams>(params).validate();
+    keys_.check(params);
   }
 
   std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {
@@ -160,8 +177,9 @@ class Type : public sensor::SensorType {
             .key = "lidar.scans_per_step"};
   }
 
-  std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
-    return {};
+  std::vector<sensor::RawKind> raw_kinds(const std::any& params,
+                                         const sensor::Context&) const override {
+    return lidar_raw_kinds(sensor::params_of<LidarParams>(params));
   }
 
   bool owns_file_name(std::string_view file_name) const override {
@@ -199,10 +217,54 @@ class Type : public sensor::SensorType {
       const propagation::SegelsteinTable& water) const override {
     return std::make_unique<Run>(sensor::params_of<LidarParams>(params), context, water);
   }
+
+ private:
+  KeyTable<std::any> keys_ = sensor::erase_keys(lidar_keys());
 };
 
 }  // namespace
 
 std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+
+std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
+  const std::size_t beams = params.beam_count(), samples = params.samples_per_beam();
+  sensor::RawAxis angle{"angle_deg", "deg", {}}, time{"time_s", "s", {}};
+  for (std::size_t b = 0; b < beams; ++b) angle.values.push_back(params.beam_angle_deg(b));
+  for (std::size_t k = 0; k < samples; ++k) {
+    time.values.push_back(static_cast<double>(k) * params.sample_interval_ns * 1e-9);
+  }
+  std::vector<sensor::RawKind> kinds(2);
+  kinds[raw_waveforms] = {
+      .name = "waveforms",
+      .description =
+          "each beam's received waveform, receiver noise included, as the echo "
+          "extraction sees it: beams x samples, sample k at round-trip time k dt "
+          "(range c k dt / 2); the lidar equation in units of its system constant "
+          "(docs/lidar.md)",
+      .units = "1/(m^2 sr) (units of the system constant C)",
+      .element = sensor::RawElement::float64,
+      .dimensions = {"beam", "sample"},
+      .shape = {beams, samples},
+      .axes = {angle, time},
+      .columns = {},
+      .rows_per_item = 0,
+      .attributes = {}};
+  kinds[raw_echoes] = {.name = "echoes",
+                       .description = "every echo of the scan with its origin (lidar_echoes.csv)",
+                       .units = "",
+                       .element = sensor::RawElement::table,
+                       .dimensions = {},
+                       .shape = {},
+                       .axes = {},
+                       .columns = {{"beam", "", true, {}},
+                                   {"angle_deg", "deg", false, {}},
+                                   {"echo", "", true, {}},
+                                   {"range_m", "m", false, {}},
+                                   {"intensity", "", false, {}},
+                                   {"origin", "", false, {"target", "fog", "background", "noise"}}},
+                       .rows_per_item = beams * params.max_echoes,
+                       .attributes = {}};
+  return kinds;
+}
 
 }  // namespace fogradar::lidar

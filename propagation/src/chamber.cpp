@@ -25,6 +25,7 @@ void ChamberSpec::validate() const {
     throw_invalid("chamber.layers", static_cast<double>(layers.size()),
                   "a layer count in [1, " + std::to_string(max_chamber_layers) + "]");
   }
+  const KeyTable<FogSpec> fog_table = fog_keys("fog.");  // FogSpec::validate's, made once
   for (std::size_t i = 0; i < layers.size(); ++i) {
     const std::string field = "chamber.layers[" + std::to_string(i) + "].length_m";
     if (!(layers[i].length_m > 0.0 && layers[i].length_m <= max_chamber_length_m)) {
@@ -32,7 +33,7 @@ void ChamberSpec::validate() const {
       range << "in (0, " << max_chamber_length_m << "]";
       throw_invalid(field, layers[i].length_m, range.str());
     }
-    layers[i].fog.validate();
+    fog_table.check(layers[i].fog);
   }
 }
 

@@ -59,18 +59,26 @@ MeasurementWorkspace RadarChain::make_workspace() const {
 SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
                                                      const propagation::Chamber& chamber,
                                                      const propagation::ActiveLayers& active,
-                                                     RandomStream& rng,
-                                                     MeasurementWorkspace& ws) const {
+                                                     RandomStream& rng, MeasurementWorkspace& ws,
+                                                     const FrameTaps* taps) const {
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
   const FrameWindow window = processor_.window();
-  const ChirpTransform by_chirp{.fft = &processor_.range_chirp_fft(), .chirp = ws.chirp};
-  const SynthesisReport report =
-      synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp);
-  if (report.range_transformed) {
-    processor_.doppler_transform(ws.frame);
-  } else {
+  SynthesisReport report;
+  if (taps != nullptr && taps->beat) {
+    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame);
+    taps->beat(ws.frame);
+    apply_frame_window(window, ws.frame);
     processor_.transform_windowed(ws.frame, ws.chirp);
+  } else {
+    const ChirpTransform by_chirp{.fft = &processor_.range_chirp_fft(), .chirp = ws.chirp};
+    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp);
+    if (report.range_transformed) {
+      processor_.doppler_transform(ws.frame);
+    } else {
+      processor_.transform_windowed(ws.frame, ws.chirp);
+    }
   }
+  if (taps != nullptr && taps->range_doppler) taps->range_doppler(ws.frame);
   return report;
 }
 
@@ -79,7 +87,7 @@ SynthesisReport RadarChain::synthesize_and_process(const Scene& scene,
                                                    const propagation::ActiveLayers& active,
                                                    RandomStream& rng,
                                                    MeasurementWorkspace& ws) const {
-  const SynthesisReport report = synthesize_and_transform(scene, chamber, active, rng, ws);
+  const SynthesisReport report = synthesize_and_transform(scene, chamber, active, rng, ws, nullptr);
   ws.power.resize(ws.frame.size());
   squared_magnitudes(ws.frame, ws.power);
   return report;
@@ -88,7 +96,13 @@ SynthesisReport RadarChain::synthesize_and_process(const Scene& scene,
 void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber,
                          const propagation::ActiveLayers& active, RandomStream& rng,
                          MeasurementWorkspace& ws, Measurement& out) const {
-  out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws);
+  measure(scene, chamber, active, rng, ws, out, FrameTaps{});
+}
+
+void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber,
+                         const propagation::ActiveLayers& active, RandomStream& rng,
+                         MeasurementWorkspace& ws, Measurement& out, const FrameTaps& taps) const {
+  out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws, &taps);
   estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation,
                       out.detections);
   origin_classifier_.attribute(ws.tones, out.detections);

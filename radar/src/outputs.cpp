@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "fogradar/core/units.hpp"
 #include "fogradar/stats/format.hpp"
 #include "fogradar/stats/svg_plot.hpp"
 
@@ -196,7 +197,7 @@ std::string step_note(const StepSummary& s) {
 std::string samples_csv(const std::vector<StepResult>& steps) {
   std::string out =
       "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,"
-      "origin,fog_detections,false_alarms\n";
+      "origin,fog_detections,false_alarms,velocity_m_per_s\n";
   for (const StepResult& step : steps) {
     for (std::size_t i = 0; i < step.records.size(); ++i) {
       const MeasurementRecord& r = step.records[i];
@@ -208,7 +209,26 @@ std::string samples_csv(const std::vector<StepResult>& steps) {
       } else {
         out += ",,,";
       }
-      out += ',' + std::to_string(r.fog_detections) + ',' + std::to_string(r.false_alarms) + '\n';
+      out += ',' + std::to_string(r.fog_detections) + ',' + std::to_string(r.false_alarms) + ',' +
+             (r.associated ? exact(r.velocity_m_per_s) : "") + '\n';
+    }
+  }
+  return out;
+}
+
+std::string detections_csv(const std::vector<StepResult>& steps) {
+  std::string out =
+      "step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
+      "associated\n";
+  for (const StepResult& step : steps) {
+    for (std::size_t i = 0; i < step.records.size(); ++i) {
+      const std::string prefix = std::to_string(step.active_layers) + ',' + std::to_string(i) + ',';
+      for (const DetectionRecord& d : step.records[i].detections) {
+        out += prefix + exact(d.range_m) + ',' + exact(d.velocity_m_per_s) + ',' +
+               exact(watt_to_dbm(d.received_power_w)) + ',' + exact(d.snr_db) + ',' +
+               exact(d.rcs_dbsm) + ',' + std::string(to_string(d.origin)) +
+               (d.in_gate ? ",1," : ",0,") + (d.associated ? "1\n" : "0\n");
+      }
     }
   }
   return out;

@@ -29,10 +29,20 @@ double fraction(std::size_t count, std::size_t n) {
 
 }  // namespace
 
-MeasurementRecord record_of(const Measurement& m) {
+MeasurementRecord record_of(const Measurement& m, double target_range_m, double gate_m) {
   MeasurementRecord record;
   double strongest_fog_w = 0.0;
+  record.detections.reserve(m.detections.size());
   for (const Detection& d : m.detections) {
+    record.detections.push_back({.range_m = d.range_m,
+                                 .velocity_m_per_s = d.radial_velocity_m_per_s,
+                                 .received_power_w = d.received_power_w,
+                                 .snr_db = d.snr_db,
+                                 .rcs_dbsm = d.rcs_dbsm,
+                                 .origin = d.origin,
+                                 .in_gate = std::abs(d.range_m - target_range_m) <= gate_m,
+                                 .associated = m.target && d.range_cell == m.target->range_cell &&
+                                               d.doppler_cell == m.target->doppler_cell});
     if (d.origin == Origin::noise) ++record.false_alarms;
     if (d.origin != Origin::fog) continue;
     ++record.fog_detections;
@@ -43,6 +53,7 @@ MeasurementRecord record_of(const Measurement& m) {
     record.associated_origin = m.target->origin;
     record.detected = m.target->origin == Origin::target;
     record.range_m = m.target->range_m;
+    record.velocity_m_per_s = m.target->radial_velocity_m_per_s;
     record.rcs_dbsm = m.target->rcs_dbsm;
     record.snr_db = m.target->snr_db;
   }

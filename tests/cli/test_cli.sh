@@ -19,12 +19,12 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t2" --threads 2 >/dev/null 2>&1 \
   || fail "small run (2 threads) failed"
 # small.toml runs the paper scenario's three sensors: every sensor's files.
-for f in radar_samples.csv radar_summary.csv radar_summary.json radar_rcs_boxplot.svg summary.json scenario.toml \
+for f in radar_samples.csv radar_detections.csv radar_summary.csv radar_summary.json radar_rcs_boxplot.svg summary.json scenario.toml \
   lidar_echoes.csv lidar_summary.csv lidar_summary.json lidar_intensity_boxplot.svg lidar_scans.svg \
   camera_histograms.csv camera_summary.csv camera_summary.json camera_histograms.svg benchmark.svg; do
   if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
 done
-[ "$(ls -A "$work/t1" | wc -l)" -eq 16 ] && pass || fail "result set is not the 16 files: $(ls -A "$work/t1")"
+[ "$(ls -A "$work/t1" | wc -l)" -eq 17 ] && pass || fail "result set is not the 17 files: $(ls -A "$work/t1")"
 # One table per sensor, then the benchmark: layers to failure (or not reached) per sensor.
 for sensor in radar lidar camera; do
   grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
@@ -41,8 +41,10 @@ for name, entry in sensors.items():
     assert "sensor_limit_layers" in entry and entry["criterion"], name
 PY
 fi
-head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms' && pass \
+head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms,velocity_m_per_s' && pass \
   || fail "radar_samples.csv header"
+head -1 "$work/t1/radar_detections.csv" | grep -qx 'step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated' && pass \
+  || fail "radar_detections.csv header"
 head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame' \
   && pass || fail "radar_summary.csv header"
 [ "$(wc -l <"$work/t1/radar_samples.csv")" -eq 31 ] && pass || fail "radar_samples.csv should have 5 x 6 rows"
@@ -415,6 +417,48 @@ expect_bad memory-limit-range "--memory-limit-mib" "must be in [1, 1e9]" run --s
   --memory-limit-mib 0
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t-limit" --memory-limit-mib 64 >/dev/null 2>&1 && pass \
   || fail "small.toml refused under a 64 MiB limit"
+
+# --- raw data out (docs/data-out.md): checked before the run, written whole or not at all -----------
+small="$src/tests/cli/small.toml"
+expect_bad_run raw-select "--raw-select" "the running sensors' kinds: radar.beat, radar.range_doppler" \
+  --scenario "$small" --raw "$work/x.h5" --raw-select radar.beat,radar.bogus
+expect_bad_run raw-steps "--raw-steps" "ranges a-b in [0, 4]" --scenario "$small" --raw "$work/x.h5" --raw-steps 0,5
+expect_bad_run raw-items "--raw-items" "(e.g. 0,4 or 0-2,4)" --scenario "$small" --raw "$work/x.h5" --raw-items 3-1
+expect_bad_run raw-limit "--raw-limit-mib" "more than the limit of 1 MiB" --scenario "$small" --raw "$work/x.h5" \
+  --raw-limit-mib 1
+expect_bad_run raw-needed "--raw" "--raw-select requires --raw" --scenario "$small" --raw-select radar.beat
+"$fogradar" run --scenario "$small" --out "$work/raw-inside" --raw "$work/raw-inside/r.h5" >/dev/null 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 2 ] && grep -qF -- "--raw = '$work/raw-inside/r.h5': must be a file outside --out" "$work/stderr" \
+  && [ ! -e "$work/raw-inside" ] && pass || fail "--raw inside --out: exit $rc, $(cat "$work/stderr")"
+[ ! -e "$work/x.h5" ] && pass || fail "a refused run created its --raw file"
+# A file of the user's under the --raw name is never overwritten.
+printf 'mine\n' >"$work/mine.h5"
+"$fogradar" run --scenario "$small" --out "$work/raw-mine" --raw "$work/mine.h5" >/dev/null 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 2 ] && grep -q -- "--raw" "$work/stderr" && [ "$(cat "$work/mine.h5")" = mine ] && [ ! -e "$work/raw-mine" ] \
+  && pass || fail "--raw over a user's file: exit $rc, $(cat "$work/stderr")"
+# Written whole: a raw file fogradar wrote is replaced; a run with --raw gives the same result set as one
+# without; a stopped run leaves neither the file nor its temporary.
+"$fogradar" run --scenario "$small" --out "$work/raw-a" --raw "$work/raw/r.h5" --raw-items 0-1 >/dev/null 2>&1 \
+  && "$fogradar" run --scenario "$small" --out "$work/raw-a" --raw "$work/raw/r.h5" >/dev/null 2>&1 \
+  && pass || fail "a raw file fogradar wrote is not replaced"
+"$fogradar" run --scenario "$small" --out "$work/raw-b" >/dev/null 2>&1
+diff -r "$work/raw-a" "$work/raw-b" >/dev/null && pass || fail "--raw changed the result set"
+command -v h5dump >/dev/null && { h5dump -H "$work/raw/r.h5" | grep -q 'DATASET "range_doppler"' && pass \
+  || fail "h5dump finds no /radar/range_doppler"; }
+set -m
+"$fogradar" run --scenario "$work/long.toml" --threads 1 --out "$work/raw-stopped" --raw "$work/raw-stopped.h5" \
+  >/dev/null 2>"$work/err" &
+pid=$!
+set +m
+for _ in $(seq 100); do ls -A "$work" | grep -q '^\.raw-stopped\.h5\.tmp-' && break; sleep 0.05; done
+sleep 0.2
+kill -s TERM "$pid"
+wait "$pid"
+rc=$?
+[ "$rc" -eq 143 ] && [ ! -e "$work/raw-stopped.h5" ] && [ -z "$(ls -A "$work" | grep '^\.raw-stopped')" ] && pass \
+  || fail "a stopped run with --raw: exit $rc, left $(ls -A "$work" | grep raw-stopped)"
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -40,13 +40,16 @@ TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
   EXPECT_EQ(e.per_thread_bytes, 84992u);
   // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560.
   EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u);
-  EXPECT_EQ(e.records_bytes, 15 * sizeof(radar::MeasurementRecord));
+  // Records: per measurement the record and a 128-byte CSV row, and 4 + ceil(2 x 1e-6 x 1024) = 5
+  // detections of their own size and a CSV row each.
+  const std::size_t record_bytes =
+      sizeof(radar::MeasurementRecord) + 128 + 5 * (sizeof(radar::DetectionRecord) + 128);
+  EXPECT_EQ(e.records_bytes, 15 * record_bytes);
   // The run's estimate: two workers' frames, the shared part, the records and the process (16 MiB).
   const MemoryEstimate run = estimate_peak_memory(s, 2);
   EXPECT_EQ(run.threads, 2u);
   ASSERT_EQ(run.sensors.size(), 1u);
-  EXPECT_EQ(run.total_bytes(), 2 * 84992u + 1664u + 20992u + 2560u + 16777216u +
-                                   15 * sizeof(radar::MeasurementRecord));
+  EXPECT_EQ(run.total_bytes(), 2 * 84992u + 1664u + 20992u + 2560u + 16777216u + 15 * record_bytes);
 }
 
 TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {

@@ -109,21 +109,21 @@ TEST_F(Outputs, TheRunHoldsEveryKindOfRecord) {
       detected, false_associations, missed, fog, false_alarms);
 }
 
-// radar_samples.csv: one row per measurement; range, RCS and SNR of the associated detection read
-// back to
-// exactly the record's doubles, the origin is the associated detection's, counts are exact.
+// radar_samples.csv: one row per measurement; range, RCS, SNR and velocity of the associated
+// detection read back to exactly the record's doubles, the origin is the associated detection's,
+// counts are exact.
 TEST_F(Outputs, SamplesCsvNumbersReadBackExactly) {
   const std::vector<std::string> lines = lines_of(radar::samples_csv(steps()));
   ASSERT_EQ(lines.front(),
             "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,"
-            "false_alarms");
+            "false_alarms,velocity_m_per_s");
   std::size_t row = 1;
   for (const StepResult& step : steps()) {
     for (std::size_t i = 0; i < step.records.size(); ++i, ++row) {
       const MeasurementRecord& r = step.records[i];
       ASSERT_LT(row, lines.size());
       const std::vector<std::string> f = split(lines[row], ',');
-      ASSERT_EQ(f.size(), 9u) << lines[row];
+      ASSERT_EQ(f.size(), 10u) << lines[row];
       EXPECT_EQ(f[0], std::to_string(step.active_layers));
       EXPECT_EQ(f[1], std::to_string(i));
       EXPECT_EQ(f[2], r.detected ? "1" : "0");
@@ -132,14 +132,63 @@ TEST_F(Outputs, SamplesCsvNumbersReadBackExactly) {
         EXPECT_EQ(parse(f[4]), r.rcs_dbsm) << lines[row];
         EXPECT_EQ(parse(f[5]), r.snr_db) << lines[row];
         EXPECT_EQ(f[6], radar::to_string(r.associated_origin));
+        EXPECT_EQ(parse(f[9]), r.velocity_m_per_s) << lines[row];
       } else {
-        EXPECT_EQ(f[3] + f[4] + f[5] + f[6], "") << lines[row];
+        EXPECT_EQ(f[3] + f[4] + f[5] + f[6] + f[9], "") << lines[row];
       }
       EXPECT_EQ(f[7], std::to_string(r.fog_detections));
       EXPECT_EQ(f[8], std::to_string(r.false_alarms));
     }
   }
   EXPECT_EQ(row, lines.size());
+}
+
+// radar_detections.csv: every detection of every measurement. Per frame its fog- and noise-origin
+// rows count what radar_samples.csv's fog_detections and false_alarms say; its in-gate rows are
+// those within the association gate (0.5 m) of the chamber's 10 m target range; the one marked
+// associated is radar_samples.csv's detection, the strongest in the gate (received power).
+TEST_F(Outputs, DetectionsCsvHoldsEveryDetectionOfEveryFrame) {
+  const std::vector<std::string> lines = lines_of(radar::detections_csv(steps()));
+  ASSERT_EQ(lines.front(),
+            "step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
+            "associated");
+  struct Frame {
+    std::size_t fog = 0, noise = 0, associated = 0;
+    double strongest_in_gate_dbm = -1e300;
+    std::vector<std::string> associated_row;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, Frame> frames;
+  for (std::size_t row = 1; row < lines.size(); ++row) {
+    const std::vector<std::string> f = split(lines[row], ',');
+    ASSERT_EQ(f.size(), 10u) << lines[row];
+    Frame& frame = frames[{std::stoul(f[0]), std::stoul(f[1])}];
+    frame.fog += f[7] == "fog" ? 1 : 0;
+    frame.noise += f[7] == "noise" ? 1 : 0;
+    EXPECT_EQ(f[8] == "1", std::abs(parse(f[2]) - 10.0) <= 0.5) << lines[row];
+    if (f[8] == "1")
+      frame.strongest_in_gate_dbm = std::max(frame.strongest_in_gate_dbm, parse(f[4]));
+    if (f[9] == "1") {
+      ++frame.associated;
+      frame.associated_row = f;
+    }
+  }
+  std::size_t checked = 0;
+  for (const StepResult& step : steps()) {
+    for (std::size_t i = 0; i < step.records.size(); ++i) {
+      const MeasurementRecord& r = step.records[i];
+      const Frame& frame = frames[{step.active_layers, i}];
+      EXPECT_EQ(frame.fog, r.fog_detections);
+      EXPECT_EQ(frame.noise, r.false_alarms);
+      ASSERT_EQ(frame.associated, r.associated ? 1u : 0u);
+      if (!r.associated) continue;
+      EXPECT_EQ(parse(frame.associated_row[2]), r.range_m);
+      EXPECT_EQ(parse(frame.associated_row[6]), r.rcs_dbsm);
+      EXPECT_EQ(frame.associated_row[7], radar::to_string(r.associated_origin));
+      EXPECT_EQ(parse(frame.associated_row[4]), frame.strongest_in_gate_dbm);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0u);
 }
 
 // radar_summary.csv against radar_summary.json, step by step: the same fields (the JSON interval

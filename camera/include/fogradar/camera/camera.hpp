@@ -46,7 +46,7 @@ struct CameraFrame {
   double mean_grey = 0.0;
   double target_contrast = 0.0;  // Weber contrast of target vs background means, linearised
   std::size_t edges_above_threshold = 0;
-  std::vector<std::uint8_t> pixels;  // row-major grey image; only when write_roi_images
+  std::vector<std::uint8_t> pixels;  // row-major grey image; only when asked for (Camera::frame)
 };
 
 struct CameraStepResult {
@@ -98,8 +98,12 @@ class Camera {
   // computed once per step, shared by that step's frames.
   StepOptics step_optics(const propagation::ActiveLayers& active) const;
   // One frame: draws shot and read noise from `stream` (experiment/ passes
-  // sensor_stream(seed, stream_key, step, frame)).
-  CameraFrame frame(const StepOptics& optics, RandomStream& stream) const;
+  // sensor_stream(seed, stream_key, step, frame)). The grey image is kept in CameraFrame::pixels
+  // when `keep_pixels` (camera.write_roi_images, or the run's raw data asks for it).
+  CameraFrame frame(const StepOptics& optics, RandomStream& stream, bool keep_pixels) const;
+  CameraFrame frame(const StepOptics& optics, RandomStream& stream) const {
+    return frame(optics, stream, params_.write_roi_images);
+  }
   // The frames of one step from sensor_stream(seed, camera, step, index), index = frame: what
   // experiment/ does frame by frame; for tests and benchmarks.
   CameraStepResult measure_step(std::size_t step, const propagation::ActiveLayers& active,

@@ -16,6 +16,9 @@ namespace fogradar::camera {
 // The camera's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
+// The camera's raw data per frame (DESIGN §11): its grey image.
+enum RawKindIndex : std::size_t { raw_images = 0 };
+
 // What a run of the camera found: one result per step with the frames by index, and their summary.
 class CameraReport : public sensor::SensorSummary {
  public:

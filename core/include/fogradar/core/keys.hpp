@@ -299,8 +299,17 @@ class KeyTable {
         throw_invalid(full, static_cast<double>(elements.size()),
                       "a count in [0, " + std::to_string(max_count) + "]");
       }
+      if (elements.empty()) return;
+      // One table checks every element; the element that fails is checked again under its own
+      // name ("lidar.background[2].x0_m") for the message.
+      const KeyTable<Element> any_element = element_keys(full + "[].");
       for (std::size_t i = 0; i < elements.size(); ++i) {
-        element_keys(full + "[" + std::to_string(i) + "].").check(elements[i]);
+        try {
+          any_element.check(elements[i]);
+        } catch (const InvalidParameter&) {
+          element_keys(full + "[" + std::to_string(i) + "].").check(elements[i]);
+          throw;
+        }
       }
     };
     return key;
@@ -317,6 +326,15 @@ class KeyTable {
   void include(const KeyTable<Sub>& table, Projection project) {
     for (const Key<Sub>& sub : table.keys()) keys_.push_back(lift(sub, project));
   }
+  template <class Sub, class Projection>
+  void include(KeyTable<Sub>&& table, Projection project) {
+    for (Key<Sub>& sub : table.keys_) keys_.push_back(lift(std::move(sub), project));
+  }
+  // Appends `table`'s keys (over P, already named in full) as they are.
+  void append(KeyTable&& table) {
+    keys_.insert(keys_.end(), std::make_move_iterator(table.keys_.begin()),
+                 std::make_move_iterator(table.keys_.end()));
+  }
 
  private:
   Key<P>& add(std::string_view name, KeyType type, std::string allowed, std::string meaning) {
@@ -329,52 +347,60 @@ class KeyTable {
     return keys_.back();
   }
 
+  template <class Sub>
+  friend class KeyTable;
+
   template <class Sub, class Projection>
-  static Key<P> lift(const Key<Sub>& sub, Projection project) {
+  static Key<P> lift(Key<Sub> sub, Projection project) {
     Key<P> key;
-    key.name = sub.name;
+    key.name = std::move(sub.name);
     key.type = sub.type;
-    key.allowed = sub.allowed;
-    key.meaning = sub.meaning;
+    key.allowed = std::move(sub.allowed);
+    key.meaning = std::move(sub.meaning);
     key.integer_low = sub.integer_low;
     key.integer_high = sub.integer_high;
-    key.choices = sub.choices;
+    key.choices = std::move(sub.choices);
     key.array_max = sub.array_max;
-    key.applies_text = sub.applies_text;
-    key.group = sub.group;
+    key.applies_text = std::move(sub.applies_text);
+    key.group = std::move(sub.group);
     // const P& -> const Sub& and P& -> Sub& through the same generic projection.
     const auto reading = [project](auto f) {
-      return [project, f](const P& p) { return f(project(p)); };
+      return [project, f = std::move(f)](const P& p) { return f(project(p)); };
     };
     const auto writing = [project](auto f) {
-      return [project, f](P& p, const auto& value) { f(project(p), value); };
+      return [project, f = std::move(f)](P& p, const auto& value) { f(project(p), value); };
     };
-    if (sub.get_number) key.get_number = reading(sub.get_number);
-    if (sub.set_number) key.set_number = writing(sub.set_number);
-    if (sub.get_integer) key.get_integer = reading(sub.get_integer);
-    if (sub.set_integer) key.set_integer = writing(sub.set_integer);
-    if (sub.integer_also) key.integer_also = reading(sub.integer_also);
-    if (sub.get_boolean) key.get_boolean = reading(sub.get_boolean);
-    if (sub.set_boolean) key.set_boolean = writing(sub.set_boolean);
-    if (sub.get_text) key.get_text = reading(sub.get_text);
+    if (sub.get_number) key.get_number = reading(std::move(sub.get_number));
+    if (sub.set_number) key.set_number = writing(std::move(sub.set_number));
+    if (sub.get_integer) key.get_integer = reading(std::move(sub.get_integer));
+    if (sub.set_integer) key.set_integer = writing(std::move(sub.set_integer));
+    if (sub.integer_also) key.integer_also = reading(std::move(sub.integer_also));
+    if (sub.get_boolean) key.get_boolean = reading(std::move(sub.get_boolean));
+    if (sub.set_boolean) key.set_boolean = writing(std::move(sub.set_boolean));
+    if (sub.get_text) key.get_text = reading(std::move(sub.get_text));
     if (sub.set_text) {
-      key.set_text = [project, f = sub.set_text](P& p, std::string_view v) { f(project(p), v); };
-    }
-    if (sub.get_list) key.get_list = reading(sub.get_list);
-    if (sub.set_list) key.set_list = writing(sub.set_list);
-    if (sub.array_size) key.array_size = reading(sub.array_size);
-    if (sub.array_resize) {
-      key.array_resize = [project, f = sub.array_resize](P& p, std::size_t n) { f(project(p), n); };
-    }
-    if (sub.array_element) {
-      key.array_element = [project, f = sub.array_element](std::size_t i, KeyTable<P>& out) {
-        KeyTable<Sub> element;
-        f(i, element);
-        out.include(element, project);
+      key.set_text = [project, f = std::move(sub.set_text)](P& p, std::string_view v) {
+        f(project(p), v);
       };
     }
-    if (sub.check) key.check = [project, f = sub.check](const P& p) { f(project(p)); };
-    if (sub.applies) key.applies = reading(sub.applies);
+    if (sub.get_list) key.get_list = reading(std::move(sub.get_list));
+    if (sub.set_list) key.set_list = writing(std::move(sub.set_list));
+    if (sub.array_size) key.array_size = reading(std::move(sub.array_size));
+    if (sub.array_resize) {
+      key.array_resize = [project, f = std::move(sub.array_resize)](P& p, std::size_t n) {
+        f(project(p), n);
+      };
+    }
+    if (sub.array_element) {
+      key.array_element = [project, f = std::move(sub.array_element)](std::size_t i,
+                                                                      KeyTable<P>& out) {
+        KeyTable<Sub> element;
+        f(i, element);
+        out.include(std::move(element), project);
+      };
+    }
+    if (sub.check) key.check = [project, f = std::move(sub.check)](const P& p) { f(project(p)); };
+    if (sub.applies) key.applies = reading(std::move(sub.applies));
     return key;
   }
 

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,10 @@
 #include "fogradar/sensor/sensor.hpp"
 
 namespace fogradar::experiment {
+
+namespace detail {
+class PathLock;
+}  // namespace detail
 
 // Whether a file name is one a result set can hold: summary.json, scenario.toml, benchmark.svg, or
 // one of a registered sensor's (sensor::SensorType::owns_file_name). A directory holding only such
@@ -64,8 +69,8 @@ class OutputDirectory {
 
  private:
   ResultFileNames names_;
-  std::filesystem::path dir_, parent_, lock_path_, staging_;
-  int lock_fd_ = -1;
+  std::filesystem::path dir_, parent_, staging_;
+  std::unique_ptr<detail::PathLock> lock_;
 };
 
 }  // namespace fogradar::experiment

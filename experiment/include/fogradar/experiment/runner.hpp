@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/experiment/raw.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/sensor/sensor.hpp"
 
@@ -42,6 +43,8 @@ struct RunOptions {
   // When set (by another thread, e.g. one that waits for signals), the workers stop at their next
   // item and run_experiment throws Interrupted. May be null.
   const std::atomic<bool>* stop = nullptr;
+  // Where the items' raw data goes (its plan resolved for this scenario), or null for none.
+  RawFile* raw = nullptr;
 };
 
 // Thrown by run_experiment when RunOptions::stop was set: there is no partial result.

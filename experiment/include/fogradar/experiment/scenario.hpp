@@ -40,6 +40,12 @@ struct ExperimentSpec {
   std::uint64_t seed = 1;
 };
 
+struct Scenario;
+namespace detail {
+struct ScenarioKeys;
+const ScenarioKeys& keys_of(const Scenario& scenario);
+}  // namespace detail
+
 // One registered sensor's parameters (its own struct, sensor::params_of).
 struct SensorSetting {
   std::shared_ptr<const sensor::SensorType> type;
@@ -53,7 +59,9 @@ struct Scenario {
   ChamberLayout chamber;
   propagation::FogSpec fog;
   ExperimentSpec experiment;
-  std::vector<SensorSetting> sensors;  // every registered sensor, in the registry's order
+  // Every registered sensor, in the registry's order; fixed by the constructor (the scenario's keys
+  // are made for them).
+  std::vector<SensorSetting> sensors;
 
   // The parameters of the sensor named `name`, as its own struct (throws std::bad_any_cast for
   // another type, InvalidParameter for an unregistered name).
@@ -76,7 +84,11 @@ struct Scenario {
   sensor::Context context() const;
   // Every key of the scenario, as the file lays them out: the first sensor's sections, then
   // [chamber], [fog] and [experiment], then the other sensors' (the paper scenario's order).
-  KeyTable<Scenario> keys() const;
+  const KeyTable<Scenario>& keys() const;
+
+ private:
+  friend const detail::ScenarioKeys& detail::keys_of(const Scenario&);
+  std::shared_ptr<const detail::ScenarioKeys> keys_;  // made once, shared by copies
 };
 
 // The compiled-in paper scenario file (examples/paper.toml), verbatim.

@@ -111,10 +111,12 @@ class Lidar {
 
   // One scan: every beam's waveform plus Gaussian receiver noise (std noise_std()) drawn from
   // `stream`, echoes extracted, origins attributed. Beams that cross no active layer and hit
-  // nothing get noise only. Throws InvalidParameter when `active` or the factors do not have one
-  // entry per layer.
+  // nothing get noise only. Given `waveforms` (beam_count() x samples_per_beam(), row-major), each
+  // beam's received waveform, noise included, as the echo extraction sees it, goes into its row.
+  // Throws InvalidParameter when `active` or the factors do not have one entry per layer.
   LidarScan measure(const propagation::ActiveLayers& active,
-                    std::span<const double> optical_depth_factors, RandomStream& stream) const;
+                    std::span<const double> optical_depth_factors, RandomStream& stream,
+                    std::span<double> waveforms = {}) const;
 
  private:
   struct Layer {

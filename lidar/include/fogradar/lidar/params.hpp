@@ -79,6 +79,11 @@ struct LidarParams {
   void validate() const;
 
   std::size_t beam_count() const;  // floor(field_of_view_deg / angular_step_deg + 1e-9) + 1
+  // -fov/2 + beam step: 0 on boresight, + to the right.
+  double beam_angle_deg(std::size_t beam) const;
+  // Samples of a beam's waveform: floor(2 max_range_m / c / sample interval) + 1, sample k at
+  // round-trip time k dt.
+  std::size_t samples_per_beam() const;
 };
 
 // The keys of [lidar], [lidar.fog_fluctuation] and [[lidar.background]], each with its unit,

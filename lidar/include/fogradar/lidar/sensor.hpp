@@ -16,6 +16,10 @@ namespace fogradar::lidar {
 // The lidar's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
+// The lidar's raw data per scan (DESIGN §11), by index: the received waveforms and the echoes.
+enum RawKindIndex : std::size_t { raw_waveforms = 0, raw_echoes = 1 };
+std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params);
+
 // What a run of the lidar found: the sensor as built (its files need its geometry and derived
 // figures), one result per step with the scans by index, and their summary.
 class LidarReport : public sensor::SensorSummary {

@@ -3,7 +3,10 @@
 // immutable, so one chain serves all threads; each thread brings its own workspace and stream.
 #pragma once
 
+#include <complex>
+#include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "fogradar/core/random.hpp"
@@ -34,6 +37,16 @@ struct MeasurementWorkspace {
   EstimationWorkspace estimation;
 };
 
+// What RadarChain::measure shows of a frame on its way (raw data, DESIGN §11): the beat signal as
+// synthesised (chirps x samples, chirp-major, before the window) and the complex range-Doppler map
+// (Doppler rows in FFT order x range columns; the CFAR sees its |.|^2). An empty tap costs nothing;
+// with a beat tap the frame is windowed and range transformed after the synthesis instead of during
+// it, which gives the same bits (synthesis.hpp, transform_windowed).
+struct FrameTaps {
+  std::function<void(std::span<const std::complex<double>>)> beat;
+  std::function<void(std::span<const std::complex<double>>)> range_doppler;
+};
+
 class RadarChain {
  public:
   explicit RadarChain(const RadarParams& params, FftPlanner planner = FftPlanner::shipped_wisdom);
@@ -57,6 +70,10 @@ class RadarChain {
   void measure(const Scene& scene, const propagation::Chamber& chamber,
                const propagation::ActiveLayers& active, RandomStream& rng,
                MeasurementWorkspace& workspace, Measurement& out) const;
+  // The same, showing the frame to `taps` on its way.
+  void measure(const Scene& scene, const propagation::Chamber& chamber,
+               const propagation::ActiveLayers& active, RandomStream& rng,
+               MeasurementWorkspace& workspace, Measurement& out, const FrameTaps& taps) const;
 
   // Only the synthesis and processing stages: leaves the range-Doppler map in workspace.frame and
   // its power in workspace.power (for tests and benchmarks of the map itself).
@@ -68,8 +85,8 @@ class RadarChain {
   // Synthesis and the transforms: the range-Doppler map in workspace.frame.
   SynthesisReport synthesize_and_transform(const Scene& scene, const propagation::Chamber& chamber,
                                            const propagation::ActiveLayers& active,
-                                           RandomStream& rng,
-                                           MeasurementWorkspace& workspace) const;
+                                           RandomStream& rng, MeasurementWorkspace& workspace,
+                                           const FrameTaps* taps) const;
 
   RadarParams params_;
   RadarDerived derived_;

@@ -16,6 +16,14 @@ namespace fogradar::radar {
 // power[i] = |values[i]|^2 (re^2 + im^2, the one formula every stage uses).
 void squared_magnitudes(std::span<const std::complex<double>> values, std::span<double> power);
 
+// The gains of range window w_r (N samples) and Doppler window w_d (N_c chirps) through the 2-D
+// DFT: a tone of amplitude a centred on a cell peaks at |Y| = a N CG_r N_c CG_d; white noise of
+// variance s^2 per sample gives E|Y|^2 = s^2 (sum w_r^2)(sum w_d^2).
+double coherent_amplitude_gain(std::span<const double> range_window,
+                               std::span<const double> doppler_window);
+double noise_power_gain(std::span<const double> range_window,
+                        std::span<const double> doppler_window);
+
 class RangeDopplerProcessor {
  public:
   // The chain plans with the shipped FFTW wisdom (FftPlanner::shipped_wisdom).

@@ -15,6 +15,19 @@
 
 namespace fogradar::radar {
 
+// One detection of a measured frame as the result files keep it (radar_detections.csv), with its
+// ground truth.
+struct DetectionRecord {
+  double range_m = 0.0;  // Doppler-corrected (Detection::range_m)
+  double velocity_m_per_s = 0.0;
+  double received_power_w = 0.0;
+  double snr_db = 0.0;
+  double rcs_dbsm = 0.0;
+  Origin origin = Origin::noise;
+  bool in_gate = false;     // within the association gate of the chamber's target range
+  bool associated = false;  // the gate's strongest: the one the record associates
+};
+
 // What the tracker reports for one measurement, with the simulation's ground truth beside it.
 struct MeasurementRecord {
   // A detection inside the association gate (the strongest there): what a tracker associates.
@@ -24,6 +37,7 @@ struct MeasurementRecord {
   // noise detection in the gate is a false association and counts as a miss.
   bool detected = false;
   double range_m = 0.0;  // of the associated detection; only meaningful when associated
+  double velocity_m_per_s = 0.0;
   double rcs_dbsm = 0.0;
   double snr_db = 0.0;
   // A fog-origin detection echoes at least as strongly (received power) as the target detection,
@@ -31,10 +45,12 @@ struct MeasurementRecord {
   bool fog_rivals_target = false;
   std::size_t fog_detections = 0;  // fog-origin detections anywhere in the map
   std::size_t false_alarms = 0;    // noise-origin detections anywhere in the map
+  std::vector<DetectionRecord> detections;  // every detection of the map, in the chain's order
 };
 
-// The record of one measured frame.
-MeasurementRecord record_of(const Measurement& measurement);
+// The record of one measured frame; the gate is |range - target_range_m| <= gate_m, as
+// RadarChain::measure associates.
+MeasurementRecord record_of(const Measurement& measurement, double target_range_m, double gate_m);
 
 struct StepResult {
   std::size_t active_layers = 0;

@@ -35,13 +35,18 @@ KeyTable<SensorParams> sensor_keys();
 // The radar's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
+// The radar's raw data per measurement (DESIGN §11), by index: the beat signal, the range-Doppler
+// map |X|^2 and the detections, with their axes.
+enum RawKindIndex : std::size_t { raw_beat = 0, raw_range_doppler = 1, raw_detections = 2 };
+std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params);
+
 // Peak memory of the radar's part of a run, by part: an upper estimate from the sizes of the
 // buffers the chain keeps (measurement.hpp, estimation.hpp, cfar.hpp, attribution.hpp), not a
 // measurement; docs/scenario.md gives its ratio to measured peak RSS.
 struct MemoryEstimate {
   std::size_t per_thread_bytes = 0;  // frame, detection mask, CFAR and estimation workspaces, tones
   std::size_t shared_bytes = 0;      // windows, window spectra, FFT plans
-  std::size_t records_bytes = 0;     // one MeasurementRecord per measurement
+  std::size_t records_bytes = 0;     // per measurement: its record, detections and CSV rows
 };
 MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measurements);
 

@@ -26,6 +26,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "fogradar/core/keys.hpp"
@@ -111,6 +112,8 @@ struct RawKind {
   std::vector<RawAxis> axes;            // one per dimension; an axis without values has no dataset
   std::vector<RawColumn> columns;       // table kinds
   std::size_t rows_per_item = 0;        // table kinds: the size estimate's rows per item
+  // Numbers a reader needs beside the data (e.g. the map's thermal-noise level), as attributes.
+  std::vector<std::pair<std::string, double>> attributes;
 
   std::size_t item_values() const;  // product of `shape`
   std::size_t item_bytes() const;   // of one item (tables: rows_per_item rows)
@@ -179,10 +182,12 @@ class SensorType {
   // ratio".
   virtual std::string_view curve_caption() const = 0;
 
-  // Its parameters with every key at its default, and its keys over them.
+  // Its parameters with every key at its default, and its keys over them (one table, made with the
+  // type and shared by every scenario of it).
   virtual std::any default_params() const = 0;
-  virtual KeyTable<std::any> keys() const = 0;
-  // Throws InvalidParameter naming the scenario key (its own or the chamber's).
+  virtual const KeyTable<std::any>& keys() const = 0;
+  // Checks its keys (keys().check) and what they cannot check alone, the bounds that involve the
+  // chamber; throws InvalidParameter naming the scenario key (its own or the chamber's).
   virtual void validate(const std::any& params, const Context& context) const = 0;
   virtual std::size_t items_per_step(const std::any& params, const Context& context) const = 0;
   virtual MemoryPart memory(const std::any& params, const Context& context,
@@ -210,10 +215,10 @@ const Params& params_of(const std::any& params) {
 
 // A sensor's key table over its parameters, lifted to the std::any that holds them.
 template <class Params>
-KeyTable<std::any> erase_keys(const KeyTable<Params>& keys) {
+KeyTable<std::any> erase_keys(KeyTable<Params> keys) {
   KeyTable<std::any> table;
   table.include(
-      keys, [](auto& params) -> auto& { return params_of<Params>(params); });
+      std::move(keys), [](auto& params) -> auto& { return params_of<Params>(params); });
   return table;
 }
 

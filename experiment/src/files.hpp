@@ -1,0 +1,42 @@
+// What writing a result set and a raw-data file have in common: closing descriptors, syncing, and
+// the lock one run holds on the path it writes.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace fogradar::experiment::detail {
+
+// Closes a file descriptor when it goes out of scope.
+struct Descriptor {
+  int fd;
+  explicit Descriptor(int descriptor) : fd(descriptor) {}
+  ~Descriptor();
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+};
+
+std::string errno_text();
+
+// fsync of a directory or a file by its path; false when it cannot be opened or synced.
+bool sync_path(const std::filesystem::path& path, bool directory);
+
+// An exclusive flock on `.NAME.lock` beside `path` (NAME its file name), held for the object's
+// life; the lock file is unlinked before it is let go. Throws InvalidParameter naming `option` with
+// `given` as typed when another fogradar run holds it ("a <what> no other fogradar run is writing
+// to") or it cannot be made.
+class PathLock {
+ public:
+  PathLock(const std::filesystem::path& path, std::string_view option, const std::string& given,
+           std::string_view what);
+  ~PathLock();
+  PathLock(const PathLock&) = delete;
+  PathLock& operator=(const PathLock&) = delete;
+
+ private:
+  std::filesystem::path lock_path_;
+  int fd_ = -1;
+};
+
+}  // namespace fogradar::experiment::detail

@@ -1,0 +1,132 @@
+#!/usr/bin/python3
+"""The raw-data file of `fogradar run --raw` (docs/data-out.md) read back with h5py, Debian's
+independent HDF5 reader, against NumPy and against the run's own CSV files:
+
+- /radar/range_doppler equals |X|^2 of the windowed 2-D DFT of /radar/beat recomputed with NumPy
+  (periodic Hann windows, numpy.fft.fft2): pocketfft and FFTW both round in double precision, so
+  the two agree to about N log2 N eps of the peak; the tolerance is 1e-11 of each map's peak;
+- the gate detection in /radar/detections (associated = 1) is radar_samples.csv's row, every number
+  the same double, and each frame has as many detections as radar_detections.csv's rows for it;
+- the sum of a step's /camera/images histograms is camera_histograms.csv's counts, exactly;
+- /lidar/echoes holds lidar_echoes.csv's echoes (ranges to the CSV's 4 decimals);
+- the layout: shapes [step, item, ...], one item per chunk, dimension scales attached, units, the
+  resolved scenario as the root attribute (scenario.toml's text).
+
+Usage: test_raw_h5.py FOGRADAR_BINARY SOURCE_DIR
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+from collections import Counter, defaultdict
+
+import h5py
+import numpy as np
+
+fogradar, source = sys.argv[1], sys.argv[2]
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def hann(n):
+    return 0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)
+
+
+with tempfile.TemporaryDirectory() as work:
+    out, raw = os.path.join(work, "out"), os.path.join(work, "r.h5")
+    subprocess.run([fogradar, "run", "--scenario", os.path.join(source, "tests/cli/small.toml"),
+                    "--out", out, "--raw", raw, "--raw-steps", "0,4", "--raw-items", "0-3",
+                    "--threads", "2"], check=True, stdout=subprocess.DEVNULL)
+    with h5py.File(raw, "r") as f:
+        # Layout.
+        beat, rd = f["/radar/beat"], f["/radar/range_doppler"]
+        check(beat.shape == (2, 4, 16, 512) and beat.dtype == np.complex128, f"beat {beat.shape} {beat.dtype}")
+        check(beat.chunks == (1, 1, 16, 512), f"beat chunks {beat.chunks}")
+        check(rd.shape == (2, 4, 16, 512) and rd.dtype == np.float64, f"range_doppler {rd.shape}")
+        check(list(f["/radar/step"][:]) == [0, 4] and list(f["/radar/item"][:]) == [0, 1, 2, 3],
+              "step and item scales")
+        check(rd.dims[3][0].name == "/radar/range_m" and rd.dims[2][0].name == "/radar/velocity_m_per_s",
+              "range_doppler's axes attached")
+        check(rd.attrs["units"].decode().startswith("W"), "range_doppler's units")
+        with open(os.path.join(out, "scenario.toml"), "rb") as toml:
+            check(f.attrs["scenario"] == toml.read(), "the root attribute is scenario.toml")
+        check(f.attrs["raw_format"] == 1, "raw_format")
+
+        # The map from the beat.
+        window = hann(16)[:, None] * hann(512)[None, :]
+        worst = 0.0
+        for s in range(2):
+            for i in range(4):
+                power = np.abs(np.fft.fft2(beat[s, i] * window)) ** 2
+                worst = max(worst, np.max(np.abs(power - rd[s, i])) / np.max(rd[s, i]))
+        check(worst < 1e-11, f"range_doppler against numpy: {worst:.1e} of the peak")
+        print(f"[ measured ] |numpy - range_doppler| <= {worst:.1e} of each map's peak")
+        noise = rd.attrs["thermal_noise_level"]
+        median_cell = np.median(rd[0, 0])
+        # Median of chi-square(2)/2 noise: ln 2 of its mean; target and clutter cells are few.
+        check(0.5 * noise < median_cell < 1.5 * noise,
+              f"median cell {median_cell:.3e} against the stated thermal noise level {noise:.3e}")
+
+        # The gate detection is radar_samples.csv's row; every frame's detections.
+        detections = f["/radar/detections"][:]
+        origins = h5py.check_enum_dtype(detections.dtype["origin"])
+        label = {v: k for k, v in origins.items()}
+        with open(os.path.join(out, "radar_samples.csv")) as samples_file:
+            samples = {(int(r["active_layers"]), int(r["measurement"])): r
+                       for r in csv.DictReader(samples_file)}
+        with open(os.path.join(out, "radar_detections.csv")) as detections_file:
+            csv_count = Counter((int(r["step"]), int(r["measurement"]))
+                                for r in csv.DictReader(detections_file))
+        h5_count = Counter((int(r["step"]), int(r["item"])) for r in detections)
+        compared = 0
+        for step in (0, 4):
+            for item in range(4):
+                check(h5_count[(step, item)] == csv_count[(step, item)],
+                      f"detections of ({step}, {item}): {h5_count[(step, item)]} against the CSV's "
+                      f"{csv_count[(step, item)]}")
+                gate = [r for r in detections
+                        if r["step"] == step and r["item"] == item and r["associated"] == 1]
+                row = samples[(step, item)]
+                check(len(gate) == (1 if row["origin"] else 0), f"gate detection of ({step}, {item})")
+                if gate:
+                    g = gate[0]
+                    for column in ("range_m", "rcs_dbsm", "snr_db", "velocity_m_per_s"):
+                        check(float(row[column]) == g[column], f"{column} of ({step}, {item})")
+                    check(label[g["origin"]] == row["origin"], f"origin of ({step}, {item})")
+                    compared += 1
+        check(compared == 8, f"{compared} gate detections compared")
+
+        # The camera's images make its histograms.
+        images = f["/camera/images"]
+        check(images.shape == (2, 2, 120, 160) and images.dtype == np.uint8, f"images {images.shape}")
+        histograms = defaultdict(lambda: np.zeros(256, dtype=np.int64))
+        with open(os.path.join(out, "camera_histograms.csv")) as histogram_file:
+            for r in csv.DictReader(histogram_file):
+                histograms[int(r["active_layers"])][int(r["grey_level"])] = int(r["count"])
+        for s, step in enumerate((0, 4)):
+            counts = sum(np.bincount(images[s, i].ravel(), minlength=256) for i in range(2))
+            check(np.array_equal(counts, histograms[step]), f"camera histogram of step {step}")
+
+        # The lidar's echoes.
+        echoes = f["/lidar/echoes"][:]
+        with open(os.path.join(out, "lidar_echoes.csv")) as echo_file:
+            listed = [r for r in csv.DictReader(echo_file)
+                      if int(r["step"]) in (0, 4) and int(r["scan"]) < 4]
+        check(len(listed) == len(echoes), f"{len(echoes)} echoes against the CSV's {len(listed)}")
+        lidar_labels = {v: k for k, v in h5py.check_enum_dtype(echoes.dtype["origin"]).items()}
+        for row, echo in zip(listed, echoes):
+            check(int(row["step"]) == echo["step"] and int(row["scan"]) == echo["item"] and
+                  abs(float(row["range_m"]) - echo["range_m"]) <= 5e-5 and
+                  row["origin"] == lidar_labels[echo["origin"]], f"echo {row}")
+        waveforms = f["/lidar/waveforms"]
+        check(waveforms.shape[:2] == (2, 4) and waveforms.shape[2] == len(f["/lidar/angle_deg"]),
+              f"waveforms {waveforms.shape}")
+
+print(f"{len(failures)} failures")
+sys.exit(1 if failures else 0)
