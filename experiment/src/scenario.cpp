@@ -199,6 +199,7 @@ ScenarioKeys::ScenarioKeys(const std::vector<SensorSetting>& sensors) {
 }
 
 const ScenarioKeys& keys_of(const Scenario& s) {
+  FOGRADAR_CHECK(s.keys_ != nullptr);  // a moved-from scenario has none
   const ScenarioKeys& keys = *s.keys_;
   // The tables read and write sensors[i] by index.
   FOGRADAR_CHECK(keys.types.size() == s.sensors.size());
