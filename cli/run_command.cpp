@@ -25,7 +25,7 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/outputs.hpp"
-#include "fogradar/experiment/raw.hpp"
+#include "fogradar/experiment/raw_file.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"

@@ -91,24 +91,43 @@ class Report : public CameraReport {
   CameraSummary summary_;
 };
 
-class Run : public sensor::SensorRun {
+// The camera made for one scenario: its bands' fog optics on the chamber (Camera), made once.
+class Made : public sensor::Sensor, public std::enable_shared_from_this<Made> {
  public:
-  Run(const CameraParams& params, const sensor::Context& context,
-      const propagation::SegelsteinTable& water)
-      : camera_(std::make_shared<const Camera>(params, context.chamber, water)),
-        steps_(std::make_shared<std::vector<CameraStepResult>>(context.steps)) {
-    for (std::size_t k = 0; k < context.steps; ++k) {
-      active_.push_back(context.active(k));
-      (*steps_)[k].active_layers = k;
-      (*steps_)[k].frames.resize(params.frames_per_step);
-    }
+  Made(const CameraParams& params, const sensor::Context& context,
+       const propagation::SegelsteinTable& water)
+      : context_(context), camera_(std::make_shared<const Camera>(params, context.chamber, water)) {
+    for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
   }
 
   std::size_t items_per_step() const override { return camera_->params().frames_per_step; }
+  std::unique_ptr<sensor::SensorRun> begin_run() const override;
+
+  const sensor::Context& context() const { return context_; }
+  const std::shared_ptr<const Camera>& camera() const { return camera_; }
+  const propagation::ActiveLayers& active(std::size_t step) const { return active_.at(step); }
+
+ private:
+  sensor::Context context_;
+  std::shared_ptr<const Camera> camera_;
+  std::vector<propagation::ActiveLayers> active_;
+};
+
+class Run : public sensor::SensorRun {
+ public:
+  explicit Run(std::shared_ptr<const Made> made)
+      : made_(std::move(made)),
+        camera_(made_->camera()),
+        steps_(std::make_shared<std::vector<CameraStepResult>>(made_->context().steps)) {
+    for (std::size_t k = 0; k < steps_->size(); ++k) {
+      (*steps_)[k].active_layers = k;
+      (*steps_)[k].frames.resize(made_->items_per_step());
+    }
+  }
 
   // The band's optics and the exposure: once per step, shared by its frames.
   void prepare_step(std::size_t step) override {
-    (*steps_)[step].optics = camera_->step_optics(active_[step]);
+    (*steps_)[step].optics = camera_->step_optics(made_->active(step));
   }
 
   std::unique_ptr<sensor::Worker> make_worker() const override {
@@ -139,10 +158,14 @@ class Run : public sensor::SensorRun {
     const Run& run_;
   };
 
+  std::shared_ptr<const Made> made_;
   std::shared_ptr<const Camera> camera_;
-  std::vector<propagation::ActiveLayers> active_;
   std::shared_ptr<std::vector<CameraStepResult>> steps_;
 };
+
+std::unique_ptr<sensor::SensorRun> Made::begin_run() const {
+  return std::make_unique<Run>(shared_from_this());
+}
 
 class Type : public sensor::SensorType {
  public:
@@ -224,10 +247,10 @@ class Type : public sensor::SensorType {
             .line = line.str()};
   }
 
-  std::unique_ptr<sensor::SensorRun> start(
+  std::shared_ptr<const sensor::Sensor> make(
       const std::any& params, const sensor::Context& context,
       const propagation::SegelsteinTable& water) const override {
-    return std::make_unique<Run>(sensor::params_of<CameraParams>(params), context, water);
+    return std::make_shared<Made>(sensor::params_of<CameraParams>(params), context, water);
   }
 
  private:

@@ -21,7 +21,7 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
   std::size_t total = 0;
   for (const SensorRunEntry& sensor : sensors) {
     first_item.push_back(total);
-    total += steps * sensor.run->items_per_step();
+    total += steps * sensor.sensor->items_per_step();
   }
   // The same count estimate_peak_memory (memory.hpp) sized the run for.
   const unsigned threads = worker_threads(options.threads, total);
@@ -39,7 +39,8 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
         }
         const std::size_t s = static_cast<std::size_t>(
             std::upper_bound(first_item.begin(), first_item.end(), item) - first_item.begin() - 1);
-        const std::size_t local = item - first_item[s], per_step = sensors[s].run->items_per_step();
+        const std::size_t local = item - first_item[s],
+                          per_step = sensors[s].sensor->items_per_step();
         if (!measure[s]) measure[s] = sensors[s].run->make_worker();
         const std::size_t step = local / per_step, index = local % per_step;
         RandomStream stream = sensor_stream(seed, sensors[s].type->stream_key(), step, index);
@@ -72,21 +73,71 @@ const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
   throw_invalid("experiment.sensors", name, "a sensor that ran");
 }
 
-ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
-  scenario.validate();
+Simulation::Simulation(Scenario scenario) : scenario_(std::move(scenario)) {
+  scenario_.validate();
+  context_ = scenario_.context();
   const propagation::SegelsteinTable table;
-  const sensor::Context context = scenario.context();
+  for (const std::string& name : scenario_.experiment.sensors) {
+    const SensorSetting& setting = scenario_.setting(name);
+    sensors_.push_back(
+        {setting.type, setting.type->make(setting.params, context_, table), nullptr});
+  }
+}
+
+ExperimentResult Simulation::run(const RunOptions& options) const {
   ExperimentResult result;
-  for (const std::string& name : scenario.experiment.sensors) {
-    const SensorSetting& setting = scenario.setting(name);
-    result.sensors.push_back({setting.type, setting.type->start(setting.params, context, table)});
+  for (const SensorRunEntry& m : sensors_) {
+    result.sensors.push_back({m.type, m.sensor, m.sensor->begin_run()});
   }
   // Per-step state first, on this thread.
   for (const SensorRunEntry& entry : result.sensors) {
-    for (std::size_t k = 0; k < context.steps; ++k) entry.run->prepare_step(k);
+    for (std::size_t k = 0; k < context_.steps; ++k) entry.run->prepare_step(k);
   }
-  run_items(result.sensors, context.steps, context.seed, options);
+  run_items(result.sensors, context_.steps, context_.seed, options);
   return result;
+}
+
+SensorRunEntry Simulation::begin_run(std::string_view sensor) const {
+  std::string running;
+  for (const SensorRunEntry& m : sensors_) {
+    if (m.type->name() == sensor) return {m.type, m.sensor, m.sensor->begin_run()};
+    running += (running.empty() ? "" : ", ") + std::string(m.type->name());
+  }
+  throw_invalid("sensor", sensor, "a sensor of experiment.sensors: " + running);
+}
+
+ItemRun::ItemRun(const Simulation& simulation, std::string_view sensor)
+    : entry_(simulation.begin_run(sensor)),
+      seed_(simulation.context().seed),
+      steps_(simulation.context().steps) {
+  const SensorSetting& setting = simulation.scenario().setting(sensor);
+  items_per_step_ = entry_.type->items_per_step(setting.params, simulation.context());
+  kinds_ = entry_.type->raw_kinds(setting.params, simulation.context());
+  prepared_.assign(steps_, false);
+}
+
+void ItemRun::measure(std::size_t step, std::size_t index, sensor::RawSink* raw) {
+  if (step >= steps_) {
+    throw_invalid(
+        "step", static_cast<double>(step),
+        "an integer in [0, experiment.max_active_layers = " + std::to_string(steps_ - 1) + "]");
+  }
+  if (index >= items_per_step_) {
+    throw_invalid("index", static_cast<double>(index),
+                  "an integer in [0, " + std::to_string(items_per_step_ - 1) + "] (" +
+                      std::string(entry_.type->item_noun()) + " per step)");
+  }
+  if (!prepared_[step]) {
+    entry_.run->prepare_step(step);
+    prepared_[step] = true;
+  }
+  if (!worker_) worker_ = entry_.run->make_worker();
+  RandomStream stream = sensor_stream(seed_, entry_.type->stream_key(), step, index);
+  worker_->measure(step, index, stream, raw);
+}
+
+ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
+  return Simulation(scenario).run(options);
 }
 
 std::string item_nouns(const Scenario& scenario) {

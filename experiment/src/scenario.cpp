@@ -588,6 +588,11 @@ Scenario parse_scenario(std::string_view toml_text, std::string_view source_name
   return parse_over(paper_scenario(registry), toml_text, source_name);
 }
 
+Scenario parse_scenario_over(const Scenario& base, std::string_view toml_text,
+                             std::string_view source_name) {
+  return parse_over(base, toml_text, source_name);
+}
+
 Scenario load_scenario_file(const std::string& path, const SensorRegistry& registry) {
   const std::string wanted = "a readable regular TOML file of at most " +
                              std::to_string(max_scenario_file_bytes) + " bytes (1 MiB)";

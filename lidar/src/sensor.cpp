@@ -76,27 +76,45 @@ class Report : public LidarReport {
   LidarSummary summary_;
 };
 
-class Run : public sensor::SensorRun {
+// The lidar made for one scenario: its beams, fog and detector on the chamber (Lidar), made once.
+class Made : public sensor::Sensor, public std::enable_shared_from_this<Made> {
  public:
-  Run(const LidarParams& params, const sensor::Context& context,
-      const propagation::SegelsteinTable& water)
-      : context_(context),
-        lidar_(std::make_shared<const Lidar>(params, context.chamber, water)),
-        steps_(std::make_shared<std::vector<LidarStepResult>>(context.steps)),
-        fog_(context.steps) {
-    for (std::size_t k = 0; k < context.steps; ++k) {
-      active_.push_back(context.active(k));
-      (*steps_)[k].active_layers = k;
-      (*steps_)[k].scans.resize(params.scans_per_step);
-    }
+  Made(const LidarParams& params, const sensor::Context& context,
+       const propagation::SegelsteinTable& water)
+      : context_(context), lidar_(std::make_shared<const Lidar>(params, context.chamber, water)) {
+    for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
   }
 
   std::size_t items_per_step() const override { return lidar_->params().scans_per_step; }
+  std::unique_ptr<sensor::SensorRun> begin_run() const override;
+
+  const sensor::Context& context() const { return context_; }
+  const std::shared_ptr<const Lidar>& lidar() const { return lidar_; }
+  const propagation::ActiveLayers& active(std::size_t step) const { return active_.at(step); }
+
+ private:
+  sensor::Context context_;
+  std::shared_ptr<const Lidar> lidar_;
+  std::vector<propagation::ActiveLayers> active_;
+};
+
+class Run : public sensor::SensorRun {
+ public:
+  explicit Run(std::shared_ptr<const Made> made)
+      : made_(std::move(made)),
+        lidar_(made_->lidar()),
+        steps_(std::make_shared<std::vector<LidarStepResult>>(made_->context().steps)),
+        fog_(made_->context().steps) {
+    for (std::size_t k = 0; k < steps_->size(); ++k) {
+      (*steps_)[k].active_layers = k;
+      (*steps_)[k].scans.resize(made_->items_per_step());
+    }
+  }
 
   // The step's scan-to-scan fog series, from the stream index the lidar reserves for it.
   void prepare_step(std::size_t step) override {
     fog_[step] = lidar_->fog_fluctuation(
-        sensor_stream(context_.seed, stream_key, step, lidar_->fog_series_index()));
+        sensor_stream(made_->context().seed, stream_key, step, lidar_->fog_series_index()));
   }
 
   std::unique_ptr<sensor::Worker> make_worker() const override {
@@ -118,7 +136,7 @@ class Run : public sensor::SensorRun {
         waveforms_.resize(run_.lidar_->beam_count() * run_.lidar_->samples_per_beam());
       }
       LidarScan& scan = (*run_.steps_)[step].scans[index];
-      scan = run_.lidar_->measure(run_.active_[step], run_.fog_[step].scan(index), stream,
+      scan = run_.lidar_->measure(run_.made_->active(step), run_.fog_[step].scan(index), stream,
                                   waveforms ? std::span<double>(waveforms_) : std::span<double>());
       if (waveforms) raw->write(raw_waveforms, std::span<const double>(waveforms_));
       if (raw != nullptr && raw->wants(raw_echoes)) {
@@ -138,12 +156,15 @@ class Run : public sensor::SensorRun {
     std::vector<double> waveforms_, rows_;  // asked for as raw data
   };
 
-  sensor::Context context_;
+  std::shared_ptr<const Made> made_;
   std::shared_ptr<const Lidar> lidar_;
-  std::vector<propagation::ActiveLayers> active_;
   std::shared_ptr<std::vector<LidarStepResult>> steps_;
   std::vector<FogFluctuationSeries> fog_;
 };
+
+std::unique_ptr<sensor::SensorRun> Made::begin_run() const {
+  return std::make_unique<Run>(shared_from_this());
+}
 
 class Type : public sensor::SensorType {
  public:
@@ -212,10 +233,10 @@ class Type : public sensor::SensorType {
             .line = line.str()};
   }
 
-  std::unique_ptr<sensor::SensorRun> start(
+  std::shared_ptr<const sensor::Sensor> make(
       const std::any& params, const sensor::Context& context,
       const propagation::SegelsteinTable& water) const override {
-    return std::make_unique<Run>(sensor::params_of<LidarParams>(params), context, water);
+    return std::make_shared<Made>(sensor::params_of<LidarParams>(params), context, water);
   }
 
  private:

@@ -64,9 +64,20 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
   const FrameWindow window = processor_.window();
   SynthesisReport report;
-  if (taps != nullptr && taps->beat) {
-    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame);
-    taps->beat(ws.frame);
+  if (taps != nullptr && (taps->beat || taps->signal || taps->noise)) {
+    FrameParts parts;
+    if (taps->signal) {
+      ws.signal.resize(ws.frame.size());
+      parts.signal = ws.signal;
+    }
+    if (taps->noise) {
+      ws.noise.resize(ws.frame.size());
+      parts.noise = ws.noise;
+    }
+    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, nullptr, nullptr, &parts);
+    if (taps->beat) taps->beat(ws.frame);
+    if (taps->signal) taps->signal(ws.signal);
+    if (taps->noise) taps->noise(ws.noise);
     apply_frame_window(window, ws.frame);
     processor_.transform_windowed(ws.frame, ws.chirp);
   } else {

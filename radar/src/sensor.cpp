@@ -188,10 +188,10 @@ class Type : public sensor::SensorType {
             .line = line.str()};
   }
 
-  std::unique_ptr<sensor::SensorRun> start(
+  std::shared_ptr<const sensor::Sensor> make(
       const std::any& params, const sensor::Context& context,
       const propagation::SegelsteinTable& water) const override {
-    return std::make_unique<RadarRun>(sensor::params_of<SensorParams>(params), context, water);
+    return std::make_shared<RadarSensor>(sensor::params_of<SensorParams>(params), context, water);
   }
 
  private:
@@ -202,7 +202,8 @@ class Type : public sensor::SensorType {
 
 class RadarWorker : public sensor::Worker {
  public:
-  explicit RadarWorker(const RadarRun& run) : run_(run), workspace_(run.chain().make_workspace()) {}
+  explicit RadarWorker(const RadarRun& run)
+      : run_(run), workspace_(run.sensor().chain().make_workspace()) {}
 
   void measure(std::size_t step, std::size_t index, RandomStream& stream,
                sensor::RawSink* raw) override;
@@ -301,7 +302,7 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
   const std::vector<double> doppler_window = make_window(p.window, chirps);
   const double noise_level = d.noise_power_w * noise_power_gain(range_window, doppler_window);
   const double gain = coherent_amplitude_gain(range_window, doppler_window);
-  std::vector<sensor::RawKind> kinds(3);
+  std::vector<sensor::RawKind> kinds(5);
   kinds[raw_beat] = {
       .name = "beat",
       .description =
@@ -351,35 +352,58 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
                   {"associated", "", true, {}}},
       .rows_per_item = detections,
       .attributes = {}};
+  // The beat's parts (synthesis.hpp, FrameParts), on request: beat = signal + noise exactly for
+  // static paths, to rounding with moving ones, both before the ADC.
+  kinds[raw_signal] = kinds[raw_beat];
+  kinds[raw_signal].name = "signal";
+  kinds[raw_signal].description =
+      "the beat signal without its thermal noise: the paths, the fog clutter and the phase noise "
+      "(before the ADC); beat = signal + noise";
+  kinds[raw_signal].by_default = false;
+  kinds[raw_noise] = kinds[raw_beat];
+  kinds[raw_noise].name = "noise";
+  kinds[raw_noise].description =
+      "the receiver's thermal noise of the beat signal as drawn, CN(0, k T0 F fs) per sample "
+      "(before the ADC)";
+  kinds[raw_noise].by_default = false;
   return kinds;
 }
 
-RadarRun::RadarRun(const SensorParams& params, const sensor::Context& context,
-                   const propagation::SegelsteinTable& water)
+RadarSensor::RadarSensor(const SensorParams& params, const sensor::Context& context,
+                         const propagation::SegelsteinTable& water)
     : params_(params),
       context_(context),
       scene_(make_scene(params.target, params.clutter_scatterers_per_bin)),
       chamber_(context.chamber, params.radar.centre_frequency_hz, water),
-      chain_(params.radar),
-      steps_(std::make_shared<std::vector<StepResult>>(context.steps)) {
+      chain_(params.radar) {
   chain_.check_compatible(scene_, chamber_);
-  for (std::size_t k = 0; k < context.steps; ++k) {
-    active_.push_back(context.active(k));
-    StepResult& step = (*steps_)[k];
-    step.active_layers = k;
-    step.two_way_attenuation_db =
-        chamber_.two_way_attenuation_db(chamber_.target_range_m(), active_.back());
-    step.records.resize(context.measurements_per_step);
-  }
+  for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
 }
 
-double RadarRun::cfar_threshold_db() const {
+std::unique_ptr<sensor::SensorRun> RadarSensor::begin_run() const {
+  return std::make_unique<RadarRun>(shared_from_this());
+}
+
+double RadarSensor::cfar_threshold_db() const {
   return power_ratio_to_db(chain_.cfar().threshold_factor());
 }
 
-double RadarRun::expected_false_alarm_cells_per_frame() const {
+double RadarSensor::expected_false_alarm_cells_per_frame() const {
   return chain_.cfar().config().false_alarm_probability *
          static_cast<double>(params_.radar.chirps_per_frame * params_.radar.samples_per_chirp);
+}
+
+RadarRun::RadarRun(std::shared_ptr<const RadarSensor> sensor)
+    : sensor_(std::move(sensor)),
+      steps_(std::make_shared<std::vector<StepResult>>(sensor_->context().steps)) {
+  const propagation::Chamber& chamber = sensor_->chamber();
+  for (std::size_t k = 0; k < steps_->size(); ++k) {
+    StepResult& step = (*steps_)[k];
+    step.active_layers = k;
+    step.two_way_attenuation_db =
+        chamber.two_way_attenuation_db(chamber.target_range_m(), sensor_->active(k));
+    step.records.resize(sensor_->items_per_step());
+  }
 }
 
 std::unique_ptr<sensor::Worker> RadarRun::make_worker() const {
@@ -392,6 +416,12 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
   if (raw != nullptr && raw->wants(raw_beat)) {
     taps.beat = [raw](std::span<const std::complex<double>> beat) { raw->write(raw_beat, beat); };
   }
+  if (raw != nullptr && raw->wants(raw_signal)) {
+    taps.signal = [raw](std::span<const std::complex<double>> s) { raw->write(raw_signal, s); };
+  }
+  if (raw != nullptr && raw->wants(raw_noise)) {
+    taps.noise = [raw](std::span<const std::complex<double>> n) { raw->write(raw_noise, n); };
+  }
   if (raw != nullptr && raw->wants(raw_range_doppler)) {
     taps.range_doppler = [this, raw](std::span<const std::complex<double>> map) {
       power_.resize(map.size());
@@ -399,11 +429,12 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
       raw->write(raw_range_doppler, std::span<const double>(power_));
     };
   }
-  run_.chain().measure(run_.scene_, run_.chamber_, run_.active_[step], stream, workspace_,
-                       measurement_, taps);
+  const RadarSensor& sensor = *run_.sensor_;
+  sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(step), stream, workspace_,
+                         measurement_, taps);
   MeasurementRecord& record = (*run_.steps_)[step].records[index];
-  record = record_of(measurement_, run_.chamber().target_range_m(),
-                     run_.params().radar.association_gate_m);
+  record = record_of(measurement_, sensor.chamber().target_range_m(),
+                     sensor.params().radar.association_gate_m);
   if (raw != nullptr && raw->wants(raw_detections)) {
     rows_.clear();
     for (const DetectionRecord& d : record.detections) {
@@ -417,8 +448,9 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
 
 std::unique_ptr<const sensor::SensorSummary> RadarRun::summarize() const {
   return std::make_unique<Report>(
-      params_, context_, steps_,
-      radar::summarize(*steps_, cfar_threshold_db(), expected_false_alarm_cells_per_frame()));
+      sensor_->params(), sensor_->context(), steps_,
+      radar::summarize(*steps_, sensor_->cfar_threshold_db(),
+                       sensor_->expected_false_alarm_cells_per_frame()));
 }
 
 }  // namespace fogradar::radar

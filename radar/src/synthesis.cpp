@@ -155,13 +155,21 @@ std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits,
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
                                  std::span<std::complex<double>> frame, const FrameWindow* window,
-                                 const ChirpTransform* transform) {
+                                 const ChirpTransform* transform, const FrameParts* parts) {
   const std::size_t columns = params.samples_per_chirp;
   const std::size_t rows = params.chirps_per_frame;
   FOGRADAR_CHECK(frame.size() == rows * columns);
   FOGRADAR_CHECK(window == nullptr ||
                  (window->doppler.size() == rows && window->range_pairs.size() == 2 * columns));
   const auto row = [&](std::size_t c) { return frame.subspan(c * columns, columns); };
+  const std::span<std::complex<double>> signal =
+      parts ? parts->signal : std::span<std::complex<double>>();
+  const std::span<std::complex<double>> kept_noise =
+      parts ? parts->noise : std::span<std::complex<double>>();
+  FOGRADAR_CHECK(signal.empty() || signal.size() == frame.size());
+  FOGRADAR_CHECK(kept_noise.empty() || kept_noise.size() == frame.size());
+  FOGRADAR_CHECK((signal.empty() && kept_noise.empty()) || window == nullptr);
+  if (!kept_noise.empty()) std::fill(kept_noise.begin(), kept_noise.end(), std::complex<double>{});
 
   // Static paths: one chirp, copied to all. Without phase noise (which multiplies the noise-free
   // signal) the thermal noise is added in the same pass as the copy; chirp 0, the source of the
@@ -212,9 +220,25 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
     finish(0);
     report.range_transformed = by_chirp;
   } else if (noise_with_copy) {
+    for (std::size_t c = 0; c < rows && !signal.empty(); ++c) {
+      std::copy(row(0).begin(), row(0).end(), signal.begin() + c * columns);
+    }
     ComplexNormalGenerator noise(rng);
-    for (std::size_t c = 1; c < rows; ++c) noise.add(row(0), row(c), derived.noise_power_w);
-    noise.add(row(0), derived.noise_power_w);
+    if (kept_noise.empty()) {
+      for (std::size_t c = 1; c < rows; ++c) noise.add(row(0), row(c), derived.noise_power_w);
+      noise.add(row(0), derived.noise_power_w);
+    } else {
+      // The same draws onto zero (each value as it would be added), then the same sums.
+      const auto noise_row = [&](std::size_t c) {
+        return kept_noise.subspan(c * columns, columns);
+      };
+      for (std::size_t c = 1; c < rows; ++c) noise.add(noise_row(c), derived.noise_power_w);
+      noise.add(noise_row(0), derived.noise_power_w);
+      for (std::size_t c = 1; c < rows; ++c) {
+        for (std::size_t n = 0; n < columns; ++n) row(c)[n] = row(0)[n] + noise_row(c)[n];
+      }
+      for (std::size_t n = 0; n < columns; ++n) row(0)[n] += noise_row(0)[n];
+    }
   } else {
     for (std::size_t c = 1; c < rows; ++c) std::copy(row(0).begin(), row(0).end(), row(c).begin());
   }
@@ -230,6 +254,11 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
           2.0 * pi * doppler_hz * static_cast<double>(c) * params.chirp_interval_s;
       add_tone(row(c), tone.amplitude * std::polar(1.0, chirp_phase), frequency_hz,
                params.sample_rate_hz);
+      if (!signal.empty() && noise_with_copy) {
+        add_tone(signal.subspan(c * columns, columns),
+                 tone.amplitude * std::polar(1.0, chirp_phase), frequency_hz,
+                 params.sample_rate_hz);
+      }
     }
   }
 
@@ -238,8 +267,15 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
       sample *= std::polar(1.0, params.phase_noise_rms_rad * rng.normal());
     }
   }
-  if (params.thermal_noise && !noise_with_copy)
-    ComplexNormalGenerator(rng).add(frame, derived.noise_power_w);
+  if (!noise_with_copy && !signal.empty()) std::copy(frame.begin(), frame.end(), signal.begin());
+  if (params.thermal_noise && !noise_with_copy) {
+    if (kept_noise.empty()) {
+      ComplexNormalGenerator(rng).add(frame, derived.noise_power_w);
+    } else {
+      ComplexNormalGenerator(rng).add(kept_noise, derived.noise_power_w);
+      for (std::size_t i = 0; i < frame.size(); ++i) frame[i] += kept_noise[i];
+    }
+  }
   if (params.adc_bits > 0) {
     report.clipped_samples =
         quantize(frame, params.adc_bits, std::sqrt(dbm_to_watt(params.adc_full_scale_dbm)));

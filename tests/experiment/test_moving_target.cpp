@@ -43,7 +43,7 @@ TEST(MovingTarget, VelocityAndCoupledRangeReadBack) {
   const double chirp_s = 25.6e-6;
   const ExperimentResult still =
       run_experiment(moving(0.0, chirp_s), {.threads = 2, .progress = {}});
-  const radar::RadarDerived d = radar_run(still).chain().derived();
+  const radar::RadarDerived d = radar_run(still).sensor().chain().derived();
   const double v_bin = d.velocity_resolution_m_per_s;
   EXPECT_NEAR(d.max_unambiguous_velocity_m_per_s, 38.0, 0.1);
   EXPECT_NEAR(v_bin, 1.19, 0.01);
@@ -79,7 +79,7 @@ TEST(MovingTarget, VelocityAndCoupledRangeReadBack) {
 TEST(MovingTarget, BeyondTheUnambiguousVelocityTheEstimateFolds) {
   const ExperimentResult run =
       run_experiment(moving(25.0, 51.2e-6), {.threads = 2, .progress = {}});
-  const radar::RadarDerived d = radar_run(run).chain().derived();
+  const radar::RadarDerived d = radar_run(run).sensor().chain().derived();
   const double folded = 25.0 - 2.0 * d.max_unambiguous_velocity_m_per_s;
   EXPECT_NEAR(folded, -13.0, 0.1);
   for (const radar::StepResult& step : steps_of(run)) {

@@ -128,5 +128,19 @@ with tempfile.TemporaryDirectory() as work:
         check(waveforms.shape[:2] == (2, 4) and waveforms.shape[2] == len(f["/lidar/angle_deg"]),
               f"waveforms {waveforms.shape}")
 
+# The beat's two parts, kept only when named: signal + noise is the beat, exactly (static paths).
+with tempfile.TemporaryDirectory() as work:
+    out, raw = os.path.join(work, "out"), os.path.join(work, "parts.h5")
+    subprocess.run([fogradar, "run", "--scenario", os.path.join(source, "tests/cli/small.toml"),
+                    "--out", out, "--raw", raw, "--raw-select",
+                    "radar.beat,radar.signal,radar.noise", "--raw-steps", "2",
+                    "--raw-items", "1"], check=True, stdout=subprocess.DEVNULL)
+    with h5py.File(raw) as f:
+        check(sorted(f["/radar"]) == sorted(["beat", "signal", "noise", "step", "item",
+                                             "chirp_time_s", "sample_time_s"]),
+              f"parts file: {sorted(f['/radar'])}")
+        beat, signal, noise = (f[f"/radar/{k}"][0, 0] for k in ("beat", "signal", "noise"))
+        check(np.array_equal(signal + noise, beat), "signal + noise == beat")
+
 print(f"{len(failures)} failures")
 sys.exit(1 if failures else 0)

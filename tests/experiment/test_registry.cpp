@@ -116,27 +116,40 @@ class RangeFinderSummary : public sensor::SensorSummary {
   std::optional<std::size_t> limit_;
 };
 
-class RangeFinderRun : public sensor::SensorRun {
+// What every run of the range finder shares: its parameters and each layer's extinction.
+class RangeFinder : public sensor::Sensor, public std::enable_shared_from_this<RangeFinder> {
  public:
-  RangeFinderRun(const RangeFinderParams& params, const sensor::Context& context,
-                 const propagation::SegelsteinTable& water)
-      : params_(params),
-        context_(context),
-        steps_(std::make_shared<std::vector<StepShots>>(context.steps)) {
+  RangeFinder(const RangeFinderParams& p, const sensor::Context& c,
+              const propagation::SegelsteinTable& water)
+      : params(p), context(c) {
     for (const propagation::FogLayerSpec& layer : context.chamber.layers) {
-      extinction_per_m_.push_back(propagation::Fog(layer.fog, water).optical_extinction_per_km() *
-                                  1e-3);
+      extinction_per_m.push_back(propagation::Fog(layer.fog, water).optical_extinction_per_km() *
+                                 1e-3);
     }
   }
-  std::size_t items_per_step() const override { return params_.shots_per_step; }
+  std::size_t items_per_step() const override { return params.shots_per_step; }
+  std::unique_ptr<sensor::SensorRun> begin_run() const override;
+
+  RangeFinderParams params;
+  sensor::Context context;
+  std::vector<double> extinction_per_m;
+};
+
+class RangeFinderRun : public sensor::SensorRun {
+ public:
+  explicit RangeFinderRun(std::shared_ptr<const RangeFinder> sensor)
+      : sensor_(std::move(sensor)),
+        steps_(std::make_shared<std::vector<StepShots>>(sensor_->context.steps)) {}
   void prepare_step(std::size_t step) override {
-    const propagation::ActiveLayers active = context_.active(step);
+    const sensor::Context& context = sensor_->context;
+    const propagation::ActiveLayers active = context.active(step);
     double optical_depth = 0.0;
     for (std::size_t i = 0; i < active.size(); ++i) {
-      if (active[i]) optical_depth += extinction_per_m_[i] * context_.chamber.layers[i].length_m;
+      if (active[i])
+        optical_depth += sensor_->extinction_per_m[i] * context.chamber.layers[i].length_m;
     }
     (*steps_)[step].transmittance = std::exp(-2.0 * optical_depth);
-    (*steps_)[step].shots.resize(params_.shots_per_step);
+    (*steps_)[step].shots.resize(sensor_->params.shots_per_step);
   }
   std::unique_ptr<sensor::Worker> make_worker() const override {
     return std::make_unique<ShotWorker>(*this);
@@ -151,21 +164,24 @@ class RangeFinderRun : public sensor::SensorRun {
     explicit ShotWorker(const RangeFinderRun& run) : run_(run) {}
     void measure(std::size_t step, std::size_t index, RandomStream& stream,
                  sensor::RawSink*) override {
+      const RangeFinder& sensor = *run_.sensor_;
       StepShots& s = (*run_.steps_)[step];
-      s.shots[index] = {.detected = s.transmittance >= run_.params_.min_transmittance,
-                        .range_m = run_.context_.chamber.target_range_m() +
-                                   run_.params_.range_noise_m * stream.normal()};
+      s.shots[index] = {.detected = s.transmittance >= sensor.params.min_transmittance,
+                        .range_m = sensor.context.chamber.target_range_m() +
+                                   sensor.params.range_noise_m * stream.normal()};
     }
 
    private:
     const RangeFinderRun& run_;
   };
 
-  RangeFinderParams params_;
-  sensor::Context context_;
-  std::vector<double> extinction_per_m_;
+  std::shared_ptr<const RangeFinder> sensor_;
   std::shared_ptr<std::vector<StepShots>> steps_;  // the workers store their shots by index
 };
+
+std::unique_ptr<sensor::SensorRun> RangeFinder::begin_run() const {
+  return std::make_unique<RangeFinderRun>(shared_from_this());
+}
 
 class RangeFinderType : public sensor::SensorType {
  public:
@@ -200,11 +216,11 @@ class RangeFinderType : public sensor::SensorType {
         std::exp(-2.0 * propagation::Fog(fog, water).optical_extinction_per_km() * 1e-3 * length_m);
     return {.json = {{"two_way_transmittance_per_layer", t}}, .line = "  rangefinder"};
   }
-  std::unique_ptr<sensor::SensorRun> start(
+  std::shared_ptr<const sensor::Sensor> make(
       const std::any& params, const sensor::Context& context,
       const propagation::SegelsteinTable& water) const override {
-    return std::make_unique<RangeFinderRun>(sensor::params_of<RangeFinderParams>(params), context,
-                                            water);
+    return std::make_shared<RangeFinder>(sensor::params_of<RangeFinderParams>(params), context,
+                                         water);
   }
 
  private:

@@ -119,7 +119,7 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   radar_of(s).radar.tx_power_dbm = -30.0;
   radar_of(s).radar.cfar.false_alarm_probability = 1e-2;
   const ExperimentResult run = run_experiment(s, {.threads = 2, .progress = {}});
-  EXPECT_DOUBLE_EQ(radar_run(run).expected_false_alarm_cells_per_frame(), 1e-2 * 16 * 512);
+  EXPECT_DOUBLE_EQ(radar_run(run).sensor().expected_false_alarm_cells_per_frame(), 1e-2 * 16 * 512);
   const std::vector<StepResult>& steps = radar_run(run).steps();
   std::size_t associations = 0, false_alarms = 0;
   for (const StepResult& step : steps) {

@@ -30,7 +30,7 @@ void set_up_sensors(const fogradar::experiment::Scenario& scenario) {
   const sensor::Context context = scenario.context();
   for (const std::string& name : scenario.experiment.sensors) {
     const experiment::SensorSetting& setting = scenario.setting(name);
-    setting.type->start(setting.params, context, table);
+    setting.type->make(setting.params, context, table);
   }
 }
 

@@ -1,11 +1,8 @@
-// Every measurement's data out (DESIGN §11, docs/data-out.md): `fogradar run --raw FILE.h5` writes
-// the raw data the sensors offer (sensor::RawKind: the radar's beat signal, range-Doppler map and
-// detections, the lidar's waveforms and echoes, the camera's images) for the chosen kinds, steps
-// and items into one HDF5 file: a group per sensor, each array kind a dataset [step, item, ...]
-// chunked one item per chunk, each table kind a compound dataset of rows, with units and the
-// resolved scenario as attributes and the axes as dimension scales. Its size is estimated and
-// refused over a limit before the run, and the file is written like the result set: complete or
-// not at all.
+// Every measurement's data out (DESIGN §11, docs/data-out.md): which of the raw data the sensors
+// offer (sensor::RawKind) a run keeps — the kinds, steps and items `fogradar run --raw FILE.h5
+// --raw-select --raw-steps --raw-items` choose — with its size estimated and refused over a limit
+// before the run, and where the kept items go while it runs (RawSinks: the HDF5 file of
+// raw_file.hpp, or memory for the Python module).
 #pragma once
 
 #include <cstddef>
@@ -49,29 +46,14 @@ struct RawPlan {
 // is comma-separated indices and ranges "a-b".
 RawPlan resolve_raw(const Scenario& scenario, const RawRequest& request);
 
-// The HDF5 file of one run, written while it runs. Construction refuses (InvalidParameter naming
-// "--raw") a path that is a directory, a file fogradar did not write (fogradar never overwrites a
-// file of yours), or one another run holds; it locks `.NAME.lock` beside it and creates the file
-// under a temporary name there, with every group, dataset and attribute. Workers write their items
-// through sinks; finish() writes the tables, closes and fsyncs the file, publish() renames it into
-// place. Destruction before publish() removes the temporary file: an interrupted or failed run
-// leaves the path as it was.
-class RawFile {
+// Where the items' raw data goes during a run (RunOptions::raw): the sink of item `index` of step
+// `step` of the sensor at `sensor` (its position in experiment.sensors), or null when nothing of
+// that item is kept. Called from the worker threads; a sink lives until its item is measured.
+class RawSinks {
  public:
-  RawFile(const RawPlan& plan, const Scenario& scenario);
-  ~RawFile();
-  RawFile(const RawFile&) = delete;
-  RawFile& operator=(const RawFile&) = delete;
-
-  // The sink of item `index` of step `step` of the sensor at `sensor` in the plan, or null when
-  // nothing of that item is kept. The sink lives until the item is measured.
-  std::unique_ptr<sensor::RawSink> sink(std::size_t sensor, std::size_t step, std::size_t index);
-  void finish();
-  void publish();
-
- private:
-  class Impl;
-  std::unique_ptr<Impl> impl_;
+  virtual ~RawSinks() = default;
+  virtual std::unique_ptr<sensor::RawSink> sink(std::size_t sensor, std::size_t step,
+                                                std::size_t index) = 0;
 };
 
 }  // namespace fogradar::experiment

@@ -25,6 +25,7 @@ namespace fogradar::experiment {
 // One sensor of a run, as experiment.sensors names it.
 struct SensorRunEntry {
   std::shared_ptr<const sensor::SensorType> type;
+  std::shared_ptr<const sensor::Sensor> sensor;
   std::shared_ptr<sensor::SensorRun> run;
 };
 
@@ -44,7 +45,7 @@ struct RunOptions {
   // item and run_experiment throws Interrupted. May be null.
   const std::atomic<bool>* stop = nullptr;
   // Where the items' raw data goes (its plan resolved for this scenario), or null for none.
-  RawFile* raw = nullptr;
+  RawSinks* raw = nullptr;
 };
 
 // Thrown by run_experiment when RunOptions::stop was set: there is no partial result.
@@ -53,8 +54,56 @@ class Interrupted : public std::runtime_error {
   Interrupted() : std::runtime_error("interrupted") {}
 };
 
-// Runs the whole experiment. Throws InvalidParameter for an invalid or inconsistent scenario,
-// Interrupted when stopped.
+// A scenario's sensors made once (sensor::Sensor: chamber, plans, CFAR design, optics), then run
+// as often as wanted, whole or one item at a time. Const and safe to share between threads; every
+// run is its own.
+class Simulation {
+ public:
+  // Validates the scenario (InvalidParameter) and makes every sensor experiment.sensors names.
+  explicit Simulation(Scenario scenario);
+
+  const Scenario& scenario() const { return scenario_; }
+  const sensor::Context& context() const { return context_; }
+
+  // Every item of every sensor, on RunOptions::threads threads. Throws Interrupted when stopped.
+  ExperimentResult run(const RunOptions& options = {}) const;
+
+  // One sensor's run for items measured one at a time (ItemRun); InvalidParameter naming "sensor"
+  // for a sensor that does not run.
+  SensorRunEntry begin_run(std::string_view sensor) const;
+
+ private:
+  Scenario scenario_;
+  sensor::Context context_;
+  std::vector<SensorRunEntry> sensors_;  // in experiment.sensors' order, without runs
+};
+
+// Items of one sensor measured one at a time, each exactly as a run measures it (the same random
+// stream, the same numbers): the items of a step, or single items, with their raw data.
+class ItemRun {
+ public:
+  ItemRun(const Simulation& simulation, std::string_view sensor);
+
+  std::size_t steps() const { return steps_; }
+  std::size_t items_per_step() const { return items_per_step_; }
+  // The raw data kinds the sensor offers (sensor::SensorType::raw_kinds).
+  const std::vector<sensor::RawKind>& raw_kinds() const { return kinds_; }
+  // Measures item `index` of step `step` into `raw` (may be null); InvalidParameter naming "step"
+  // or "index" out of range. Prepares the step the first time one of its items is measured.
+  void measure(std::size_t step, std::size_t index, sensor::RawSink* raw);
+
+ private:
+  SensorRunEntry entry_;
+  std::uint64_t seed_ = 0;
+  std::size_t steps_ = 0;
+  std::size_t items_per_step_ = 0;
+  std::vector<sensor::RawKind> kinds_;
+  std::vector<bool> prepared_;
+  std::unique_ptr<sensor::Worker> worker_;
+};
+
+// Runs the whole experiment (Simulation(scenario).run(options)). Throws InvalidParameter for an
+// invalid or inconsistent scenario, Interrupted when stopped.
 ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options = {});
 
 // The items `fogradar run` measures, in words ("radar measurements, lidar scans and camera

@@ -101,6 +101,11 @@ Scenario paper_scenario(const SensorRegistry& registry = standard_registry());
 Scenario parse_scenario(std::string_view toml_text, std::string_view source_name,
                         const SensorRegistry& registry = standard_registry());
 
+// Reads a scenario file's text over `base` instead: the keys it gives replace base's values (the
+// Python module's Scenario.with_overrides). Errors as parse_scenario's.
+Scenario parse_scenario_over(const Scenario& base, std::string_view toml_text,
+                             std::string_view source_name);
+
 // Largest scenario file read: a scenario is a few kB; anything larger is refused before it is read.
 inline constexpr std::size_t max_scenario_file_bytes = std::size_t{1} << 20;
 

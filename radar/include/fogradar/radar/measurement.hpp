@@ -35,15 +35,20 @@ struct MeasurementWorkspace {
   std::vector<double> power;  // filled by synthesize_and_process only; measure does not need it
   std::vector<Tone> tones;
   EstimationWorkspace estimation;
+  // The beat's parts, sized when a tap asks for them (FrameTaps::signal, noise).
+  std::vector<std::complex<double>> signal, noise;
 };
 
 // What RadarChain::measure shows of a frame on its way (raw data, DESIGN §11): the beat signal as
-// synthesised (chirps x samples, chirp-major, before the window) and the complex range-Doppler map
-// (Doppler rows in FFT order x range columns; the CFAR sees its |.|^2). An empty tap costs nothing;
-// with a beat tap the frame is windowed and range transformed after the synthesis instead of during
-// it, which gives the same bits (synthesis.hpp, transform_windowed).
+// synthesised (chirps x samples, chirp-major, before the window), its two parts (synthesis.hpp,
+// FrameParts: the thermal noise as drawn, and the rest) and the complex range-Doppler map (Doppler
+// rows in FFT order x range columns; the CFAR sees its |.|^2). An empty tap costs nothing; with a
+// beat, signal or noise tap the frame is windowed and range transformed after the synthesis instead
+// of during it, which gives the same bits (synthesis.hpp, transform_windowed).
 struct FrameTaps {
   std::function<void(std::span<const std::complex<double>>)> beat;
+  std::function<void(std::span<const std::complex<double>>)> signal;
+  std::function<void(std::span<const std::complex<double>>)> noise;
   std::function<void(std::span<const std::complex<double>>)> range_doppler;
 };
 

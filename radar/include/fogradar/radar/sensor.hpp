@@ -36,8 +36,15 @@ KeyTable<SensorParams> sensor_keys();
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
 // The radar's raw data per measurement (DESIGN §11), by index: the beat signal, the range-Doppler
-// map |X|^2 and the detections, with their axes.
-enum RawKindIndex : std::size_t { raw_beat = 0, raw_range_doppler = 1, raw_detections = 2 };
+// map |X|^2 and the detections, with their axes; the beat's two parts (synthesis.hpp, FrameParts)
+// only when asked for by name.
+enum RawKindIndex : std::size_t {
+  raw_beat = 0,
+  raw_range_doppler = 1,
+  raw_detections = 2,
+  raw_signal = 3,
+  raw_noise = 4
+};
 std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params);
 
 // Peak memory of the radar's part of a run, by part: an upper estimate from the sizes of the
@@ -57,36 +64,51 @@ class RadarReport : public sensor::SensorSummary {
   virtual const std::vector<StepResult>& steps() const = 0;
 };
 
-// One run of the radar: the chamber resolved at its sweep centre, the scene, the chain (FFT plans,
-// windows, CFAR design) made once and shared by the workers, one record per measurement.
-class RadarRun : public sensor::SensorRun {
+// The radar made for one scenario: the chamber resolved at its sweep centre, the scene, the chain
+// (FFT plans, windows, CFAR design), made once and shared by every run and worker.
+class RadarSensor : public sensor::Sensor, public std::enable_shared_from_this<RadarSensor> {
  public:
-  RadarRun(const SensorParams& params, const sensor::Context& context,
-           const propagation::SegelsteinTable& water);
+  RadarSensor(const SensorParams& params, const sensor::Context& context,
+              const propagation::SegelsteinTable& water);
 
   std::size_t items_per_step() const override { return context_.measurements_per_step; }
-  void prepare_step(std::size_t) override {}
-  std::unique_ptr<sensor::Worker> make_worker() const override;
-  std::unique_ptr<const sensor::SensorSummary> summarize() const override;
+  std::unique_ptr<sensor::SensorRun> begin_run() const override;
 
   const SensorParams& params() const { return params_; }
+  const sensor::Context& context() const { return context_; }
   const RadarChain& chain() const { return chain_; }
   const Scene& scene() const { return scene_; }
   const propagation::Chamber& chamber() const { return chamber_; }
-  // The records, one step per active-layer count, measurements by index.
-  const std::vector<StepResult>& steps() const { return *steps_; }
+  const propagation::ActiveLayers& active(std::size_t step) const { return active_.at(step); }
   // 10 log10(alpha): a detection needs about this SNR.
   double cfar_threshold_db() const;
   double expected_false_alarm_cells_per_frame() const;
 
  private:
-  friend class RadarWorker;
   SensorParams params_;
   sensor::Context context_;
   Scene scene_;
   propagation::Chamber chamber_;
   RadarChain chain_;
   std::vector<propagation::ActiveLayers> active_;
+};
+
+// One run of the radar: one record per measurement.
+class RadarRun : public sensor::SensorRun {
+ public:
+  explicit RadarRun(std::shared_ptr<const RadarSensor> sensor);
+
+  void prepare_step(std::size_t) override {}
+  std::unique_ptr<sensor::Worker> make_worker() const override;
+  std::unique_ptr<const sensor::SensorSummary> summarize() const override;
+
+  const RadarSensor& sensor() const { return *sensor_; }
+  // The records, one step per active-layer count, measurements by index.
+  const std::vector<StepResult>& steps() const { return *steps_; }
+
+ private:
+  friend class RadarWorker;
+  std::shared_ptr<const RadarSensor> sensor_;
   std::shared_ptr<std::vector<StepResult>> steps_;
 };
 

@@ -43,11 +43,23 @@ struct ChirpTransform {
 // that noise-pass path (and when the frame's chirps are FFTW-aligned) each chirp is range
 // transformed as it is finished, and the report says so (range_transformed); on every other path
 // the transform is not used and the frame comes out untransformed.
+//
+// `parts` (without a window only) keeps the frame's two parts apart as well, each chirps x samples
+// or empty: `noise`, the thermal noise w_c[n] as drawn, and `signal`, everything else before it is
+// added (the paths, the fog clutter and the phase noise). The frame is then the same bits as
+// without them: signal + noise exactly where the noise is the last thing added (every path static
+// or phase noise on), to rounding where moving paths are added after the noise; both are taken
+// before the ADC.
+struct FrameParts {
+  std::span<std::complex<double>> signal;
+  std::span<std::complex<double>> noise;
+};
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
                                  std::span<std::complex<double>> frame,
                                  const FrameWindow* window = nullptr,
-                                 const ChirpTransform* transform = nullptr);
+                                 const ChirpTransform* transform = nullptr,
+                                 const FrameParts* parts = nullptr);
 
 // ADC model: I and Q each quantised mid-rise with 2^bits levels over [-A, A], A = sqrt(P_fs) the
 // amplitude of a full-scale complex tone; values beyond A clip to the outermost level. Returns the

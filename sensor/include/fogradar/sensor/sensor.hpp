@@ -3,13 +3,14 @@
 // (pbrt-v4's Medium: a small interface, one factory that names the types). A sensor folder
 // (radar/, lidar/, camera/) provides:
 //
-//   SensorType                 its name, scenario keys, validation, memory estimate, raw data
-//   kinds,
-//                              result file names and its view of a fog (`fogradar fog`), and makes
-//   SensorRun                  one run of it on one chamber: per-step state, then items measured by
-//   Worker                     per-thread workers from their own random streams, then
-//   SensorSummary              its per-step statistics, limit verdict, printed table, JSON summary,
-//                              result files and benchmark curve.
+//   SensorType     its name, scenario keys, validation, memory estimate, raw data kinds, result
+//                  file names and its view of a fog (`fogradar fog`); it makes
+//   Sensor         the sensor for one scenario: what every run shares (chamber, plans, tables,
+//                  optics), made once, immutable, safe to share between threads; it begins
+//   SensorRun      one run: per-step state, then the items measured by
+//   Worker         per-thread workers from their own random streams, then
+//   SensorSummary  its per-step statistics, limit verdict, printed table, JSON summary, result
+//                  files and benchmark curve.
 //
 // A sensor's parameters travel through experiment/ as a std::any holding its own struct; its keys
 // (core/keys.hpp) read and write them. Items are keyed (seed, sensor's stream key, step, index), so
@@ -114,6 +115,8 @@ struct RawKind {
   std::size_t rows_per_item = 0;        // table kinds: the size estimate's rows per item
   // Numbers a reader needs beside the data (e.g. the map's thermal-noise level), as attributes.
   std::vector<std::pair<std::string, double>> attributes;
+  // Kept when no kinds are named (--raw without --raw-select); false: only when asked for by name.
+  bool by_default = true;
 
   std::size_t item_values() const;  // product of `shape`
   std::size_t item_bytes() const;   // of one item (tables: rows_per_item rows)
@@ -153,12 +156,11 @@ class Worker {
   virtual void measure(std::size_t step, std::size_t index, RandomStream& stream, RawSink* raw) = 0;
 };
 
-// One sensor in one run: made once, then its steps prepared, its items measured by workers on any
-// thread, and summarised.
+// One run of a sensor: its steps prepared, its items measured by workers on any thread (each item
+// stored at its index), then summarised. A run keeps its Sensor alive.
 class SensorRun {
  public:
   virtual ~SensorRun() = default;
-  virtual std::size_t items_per_step() const = 0;
   // The step's own state (a fog series, band optics), made once on the calling thread before any of
   // the step's items.
   virtual void prepare_step(std::size_t step) = 0;
@@ -166,6 +168,15 @@ class SensorRun {
   virtual std::unique_ptr<Worker> make_worker() const = 0;
   // After every item: what the run found.
   virtual std::unique_ptr<const SensorSummary> summarize() const = 0;
+};
+
+// A sensor made for one scenario (SensorType::make): what all its runs share, made once. Const and
+// safe to use from several threads at once; every run begun from it is its own.
+class Sensor {
+ public:
+  virtual ~Sensor() = default;
+  virtual std::size_t items_per_step() const = 0;
+  virtual std::unique_ptr<SensorRun> begin_run() const = 0;
 };
 
 class SensorType {
@@ -198,9 +209,9 @@ class SensorType {
   virtual FogReport fog_report(const std::any& params, const propagation::FogSpec& fog,
                                double layer_length_m,
                                const propagation::SegelsteinTable& water) const = 0;
-  // Builds the sensor for one run (valid params and context).
-  virtual std::unique_ptr<SensorRun> start(const std::any& params, const Context& context,
-                                           const propagation::SegelsteinTable& water) const = 0;
+  // Makes the sensor for a scenario (valid params and context).
+  virtual std::shared_ptr<const Sensor> make(const std::any& params, const Context& context,
+                                             const propagation::SegelsteinTable& water) const = 0;
 };
 
 // A sensor's parameters inside the std::any experiment/ carries.
