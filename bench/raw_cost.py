@@ -50,7 +50,8 @@ parser.add_argument("--fogradar", default=os.path.join(root, "build/release/cli/
 parser.add_argument("--scenario", default=os.path.join(root, "examples/bench.toml"))
 parser.add_argument("--threads", default="2")
 parser.add_argument("--select", default="radar.beat,radar.range_doppler")
-parser.add_argument("--items", default=None, help="--raw-items (default: fogradar's, the first ten)")
+parser.add_argument("--items", default=None,
+                    help="--raw-items (default: fogradar's, the first ten)")
 parser.add_argument("--dir", default=None, help="where the files go (default: a new one in /tmp)")
 args = parser.parse_args()
 

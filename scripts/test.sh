@@ -6,7 +6,9 @@
 # machine, whose loader picks the x86-64-v4 clone in the other runs, tests the AVX2 one here.
 # `scripts/test.sh --baseline` builds the vector loops for the x86-64 baseline only (no other clone,
 # -DFOGRADAR_SIMD_CLONES=): the same tests, pinned noise samples included, then check that the
-# version the loader picks on machines without AVX2 gives the same bits.
+# version the loader picks on machines without AVX2 gives the same bits. The Python module is
+# built and tested in the release and baseline trees; not under the sanitizers (Debian's python3
+# is not instrumented).
 # With CI=true warnings are errors.
 set -euo pipefail
 mode=${1:-}
@@ -30,14 +32,16 @@ case "$mode" in
     dir="$root/build/sanitize"
     fogradar_configure "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_NO_AVX512 \
       -DFOGRADAR_BUILD_TESTS=ON -DFOGRADAR_BUILD_EXAMPLES=ON -DFOGRADAR_SANITIZE=ON \
-      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF
+      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF \
+      -DFOGRADAR_BUILD_PYTHON=OFF
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
     ;;
   --baseline)
     dir="$root/build/baseline"
     fogradar_configure "$dir" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_CLONES=" \
       -DFOGRADAR_BUILD_TESTS=ON -DFOGRADAR_BUILD_EXAMPLES=ON -DFOGRADAR_SANITIZE=OFF \
-      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF
+      -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF \
+      -DFOGRADAR_BUILD_PYTHON=ON
     ;;
 esac
 cmake --build "$dir"
