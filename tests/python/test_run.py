@@ -27,14 +27,9 @@ def test_the_summary_equals_the_command_s_summary_files(paper_sim, paper_cli_run
 
 @pytest.mark.parametrize("threads", [1, 2])
 def test_write_gives_the_command_s_files_byte_for_byte(threads, cli, tmp_path):
-    scenario = fogradar.Scenario.from_dict({"experiment.measurements_per_step": 20,
-                                            "lidar.scans_per_step": 5,
-                                            "camera.frames_per_step": 3})
-    path = tmp_path / "s.toml"
-    path.write_text(scenario.to_toml())
-    subprocess.run([cli, "run", "--scenario", str(path), "--out", str(tmp_path / "cli"),
-                    "--threads", str(threads)], check=True, stdout=subprocess.DEVNULL)
-    fogradar.Simulator(scenario, threads=threads).run().write(tmp_path / "python")
+    subprocess.run([cli, "run", "--out", str(tmp_path / "cli"), "--threads", str(threads)],
+                   check=True, stdout=subprocess.DEVNULL)
+    fogradar.Simulator(fogradar.Scenario.paper(), threads=threads).run().write(tmp_path / "python")
     names = sorted(os.listdir(tmp_path / "cli"))
     assert names == sorted(os.listdir(tmp_path / "python"))
     match, mismatch, errors = filecmp.cmpfiles(tmp_path / "cli", tmp_path / "python", names,
