@@ -156,10 +156,12 @@ std::string lidar_intensity_boxplot_svg(const Lidar& lidar, const LidarSummary& 
   stats::SvgPlotOptions options;
   for (std::size_t i = 0; i < summary.steps.size(); ++i) {
     const LidarStepSummary& s = summary.steps[i];
-    series.push_back({std::to_string(s.active_layers), s.target_intensity, s.target_detection_rate,
-                      layers_label(s.active_layers) + ": target in " +
-                          std::to_string(s.target_detections) + " of " + std::to_string(s.scans) +
-                          " scans"});
+    stats::BoxPlotSeries& step = series.emplace_back();
+    step.label = std::to_string(s.active_layers);
+    step.box = s.target_intensity;
+    step.rate = s.target_detection_rate;
+    step.note = layers_label(s.active_layers) + ": target in " +
+                std::to_string(s.target_detections) + " of " + std::to_string(s.scans) + " scans";
     if (summary.sensor_limit_layers == s.active_layers) options.marked_category = i;
   }
   options.title = "Lidar: target intensity against active fog layers (the study's Fig. 6)";

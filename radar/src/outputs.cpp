@@ -318,7 +318,11 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
   stats::SvgPlotOptions options;
   for (std::size_t i = 0; i < summary.steps.size(); ++i) {
     const StepSummary& s = summary.steps[i];
-    series.push_back({std::to_string(s.active_layers), s.rcs, s.detection_rate, step_note(s)});
+    stats::BoxPlotSeries& step = series.emplace_back();
+    step.label = std::to_string(s.active_layers);
+    step.box = s.rcs;
+    step.rate = s.detection_rate;
+    step.note = step_note(s);
     if (summary.sensor_limit_layers == s.active_layers) options.marked_category = i;
   }
   options.title = "Target RCS against active fog layers: " + target_name(params.target) + ", fog " +

@@ -84,6 +84,9 @@ constexpr std::string_view cross_style = "stroke=\"#7f7f7f\" stroke-width=\"1.5\
 constexpr std::string_view mark_style =
     "stroke=\"#d35400\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"";
 constexpr std::string_view rate_fill = "fill=\"#8fb3d9\"";
+constexpr std::string_view band_style = "fill=\"#f5cba7\" fill-opacity=\"0.7\"";
+constexpr std::string_view inner_band_style = "fill=\"#e59866\" fill-opacity=\"0.7\"";
+constexpr std::string_view reference_style = "stroke=\"#c0392b\" stroke-width=\"2.5\"";
 
 // Coordinates with two decimals: 0.01 px is far below any rendering resolution.
 std::string px(double v) { return format_fixed(v, 2); }
@@ -141,6 +144,14 @@ void mark_triangle(std::string& svg, double x, double bottom, std::string_view c
          px(bottom) + " Z\" fill=\"#d35400\"/>\n";
 }
 
+// A measured value: an x-shaped cross.
+void reference_cross(std::string& svg, double x, double y, std::string_view class_name) {
+  const std::string style =
+      "class=\"" + std::string(class_name) + "\" " + std::string(reference_style);
+  line(svg, x - 6.0, y - 6.0, x + 6.0, y + 6.0, style);
+  line(svg, x - 6.0, y + 6.0, x + 6.0, y - 6.0, style);
+}
+
 std::string with_class(std::string_view class_name, std::string_view style) {
   return "class=\"" + std::string(class_name) + "\" " + std::string(style);
 }
@@ -157,12 +168,24 @@ double below_plot_px(const SvgPlotOptions& options) {
          bottom_padding;
 }
 
+bool has_band(double low, double high) { return !std::isnan(low) || !std::isnan(high); }
+
+void require_band(double low, double high, const std::string& field) {
+  if (!has_band(low, high)) return;
+  if (!(std::isfinite(low) && std::isfinite(high) && low <= high)) {
+    throw_invalid(field, low, "finite and <= its high end (" + format_number(high) + ")");
+  }
+}
+
 void require_drawable(const BoxPlotSeries& s, std::size_t index, bool strip) {
   const BoxPlot& box = s.box;
+  const std::string name = "series[" + std::to_string(index) + "]";
   if (strip && !std::isnan(s.rate) && !(s.rate >= 0.0 && s.rate <= 1.0)) {
-    const std::string field = "series[" + std::to_string(index) + "].rate";
-    throw_invalid(field, s.rate, "in [0, 1], or NaN for no bar");
+    throw_invalid(name + ".rate", s.rate, "in [0, 1], or NaN for no bar");
   }
+  require_band(s.band_low, s.band_high, name + ".band_low");
+  require_band(s.inner_band_low, s.inner_band_high, name + ".inner_band_low");
+  for (const double v : s.references) require_finite(name + ".references", v);
   if (box.n == 0) return;
   const double stats[] = {box.mean, box.min, box.q1,          box.median,
                           box.q3,   box.max, box.whisker_low, box.whisker_high};
@@ -198,6 +221,15 @@ void draw_series(std::string& svg, const BoxPlotSeries& s, double cx, const Layo
          "</title>\n";
   const BoxPlot& b = s.box;
   const double half_width = at.half_width;
+  if (has_band(s.band_low, s.band_high)) {
+    rect(svg, cx - 0.42 * at.band, to_y(s.band_high), 0.84 * at.band,
+         to_y(s.band_low) - to_y(s.band_high), with_class("band", band_style));
+  }
+  if (has_band(s.inner_band_low, s.inner_band_high)) {
+    rect(svg, cx - 0.42 * at.band, to_y(s.inner_band_high), 0.84 * at.band,
+         to_y(s.inner_band_low) - to_y(s.inner_band_high),
+         with_class("inner-band", inner_band_style));
+  }
   if (b.n == 0) {
     cross(svg, cx, at.plot_bottom - 14.0, std::min(5.0, 0.4 * at.band), "no-values");
     if (at.band >= band_for_empty_text) {
@@ -222,6 +254,7 @@ void draw_series(std::string& svg, const BoxPlotSeries& s, double cx, const Layo
       diamond(svg, cx, to_y(b.mean), "mean", std::clamp(0.8 * half_width, 2.5, mean_marker_half));
     }
   }
+  for (const double v : s.references) reference_cross(svg, cx, to_y(v), "reference");
   if (has_strip(options) && !std::isnan(s.rate)) {
     const double bar = s.rate * strip_height;
     rect(svg, cx - half_width, at.strip_bottom - bar, 2.0 * half_width, bar,
@@ -239,7 +272,7 @@ void draw_series(std::string& svg, const BoxPlotSeries& s, double cx, const Layo
 
 // One row per symbol drawn: its sample on the left, its meaning on the right.
 void draw_legend(std::string& svg, const Layout& at, const SvgPlotOptions& options, bool any_data,
-                 bool any_empty) {
+                 bool any_empty, bool any_band, bool any_inner_band, bool any_reference) {
   const double left = at.plot_right + 16.0;
   const double right = at.width - 12.0;
   const double sx = left + 18.0;  // symbol centre
@@ -248,7 +281,8 @@ void draw_legend(std::string& svg, const Layout& at, const SvgPlotOptions& optio
   svg += "<g class=\"legend\">\n";
   const std::size_t rows = (any_data ? 4u + (options.show_mean ? 1u : 0u) : 0u) +
                            (any_empty ? 1u : 0u) + (options.marked_category ? 1u : 0u) +
-                           (has_strip(options) ? 1u : 0u);
+                           (has_strip(options) ? 1u : 0u) + (any_band ? 1u : 0u) +
+                           (any_inner_band ? 1u : 0u) + (any_reference ? 1u : 0u);
   rect(svg, left, plot_top, right - left, 8.0 + legend_row * static_cast<double>(rows),
        "class=\"legend-frame\" fill=\"#ffffff\" stroke=\"#bbbbbb\" stroke-width=\"1\"");
   const auto label = [&](std::string_view content) {
@@ -284,6 +318,18 @@ void draw_legend(std::string& svg, const Layout& at, const SvgPlotOptions& optio
   if (has_strip(options)) {
     rect(svg, sx - 5.0, y - 4.0, 10.0, 12.0, with_class("legend-rate", rate_fill));
     label(options.rate_label);
+  }
+  if (any_band) {
+    rect(svg, sx - 8.0, y - 6.0, 16.0, 12.0, with_class("legend-band", band_style));
+    label(options.band_label);
+  }
+  if (any_inner_band) {
+    rect(svg, sx - 8.0, y - 6.0, 16.0, 12.0, with_class("legend-inner-band", inner_band_style));
+    label(options.inner_band_label);
+  }
+  if (any_reference) {
+    reference_cross(svg, sx, y, "legend-reference");
+    label(options.reference_label);
   }
   svg += "</g>\n";
 }
@@ -359,13 +405,31 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
   double high = 1.0;
   bool any_data = false;
   bool any_empty = false;
+  bool any_value = false, any_band = false, any_inner_band = false, any_reference = false;
+  const auto cover = [&](double v) {
+    low = any_value ? std::min(low, v) : v;
+    high = any_value ? std::max(high, v) : v;
+    any_value = true;
+  };
   for (const BoxPlotSeries& s : series) {
+    if (has_band(s.band_low, s.band_high)) {
+      cover(s.band_low);
+      cover(s.band_high);
+      any_band = true;
+    }
+    if (has_band(s.inner_band_low, s.inner_band_high)) {
+      cover(s.inner_band_low);
+      cover(s.inner_band_high);
+      any_inner_band = true;
+    }
+    for (const double v : s.references) cover(v);
+    any_reference = any_reference || !s.references.empty();
     if (s.box.n == 0) {
       any_empty = true;
       continue;
     }
-    low = any_data ? std::min(low, s.box.min) : s.box.min;
-    high = any_data ? std::max(high, s.box.max) : s.box.max;
+    cover(s.box.min);
+    cover(s.box.max);
     any_data = true;
   }
   const AxisTicks ticks = nice_axis_ticks(low, high);
@@ -468,7 +532,7 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
         at.axis_bottom + x_label_baseline + caption_gap + caption_line * static_cast<double>(i + 1),
         "start", "class=\"caption\" fill=\"#333333\"", options.caption[i]);
   }
-  draw_legend(svg, at, options, any_data, any_empty);
+  draw_legend(svg, at, options, any_data, any_empty, any_band, any_inner_band, any_reference);
   svg += "</svg>\n";
   return svg;
 }

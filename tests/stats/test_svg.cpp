@@ -14,6 +14,7 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/stats/box_plot.hpp"
+#include "fogradar/stats/heat_map.hpp"
 #include "fogradar/stats/svg_plot.hpp"
 #include "rejected_field.hpp"
 #include "svg_check.hpp"
@@ -35,7 +36,11 @@ std::vector<double> rcs_sample(std::uint64_t seed, std::size_t n, double median_
 
 BoxPlotSeries series_of(std::string label, BoxPlot box,
                         double rate = std::numeric_limits<double>::quiet_NaN()) {
-  return {std::move(label), std::move(box), rate, ""};
+  BoxPlotSeries s;
+  s.label = std::move(label);
+  s.box = std::move(box);
+  s.rate = rate;
+  return s;
 }
 
 std::vector<BoxPlotSeries> paper_like_series() {
@@ -326,6 +331,68 @@ TEST(SvgConfig, EveryInvalidInputNamesItsField) {
   expect_field([] { nice_axis_ticks(2.0, 1.0); }, "high");
   expect_field([] { nice_axis_ticks(std::numeric_limits<double>::quiet_NaN(), 1.0); }, "low");
   expect_field([] { nice_axis_ticks(0.0, 1.0, 1); }, "max_intervals");
+  std::vector<BoxPlotSeries> reversed_band = series;
+  reversed_band[0].band_low = 5.0;
+  reversed_band[0].band_high = 4.0;
+  expect_field([&] { box_plot_svg(reversed_band, paper_options()); }, "series[0].band_low");
+  std::vector<BoxPlotSeries> half_band = series;
+  half_band[3].inner_band_high = 4.0;
+  expect_field([&] { box_plot_svg(half_band, paper_options()); }, "series[3].inner_band_low");
+  std::vector<BoxPlotSeries> endless = series;
+  endless[2].references = {std::numeric_limits<double>::infinity()};
+  expect_field([&] { box_plot_svg(endless, paper_options()); }, "series[2].references");
+}
+
+// An envelope and a measured value beside the boxes: each drawn, in the legend, and inside the
+// y axis even where they lie beyond every box.
+TEST(BoxPlotSvg, DrawsBandsAndReferencesInsideTheAxis) {
+  std::vector<BoxPlotSeries> series = paper_like_series();
+  series[0].band_low = 9.0;
+  series[0].band_high = 60.0;  // above every box (the boxes lie near 15 dBsm)
+  series[0].inner_band_low = 12.0;
+  series[0].inner_band_high = 18.0;
+  series[1].references = {-60.0};  // below every box and outlier
+  SvgPlotOptions options = paper_options();
+  options.band_label = "5-95 %";
+  options.inner_band_label = "25-75 %";
+  options.reference_label = "the study";
+  const std::string svg = box_plot_svg(series, options);
+  EXPECT_EQ(count(svg, "class=\"band\""), 1u);
+  EXPECT_EQ(count(svg, "class=\"inner-band\""), 1u);
+  EXPECT_EQ(count(svg, "class=\"reference\""), 2u);  // a cross: two lines
+  EXPECT_NE(svg.find(">5-95 %<"), std::string::npos);
+  EXPECT_NE(svg.find(">the study<"), std::string::npos);
+  // The axis reaches both: tick labels at 60 and at -60.
+  EXPECT_NE(svg.find(">60<"), std::string::npos);
+  EXPECT_NE(svg.find(">-60<"), std::string::npos);
+  // Without them the axis stops at the boxes.
+  const std::string plain = box_plot_svg(paper_like_series(), paper_options());
+  EXPECT_EQ(plain.find(">-60<"), std::string::npos);
+  EXPECT_EQ(plain.find(">60<"), std::string::npos);
+  EXPECT_EQ(count(plain, "class=\"band\""), 0u);
+}
+
+// A heat map: a cell per row x column with its value written in it, the missing ones grey with
+// their text, the darkest colour on the largest value; a grid of another shape is refused.
+TEST(HeatMapSvg, DrawsEveryCellAndRefusesAGridOfAnotherShape) {
+  HeatMap map;
+  map.column_labels = {"300", "900", "2000"};
+  map.row_labels = {"0.1", "0.3"};
+  map.values = {{1.0, 1.0, std::nullopt}, {3.0, 1.0, 1.0}};
+  map.missing_text = "not reached";
+  map.title = "lidar: layers to failure";
+  const std::string svg = heat_map_svg(map);
+  EXPECT_EQ(count(svg, "class=\"cell\""), 6u);
+  EXPECT_EQ(count(svg, ">not reached<"), 1u);
+  EXPECT_EQ(count(svg, "fill=\"#d9d9d9\""), 1u);  // the missing cell
+  EXPECT_EQ(count(svg, "fill=\"#08519c\""), 2u);  // the largest value's cell and its key swatch
+  EXPECT_NE(svg.find(">lidar: layers to failure<"), std::string::npos);
+  HeatMap ragged = map;
+  ragged.values[1].pop_back();
+  EXPECT_EQ(test_support::rejected_field([&] { heat_map_svg(ragged); }), "values");
+  HeatMap endless = map;
+  endless.values[0][1] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(test_support::rejected_field([&] { heat_map_svg(endless); }), "values[0][1]");
 }
 
 }  // namespace

@@ -25,6 +25,14 @@ struct BoxPlotSeries {
   // Drawn as a bar in the rate strip when SvgPlotOptions::rate_label is set; NaN: no bar.
   double rate = std::numeric_limits<double>::quiet_NaN();
   std::string note;  // the category's tooltip (SVG <title>); empty: the label
+  // An envelope behind the box (e.g. the 5-95 % and 25-75 % points of a statistic across the
+  // setups a study allows), drawn as two shaded bars; NaN: none.
+  double band_low = std::numeric_limits<double>::quiet_NaN();
+  double band_high = std::numeric_limits<double>::quiet_NaN();
+  double inner_band_low = std::numeric_limits<double>::quiet_NaN();
+  double inner_band_high = std::numeric_limits<double>::quiet_NaN();
+  // Reference values marked at this category (e.g. a measurement's), as red crosses.
+  std::vector<double> references;
 };
 
 struct SvgPlotOptions {
@@ -39,6 +47,9 @@ struct SvgPlotOptions {
   std::string rate_label;                      // title of the rate strip (0-100 %); empty: no strip
   std::optional<std::size_t> marked_category;  // index of a category marked by a dashed line
   std::string mark_label;                      // legend text of that mark
+  std::string band_label;                      // legend text of the bands (BoxPlotSeries::band_*)
+  std::string inner_band_label;
+  std::string reference_label;  // legend text of the reference crosses
 
   // Throws InvalidParameter naming "svg.width_px" (finite, >= 480) or "svg.height_px" (finite and
   // tall enough for a 100 px plot area besides title, strip, labels and caption).
@@ -65,7 +76,9 @@ std::size_t category_label_stride(std::span<const BoxPlotSeries> series, double 
 
 // Throws InvalidParameter naming "series" (empty list), "series[i].box" (n > 0 with a non-finite
 // statistic other than std_dev), "series[i].rate" (not NaN and outside [0, 1] while the strip is
-// drawn), "marked_category" (not an index of `series`) or an options field.
+// drawn), "series[i].band_low" (a band whose ends are not both finite with low <= high),
+// "series[i].references" (a non-finite value), "marked_category" (not an index of `series`) or an
+// options field.
 std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOptions& options);
 
 }  // namespace fogradar::stats
