@@ -1,5 +1,5 @@
 // fogradar: automotive surround sensors in fog. Exit status 0 ok, 2 bad usage or bad input, 1
-// internal fault, 130 / 143 `run` stopped by SIGINT / SIGTERM.
+// internal fault, 130 / 143 `run` or `sweep` stopped by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   const fogradar::cli::Action run = fogradar::cli::add_run_command(app);
   const fogradar::cli::Action scenario = fogradar::cli::add_scenario_command(app);
   const fogradar::cli::Action fog = fogradar::cli::add_fog_command(app);
+  const fogradar::cli::Action sweep = fogradar::cli::add_sweep_command(app);
   // CLI11 answers a word that is no subcommand with "A subcommand is required", not naming it.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string word = argv[1];
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
         app.get_subcommands([&word](CLI::App* sub) { return sub->check_name(word); });
     if (known.empty()) {
       std::cerr << "fogradar: unknown subcommand '" << word
-                << "': must be one of run, scenario, fog\n"
+                << "': must be one of run, scenario, fog, sweep\n"
                 << "(run 'fogradar --help' for usage)\n";
       return bad_input;
     }
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) run();
     if (app.got_subcommand("scenario")) scenario();
     if (app.got_subcommand("fog")) fog();
+    if (app.got_subcommand("sweep")) sweep();
   } catch (const fogradar::cli::Interrupted& e) {
     std::cerr << "fogradar: " << e.what() << '\n';
     return 128 + e.signal_number();

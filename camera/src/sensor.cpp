@@ -57,10 +57,11 @@ class Report : public CameraReport {
 
   std::string table() const override { return step_table(summary_); }
   nlohmann::json json() const override { return summary_json(summary_); }
+  std::string summary_csv() const override { return camera::summary_csv(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
     std::vector<sensor::ResultFile> files = {{"camera_histograms.csv", histograms_csv(summary_)},
-                                             {"camera_summary.csv", summary_csv(summary_)},
+                                             {"camera_summary.csv", summary_csv()},
                                              {"camera_summary.json", json().dump(2) + '\n'},
                                              {"camera_histograms.svg", histograms_svg(summary_)}};
     if (params_.write_roi_images) {

@@ -1,4 +1,4 @@
-#include "files.hpp"
+#include "fogradar/experiment/files.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -22,6 +22,31 @@ bool sync_path(const std::filesystem::path& path, bool directory) {
   const Descriptor file(
       ::open(path.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDWR) | O_CLOEXEC));
   return file.fd >= 0 && ::fsync(file.fd) == 0;
+}
+
+bool write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  std::string temporary = path.parent_path() / ".";
+  temporary += path.filename().string();
+  temporary += ".tmp-XXXXXX";
+  const int fd = ::mkstemp(temporary.data());
+  if (fd < 0) return false;
+  bool ok = ::fchmod(fd, 0644) == 0;
+  for (std::size_t written = 0; ok && written < content.size();) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    if (ok) written += static_cast<std::size_t>(n);
+  }
+  ok = ok && ::fsync(fd) == 0;
+  ok = ::close(fd) == 0 && ok;
+  ok = ok && ::rename(temporary.c_str(), path.c_str()) == 0;
+  if (!ok) {
+    const int error = errno;
+    ::unlink(temporary.c_str());
+    errno = error;
+    return false;
+  }
+  return sync_path(path.parent_path(), true);
 }
 
 namespace {

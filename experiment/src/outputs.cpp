@@ -15,8 +15,8 @@
 #include <string_view>
 #include <vector>
 
-#include "files.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/experiment/files.hpp"
 
 namespace fogradar::experiment {
 namespace {

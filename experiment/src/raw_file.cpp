@@ -14,8 +14,8 @@
 #include <mutex>
 #include <sstream>
 
-#include "files.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/experiment/files.hpp"
 
 namespace fogradar::experiment {
 namespace {

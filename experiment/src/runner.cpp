@@ -73,14 +73,56 @@ const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
   throw_invalid("experiment.sensors", name, "a sensor that ran");
 }
 
-Simulation::Simulation(Scenario scenario) : scenario_(std::move(scenario)) {
+namespace {
+
+// What a sensor is made from: its own keys and the chamber's, fog's and experiment's, as the
+// resolved scenario writes them (the other sensors at their defaults).
+std::string sensor_identity(const Scenario& scenario, const SensorSetting& setting) {
+  Scenario alone = scenario;
+  for (SensorSetting& other : alone.sensors) {
+    if (other.type != setting.type) other.params = other.type->default_params();
+  }
+  alone.experiment.sensors = {std::string(setting.type->name())};
+  return to_toml(alone);
+}
+
+}  // namespace
+
+std::shared_ptr<const sensor::Sensor> SensorCache::sensor(
+    const Scenario& scenario, const SensorSetting& setting, const sensor::Context& context,
+    const propagation::SegelsteinTable& water) {
+  std::string identity = sensor_identity(scenario, setting);
+  {
+    const std::lock_guard lock(mutex_);
+    for (auto it = made_.begin(); it != made_.end(); ++it) {
+      if (it->first != identity) continue;
+      auto found = std::move(*it);
+      made_.erase(it);
+      made_.push_back(std::move(found));
+      return made_.back().second;
+    }
+  }
+  std::shared_ptr<const sensor::Sensor> made = setting.type->make(setting.params, context, water);
+  const std::lock_guard lock(mutex_);
+  if (made_.size() == capacity) made_.erase(made_.begin());
+  made_.emplace_back(std::move(identity), made);
+  return made;
+}
+
+Simulation::Simulation(Scenario scenario)
+    : Simulation(std::move(scenario), propagation::SegelsteinTable(), nullptr) {}
+
+Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& water,
+                       SensorCache* cache)
+    : scenario_(std::move(scenario)) {
   scenario_.validate();
   context_ = scenario_.context();
-  const propagation::SegelsteinTable table;
   for (const std::string& name : scenario_.experiment.sensors) {
     const SensorSetting& setting = scenario_.setting(name);
-    sensors_.push_back(
-        {setting.type, setting.type->make(setting.params, context_, table), nullptr});
+    sensors_.push_back({setting.type,
+                        cache ? cache->sensor(scenario_, setting, context_, water)
+                              : setting.type->make(setting.params, context_, water),
+                        nullptr});
   }
 }
 

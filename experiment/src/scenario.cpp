@@ -17,8 +17,8 @@
 #include <sstream>
 #include <vector>
 
-#include "files.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/experiment/files.hpp"
 #include "toml_bytes.hpp"
 
 namespace fogradar::experiment {

@@ -45,10 +45,11 @@ class Report : public LidarReport {
 
   std::string table() const override { return lidar_summary_table(summary_); }
   nlohmann::json json() const override { return lidar_summary_json(*lidar_, summary_); }
+  std::string summary_csv() const override { return lidar_summary_csv(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
     return {{"lidar_echoes.csv", lidar_echoes_csv(*lidar_, *steps_)},
-            {"lidar_summary.csv", lidar_summary_csv(summary_)},
+            {"lidar_summary.csv", summary_csv()},
             {"lidar_summary.json", json().dump(2) + '\n'},
             {"lidar_intensity_boxplot.svg", lidar_intensity_boxplot_svg(*lidar_, summary_)},
             {"lidar_scans.svg", lidar_scans_svg(*lidar_, *steps_)}};

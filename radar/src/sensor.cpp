@@ -67,11 +67,12 @@ class Report : public RadarReport {
 
   std::string table() const override { return summary_table(summary_); }
   nlohmann::json json() const override { return summary_json(summary_); }
+  std::string summary_csv() const override { return radar::summary_csv(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
     return {{"radar_samples.csv", samples_csv(*steps_)},
             {"radar_detections.csv", detections_csv(*steps_)},
-            {"radar_summary.csv", summary_csv(summary_)},
+            {"radar_summary.csv", summary_csv()},
             {"radar_summary.json", json().dump(2) + '\n'},
             {"radar_rcs_boxplot.svg", rcs_boxplot_svg(params_, context_, summary_)}};
   }

@@ -90,6 +90,13 @@ class RangeFinderSummary : public sensor::SensorSummary {
     }
     return {{"steps", steps}};
   }
+  std::string summary_csv() const override {
+    std::string csv = "active_layers,echo_rate\n";
+    for (std::size_t k = 0; k < steps_.size(); ++k) {
+      csv += std::to_string(k) + "," + stats::format_number(rate(k), 17) + "\n";
+    }
+    return csv;
+  }
   std::vector<sensor::ResultFile> files() const override {
     std::string csv = "active_layers,shot,detected,range_m\n";
     for (std::size_t k = 0; k < steps_.size(); ++k) {

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -54,6 +55,22 @@ class Interrupted : public std::runtime_error {
   Interrupted() : std::runtime_error("interrupted") {}
 };
 
+// Sensors kept from one scenario for the next (a sweep's points): a scenario whose sensor keys and
+// chamber, fog and experiment keys equal an earlier one's gets that sensor again, its optics,
+// plans and tables made once. Holds the most recent few; safe to share between threads.
+class SensorCache {
+ public:
+  std::shared_ptr<const sensor::Sensor> sensor(const Scenario& scenario,
+                                               const SensorSetting& setting,
+                                               const sensor::Context& context,
+                                               const propagation::SegelsteinTable& water);
+
+ private:
+  static constexpr std::size_t capacity = 16;
+  std::mutex mutex_;
+  std::vector<std::pair<std::string, std::shared_ptr<const sensor::Sensor>>> made_;  // newest last
+};
+
 // A scenario's sensors made once (sensor::Sensor: chamber, plans, CFAR design, optics), then run
 // as often as wanted, whole or one item at a time. Const and safe to share between threads; every
 // run is its own.
@@ -61,6 +78,9 @@ class Simulation {
  public:
   // Validates the scenario (InvalidParameter) and makes every sensor experiment.sensors names.
   explicit Simulation(Scenario scenario);
+  // The same with a water table made once for many simulations, and sensors from `cache` where it
+  // has them.
+  Simulation(Scenario scenario, const propagation::SegelsteinTable& water, SensorCache* cache);
 
   const Scenario& scenario() const { return scenario_; }
   const sensor::Context& context() const { return context_; }

@@ -143,6 +143,9 @@ class SensorSummary {
   virtual std::string table() const = 0;
   // <name>_summary.json, embedded in summary.json as sensors.<name>.summary.
   virtual nlohmann::json json() const = 0;
+  // Its per-step statistics as CSV, one row per step, a column `active_layers` and the others
+  // named with their units (<name>_summary.csv; a sweep's results.csv gathers them).
+  virtual std::string summary_csv() const = 0;
   // Every result file of the sensor's own.
   virtual std::vector<ResultFile> files() const = 0;
   virtual Curve curve() const = 0;
@@ -209,7 +212,8 @@ class SensorType {
   virtual FogReport fog_report(const std::any& params, const propagation::FogSpec& fog,
                                double layer_length_m,
                                const propagation::SegelsteinTable& water) const = 0;
-  // Makes the sensor for a scenario (valid params and context).
+  // Makes the sensor for a scenario (valid params and context); `water` is used while it is made,
+  // not kept.
   virtual std::shared_ptr<const Sensor> make(const std::any& params, const Context& context,
                                              const propagation::SegelsteinTable& water) const = 0;
 };

@@ -1,5 +1,6 @@
-// What writing a result set and a raw-data file have in common: closing descriptors, syncing, and
-// the lock one run holds on the path it writes.
+// What writing a result set, a raw-data file and a sweep's directory have in common: closing
+// descriptors, syncing, writing a file whole or not at all, and the lock one run holds on the path
+// it writes.
 #pragma once
 
 #include <filesystem>
@@ -21,6 +22,10 @@ std::string errno_text();
 
 // fsync of a directory or a file by its path; false when it cannot be opened or synced.
 bool sync_path(const std::filesystem::path& path, bool directory);
+
+// Writes `content` into `path` whole or not at all: into a temporary file beside it, fsynced, then
+// renamed over it, the directory fsynced. False (errno set, nothing left behind) when a step fails.
+bool write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
 // An exclusive flock on `.NAME.lock` beside `path` (NAME its file name), held for the object's
 // life; the lock file is unlinked before it is let go. Throws InvalidParameter naming `option` with

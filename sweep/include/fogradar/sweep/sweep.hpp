@@ -1,0 +1,70 @@
+// `fogradar sweep` (DESIGN §13, docs/sweep.md): every point of a sweep run into one directory of
+// tidy tables and overlay plots, each point committed whole as it finishes, so that a sweep stopped
+// at any instant and resumed ends with the same bytes as one never interrupted.
+//
+// DIR holds sweep.toml (the sweep file), points.csv, results.csv, limits.csv, comparison.svg,
+// limits.svg (with an axis), with [uncertain] envelope.csv, envelope_limits.csv and envelope.svg,
+// with --keep-points each point's result set in points/<index>/, and the committed points in
+// .sweep/<index>.json. The tables are written when every point is committed.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fogradar/experiment/runner.hpp"
+#include "fogradar/sweep/spec.hpp"
+
+namespace fogradar::sweep {
+
+struct SweepOptions {
+  unsigned threads = 0;  // of each point's run (0: all hardware threads)
+  bool resume = false;   // keep the points DIR has committed for this sweep
+  bool keep_points = false;
+  std::size_t memory_limit_bytes = 0;  // 0: experiment::default_memory_limit_bytes()
+  // Set by another thread (a signal): the sweep stops at its next item; experiment::Interrupted.
+  const std::atomic<bool>* stop = nullptr;
+  // After each point: (points committed, points in all, seconds so far of this invocation's
+  // points).
+  std::function<void(std::size_t, std::size_t, double)> progress;
+  // Sensors kept from point to point (what does not depend on a swept key is made once); shared by
+  // estimate() and run_sweep() when given, else each keeps its own.
+  experiment::SensorCache* cache = nullptr;
+};
+
+// What a sweep will do, said before it does it.
+struct SweepEstimate {
+  std::size_t points = 0;
+  std::size_t runs = 0;   // points x (replications + setups)
+  std::size_t items = 0;  // of every sensor of every run
+  double seconds = 0.0;   // from one item of each sensor and one sensor set-up, timed here
+  std::size_t peak_bytes = 0;
+  std::string text() const;
+};
+
+// Refuses (InvalidParameter naming "--memory-limit-mib") a point whose run would exceed the memory
+// limit, then times one item of each sensor of the first point to estimate the sweep's time.
+SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
+                       const SweepOptions& options);
+
+struct SweepOutcome {
+  std::size_t computed = 0;  // points run by this invocation
+  std::size_t reused = 0;    // points found committed (--resume)
+  // A line per point: its values and each sensor's layers to failure (replication 0), as the
+  // command prints them.
+  std::string limits_table;
+  std::vector<std::string> files;  // the tables written, in DIR
+};
+
+// Runs every point not yet committed into `dir` and writes the tables. Refuses (InvalidParameter
+// naming "--out") a `dir` that holds anything but a sweep's files (so no file of the user's is ever
+// deleted) or that another sweep holds. Without `resume` the files of an earlier sweep there are
+// replaced; with it, points committed for the same point definition are kept. Throws
+// experiment::Interrupted when stopped: the points committed so far stay.
+SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points,
+                       const std::filesystem::path& dir, const SweepOptions& options);
+
+}  // namespace fogradar::sweep

@@ -1,0 +1,677 @@
+#include "fogradar/sweep/spec.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/core/random.hpp"
+
+namespace fogradar::sweep {
+namespace {
+
+// The [uncertain] draws' random streams: RandomStream(seed, draws_stream, key index).
+constexpr std::uint64_t draws_stream = 0x5357454550ULL;  // "SWEEP"
+// Largest counts a sweep file may ask for: far beyond any study, far below memory limits.
+constexpr std::int64_t max_replications = 1000;
+constexpr std::int64_t max_range_count = 10000;
+constexpr std::int64_t max_setups = 100000;
+constexpr std::size_t max_points = 1000000;
+
+[[noreturn]] void fail(std::string_view source, std::size_t line, const std::string& key,
+                       const std::string& message) {
+  std::ostringstream out;
+  out << source << ':' << line << ": " << message;
+  throw InvalidParameter(key, out.str());
+}
+
+std::size_t line_of(const toml::node& node) { return node.source().begin.line; }
+
+std::string shortest(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string toml_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+Value number_value(double value) {
+  std::string text = shortest(value);
+  std::string literal = text;
+  if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
+  return {literal, literal, value};
+}
+
+Value integer_value(std::int64_t value) {
+  const std::string text = std::to_string(value);
+  return {text, text, static_cast<double>(value)};
+}
+
+// Reads the tables of a sweep file, each key at its line, refusing what it does not know.
+class Reader {
+ public:
+  Reader(std::string_view source) : source_(source) {}
+
+  [[noreturn]] void fail_at(const toml::node& node, const std::string& key,
+                            const std::string& message) const {
+    fail(source_, line_of(node), key, message);
+  }
+
+  void only(const toml::table& table, const std::string& name,
+            std::initializer_list<std::string_view> known) const {
+    for (const auto& [key, node] : table) {
+      if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
+      std::string listed;
+      for (const std::string_view k : known)
+        listed += (listed.empty() ? "" : ", ") + std::string(k);
+      const std::string full =
+          name.empty() ? std::string(key.str()) : name + "." + std::string(key.str());
+      fail_at(node, full, "unknown key '" + full + "' (known: " + listed + ")");
+    }
+  }
+
+  const toml::table& table(const toml::node& node, const std::string& name) const {
+    if (const toml::table* t = node.as_table()) return *t;
+    fail_at(node, name, name + ": must be a table");
+  }
+
+  std::string string(const toml::node& node, const std::string& name,
+                     std::initializer_list<std::string_view> allowed = {}) const {
+    const std::optional<std::string> value = node.value<std::string>();
+    std::string listed;
+    for (const std::string_view a : allowed)
+      listed += (listed.empty() ? "" : ", ") + toml_string(a);
+    if (!value)
+      fail_at(node, name, name + ": must be a string" + (listed.empty() ? "" : " of " + listed));
+    if (allowed.size() != 0 && std::find(allowed.begin(), allowed.end(), *value) == allowed.end()) {
+      fail_at(node, name, name + " = " + toml_string(*value) + ": must be one of " + listed);
+    }
+    return *value;
+  }
+
+  std::int64_t integer(const toml::node& node, const std::string& name, std::int64_t low,
+                       std::int64_t high) const {
+    const std::string range =
+        "an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]";
+    if (!node.is_integer()) fail_at(node, name, name + ": must be " + range);
+    const std::int64_t value = *node.value<std::int64_t>();
+    if (value < low || value > high) {
+      fail_at(node, name, name + " = " + std::to_string(value) + ": must be " + range);
+    }
+    return value;
+  }
+
+  double number(const toml::node& node, const std::string& name) const {
+    if (!node.is_number()) fail_at(node, name, name + ": must be a number");
+    const double value = *node.value<double>();
+    if (!std::isfinite(value)) fail_at(node, name, name + ": must be finite");
+    return value;
+  }
+
+  // A value a scenario key takes: a number, a boolean or a string.
+  Value value(const toml::node& node, const std::string& name) const {
+    if (node.is_integer()) return integer_value(*node.value<std::int64_t>());
+    if (node.is_floating_point()) return number_value(number(node, name));
+    if (node.is_boolean()) {
+      const std::string text = *node.value<bool>() ? "true" : "false";
+      return {text, text, std::nullopt};
+    }
+    if (node.is_string()) {
+      const std::string text = *node.value<std::string>();
+      return {toml_string(text), text, std::nullopt};
+    }
+    fail_at(node, name, name + ": must be a number, a boolean or a string (a key's value)");
+  }
+
+  std::string_view source() const { return source_; }
+
+ private:
+  std::string_view source_;
+};
+
+std::vector<Value> range_values(const Reader& r, const toml::table& range,
+                                const std::string& name) {
+  r.only(range, name, {"from", "to", "count", "spacing"});
+  const auto need = [&](std::string_view key) -> const toml::node& {
+    if (const toml::node* node = range.get(key)) return *node;
+    r.fail_at(range, name + "." + std::string(key), name + "." + std::string(key) + " is missing");
+  };
+  const toml::node& from_node = need("from");
+  const toml::node& to_node = need("to");
+  const double from = r.number(from_node, name + ".from");
+  const double to = r.number(to_node, name + ".to");
+  const std::int64_t count = r.integer(need("count"), name + ".count", 2, max_range_count);
+  const std::string spacing =
+      range.get("spacing") ? r.string(*range.get("spacing"), name + ".spacing", {"linear", "log"})
+                           : "linear";
+  if (!(to > from))
+    r.fail_at(to_node, name + ".to",
+              name + ".to = " + shortest(to) + ": must be > from = " + shortest(from));
+  std::vector<Value> values;
+  const double steps = static_cast<double>(count - 1);
+  if (spacing == "log") {
+    if (!(from > 0.0))
+      r.fail_at(from_node, name + ".from",
+                name + ".from = " + shortest(from) + ": must be > 0 for spacing = \"log\"");
+    const double a = std::log(from), b = std::log(to);
+    for (std::int64_t i = 0; i < count; ++i) {
+      // The ends exactly as written; between them exp of the evenly spaced logarithms.
+      const double v = i == 0           ? from
+                       : i == count - 1 ? to
+                                        : std::exp(a + static_cast<double>(i) / steps * (b - a));
+      values.push_back(number_value(v));
+    }
+    return values;
+  }
+  const bool integers =
+      from_node.is_integer() && to_node.is_integer() &&
+      (static_cast<std::int64_t>(to) - static_cast<std::int64_t>(from)) % (count - 1) == 0;
+  for (std::int64_t i = 0; i < count; ++i) {
+    if (integers) {
+      const std::int64_t step =
+          (static_cast<std::int64_t>(to) - static_cast<std::int64_t>(from)) / (count - 1);
+      values.push_back(integer_value(static_cast<std::int64_t>(from) + i * step));
+    } else {
+      values.push_back(
+          number_value(i == count - 1 ? to : from + static_cast<double>(i) / steps * (to - from)));
+    }
+  }
+  return values;
+}
+
+Axis read_axis(const Reader& r, const toml::table& t, const std::string& name) {
+  r.only(t, name, {"key", "keys", "values", "range"});
+  Axis axis;
+  axis.line = line_of(t);
+  const toml::node* key = t.get("key");
+  const toml::node* keys = t.get("keys");
+  if ((key != nullptr) == (keys != nullptr)) {
+    r.fail_at(
+        t, name + ".key",
+        name + ": give key (one key) or keys (keys zipped), not " + (key ? "both" : "neither"));
+  }
+  if (key) {
+    axis.keys.push_back(r.string(*key, name + ".key"));
+  } else {
+    const toml::array* list = keys->as_array();
+    if (list == nullptr || list->empty())
+      r.fail_at(*keys, name + ".keys", name + ".keys: must be a non-empty array of scenario keys");
+    for (const toml::node& k : *list) axis.keys.push_back(r.string(k, name + ".keys"));
+  }
+  for (const std::string& k : axis.keys) {
+    if (k.empty() || k.find('.') == std::string::npos) {
+      r.fail_at(
+          t, name + ".key",
+          name + ": '" + k + "' is no scenario key (section.key, e.g. fog.extinction_per_km)");
+    }
+    if (k == "experiment.seed") {
+      r.fail_at(
+          t, name + ".key",
+          name +
+              ": experiment.seed is set by the sweep ([sweep] seed = \"common\" or \"by_values\")");
+    }
+    if (std::count(axis.keys.begin(), axis.keys.end(), k) > 1)
+      r.fail_at(t, name + ".keys", name + ".keys: '" + k + "' is named twice");
+  }
+  const toml::node* values = t.get("values");
+  const toml::node* range = t.get("range");
+  if ((values != nullptr) == (range != nullptr)) {
+    r.fail_at(t, name + ".values",
+              name + ": give values (a list) or range (from, to, count, spacing), not " +
+                  (values ? "both" : "neither"));
+  }
+  if (range) {
+    if (axis.keys.size() != 1)
+      r.fail_at(*range, name + ".range", name + ".range: one key only; zipped keys take values");
+    for (Value& v : range_values(r, r.table(*range, name + ".range"), name + ".range"))
+      axis.positions.push_back({std::move(v)});
+    return axis;
+  }
+  const toml::array* list = values->as_array();
+  if (list == nullptr || list->empty())
+    r.fail_at(*values, name + ".values", name + ".values: must be a non-empty array");
+  for (const toml::node& position : *list) {
+    if (axis.keys.size() == 1) {
+      axis.positions.push_back({r.value(position, name + ".values")});
+      continue;
+    }
+    const toml::array* row = position.as_array();
+    if (row == nullptr || row->size() != axis.keys.size()) {
+      r.fail_at(position, name + ".values",
+                name + ".values: each position is an array of " + std::to_string(axis.keys.size()) +
+                    " values, one per key of keys (zipped axes of one length)");
+    }
+    std::vector<Value> zipped;
+    for (const toml::node& v : *row) zipped.push_back(r.value(v, name + ".values"));
+    axis.positions.push_back(std::move(zipped));
+  }
+  for (std::size_t i = 0; i < axis.positions.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      bool same = true;
+      for (std::size_t k = 0; k < axis.keys.size(); ++k)
+        same = same && axis.positions[i][k].toml == axis.positions[j][k].toml;
+      if (same)
+        r.fail_at(*values, name + ".values",
+                  name + ".values: position " + std::to_string(i) + " repeats position " +
+                      std::to_string(j));
+    }
+  }
+  return axis;
+}
+
+Distribution read_distribution(const Reader& r, const toml::table& t, const std::string& name) {
+  Distribution d;
+  const toml::node* kind = t.get("distribution");
+  if (kind == nullptr) r.fail_at(t, name + ".distribution", name + ".distribution is missing");
+  const std::string k = r.string(*kind, name + ".distribution",
+                                 {"uniform", "normal", "truncated_normal", "discrete"});
+  const auto need = [&](std::string_view key) -> double {
+    const toml::node* node = t.get(key);
+    if (node == nullptr)
+      r.fail_at(t, name + "." + std::string(key),
+                name + "." + std::string(key) + " is missing for distribution = " + toml_string(k));
+    return r.number(*node, name + "." + std::string(key));
+  };
+  if (k == "uniform" || k == "truncated_normal") {
+    r.only(t, name,
+           k == "uniform" ? std::initializer_list<std::string_view>{"distribution", "low", "high"}
+                          : std::initializer_list<std::string_view>{"distribution", "mean", "std",
+                                                                    "low", "high"});
+    d.kind = k == "uniform" ? Distribution::Kind::uniform : Distribution::Kind::truncated_normal;
+    d.low = need("low");
+    d.high = need("high");
+    if (!(d.high > d.low))
+      r.fail_at(*t.get("high"), name + ".high",
+                name + ".high = " + shortest(d.high) + ": must be > low = " + shortest(d.low));
+  }
+  if (k == "normal" || k == "truncated_normal") {
+    if (k == "normal") r.only(t, name, {"distribution", "mean", "std"});
+    d.kind = k == "normal" ? Distribution::Kind::normal : Distribution::Kind::truncated_normal;
+    d.mean = need("mean");
+    d.std = need("std");
+    if (!(d.std > 0.0))
+      r.fail_at(*t.get("std"), name + ".std", name + ".std = " + shortest(d.std) + ": must be > 0");
+  }
+  if (k == "discrete") {
+    r.only(t, name, {"distribution", "values", "weights"});
+    d.kind = Distribution::Kind::discrete;
+    const toml::node* values = t.get("values");
+    const toml::array* list = values ? values->as_array() : nullptr;
+    if (list == nullptr || list->empty())
+      r.fail_at(values ? *values : static_cast<const toml::node&>(t), name + ".values",
+                name + ".values: must be a non-empty array of numbers");
+    for (const toml::node& v : *list) d.values.push_back(r.number(v, name + ".values"));
+    if (const toml::node* weights = t.get("weights")) {
+      const toml::array* w = weights->as_array();
+      if (w == nullptr || w->size() != d.values.size())
+        r.fail_at(*weights, name + ".weights",
+                  name + ".weights: must be an array as long as values (" +
+                      std::to_string(d.values.size()) + ")");
+      for (const toml::node& v : *w) {
+        const double weight = r.number(v, name + ".weights");
+        if (!(weight > 0.0))
+          r.fail_at(v, name + ".weights", name + ".weights: every weight must be > 0");
+        d.weights.push_back(weight);
+      }
+    } else {
+      d.weights.assign(d.values.size(), 1.0);
+    }
+    const double total = std::accumulate(d.weights.begin(), d.weights.end(), 0.0);
+    for (double& w : d.weights) w /= total;
+  }
+  return d;
+}
+
+EnvelopePlot read_plot(const Reader& r, const toml::table& t, const std::string& name) {
+  r.only(t, name, {"sensor", "statistic", "box", "y_label", "references", "reference_label"});
+  EnvelopePlot plot;
+  const auto need = [&](std::string_view key) -> const toml::node& {
+    if (const toml::node* node = t.get(key)) return *node;
+    r.fail_at(t, name + "." + std::string(key), name + "." + std::string(key) + " is missing");
+  };
+  plot.sensor = r.string(need("sensor"), name + ".sensor");
+  plot.statistic = r.string(need("statistic"), name + ".statistic");
+  plot.y_label = t.get("y_label") ? r.string(*t.get("y_label"), name + ".y_label") : plot.statistic;
+  plot.reference_label = t.get("reference_label")
+                             ? r.string(*t.get("reference_label"), name + ".reference_label")
+                             : "reference";
+  if (const toml::node* box = t.get("box")) {
+    const toml::array* list = box->as_array();
+    if (list == nullptr || list->size() != 5)
+      r.fail_at(*box, name + ".box",
+                name + ".box: must name 5 columns: whisker_low, q1, median, q3, whisker_high");
+    for (const toml::node& c : *list) plot.box.push_back(r.string(c, name + ".box"));
+  }
+  if (const toml::node* references = t.get("references")) {
+    const toml::array* list = references->as_array();
+    if (list == nullptr)
+      r.fail_at(*references, name + ".references",
+                name + ".references: must be an array of tables {active_layers, value}");
+    for (const toml::node& item : *list) {
+      const toml::table& ref = r.table(item, name + ".references");
+      r.only(ref, name + ".references", {"active_layers", "value"});
+      const toml::node* layers = ref.get("active_layers");
+      const toml::node* value = ref.get("value");
+      if (!layers || !value)
+        r.fail_at(ref, name + ".references",
+                  name + ".references: each needs active_layers and value");
+      plot.references.push_back({static_cast<std::size_t>(r.integer(
+                                     *layers, name + ".references.active_layers", 0, 100000)),
+                                 r.number(*value, name + ".references.value")});
+    }
+  }
+  return plot;
+}
+
+// FNV-1a over the text, then SplitMix64: a seed from a point's values, in [0, 2^63).
+std::uint64_t seed_of(const std::string& text) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ULL;
+  }
+  return splitmix64(hash) >> 1;
+}
+
+// An unbiased integer in [0, n) (rejection of the low remainder).
+std::uint64_t bounded(RandomStream& stream, std::uint64_t n) {
+  const std::uint64_t threshold = (0 - n) % n;
+  for (;;) {
+    const std::uint64_t r = stream();
+    if (r >= threshold) return r % n;
+  }
+}
+
+// The [uncertain] draws, setup by setup, key by key: Latin hypercube (each key's N strata in a
+// random order, a uniform point in each) or plain Monte Carlo, through each key's inverse CDF.
+std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
+  std::vector<std::vector<double>> values(u.setups, std::vector<double>(u.keys.size()));
+  for (std::size_t k = 0; k < u.keys.size(); ++k) {
+    RandomStream stream(seed, draws_stream, k);
+    std::vector<std::size_t> strata(u.setups);
+    std::iota(strata.begin(), strata.end(), std::size_t{0});
+    if (u.sampling == Sampling::latin_hypercube) {
+      for (std::size_t i = u.setups; i > 1; --i)
+        std::swap(strata[i - 1], strata[bounded(stream, i)]);
+    }
+    for (std::size_t s = 0; s < u.setups; ++s) {
+      // In (0, 1): an inverse CDF is finite there.
+      const double jitter = stream.uniform() + 0x1.0p-54;
+      const double p =
+          u.sampling == Sampling::latin_hypercube
+              ? (static_cast<double>(strata[s]) + jitter) / static_cast<double>(u.setups)
+              : jitter;
+      values[s][k] = u.keys[k].distribution.quantile(p);
+    }
+  }
+  return values;
+}
+
+// The TOML text that sets `values` over a scenario: each key in its section.
+std::string overrides_text(const std::vector<std::pair<std::string, Value>>& values) {
+  std::vector<std::pair<std::string, std::string>> sections;  // section, its lines
+  for (const auto& [key, value] : values) {
+    const std::size_t dot = key.rfind('.');
+    const std::string section = key.substr(0, dot);
+    auto it = std::find_if(sections.begin(), sections.end(),
+                           [&](const auto& s) { return s.first == section; });
+    if (it == sections.end()) it = sections.insert(sections.end(), {section, ""});
+    it->second += key.substr(dot + 1) + " = " + value.toml + "\n";
+  }
+  std::string text;
+  for (const auto& [section, lines] : sections) text += "[" + section + "]\n" + lines;
+  return text;
+}
+
+// The scenario message without its "<source>:<line>: " (the sweep's own location replaces it).
+std::string without_location(const std::string& message, const std::string& source) {
+  if (message.rfind(source + ":", 0) != 0) return message;
+  const std::size_t colon = message.find(": ", source.size() + 1);
+  return colon == std::string::npos ? message : message.substr(colon + 2);
+}
+
+}  // namespace
+
+double Distribution::quantile(double u) const {
+  switch (kind) {
+    case Kind::uniform:
+      return low + u * (high - low);
+    case Kind::normal:
+      return boost::math::quantile(boost::math::normal_distribution<double>(mean, std), u);
+    case Kind::truncated_normal: {
+      const boost::math::normal_distribution<double> n(mean, std);
+      const double a = boost::math::cdf(n, low), b = boost::math::cdf(n, high);
+      return std::clamp(boost::math::quantile(n, a + u * (b - a)), low, high);
+    }
+    case Kind::discrete: {
+      double cumulative = 0.0;
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        cumulative += weights[i];
+        if (u < cumulative) return values[i];
+      }
+      return values.back();
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string Point::label() const {
+  std::string text;
+  for (const auto& [key, value] : values)
+    text += (text.empty() ? "" : ", ") + key + " = " + value.text;
+  return text.empty() ? "the base scenario" : text;
+}
+
+SweepSpec parse_sweep(std::string_view text, std::string_view source,
+                      const std::filesystem::path& directory) {
+  SweepSpec spec;
+  spec.source = std::string(source);
+  spec.text = std::string(text);
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    fail(source, e.source().begin.line, "toml",
+         std::string("malformed TOML: ") + std::string(e.description()));
+  }
+  const Reader r(source);
+  r.only(root, "", {"sweep", "axis", "uncertain"});
+  std::string base = "paper";
+  if (const toml::node* sweep = root.get("sweep")) {
+    const toml::table& t = r.table(*sweep, "sweep");
+    r.only(t, "sweep", {"base", "replications", "seed"});
+    if (const toml::node* b = t.get("base")) base = r.string(*b, "sweep.base");
+    if (const toml::node* n = t.get("replications"))
+      spec.replications =
+          static_cast<std::size_t>(r.integer(*n, "sweep.replications", 1, max_replications));
+    if (const toml::node* s = t.get("seed"))
+      spec.seed_mode = r.string(*s, "sweep.seed", {"common", "by_values"}) == "common"
+                           ? SeedMode::common
+                           : SeedMode::by_values;
+  }
+  spec.base_name = base;
+  spec.base = base == "paper" ? experiment::paper_scenario()
+                              : experiment::load_scenario_file((directory / base).string());
+  std::set<std::string> swept;
+  if (const toml::node* axes = root.get("axis")) {
+    const toml::array* list = axes->as_array();
+    if (list == nullptr) r.fail_at(*axes, "axis", "axis: must be an array of tables [[axis]]");
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const std::string name = "axis[" + std::to_string(i) + "]";
+      Axis axis = read_axis(r, r.table((*list)[i], name), name);
+      for (const std::string& k : axis.keys) {
+        if (!swept.insert(k).second)
+          r.fail_at((*list)[i], name + ".key", name + ": '" + k + "' is swept by another axis too");
+      }
+      spec.axes.push_back(std::move(axis));
+    }
+  }
+  if (const toml::node* uncertain = root.get("uncertain")) {
+    const toml::table& t = r.table(*uncertain, "uncertain");
+    r.only(t, "uncertain", {"setups", "sampling", "keys", "plot"});
+    Uncertain u;
+    const toml::node* setups = t.get("setups");
+    if (setups == nullptr) r.fail_at(t, "uncertain.setups", "uncertain.setups is missing");
+    u.setups = static_cast<std::size_t>(r.integer(*setups, "uncertain.setups", 2, max_setups));
+    if (const toml::node* s = t.get("sampling"))
+      u.sampling = r.string(*s, "uncertain.sampling", {"latin_hypercube", "monte_carlo"}) ==
+                           "latin_hypercube"
+                       ? Sampling::latin_hypercube
+                       : Sampling::monte_carlo;
+    const toml::node* keys = t.get("keys");
+    if (keys == nullptr)
+      r.fail_at(t, "uncertain.keys",
+                "uncertain.keys is missing: a table of scenario keys and their distributions");
+    for (const auto& [key, node] : r.table(*keys, "uncertain.keys")) {
+      const std::string k(key.str()), name = "uncertain.keys." + k;
+      if (swept.contains(k)) r.fail_at(node, name, name + ": swept by an axis too");
+      if (k == "experiment.seed" || k.find('.') == std::string::npos)
+        r.fail_at(node, name, name + ": must be a scenario key other than experiment.seed");
+      u.keys.push_back({k, read_distribution(r, r.table(node, name), name)});
+    }
+    if (u.keys.empty()) r.fail_at(*keys, "uncertain.keys", "uncertain.keys: name at least one key");
+    if (const toml::node* plots = t.get("plot")) {
+      const toml::array* list = plots->as_array();
+      if (list == nullptr)
+        r.fail_at(*plots, "uncertain.plot",
+                  "uncertain.plot: must be an array of tables [[uncertain.plot]]");
+      for (std::size_t i = 0; i < list->size(); ++i) {
+        const std::string name = "uncertain.plot[" + std::to_string(i) + "]";
+        u.plots.push_back(read_plot(r, r.table((*list)[i], name), name));
+      }
+    }
+    spec.uncertain = std::move(u);
+  }
+  return spec;
+}
+
+SweepSpec load_sweep_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code error;
+  if (!in || std::filesystem::is_directory(path, error)) {
+    throw_invalid("--sweep", path, "a readable sweep file (TOML, docs/sweep.md)");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().size() > experiment::max_scenario_file_bytes) {
+    throw_invalid("--sweep", path, "a sweep file of at most 1 MiB");
+  }
+  return parse_sweep(text.str(), path, std::filesystem::path(path).parent_path());
+}
+
+std::vector<Point> expand(const SweepSpec& spec) {
+  // Each axis's positions by value: the file's order does not matter.
+  std::vector<std::vector<std::size_t>> order;
+  std::size_t count = 1;
+  for (const Axis& axis : spec.axes) {
+    std::vector<std::size_t> o(axis.positions.size());
+    std::iota(o.begin(), o.end(), std::size_t{0});
+    std::stable_sort(o.begin(), o.end(), [&](std::size_t a, std::size_t b) {
+      const Value& x = axis.positions[a][0];
+      const Value& y = axis.positions[b][0];
+      if (x.number && y.number) return *x.number < *y.number;
+      if (x.number != y.number) return x.number.has_value();
+      return x.text < y.text;
+    });
+    order.push_back(std::move(o));
+    count *= axis.positions.size();
+    if (count > max_points) {
+      throw_invalid("axis", static_cast<double>(count),
+                    "a grid of at most " + std::to_string(max_points) + " points");
+    }
+  }
+  const std::uint64_t base_seed = spec.base.experiment.seed;
+  std::vector<std::vector<double>> drawn;
+  if (spec.uncertain) drawn = draws(*spec.uncertain, base_seed);
+  std::vector<Point> points;
+  std::vector<std::size_t> at(spec.axes.size(), 0);
+  for (std::size_t index = 0; index < count; ++index) {
+    Point point;
+    point.index = index;
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+      const Axis& axis = spec.axes[a];
+      const std::vector<Value>& position = axis.positions[order[a][at[a]]];
+      for (std::size_t k = 0; k < axis.keys.size(); ++k)
+        point.values.emplace_back(axis.keys[k], position[k]);
+    }
+    if (spec.seed_mode == SeedMode::by_values) {
+      std::vector<std::string> lines;
+      for (const auto& [key, value] : point.values)
+        lines.push_back(key + " = " + value.toml + "\n");
+      std::sort(lines.begin(), lines.end());
+      point.seed = seed_of(std::accumulate(lines.begin(), lines.end(), std::string()));
+    } else {
+      point.seed = base_seed;
+    }
+    std::vector<std::pair<std::string, Value>> with_seed = point.values;
+    with_seed.emplace_back("experiment.seed", integer_value(static_cast<std::int64_t>(point.seed)));
+    const std::string label = spec.source + " point " + std::to_string(index);
+    const auto read = [&](const std::vector<std::pair<std::string, Value>>& values,
+                          const std::string& what) {
+      try {
+        return experiment::parse_scenario_over(spec.base, overrides_text(values), label);
+      } catch (const InvalidParameter& e) {
+        const std::string message = without_location(e.what(), label);
+        for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+          const Axis& axis = spec.axes[a];
+          if (std::find(axis.keys.begin(), axis.keys.end(), e.field()) == axis.keys.end()) continue;
+          const auto value = std::find_if(values.begin(), values.end(),
+                                          [&](const auto& v) { return v.first == e.field(); });
+          fail(spec.source, axis.line, e.field(),
+               "axis[" + std::to_string(a) + "] value " + value->second.text + " of " + e.field() +
+                   what + ": " + message);
+        }
+        if (spec.uncertain) {
+          for (const UncertainKey& u : spec.uncertain->keys) {
+            if (u.key != e.field()) continue;
+            const auto value = std::find_if(values.begin(), values.end(),
+                                            [&](const auto& v) { return v.first == e.field(); });
+            fail(spec.source, 1, "uncertain.keys." + u.key,
+                 "uncertain.keys." + u.key + " drew " + value->second.text + what + ": " + message);
+          }
+        }
+        fail(spec.source, spec.axes.empty() ? 1 : spec.axes.front().line, e.field(),
+             point.label() + what + ": " + message);
+      }
+    };
+    point.scenario = read(with_seed, "");
+    for (std::size_t s = 0; s < drawn.size(); ++s) {
+      std::vector<std::pair<std::string, Value>> setup;
+      for (std::size_t k = 0; k < spec.uncertain->keys.size(); ++k) {
+        setup.emplace_back(spec.uncertain->keys[k].key, number_value(drawn[s][k]));
+      }
+      std::vector<std::pair<std::string, Value>> all = with_seed;
+      all.insert(all.end(), setup.begin(), setup.end());
+      point.setups.push_back(read(all, " (setup " + std::to_string(s) + " of [uncertain])"));
+      point.setup_values.push_back(std::move(setup));
+    }
+    points.push_back(std::move(point));
+    for (std::size_t a = spec.axes.size(); a-- > 0;) {
+      if (++at[a] < spec.axes[a].positions.size()) break;
+      at[a] = 0;
+    }
+  }
+  return points;
+}
+
+}  // namespace fogradar::sweep

@@ -1,0 +1,220 @@
+// Sweep files and their grid (sweep/spec.hpp): axes and ranges, ordering by value, seeds, every
+// bad sweep file refused with its key and line, and the [uncertain] draws against their
+// distributions' known quantiles.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/sweep/spec.hpp"
+
+namespace fogradar::sweep {
+namespace {
+
+SweepSpec parse(const std::string& text) { return parse_sweep(text, "s.toml", "."); }
+
+// The key an InvalidParameter names and its message, or "none".
+std::pair<std::string, std::string> refusal(const std::string& text) {
+  try {
+    expand(parse(text));
+  } catch (const InvalidParameter& e) {
+    return {e.field(), e.what()};
+  }
+  return {"none", ""};
+}
+
+TEST(SweepFile, AxesValuesRangesAndZippedKeys) {
+  const SweepSpec spec = parse(R"(
+[sweep]
+replications = 2
+[[axis]]
+key = "fog.extinction_per_km"
+range = { from = 100.0, to = 1000.0, count = 3, spacing = "log" }
+[[axis]]
+keys = ["radar.centre_frequency_hz", "radar.sweep_bandwidth_hz"]
+values = [[76.5e9, 1e9], [24.125e9, 250e6]]
+[[axis]]
+key = "processing.cfar.training_cells"
+range = { from = 8, to = 16, count = 3 }
+)");
+  ASSERT_EQ(spec.axes.size(), 3u);
+  EXPECT_EQ(spec.replications, 2u);
+  // log spacing: the ends as written, the middle the geometric mean.
+  EXPECT_EQ(spec.axes[0].positions[0][0].toml, "100.0");
+  EXPECT_EQ(spec.axes[0].positions[2][0].toml, "1000.0");
+  EXPECT_NEAR(*spec.axes[0].positions[1][0].number, std::sqrt(100.0 * 1000.0), 1e-9);
+  // Integer ends with an even step: integers (an integer key takes them).
+  EXPECT_EQ(spec.axes[2].positions[1][0].toml, "12");
+  const std::vector<Point> points = expand(spec);
+  ASSERT_EQ(points.size(), 3u * 2u * 3u);
+  // The first axis outermost, each axis by value: 24 GHz before 76.5 GHz though listed after.
+  // Numbers as their shortest exact text (std::to_chars).
+  EXPECT_EQ(points[0].label(),
+            "fog.extinction_per_km = 100.0, radar.centre_frequency_hz = 2.4125e+10, "
+            "radar.sweep_bandwidth_hz = 2.5e+08, processing.cfar.training_cells = 8");
+  EXPECT_EQ(points[1].values[3].second.text, "12");
+  EXPECT_EQ(points[3].values[1].second.text, "7.65e+10");
+  EXPECT_EQ(points[6].values[0].second.toml, points[7].values[0].second.toml);
+  // Each point is the base scenario with its values: the zipped pair set together.
+  const std::string toml = experiment::to_toml(points[0].scenario);
+  EXPECT_NE(toml.find("centre_frequency_hz = 2.4125e+10"), std::string::npos);
+  EXPECT_NE(toml.find("sweep_bandwidth_hz = 2.5e+08"), std::string::npos);
+  EXPECT_NE(toml.find("extinction_per_km = 100.0"), std::string::npos);
+}
+
+TEST(SweepFile, SeedsAreCommonOrFollowTheValuesNeverThePosition) {
+  const std::string axis = "[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = ";
+  const std::vector<Point> common = expand(parse(axis + "[300.0, 900.0]\n"));
+  EXPECT_EQ(common[0].seed, experiment::paper_scenario().experiment.seed);
+  EXPECT_EQ(common[1].seed, common[0].seed);
+  const std::string by_values = "[sweep]\nseed = \"by_values\"\n" + axis;
+  const std::vector<Point> two = expand(parse(by_values + "[300.0, 900.0]\n"));
+  const std::vector<Point> three = expand(parse(by_values + "[100.0, 900.0, 300.0]\n"));
+  EXPECT_NE(two[0].seed, two[1].seed);
+  // Adding a value leaves the other points' seeds (and so their numbers) as they were.
+  EXPECT_EQ(two[0].seed, three[1].seed);
+  EXPECT_EQ(two[1].seed, three[2].seed);
+  EXPECT_LT(two[0].seed, std::uint64_t{1} << 63);  // a TOML integer
+  EXPECT_EQ(two[1].scenario.experiment.seed, two[1].seed);
+}
+
+TEST(SweepFile, EveryBadSweepFileIsRefusedNamingItsKeyAndLine) {
+  const auto expect = [](const std::string& text, const std::string& key, const std::string& part) {
+    const auto [field, message] = refusal(text);
+    EXPECT_EQ(field, key) << text;
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+    EXPECT_EQ(message.rfind("s.toml:", 0), 0u) << message;
+  };
+  expect("[sweep]\nfrobnicate = 1\n", "sweep.frobnicate", "unknown key 'sweep.frobnicate'");
+  expect("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = []\n", "axis[0].values",
+         "must be a non-empty array");
+  expect(
+      "[[axis]]\nkeys = [\"radar.centre_frequency_hz\", \"radar.sweep_bandwidth_hz\"]\n"
+      "values = [[76.5e9, 1e9], [24e9]]\n",
+      "axis[0].values", "zipped axes of one length");
+  // A value out of the key's range: the axis, the value and the scenario's own range.
+  expect("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0, 2e6]\n",
+         "fog.extinction_per_km", "s.toml:1: axis[0] value 2e+06 of fog.extinction_per_km: ");
+  const auto [field, message] =
+      refusal("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0, 2e6]\n");
+  EXPECT_NE(message.find("must be in [0, 1000000]"), std::string::npos) << message;
+  expect("[[axis]]\nkey = \"radar.no_such_key\"\nvalues = [1.0]\n", "radar.no_such_key",
+         "unknown key 'radar.no_such_key'");
+  expect("[[axis]]\nkey = \"experiment.seed\"\nvalues = [1, 2]\n", "axis[0].key",
+         "set by the sweep");
+  expect(
+      "[[axis]]\nkey = \"fog.extinction_per_km\"\nrange = { from = 0.0, to = 10.0, count = 3, "
+      "spacing = \"log\" }\n",
+      "axis[0].range.from", "must be > 0 for spacing = \"log\"");
+  expect(
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "distribution = \"normal\"\nmean = 0.5\nstd = -0.1\n",
+      "uncertain.keys.target.sensor_height_m.std", "must be > 0");
+  expect(
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "distribution = \"uniform\"\nlow = 0.6\nhigh = 0.4\n",
+      "uncertain.keys.target.sensor_height_m.high", "must be > low");
+  expect(
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "distribution = \"beta\"\n",
+      "uncertain.keys.target.sensor_height_m.distribution", "must be one of");
+  // A draw outside the key's range: named as the uncertain key that drew it.
+  expect(
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "distribution = \"uniform\"\nlow = -5.0\nhigh = -4.0\n",
+      "uncertain.keys.target.sensor_height_m", "drew -");
+  expect("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0\n", "toml", "malformed TOML");
+}
+
+// Latin hypercube: each key's N draws fall one in each of its N equiprobable strata, exactly; a
+// collapsed (one-value) distribution draws that value every time.
+TEST(Uncertain, LatinHypercubeDrawsFillEveryStratumOnce) {
+  const SweepSpec spec = parse(R"(
+[uncertain]
+setups = 50
+[uncertain.keys."target.sensor_height_m"]
+distribution = "normal"
+mean = 0.5
+std = 0.01
+[uncertain.keys."target.floor_reflection_coefficient"]
+distribution = "uniform"
+low = -0.9
+high = -0.5
+[uncertain.keys."target.micro_motion_std_m"]
+distribution = "discrete"
+values = [0.0002]
+)");
+  const std::vector<Point> points = expand(spec);
+  ASSERT_EQ(points.size(), 1u);
+  ASSERT_EQ(points[0].setups.size(), 50u);
+  // The strata through each distribution's own CDF (the normal's by erfc, not the code's Boost).
+  const auto normal_cdf = [](double x) {
+    return 0.5 * std::erfc(-(x - 0.5) / (0.01 * std::sqrt(2.0)));
+  };
+  std::vector<int> normal_strata, uniform_strata;
+  for (const auto& setup : points[0].setup_values) {
+    ASSERT_EQ(setup.size(), 3u);
+    const auto drawn = [&](const std::string& key) {
+      return *std::find_if(setup.begin(), setup.end(),
+                           [&](const auto& v) { return v.first == key; });
+    };
+    normal_strata.push_back(static_cast<int>(
+        std::floor(normal_cdf(*drawn("target.sensor_height_m").second.number) * 50.0)));
+    uniform_strata.push_back(static_cast<int>(std::floor(
+        (*drawn("target.floor_reflection_coefficient").second.number + 0.9) / 0.4 * 50.0)));
+    EXPECT_EQ(*drawn("target.micro_motion_std_m").second.number, 0.0002);
+  }
+  std::sort(normal_strata.begin(), normal_strata.end());
+  std::sort(uniform_strata.begin(), uniform_strata.end());
+  for (int k = 0; k < 50; ++k) {
+    EXPECT_EQ(normal_strata[k], k);
+    EXPECT_EQ(uniform_strata[k], k);
+  }
+  // Each setup is the point's scenario with its draws, and its seed.
+  EXPECT_EQ(points[0].setups[7].experiment.seed, points[0].seed);
+  for (const auto& [key, value] : points[0].setup_values[7]) {
+    EXPECT_NE(experiment::to_toml(points[0].setups[7])
+                  .find(key.substr(key.find('.') + 1) + " = " + value.toml),
+              std::string::npos)
+        << key;
+  }
+}
+
+// Plain Monte Carlo: 2000 uniform draws; their empirical CDF within the Kolmogorov-Smirnov 99 %
+// bound 1.628 / sqrt(n) of the true one (Massey 1951); and the same draws again for the same seed.
+TEST(Uncertain, MonteCarloDrawsFollowTheirDistribution) {
+  const std::string text = R"(
+[uncertain]
+setups = 2000
+sampling = "monte_carlo"
+[uncertain.keys."target.floor_reflection_coefficient"]
+distribution = "truncated_normal"
+mean = -0.7
+std = 0.1
+low = -0.8
+high = -0.5
+)";
+  const std::vector<Point> points = expand(parse(text));
+  std::vector<double> v;
+  for (const auto& setup : points[0].setup_values) v.push_back(*setup[0].second.number);
+  std::sort(v.begin(), v.end());
+  EXPECT_GE(v.front(), -0.8);
+  EXPECT_LE(v.back(), -0.5);
+  // The truncated normal's CDF: (Phi(x) - Phi(a)) / (Phi(b) - Phi(a)).
+  const auto phi = [](double x) { return 0.5 * std::erfc(-(x + 0.7) / (0.1 * std::sqrt(2.0))); };
+  double worst = 0.0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double cdf = (phi(v[i]) - phi(-0.8)) / (phi(-0.5) - phi(-0.8));
+    worst = std::max({worst, std::abs(cdf - static_cast<double>(i) / 2000.0),
+                      std::abs(cdf - static_cast<double>(i + 1) / 2000.0)});
+  }
+  EXPECT_LT(worst, 1.628 / std::sqrt(2000.0)) << worst;
+  const std::vector<Point> again = expand(parse(text));
+  EXPECT_EQ(again[0].setup_values[1234][0].second.toml,
+            points[0].setup_values[1234][0].second.toml);
+}
+
+}  // namespace
+}  // namespace fogradar::sweep
