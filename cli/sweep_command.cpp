@@ -49,7 +49,8 @@ void sweep(const SweepOptions& options) {
       .stop = nullptr,
       .progress = print_progress,
       .cache = &cache};
-  std::cout << "sweep: " << sweep::estimate(spec, points, run).text() << std::endl;
+  const sweep::SweepEstimate estimate = sweep::estimate(spec, points, run);
+  std::cout << "sweep: " << estimate.text() << std::endl;
   const SignalWatch signals;
   run.stop = &signals.stop();
   sweep::SweepOutcome outcome;
