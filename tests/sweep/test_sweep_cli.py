@@ -12,8 +12,8 @@
   SIGKILL at a random instant and resumed, and for the values listed in reverse order;
 - with every [uncertain] key collapsed to one value (the base's own), the envelope's quantiles are
   the single run's values exactly;
-- a bad sweep file: exit 2, one message with file and line, nothing written; a file of the user's in
-  the output directory: refused, kept.
+- a bad sweep file: exit 2, one message with file and line, nothing written; a sweep over the memory
+  limit: exit 2, nothing written; a file of the user's in the output directory: refused, kept.
 
 Usage: test_sweep_cli.py FOGRADAR SOURCE_DIR"""
 import csv
@@ -187,6 +187,9 @@ values = [-0.7]
     check(done.stderr.startswith(f"fogradar: {bad}:1: axis[0] value -5.0 of fog.extinction_per_km")
           and done.stderr.count("\n") == 1, f"bad sweep message: {done.stderr!r}")
     check(not os.path.exists(nowhere), "a refused sweep created its directory")
+    done = sweep(forward, nowhere, "--memory-limit-mib", "1", expect=2)
+    check(done.stdout == "" and "--memory-limit-mib" in done.stderr and not os.path.exists(nowhere),
+          f"over the memory limit: {done.stdout!r} {done.stderr!r}")
     mine = os.path.join(work, "mine")
     os.makedirs(mine)
     with open(os.path.join(mine, "notes.txt"), "w") as f:
