@@ -1,16 +1,30 @@
 // fogradar: automotive surround sensors in fog. Exit status 0 ok, 2 bad usage or bad input, 1
 // internal fault, 130 / 143 `run` or `sweep` stopped by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <exception>
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "commands.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/sweep/mpi.hpp"
 
 int main(int argc, char** argv) {
   constexpr int bad_input = 2;
+  // Under mpirun or srun every rank parses the same command line: rank 0 alone says what is wrong.
+  // The launcher ends the job at the first rank to exit with an error, so the others wait a moment
+  // before they do, letting rank 0 finish saying it.
+  const bool speaks = fogradar::sweep::launched_rank().value_or(0) == 0;
+  std::ostringstream unsaid;
+  std::ostream& err = speaks ? std::cerr : unsaid;
+  const auto refuse = [speaks] {
+    if (!speaks) std::this_thread::sleep_for(std::chrono::seconds(1));
+    return bad_input;
+  };
   CLI::App app{"fogradar: automotive surround sensors in fog, simulated from physics"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(FOGRADAR_VERSION));
@@ -24,17 +38,17 @@ int main(int argc, char** argv) {
     const std::vector<CLI::App*> known =
         app.get_subcommands([&word](CLI::App* sub) { return sub->check_name(word); });
     if (known.empty()) {
-      std::cerr << "fogradar: unknown subcommand '" << word
-                << "': must be one of run, scenario, fog, sweep\n"
-                << "(run 'fogradar --help' for usage)\n";
-      return bad_input;
+      err << "fogradar: unknown subcommand '" << word
+          << "': must be one of run, scenario, fog, sweep\n"
+          << "(run 'fogradar --help' for usage)\n";
+      return refuse();
     }
   }
   try {
     app.parse(argc, argv);
   } catch (const fogradar::InvalidParameter& e) {  // an option's check (cli/checks.hpp)
-    std::cerr << "fogradar: " << e.what() << '\n';
-    return bad_input;
+    err << "fogradar: " << e.what() << '\n';
+    return refuse();
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -42,20 +56,22 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "fogradar: " << e.what() << "\n(run 'fogradar --help' for usage)\n";
-    return bad_input;
+    err << "fogradar: " << e.what() << "\n(run 'fogradar --help' for usage)\n";
+    return refuse();
   }
   try {
     if (app.got_subcommand("run")) run();
     if (app.got_subcommand("scenario")) scenario();
     if (app.got_subcommand("fog")) fog();
     if (app.got_subcommand("sweep")) sweep();
+  } catch (const fogradar::sweep::RefusedOnRankZero&) {
+    return bad_input;
   } catch (const fogradar::cli::Interrupted& e) {
-    std::cerr << "fogradar: " << e.what() << '\n';
+    err << "fogradar: " << e.what() << '\n';
     return 128 + e.signal_number();
   } catch (const fogradar::InvalidParameter& e) {
-    std::cerr << "fogradar: " << e.what() << '\n';
-    return bad_input;
+    err << "fogradar: " << e.what() << '\n';
+    return refuse();
   } catch (const std::exception& e) {
     std::cerr << "fogradar: internal error: " << e.what() << '\n';
     return 1;

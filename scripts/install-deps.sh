@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libfftw3-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
-  libhdf5-dev hdf5-tools
+  libhdf5-dev hdf5-tools libopenmpi-dev openmpi-bin
   pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest python3-h5py
   python3-matplotlib
   "$@"

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/files.hpp"
 #include "fogradar/experiment/memory.hpp"
@@ -37,6 +38,7 @@ const std::set<std::string, std::less<>> table_names = {
     "limits.svg", "envelope.csv", "envelope_limits.csv", "envelope.svg"};
 constexpr std::string_view state_dir = ".sweep";
 constexpr std::string_view points_dir = "points";
+constexpr std::string_view origin_file = "origin";  // in .sweep/: the sweep file's directory
 // The quantiles of envelope.csv, as its columns name them.
 constexpr double envelope_levels[] = {0.05, 0.25, 0.5, 0.75, 0.95};
 constexpr const char* envelope_columns = "p05,p25,p50,p75,p95";
@@ -108,15 +110,12 @@ Table parse_csv(const std::string& text) {
 // One run of a scenario, every sensor's summary table, verdict and curve, as a piece keeps it.
 json run_once(const experiment::Scenario& scenario, const propagation::SegelsteinTable& water,
               experiment::SensorCache& cache, const SweepOptions& options, bool with_curves,
-              const fs::path* keep) {
+              std::vector<sensor::ResultFile>* keep) {
   const experiment::Simulation simulation(scenario, water, &cache);
   const experiment::ExperimentResult result = simulation.run(
       {.threads = options.threads, .progress = {}, .stop = options.stop, .raw = nullptr});
   const experiment::ExperimentSummary summary = experiment::summarize(result);
-  if (keep != nullptr) {
-    experiment::OutputDirectory out(*keep, experiment::result_file_names(scenario));
-    out.replace(experiment::result_files(scenario, summary));
-  }
+  if (keep != nullptr) *keep = experiment::result_files(scenario, summary);
   json sensors = json::array();
   for (const experiment::SensorOutcome& outcome : summary.sensors) {
     const Table table = parse_csv(outcome.summary->summary_csv());
@@ -138,154 +137,9 @@ json run_once(const experiment::Scenario& scenario, const propagation::Segelstei
   return sensors;
 }
 
-// The directory a sweep grows in (the result set's rules, for a directory that grows): locked for
-// one sweep at a time, holding nothing but a sweep's files.
-class SweepDirectory {
- public:
-  SweepDirectory(const fs::path& dir, bool resume, std::size_t points) {
-    const std::string given = dir.string();
-    std::error_code error;
-    dir_ = fs::absolute(dir, error).lexically_normal();
-    if (!dir_.has_filename()) dir_ = dir_.parent_path();
-    if (error || given.empty() || dir_.filename() == "." || dir_.filename() == "..") {
-      throw_invalid("--out", given, "a directory name");
-    }
-    if (fs::is_symlink(fs::symlink_status(dir_, error))) {
-      throw_invalid("--out", given, "a directory, not a symbolic link");
-    }
-    if (fs::exists(dir_, error) && !fs::is_directory(dir_, error))
-      throw_invalid("--out", given, "a directory");
-    fs::create_directories(dir_.parent_path(), error);
-    lock_ =
-        std::make_unique<experiment::detail::PathLock>(dir_, "--out", given, "a sweep directory");
-    fs::create_directories(dir_, error);
-    if (error)
-      throw_invalid("--out", given, "a directory that can be created (" + error.message() + ")");
-    const auto refuse = [&](const fs::path& path) {
-      throw_invalid(
-          "--out", given,
-          "a new directory or one holding only a sweep's files (it holds " +
-              fs::relative(path, dir_).string() +
-              ", which fogradar would not replace; fogradar never deletes a file of yours)");
-    };
-    for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
-      const std::string name = entry.path().filename().string();
-      if (table_names.contains(name) && entry.is_regular_file()) continue;
-      if (name.starts_with(".") && name.find(".tmp-") != std::string::npos)
-        continue;  // ours, a crash's
-      if ((name == state_dir || name == points_dir) && entry.is_directory()) continue;
-      refuse(entry.path());
-    }
-    for (const std::string_view sub : {state_dir, points_dir}) {
-      if (!fs::is_directory(dir_ / sub)) continue;
-      for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / sub)) {
-        const std::string name = entry.path().filename().string();
-        const std::string stem = name.substr(0, name.find('.'));
-        const bool numbered = !stem.empty() && std::all_of(stem.begin(), stem.end(), [](char c) {
-          return c >= '0' && c <= '9';
-        });
-        if (numbered || name.starts_with(".")) continue;
-        refuse(entry.path());
-      }
-    }
-    // A crash's temporary files; without --resume an earlier sweep's files; with it, the points
-    // beyond this sweep's.
-    for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
-      const std::string name = entry.path().filename().string();
-      if ((name.starts_with(".") && name.find(".tmp-") != std::string::npos) ||
-          (!resume && table_names.contains(name))) {
-        fs::remove_all(entry.path(), error);
-      }
-    }
-    if (!resume) {
-      fs::remove_all(dir_ / state_dir, error);
-      fs::remove_all(dir_ / points_dir, error);
-    } else if (fs::is_directory(dir_ / state_dir)) {
-      for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / state_dir)) {
-        const std::string name = entry.path().filename().string();
-        std::size_t index = 0;
-        const auto [end, parsed] = std::from_chars(name.data(), name.data() + name.size(), index);
-        if (name.starts_with(".") || parsed != std::errc() || index >= points)
-          fs::remove(entry.path(), error);
-      }
-    }
-    fs::create_directories(dir_ / state_dir, error);
-    if (error)
-      throw_invalid("--out", given, "a directory that can be written (" + error.message() + ")");
-  }
-
-  const fs::path& path() const { return dir_; }
-
-  // The committed piece of point `index` when it was made for `definition`.
-  std::optional<json> committed(std::size_t index, const std::string& definition) const {
-    std::ifstream in(piece(index));
-    if (!in) return std::nullopt;
-    try {
-      json piece = json::parse(in);
-      if (piece.value("definition", std::string()) == definition) return piece;
-    } catch (const json::exception&) {
-    }
-    return std::nullopt;
-  }
-
-  void commit(std::size_t index, const json& content) const {
-    write(piece(index), content.dump() + "\n");
-  }
-
-  void write_table(std::string_view name, std::string_view content) const {
-    write(dir_ / name, content);
-  }
-
- private:
-  fs::path piece(std::size_t index) const {
-    return dir_ / state_dir / (std::to_string(index) + ".json");
-  }
-
-  void write(const fs::path& path, std::string_view content) const {
-    if (!experiment::detail::write_file_atomically(path, content)) {
-      throw_invalid("--out", dir_.string(),
-                    "a directory that can be written (" + path.filename().string() + ": " +
-                        experiment::detail::errno_text() + ")");
-    }
-  }
-
-  fs::path dir_;
-  std::unique_ptr<experiment::detail::PathLock> lock_;
-};
-
-// Every point's definition: what its numbers depend on (its scenarios, resolved, and how many
-// runs).
-std::string definition_of(const Point& point, std::size_t replications) {
-  std::string text =
-      experiment::to_toml(point.scenario) + "\nreplications " + std::to_string(replications);
-  for (const experiment::Scenario& setup : point.setups)
-    text += "\nsetup\n" + experiment::to_toml(setup);
-  return fnv_hex(text);
-}
-
 experiment::Scenario with_seed(experiment::Scenario scenario, std::uint64_t seed) {
   scenario.experiment.seed = seed & 0x7fffffffffffffffULL;  // TOML integers are signed 64-bit
   return scenario;
-}
-
-json compute_point(const SweepSpec& spec, const Point& point, const std::string& definition,
-                   const propagation::SegelsteinTable& water, experiment::SensorCache& cache,
-                   const SweepOptions& options, const fs::path& dir) {
-  json piece = {{"definition", definition}, {"runs", json::array()}, {"setups", json::array()}};
-  for (std::size_t r = 0; r < spec.replications; ++r) {
-    const fs::path keep = dir / points_dir / std::to_string(point.index);
-    const bool keep_this = options.keep_points && r == 0;
-    if (keep_this) fs::create_directories(dir / points_dir);
-    piece["runs"].push_back(
-        {{"replication", r},
-         {"sensors", run_once(with_seed(point.scenario, point.seed + r), water, cache, options,
-                              r == 0, keep_this ? &keep : nullptr)}});
-  }
-  for (const experiment::Scenario& setup : point.setups) {
-    piece["setups"].push_back(
-        {{"sensors", run_once(setup, water, cache, options, false, nullptr)}});
-  }
-  return piece;
 }
 
 std::vector<std::string> sensor_order(const std::vector<json>& pieces) {
@@ -698,6 +552,229 @@ std::string seconds_text(double seconds) {
 
 }  // namespace
 
+namespace detail {
+
+Computed compute_point(const SweepSpec& spec, const Point& point, const std::string& definition,
+                       const propagation::SegelsteinTable& water, experiment::SensorCache& cache,
+                       const SweepOptions& options) {
+  Computed computed;
+  computed.piece = {{"definition", definition}, {"runs", json::array()}, {"setups", json::array()}};
+  for (std::size_t r = 0; r < spec.replications; ++r) {
+    const bool keep = options.keep_points && r == 0;
+    computed.piece["runs"].push_back(
+        {{"replication", r},
+         {"sensors", run_once(with_seed(point.scenario, point.seed + r), water, cache, options,
+                              r == 0, keep ? &computed.kept : nullptr)}});
+  }
+  for (const experiment::Scenario& setup : point.setups) {
+    computed.piece["setups"].push_back(
+        {{"sensors", run_once(setup, water, cache, options, false, nullptr)}});
+  }
+  return computed;
+}
+
+SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode, std::size_t points,
+                               std::size_t shard) {
+  const std::string given = dir.string();
+  const std::string option = mode == Mode::merge ? "--merge" : "--out";
+  std::error_code error;
+  dir_ = fs::absolute(dir, error).lexically_normal();
+  if (!dir_.has_filename()) dir_ = dir_.parent_path();
+  if (error || given.empty() || dir_.filename() == "." || dir_.filename() == "..") {
+    throw_invalid(option, given, "a directory name");
+  }
+  if (fs::is_symlink(fs::symlink_status(dir_, error))) {
+    throw_invalid(option, given, "a directory, not a symbolic link");
+  }
+  if (fs::exists(dir_, error) && !fs::is_directory(dir_, error)) {
+    throw_invalid(option, given, "a directory");
+  }
+  if (mode == Mode::merge && !fs::is_directory(dir_ / state_dir)) {
+    throw_invalid(option, given, "a sweep's directory (it has no " + std::string(state_dir) + "/)");
+  }
+  fs::create_directories(dir_, error);
+  if (error) {
+    throw_invalid(option, given, "a directory that can be created (" + error.message() + ")");
+  }
+  if (mode != Mode::shard) {
+    lock_ =
+        std::make_unique<experiment::detail::PathLock>(dir_, option, given, "a sweep directory");
+  }
+  const auto refuse = [&](const fs::path& path) {
+    throw_invalid(option, given,
+                  "a new directory or one holding only a sweep's files (it holds " +
+                      fs::relative(path, dir_).string() +
+                      ", which fogradar would not replace; fogradar never deletes a file of "
+                      "yours)");
+  };
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
+    const std::string name = entry.path().filename().string();
+    if (table_names.contains(name) && entry.is_regular_file()) continue;
+    if (name.starts_with(".") && name.find(".tmp-") != std::string::npos) continue;  // a crash's
+    if ((name == state_dir || name == points_dir) && entry.is_directory()) continue;
+    refuse(entry.path());
+  }
+  for (const std::string_view sub : {state_dir, points_dir}) {
+    if (!fs::is_directory(dir_ / sub)) continue;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / sub)) {
+      const std::string name = entry.path().filename().string();
+      const std::string stem = name.substr(0, name.find('.'));
+      const bool numbered = !stem.empty() && std::all_of(stem.begin(), stem.end(), [](char c) {
+        return c >= '0' && c <= '9';
+      });
+      if (numbered || name.starts_with(".") || name == origin_file) continue;
+      refuse(entry.path());
+    }
+  }
+  fs::create_directories(dir_ / state_dir, error);
+  if (error) {
+    throw_invalid(option, given, "a directory that can be written (" + error.message() + ")");
+  }
+  // Shards of one sweep run side by side: each holds its own lock, the others' points stay.
+  if (mode == Mode::shard) {
+    lock_ = std::make_unique<experiment::detail::PathLock>(
+        dir_ / state_dir / ("shard-" + std::to_string(shard)), option, given, "a sweep directory");
+  }
+  // A crash's temporary files go; without --resume an earlier sweep's files, with it the points
+  // beyond this sweep's. A shard removes nothing (the others write beside it), nor does a merge.
+  if (mode == Mode::shard || mode == Mode::merge) return;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
+    const std::string name = entry.path().filename().string();
+    if ((name.starts_with(".") && name.find(".tmp-") != std::string::npos) ||
+        (mode == Mode::fresh && table_names.contains(name))) {
+      fs::remove_all(entry.path(), error);
+    }
+  }
+  if (mode == Mode::fresh) fs::remove_all(dir_ / points_dir, error);
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / state_dir)) {
+    const std::string name = entry.path().filename().string();
+    std::size_t index = 0;
+    const auto [end, parsed] = std::from_chars(name.data(), name.data() + name.size(), index);
+    const bool stale = name.starts_with(".") || (parsed == std::errc() && index >= points);
+    if (mode == Mode::fresh || stale) fs::remove(entry.path(), error);
+  }
+}
+
+SweepDirectory::~SweepDirectory() = default;
+
+std::optional<json> SweepDirectory::committed(std::size_t index,
+                                              const std::string& definition) const {
+  std::ifstream in(dir_ / state_dir / (std::to_string(index) + ".json"));
+  if (!in) return std::nullopt;
+  try {
+    json piece = json::parse(in);
+    if (piece.value("definition", std::string()) == definition) return piece;
+  } catch (const json::exception&) {
+  }
+  return std::nullopt;
+}
+
+void SweepDirectory::commit(std::size_t index, const json& piece) const {
+  write_table(std::string(state_dir) + "/" + std::to_string(index) + ".json", piece.dump() + "\n");
+}
+
+void SweepDirectory::write_table(std::string_view name, std::string_view content) const {
+  const fs::path path = dir_ / name;
+  if (!experiment::detail::write_file_atomically(path, content)) {
+    throw_invalid("--out", dir_.string(),
+                  "a directory that can be written (" + path.filename().string() + ": " +
+                      experiment::detail::errno_text() + ")");
+  }
+}
+
+void SweepDirectory::keep(std::size_t index, const experiment::Scenario& scenario,
+                          const std::vector<sensor::ResultFile>& files) const {
+  std::error_code error;
+  fs::create_directories(dir_ / points_dir, error);
+  experiment::OutputDirectory out(dir_ / points_dir / std::to_string(index),
+                                  experiment::result_file_names(scenario));
+  out.replace(files);
+}
+
+std::string definition_of(const Point& point, std::size_t replications) {
+  std::string text =
+      experiment::to_toml(point.scenario) + "\nreplications " + std::to_string(replications);
+  for (const experiment::Scenario& setup : point.setups) {
+    text += "\nsetup\n" + experiment::to_toml(setup);
+  }
+  return fnv_hex(text);
+}
+
+std::vector<std::size_t> cost_order(const SweepSpec& spec, const std::vector<Point>& points) {
+  std::vector<std::pair<std::size_t, std::size_t>> cost;  // items, index
+  for (const Point& p : points) {
+    std::size_t items = 0;
+    for (std::size_t s = 0; s <= p.setups.size(); ++s) {
+      const experiment::Scenario& scenario = s == 0 ? p.scenario : p.setups[s - 1];
+      const sensor::Context context = scenario.context();
+      for (const std::string& name : scenario.experiment.sensors) {
+        const experiment::SensorSetting& setting = scenario.setting(name);
+        items += context.steps * setting.type->items_per_step(setting.params, context) *
+                 (s == 0 ? spec.replications : 1);
+      }
+    }
+    cost.emplace_back(items, p.index);
+  }
+  std::stable_sort(cost.begin(), cost.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<std::size_t> order;
+  for (const auto& [items, index] : cost) order.push_back(index);
+  return order;
+}
+
+void write_origin(const SweepDirectory& out, const fs::path& sweep_directory) {
+  std::error_code error;
+  const fs::path absolute = fs::absolute(sweep_directory, error).lexically_normal();
+  out.write_table(std::string(state_dir) + "/" + std::string(origin_file),
+                  absolute.string() + "\n");
+}
+
+SweepSpec read_spec(const fs::path& dir) {
+  std::ifstream text_in(dir / "sweep.toml"), origin_in(dir / state_dir / origin_file);
+  if (!text_in || !origin_in) {
+    throw_invalid("--merge", dir.string(),
+                  "a sweep's directory (sweep.toml and " + std::string(state_dir) + "/" +
+                      std::string(origin_file) + " written by its shards)");
+  }
+  std::ostringstream text;
+  text << text_in.rdbuf();
+  std::string origin;
+  std::getline(origin_in, origin);
+  return parse_sweep(text.str(), (dir / "sweep.toml").string(), origin);
+}
+
+SweepOutcome write_tables(const SweepSpec& spec, const std::vector<Point>& points,
+                          const std::vector<json>& pieces, const SweepDirectory& out) {
+  SweepOutcome outcome;
+  const auto write = [&](std::string_view name, const std::string& content) {
+    out.write_table(name, content);
+    outcome.files.emplace_back(name);
+  };
+  write("points.csv", points_csv(spec, points));
+  write("results.csv", results_csv(pieces));
+  write("limits.csv", limits_csv(pieces));
+  write("comparison.svg", comparison_svg(points, pieces));
+  if (!spec.axes.empty()) write("limits.svg", limits_svg(spec, points, pieces));
+  if (spec.uncertain) {
+    write("envelope.csv", envelope_csv(pieces));
+    write("envelope_limits.csv", envelope_limits_csv(pieces));
+    if (!spec.uncertain->plots.empty()) write("envelope.svg", envelope_svg(spec, points, pieces));
+  }
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    outcome.limits_table += "  " + std::to_string(p) + "  " + points[p].label() + ":";
+    for (const json& s : pieces[p]["runs"][0]["sensors"]) {
+      outcome.limits_table +=
+          " " + s["sensor"].get<std::string>() + " " +
+          (s["limit"].is_null() ? std::string("not reached")
+                                : std::to_string(s["limit"].get<std::size_t>()));
+    }
+    outcome.limits_table += "\n";
+  }
+  return outcome;
+}
+
+}  // namespace detail
+
 std::string SweepEstimate::text() const {
   std::ostringstream out;
   out.precision(4);
@@ -759,56 +836,84 @@ SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
 
 SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, const fs::path& dir,
                        const SweepOptions& options) {
-  SweepDirectory out(dir, options.resume, points.size());
+  using Mode = detail::SweepDirectory::Mode;
+  const std::optional<Shard>& shard = options.shard;
+  const Mode mode = shard ? Mode::shard : options.resume ? Mode::resume : Mode::fresh;
+  const detail::SweepDirectory out(dir, mode, points.size(), shard ? shard->index : 0);
   out.write_table("sweep.toml", spec.text);
+  detail::write_origin(out, spec.directory);
+  // A shard's points: every count-th of the cost order, so that each share has as many costly ones.
+  std::vector<std::size_t> mine;
+  if (shard) {
+    const std::vector<std::size_t> order = detail::cost_order(spec, points);
+    for (std::size_t position = shard->index; position < order.size(); position += shard->count)
+      mine.push_back(order[position]);
+    std::sort(mine.begin(), mine.end());
+  } else {
+    for (const Point& point : points) mine.push_back(point.index);
+  }
   const propagation::SegelsteinTable water;
   experiment::SensorCache own_cache;
   experiment::SensorCache& cache = options.cache ? *options.cache : own_cache;
   SweepOutcome outcome;
   std::vector<json> pieces;
   const auto start = std::chrono::steady_clock::now();
-  for (const Point& point : points) {
-    const std::string definition = definition_of(point, spec.replications);
+  for (const std::size_t index : mine) {
+    const Point& point = points[index];
+    const std::string definition = detail::definition_of(point, spec.replications);
     std::optional<json> piece =
-        options.resume ? out.committed(point.index, definition) : std::nullopt;
+        mode != Mode::fresh ? out.committed(index, definition) : std::nullopt;
     if (piece) {
       ++outcome.reused;
     } else {
-      piece = compute_point(spec, point, definition, water, cache, options, out.path());
-      out.commit(point.index, *piece);
+      detail::Computed computed =
+          detail::compute_point(spec, point, definition, water, cache, options);
+      if (options.keep_points) out.keep(index, point.scenario, computed.kept);
+      out.commit(index, computed.piece);
+      piece = std::move(computed.piece);
       ++outcome.computed;
     }
     pieces.push_back(std::move(*piece));
     if (options.progress) {
       options.progress(
-          pieces.size(), points.size(),
+          pieces.size(), mine.size(),
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
   }
-  const auto write = [&](std::string_view name, const std::string& content) {
-    out.write_table(name, content);
-    outcome.files.emplace_back(name);
-  };
-  write("points.csv", points_csv(spec, points));
-  write("results.csv", results_csv(pieces));
-  write("limits.csv", limits_csv(pieces));
-  write("comparison.svg", comparison_svg(points, pieces));
-  if (!spec.axes.empty()) write("limits.svg", limits_svg(spec, points, pieces));
-  if (spec.uncertain) {
-    write("envelope.csv", envelope_csv(pieces));
-    write("envelope_limits.csv", envelope_limits_csv(pieces));
-    if (!spec.uncertain->plots.empty()) write("envelope.svg", envelope_svg(spec, points, pieces));
-  }
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    outcome.limits_table += "  " + std::to_string(p) + "  " + points[p].label() + ":";
-    for (const json& s : pieces[p]["runs"][0]["sensors"]) {
-      outcome.limits_table +=
-          " " + s["sensor"].get<std::string>() + " " +
-          (s["limit"].is_null() ? std::string("not reached")
-                                : std::to_string(s["limit"].get<std::size_t>()));
+  if (shard) return outcome;
+  SweepOutcome tables = detail::write_tables(spec, points, pieces, out);
+  tables.computed = outcome.computed;
+  tables.reused = outcome.reused;
+  return tables;
+}
+
+SweepOutcome merge_sweep(const fs::path& dir) {
+  const detail::SweepDirectory out(dir, detail::SweepDirectory::Mode::merge, 0);
+  const SweepSpec spec = detail::read_spec(out.path());
+  const std::vector<Point> points = expand(spec);
+  std::vector<json> pieces;
+  std::vector<std::size_t> missing;
+  for (const Point& point : points) {
+    std::optional<json> piece =
+        out.committed(point.index, detail::definition_of(point, spec.replications));
+    if (piece) {
+      pieces.push_back(std::move(*piece));
+    } else {
+      missing.push_back(point.index);
     }
-    outcome.limits_table += "\n";
   }
+  if (!missing.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < missing.size() && i < 20; ++i)
+      list += (i ? ", " : "") + std::to_string(missing[i]);
+    if (missing.size() > 20) list += ", ...";
+    throw_invalid("--merge", dir.string(),
+                  "a sweep's directory with every point committed (" +
+                      std::to_string(missing.size()) + " of " + std::to_string(points.size()) +
+                      " points are not: " + list + "; run the shards that hold them)");
+  }
+  SweepOutcome outcome = detail::write_tables(spec, points, pieces, out);
+  outcome.reused = points.size();
   return outcome;
 }
 

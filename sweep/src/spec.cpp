@@ -487,6 +487,7 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
   SweepSpec spec;
   spec.source = std::string(source);
   spec.text = std::string(text);
+  spec.directory = directory;
   toml::table root;
   try {
     root = toml::parse(text, source);

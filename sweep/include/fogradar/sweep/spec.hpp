@@ -79,6 +79,7 @@ struct Uncertain {
 struct SweepSpec {
   std::string source;  // the sweep file's path as given (messages)
   std::string text;    // the file, verbatim (written into DIR as sweep.toml)
+  std::filesystem::path directory;  // a relative base path's directory (the sweep file's)
   experiment::Scenario base;
   std::string base_name;  // "paper" or the path as the file gives it
   std::size_t replications = 1;

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,10 +21,22 @@
 
 namespace fogradar::sweep {
 
+// The i-th of N shares of a sweep's points, for the tasks of a job array: the points at positions
+// i, i + N, i + 2N, ... of the cost order (the most costly first), so each share gets as many of
+// the costly ones.
+struct Shard {
+  std::size_t index = 0;
+  std::size_t count = 1;
+};
+
 struct SweepOptions {
   unsigned threads = 0;  // of each point's run (0: all hardware threads)
   bool resume = false;   // keep the points DIR has committed for this sweep
   bool keep_points = false;
+  // Run only this share: its points are committed into DIR beside the other shards' (those it
+  // finds committed for this sweep are kept, as with `resume`), and no table is written;
+  // merge_sweep() writes them once every shard is in.
+  std::optional<Shard> shard;
   std::size_t memory_limit_bytes = 0;  // 0: experiment::default_memory_limit_bytes()
   // Set by another thread (a signal): the sweep stops at its next item; experiment::Interrupted.
   const std::atomic<bool>* stop = nullptr;
@@ -57,6 +70,10 @@ struct SweepOutcome {
   // command prints them.
   std::string limits_table;
   std::vector<std::string> files;  // the tables written, in DIR
+  // On MPI: the ranks, and rank 0's time spent per message of a worker (receiving, committing,
+  // answering).
+  std::size_t ranks = 1;
+  double bookkeeping_seconds_per_message = 0.0;
 };
 
 // Runs every point not yet committed into `dir` and writes the tables. Refuses (InvalidParameter
@@ -66,5 +83,10 @@ struct SweepOutcome {
 // experiment::Interrupted when stopped: the points committed so far stay.
 SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points,
                        const std::filesystem::path& dir, const SweepOptions& options);
+
+// The tables of a sweep whose shards have committed every point into `dir`; the sweep is read from
+// dir/sweep.toml (a base path relative to where the sweep file was). Refuses (InvalidParameter
+// naming "--merge") a directory that is not a sweep's or misses a point, listing the missing ones.
+SweepOutcome merge_sweep(const std::filesystem::path& dir);
 
 }  // namespace fogradar::sweep

@@ -1,0 +1,71 @@
+// The sweep's parts that its serial, sharded, merged and MPI runs share (run.cpp, mpi.cpp).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fogradar/experiment/files.hpp"
+#include "fogradar/experiment/runner.hpp"
+#include "fogradar/propagation/water.hpp"
+#include "fogradar/sensor/sensor.hpp"
+#include "fogradar/sweep/spec.hpp"
+#include "fogradar/sweep/sweep.hpp"
+
+namespace fogradar::sweep::detail {
+
+// The directory a sweep grows in (the result set's rules, for a directory that grows): holding
+// nothing but a sweep's files, locked for one sweep at a time (for a shard, for one run of that
+// shard). Fresh: an earlier sweep's files are removed; resume, shard and merge: committed points
+// stay.
+class SweepDirectory {
+ public:
+  enum class Mode { fresh, resume, shard, merge };
+  // `points`: how many the sweep has (with resume, committed points beyond them are removed).
+  SweepDirectory(const std::filesystem::path& dir, Mode mode, std::size_t points,
+                 std::size_t shard = 0);
+  ~SweepDirectory();
+
+  const std::filesystem::path& path() const { return dir_; }
+  // The committed piece of point `index` when it was made for `definition`.
+  std::optional<nlohmann::json> committed(std::size_t index, const std::string& definition) const;
+  void commit(std::size_t index, const nlohmann::json& piece) const;
+  void write_table(std::string_view name, std::string_view content) const;
+  // Point `index`'s result set into points/<index>/, as `fogradar run --out` writes it.
+  void keep(std::size_t index, const experiment::Scenario& scenario,
+            const std::vector<sensor::ResultFile>& files) const;
+
+ private:
+  std::filesystem::path dir_;
+  std::unique_ptr<experiment::detail::PathLock> lock_;
+};
+
+// A hash of everything point `point`'s numbers depend on: its scenarios, resolved, and its runs.
+std::string definition_of(const Point& point, std::size_t replications);
+
+struct Computed {
+  nlohmann::json piece;                  // what DIR/.sweep/<index>.json holds
+  std::vector<sensor::ResultFile> kept;  // --keep-points: replication 0's result set
+};
+Computed compute_point(const SweepSpec& spec, const Point& point, const std::string& definition,
+                       const propagation::SegelsteinTable& water, experiment::SensorCache& cache,
+                       const SweepOptions& options);
+
+// The points' indices, the most costly first (runs x items, then by index): the order a queue
+// hands them out and shards split them.
+std::vector<std::size_t> cost_order(const SweepSpec& spec, const std::vector<Point>& points);
+
+// The tables from every point's piece (in point order), written into `out`.
+SweepOutcome write_tables(const SweepSpec& spec, const std::vector<Point>& points,
+                          const std::vector<nlohmann::json>& pieces, const SweepDirectory& out);
+
+// The sweep file's directory, kept in DIR so that `--merge DIR` reads its base as the sweep did.
+void write_origin(const SweepDirectory& out, const std::filesystem::path& sweep_directory);
+SweepSpec read_spec(const std::filesystem::path& dir);
+
+}  // namespace fogradar::sweep::detail
