@@ -11,7 +11,8 @@
 - results.csv, limits.csv and points.csv byte-identical for threads 1 and 2, for a sweep killed by
   SIGKILL at a random instant and resumed, and for the values listed in reverse order;
 - with every [uncertain] key collapsed to one value (the base's own), the envelope's quantiles are
-  the single run's values exactly;
+  the single run's values exactly; with the fog's extinction drawn uniformly (Latin hypercube), the
+  quantiles of the radar's loss lie within the bounds the strata give (`fogradar fog` at the edges);
 - a bad sweep file: exit 2, one message with file and line, nothing written; a sweep over the memory
   limit: exit 2, nothing written; a file of the user's in the output directory: refused, kept.
 
@@ -179,6 +180,40 @@ values = [-0.7]
               f"collapsed envelope {e} against the run's {value}")
     for r in rows(os.path.join(envelope_out, "envelope_limits.csv")):
         check(r["setups"] == "3" and r["fraction"] == "1", f"collapsed limits {r}")
+
+    # A known distribution: fog.extinction_per_km uniform on [200, 1000] /km in 40 Latin-hypercube
+    # setups. The radar's loss rises with the extinction, so the envelope's type-7 q-quantile of the
+    # loss is the loss at the sample's q-quantile of the extinction, and with one draw per stratum
+    # (of width 20 /km) that lies between the strata's edges around position h = 39 q:
+    # [200 + 20 floor(h), 200 + 20 (floor(h) + 2)], the loss at each edge from `fogradar fog`.
+    known = write("known.toml", """
+[sweep]
+base = "radar_only.toml"
+[uncertain]
+setups = 40
+[uncertain.keys."fog.extinction_per_km"]
+distribution = "uniform"
+low = 200.0
+high = 1000.0
+""")
+    known_out = os.path.join(work, "known")
+    sweep(known, known_out)
+    loss_row = [e for e in rows(os.path.join(known_out, "envelope.csv"))
+                if e["sensor"] == "radar" and e["active_layers"] == "1"
+                and e["statistic"] == "two_way_attenuation_db"]
+    check(len(loss_row) == 1 and loss_row[0]["setups"] == "40", f"loss envelope rows {loss_row}")
+
+    def fog_loss(beta):
+        done = subprocess.run([fogradar, "fog", "--extinction-per-km", repr(beta), "--json"],
+                              capture_output=True, text=True, check=True)
+        return json.loads(done.stdout)["sensors"]["radar"]["two_way_loss_db_per_layer"]
+
+    for column, q in (("p05", 0.05), ("p25", 0.25), ("p50", 0.5), ("p75", 0.75), ("p95", 0.95)):
+        h = math.floor(39 * q)
+        low, high = fog_loss(200.0 + 20.0 * h), fog_loss(200.0 + 20.0 * (h + 2))
+        value = float(loss_row[0][column]) if loss_row else math.nan
+        check(low <= value <= high, f"envelope {column} {value} outside [{low}, {high}]")
+        print(f"envelope {column} of the loss: {value:.5f} dB in [{low:.5f}, {high:.5f}]")
 
     # Bad input: one message with file and line, exit 2, nothing written; the user's file kept.
     bad = write("bad.toml", "[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0, -5.0]\n")
