@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "fogradar/camera/camera.hpp"
@@ -21,9 +23,20 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/visibility.hpp"
+#include "validation.hpp"
 
 namespace fogradar::camera {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
+
+// A number as a check's id and conditions show it ("0.165", "1e-06").
+std::string str(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 const propagation::SegelsteinTable& table() {
   static const propagation::SegelsteinTable instance;
@@ -41,7 +54,17 @@ TEST(Koschmieder, Limits) {
   // t -> 1: the intrinsic radiance; t -> 0: the path radiance (paper eq. 8).
   EXPECT_DOUBLE_EQ(koschmieder_radiance(0.3, 0.9, 1.0), 0.3);
   EXPECT_DOUBLE_EQ(koschmieder_radiance(0.3, 0.9, 0.0), 0.9);
-  EXPECT_NEAR(koschmieder_radiance(0.3, 0.9, 1e-300), 0.9, 1e-15);
+  validate({.id = "camera.koschmieder.limit.t1e-300",
+            .group = "camera",
+            .quantity = "apparent radiance",
+            .unit = "1",
+            .conditions = "L0 0.3, path radiance 0.9, t = 1e-300",
+            .reference = 0.9,
+            .source = "limiting case of Koschmieder's law (paper eq. 8): t -> 0 gives the path "
+                      "radiance",
+            .value = koschmieder_radiance(0.3, 0.9, 1e-300),
+            .tolerance = 1e-15,
+            .kind = Tolerance::absolute});
 }
 
 TEST(Koschmieder, ContrastAgainstTheHorizonFallsAsTheTransmittance) {
@@ -52,7 +75,17 @@ TEST(Koschmieder, ContrastAgainstTheHorizonFallsAsTheTransmittance) {
     const double c0 = weber_contrast(l0, ls);
     for (const double t : {1.0, 0.7, 0.165, 0.0272, 1e-6}) {
       const double c = weber_contrast(koschmieder_radiance(l0, ls, t), ls);
-      EXPECT_NEAR(c / c0, t, 1e-14 * std::max(1.0, 1.0 / std::abs(c0))) << l0 << " " << t;
+      validate({.id = "camera.koschmieder.contrast.L0_" + str(l0) + ".t" + str(t),
+                .group = "camera",
+                .quantity = "apparent over intrinsic Weber contrast against the horizon",
+                .unit = "1",
+                .conditions = "L0 " + str(l0) + ", horizon radiance 0.8, t = " + str(t),
+                .reference = t,
+                .source = "closed form: Koschmieder's law (paper eq. 8), C = C0 t against the "
+                          "horizon sky",
+                .value = c / c0,
+                .tolerance = 1e-14 * std::max(1.0, 1.0 / std::abs(c0)),
+                .kind = Tolerance::absolute});
     }
   }
 }
@@ -61,11 +94,40 @@ TEST(Koschmieder, VisibilityDefinitions) {
   // Eq. 6: V beta = -ln 0.02; eq. 9: d_m beta = -ln 0.05. A black object at d_m against the horizon
   // has contrast -0.05, the CIE threshold, at any beta.
   for (const double beta : {0.01, 0.6815, 0.9, 3.0}) {
-    EXPECT_NEAR(propagation::visibility_m_from_extinction(beta) * beta, -std::log(0.02), 1e-14);
+    const std::string id = "camera.visibility.beta" + str(beta);
+    const std::string conditions = "beta = " + str(beta) + " /m";
+    validate({.id = id + ".visibility",
+              .group = "camera",
+              .quantity = "visibility times extinction V beta",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = -std::log(0.02),
+              .source = "closed form: paper eq. 6, V beta = -ln 0.02",
+              .value = propagation::visibility_m_from_extinction(beta) * beta,
+              .tolerance = 1e-14,
+              .kind = Tolerance::absolute});
     const double d_m = propagation::meteorological_visibility_m(beta);
-    EXPECT_NEAR(d_m * beta, -std::log(0.05), 1e-14);
+    validate({.id = id + ".meteorological_visibility",
+              .group = "camera",
+              .quantity = "meteorological visibility times extinction d_m beta",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = -std::log(0.05),
+              .source = "closed form: paper eq. 9, d_m beta = -ln 0.05",
+              .value = d_m * beta,
+              .tolerance = 1e-14,
+              .kind = Tolerance::absolute});
     const double apparent = koschmieder_radiance(0.0, 1.0, std::exp(-beta * d_m));
-    EXPECT_NEAR(weber_contrast(apparent, 1.0), -propagation::cie_contrast, 1e-14);
+    validate({.id = id + ".contrast_at_d_m",
+              .group = "camera",
+              .quantity = "apparent contrast of a black object at d_m against the horizon",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = -propagation::cie_contrast,
+              .source = "CIE contrast threshold 0.05 (paper eq. 9 with Koschmieder's law)",
+              .value = weber_contrast(apparent, 1.0),
+              .tolerance = 1e-14,
+              .kind = Tolerance::absolute});
   }
 }
 
@@ -80,11 +142,30 @@ TEST(CameraOptics, MonochromaticStepIsTheLayersTransmittanceAndAirlight) {
   const Camera camera(params, paper_chamber(), table());
   const StepOptics optics = camera.step_optics({true, true, false, false});
   ASSERT_EQ(optics.transmittance.size(), 1u);
-  EXPECT_NEAR(optics.transmittance[0], std::exp(-1.8), 1e-9);
-  EXPECT_NEAR(optics.airlight_factor[0], 1.0 - std::exp(-1.8), 1e-6);
+  const auto check = [](const std::string& id, const std::string& quantity, double reference,
+                        double value, double tolerance, const std::string& conditions,
+                        const std::string& source) {
+    validate({.id = "camera.optics.550nm." + id,
+              .group = "camera",
+              .quantity = quantity,
+              .unit = "1",
+              .conditions = "550 nm, paper fog beta 900 /km, " + conditions,
+              .reference = reference,
+              .source = source,
+              .value = value,
+              .tolerance = tolerance,
+              .kind = Tolerance::absolute});
+  };
+  check("transmittance.2layers", "transmittance", std::exp(-1.8), optics.transmittance[0], 1e-9,
+        "2 active 1 m layers", "closed form: Beer-Lambert exp(-beta L) = exp(-1.8)");
+  check("airlight.2layers", "airlight factor", 1.0 - std::exp(-1.8), optics.airlight_factor[0],
+        1e-6, "2 active 1 m layers",
+        "closed form: Koschmieder's airlight 1 - t of a non-absorbing fog (paper eq. 8)");
   const StepOptics clear = camera.step_optics({false, false, false, false});
-  EXPECT_EQ(clear.transmittance[0], 1.0);
-  EXPECT_EQ(clear.airlight_factor[0], 0.0);
+  check("transmittance.0layers", "transmittance", 1.0, clear.transmittance[0], 0.0,
+        "no active layer", "limiting case: clear air, t = 1");
+  check("airlight.0layers", "airlight factor", 0.0, clear.airlight_factor[0], 0.0,
+        "no active layer", "limiting case: clear air, no airlight");
 }
 
 // Band average of exp(-beta(lambda) L) with V(lambda): Simpson's rule on a 10 nm grid, 360-820 nm
@@ -130,15 +211,39 @@ TEST(CameraOptics, PhotopicBandAgainstAnIndependentIntegration) {
   for (std::size_t n = 1; n <= 4; ++n) {
     const auto active = propagation::first_layers_active(n, 4);
     const double reference = band.transmittance(static_cast<double>(n));
-    EXPECT_NEAR(camera_coarse.step_optics(active).transmittance[0] / reference, 1.0, 5e-3) << n;
-    EXPECT_NEAR(camera_fine.step_optics(active).transmittance[0] / reference, 1.0, 1e-4) << n;
+    for (const bool fine_grid : {false, true}) {
+      const Camera& camera = fine_grid ? camera_fine : camera_coarse;
+      const std::string step = fine_grid ? "20" : "160";
+      validate({.id = "camera.optics.photopic.mie" + step + "nm." + std::to_string(n) + "layers",
+                .group = "camera",
+                .quantity = "photopic band transmittance",
+                .unit = "1",
+                .conditions = "paper fog beta 900 /km at 550 nm, " + std::to_string(n) +
+                              " active layers, mie_step_nm " + step,
+                .reference = reference,
+                .source = "independent integration: Simpson's rule on a 10 nm grid of direct Mie "
+                          "evaluations weighted by the CIE 1931 V(lambda)",
+                .value = camera.step_optics(active).transmittance[0],
+                .tolerance = fine_grid ? 1e-4 : 5e-3,
+                .kind = Tolerance::relative});
+    }
   }
 }
 
 TEST(CameraOptics, BandWeightsAreNormalised) {
   const ColourMatchingTable cie = cie1931_table();
   ASSERT_EQ(cie.wavelength_nm.size(), 95u);
-  EXPECT_EQ(cie.y_bar[39], 1.0);  // V(555 nm) = 1 by definition
+  // V(555 nm) = 1 by definition
+  validate({.id = "camera.cie1931.v555nm",
+            .group = "camera",
+            .quantity = "photopic luminosity function V(555 nm)",
+            .unit = "1",
+            .conditions = "CIE 1931 table, 555 nm",
+            .reference = 1.0,
+            .source = "CIE 1931 definition: V(555 nm) = 1",
+            .value = cie.y_bar[39],
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
   for (const Band band : {Band::photopic, Band::rgb, Band::monochromatic}) {
     const BandQuadrature q = band_quadrature(band, 550.0, cie);
     for (const auto& channel : q.weight) {
@@ -201,7 +306,21 @@ TEST(Airlight, ConservativeSlabInAUniformFieldMatchesMonteCarlo) {
     for (const double g : {0.0, 0.85}) {
       const Estimate mc = monte_carlo_path_radiance(tau, 1.0, g, 20000, 7);
       const double model = path_radiance_factor(1.0) * (1.0 - std::exp(-tau));
-      EXPECT_NEAR(model, mc.mean, 4.0 * mc.standard_error + 1e-12) << tau << " " << g;
+      const double tolerance = 4.0 * mc.standard_error + 1e-12;
+      validate({.id = "camera.airlight.conservative.tau" + str(tau) + ".g" + str(g),
+                .group = "camera",
+                .quantity = "path radiance factor of a slab in a uniform field",
+                .unit = "1",
+                .conditions = "omega 1, tau " + str(tau) + ", Henyey-Greenstein g " + str(g),
+                .reference = mc.mean,
+                .source = "independent method: backward Monte Carlo photon tracing (seed 7)",
+                .value = model,
+                .tolerance = tolerance,
+                .kind = Tolerance::statistical,
+                .samples = 20000,
+                .interval_low = mc.mean - tolerance,
+                .interval_high = mc.mean + tolerance,
+                .confidence = "4 standard errors of the Monte Carlo mean"});
     }
   }
 }
@@ -214,8 +333,37 @@ TEST(Airlight, AbsorbingThinSlabMatchesMonteCarloToSingleScattering) {
     const double tau = 0.1;
     const Estimate mc = monte_carlo_path_radiance(tau, omega, 0.85, 40000, 11);
     const double model = path_radiance_factor(omega) * (1.0 - std::exp(-tau));
-    EXPECT_NEAR(model, mc.mean, (1.0 - omega) * model + 4.0 * mc.standard_error) << omega;
-    EXPECT_GE(model + 4.0 * mc.standard_error, mc.mean);
+    const double tolerance = (1.0 - omega) * model + 4.0 * mc.standard_error;
+    const std::string conditions =
+        "omega " + str(omega) + ", tau 0.1, Henyey-Greenstein g 0.85, 40000 photons";
+    validate({.id = "camera.airlight.absorbing.omega" + str(omega),
+              .group = "camera",
+              .quantity = "path radiance factor of a slab in a uniform field",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = mc.mean,
+              .source = "independent method: backward Monte Carlo photon tracing (seed 11), "
+                        "plus the single-scattering bound (1 - omega) model",
+              .value = model,
+              .tolerance = tolerance,
+              .kind = Tolerance::statistical,
+              .samples = 40000,
+              .interval_low = mc.mean - tolerance,
+              .interval_high = mc.mean + tolerance,
+              .confidence = "4 standard errors of the Monte Carlo mean plus the "
+                            "single-scattering bound"});
+    validate({.id = "camera.airlight.absorbing.omega" + str(omega) + ".sign",
+              .group = "camera",
+              .quantity = "path radiance factor of a slab in a uniform field (single scattering "
+                          "at least the exact)",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = mc.mean,
+              .source = "independent method: backward Monte Carlo photon tracing (seed 11), "
+                        "within 4 standard errors",
+              .value = model,
+              .tolerance = 4.0 * mc.standard_error,
+              .kind = Tolerance::at_least});
   }
 }
 
@@ -228,7 +376,20 @@ TEST(Airlight, CameraStepAirlightMatchesMonteCarloOverTheActiveLayers) {
   const Camera camera(params, paper_chamber(), table());
   const StepOptics optics = camera.step_optics({true, true, false, false});
   const Estimate mc = monte_carlo_path_radiance(1.8, 1.0, 0.85, 20000, 3);
-  EXPECT_NEAR(optics.airlight_factor[0], mc.mean, 4.0 * mc.standard_error);
+  validate({.id = "camera.airlight.camera_step.2layers",
+            .group = "camera",
+            .quantity = "camera airlight factor",
+            .unit = "1",
+            .conditions = "550 nm, paper fog beta 900 /km, 2 active layers (tau 1.8), g 0.85",
+            .reference = mc.mean,
+            .source = "independent method: backward Monte Carlo photon tracing (seed 3)",
+            .value = optics.airlight_factor[0],
+            .tolerance = 4.0 * mc.standard_error,
+            .kind = Tolerance::statistical,
+            .samples = 20000,
+            .interval_low = mc.mean - 4.0 * mc.standard_error,
+            .interval_high = mc.mean + 4.0 * mc.standard_error,
+            .confidence = "4 standard errors of the Monte Carlo mean"});
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "fogradar/camera/calibration.hpp"
 #include "fogradar/camera/camera.hpp"
@@ -13,9 +14,13 @@
 #include "fogradar/core/error.hpp"
 #include "rejected_field.hpp"
 #include "svg_check.hpp"
+#include "validation.hpp"
 
 namespace fogradar::camera {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 using test_support::rejected_field;
 
@@ -38,13 +43,28 @@ const Camera& default_camera() {
 TEST(Pipeline, SrgbKnownValuesAndRoundTrip) {
   // IEC 61966-2-1: 1.055 v^(1/2.4) - 0.055; 0.5 -> 0.735356983, 0.18 -> 0.461356129 (evaluated by
   // hand to 9 digits), the linear segment 12.92 v below 0.0031308.
-  EXPECT_NEAR(srgb_encode(0.5), 0.735356983, 1e-9);
-  EXPECT_NEAR(srgb_encode(0.18), 0.461356129, 1e-9);
+  const auto check = [](const std::string& id, const std::string& linear, double reference,
+                        double value, double tolerance, const std::string& source) {
+    validate({.id = "camera.srgb.encode." + id,
+              .group = "camera",
+              .quantity = "sRGB encoded value",
+              .unit = "1",
+              .conditions = "linear value " + linear,
+              .reference = reference,
+              .source = source,
+              .value = value,
+              .tolerance = tolerance,
+              .kind = Tolerance::absolute});
+  };
+  const std::string iec = "IEC 61966-2-1: 1.055 v^(1/2.4) - 0.055, evaluated by hand to 9 digits";
+  check("0.5", "0.5", 0.735356983, srgb_encode(0.5), 1e-9, iec);
+  check("0.18", "0.18", 0.461356129, srgb_encode(0.18), 1e-9, iec);
   EXPECT_DOUBLE_EQ(srgb_encode(0.001), 0.01292);
-  EXPECT_EQ(srgb_encode(0.0), 0.0);
-  EXPECT_NEAR(srgb_encode(1.0), 1.0, 1e-15);
+  check("0", "0", 0.0, srgb_encode(0.0), 0.0, "IEC 61966-2-1: linear segment 12.92 v at v = 0");
+  check("1", "1", 1.0, srgb_encode(1.0), 1e-15, "IEC 61966-2-1: 1.055 - 0.055 = 1 at v = 1");
   // The two segments meet (continuity at the break to 1e-4, the standard's rounded constants).
-  EXPECT_NEAR(srgb_encode(0.0031308 * (1 + 1e-12)), 12.92 * 0.0031308, 1e-4);
+  check("break", "0.0031308 (1 + 1e-12)", 12.92 * 0.0031308, srgb_encode(0.0031308 * (1 + 1e-12)),
+        1e-4, "IEC 61966-2-1: the linear segment 12.92 v at the break 0.0031308");
   for (double v = 0.0; v <= 1.0; v += 1.0 / 1024.0) {
     EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-12);
     EXPECT_NEAR(gamma_decode(gamma_encode(v, 2.2), 2.2), v, 1e-12);
@@ -60,8 +80,26 @@ TEST(Pipeline, QuantisationAndLuma) {
   EXPECT_EQ(quantise_8bit(1.2), 255);  // clipped
   EXPECT_EQ(quantise_8bit(-0.3), 0);
   // BT.601 weights sum to 1: a grey pixel keeps its value.
-  EXPECT_NEAR(luma_bt601(0.4, 0.4, 0.4), 0.4, 1e-15);
-  EXPECT_NEAR(luma_bt601(1.0, 0.0, 0.0), 0.299, 1e-15);
+  validate({.id = "camera.luma.bt601.grey0.4",
+            .group = "camera",
+            .quantity = "BT.601 luma",
+            .unit = "1",
+            .conditions = "R = G = B = 0.4",
+            .reference = 0.4,
+            .source = "ITU-R BT.601: weights 0.299, 0.587, 0.114 sum to 1",
+            .value = luma_bt601(0.4, 0.4, 0.4),
+            .tolerance = 1e-15,
+            .kind = Tolerance::absolute});
+  validate({.id = "camera.luma.bt601.red",
+            .group = "camera",
+            .quantity = "BT.601 luma",
+            .unit = "1",
+            .conditions = "R = 1, G = B = 0",
+            .reference = 0.299,
+            .source = "ITU-R BT.601: red weight 0.299",
+            .value = luma_bt601(1.0, 0.0, 0.0),
+            .tolerance = 1e-15,
+            .kind = Tolerance::absolute});
 }
 
 TEST(Pipeline, FrameQuantisationEqualsThePureFunctions) {
@@ -129,17 +167,40 @@ TEST(Sensor, DirectionOfTheStudysFigure7) {
     EXPECT_LE(b.edges_above_threshold, a.edges_above_threshold) << i;
   }
   EXPECT_LT(summary.steps.back().tonal_range, summary.steps.front().tonal_range);
-  EXPECT_NEAR(summary.steps[0].relative_contrast, 1.0, 0.02);  // clear weather, quantisation only
+  // clear weather, quantisation only
+  validate({.id = "camera.sensor.relative_contrast.0layers",
+            .group = "camera",
+            .quantity = "target contrast relative to clear weather",
+            .unit = "1",
+            .conditions = "default camera, paper fog, 0 active layers",
+            .reference = 1.0,
+            .source = "limiting case: clear weather, contrast unchanged but for quantisation",
+            .value = summary.steps[0].relative_contrast,
+            .tolerance = 0.02,
+            .kind = Tolerance::absolute});
 }
 
 TEST(Sensor, DefaultsReproduceTheCalibrationMeans) {
   // The defaults are the calibrated keys (docs/camera.md §6), rounded to 4 digits: noise-free means
   // 46 and 64 to 0.05 grey; calibrating again from them returns them to 0.1 %.
   const Camera& camera = default_camera();
-  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(0, 4))),
-              46.0, 0.05);
-  EXPECT_NEAR(camera.expected_mean_grey(camera.step_optics(propagation::first_layers_active(2, 4))),
-              64.0, 0.05);
+  for (const auto& [layers, grey] : {std::pair<std::size_t, double>{0, 46.0}, {2, 64.0}}) {
+    validate({.id = "camera.paper.mean_grey." + std::to_string(layers) + "layers",
+              .group = "camera",
+              .quantity = "noise-free mean grey value",
+              .unit = "grey level",
+              .conditions = "default (calibrated) camera, paper fog, " + std::to_string(layers) +
+                            " active layers",
+              .reference = grey,
+              .source = "the study's Fig. 7: mean grey values 46 (clear) and 64 (2 layers)",
+              .value = camera.expected_mean_grey(
+                  camera.step_optics(propagation::first_layers_active(layers, 4))),
+              .tolerance = 0.05,
+              .kind = Tolerance::absolute,
+              .plot = "paper_comparison",
+              .x = static_cast<double>(layers),
+              .x_label = "active fog layers"});
+  }
   const CalibrationResult calibration = calibrate_to_means(camera, 46.0, 2, 64.0);
   EXPECT_NEAR(calibration.params.exposure.ambient_level / camera.params().exposure.ambient_level,
               1.0, 1e-3);
@@ -278,7 +339,19 @@ TEST(Sensor, RgbBandRunsAndAgreesWithPhotopicForAGreyScene) {
   EXPECT_NEAR(rgb.expected_mean_grey(rgb.step_optics(active)),
               default_camera().expected_mean_grey(default_camera().step_optics(active)), 1.0);
   const CameraStepResult step = rgb.measure_step(2, active, 1);
-  EXPECT_NEAR(summarize(params, {step}).steps[0].mean_grey, 64.0, 1.5);
+  validate({.id = "camera.paper.mean_grey.rgb.2layers",
+            .group = "camera",
+            .quantity = "mean grey value, rgb band (luma)",
+            .unit = "grey level",
+            .conditions = "rgb band, paper fog, 2 active layers, 2 frames",
+            .reference = 64.0,
+            .source = "the study's Fig. 7: mean grey value 64 at 2 layers",
+            .value = summarize(params, {step}).steps[0].mean_grey,
+            .tolerance = 1.5,
+            .kind = Tolerance::absolute,
+            .plot = "paper_comparison",
+            .x = 2.0,
+            .x_label = "active fog layers"});
 }
 
 }  // namespace

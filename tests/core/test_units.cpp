@@ -5,9 +5,13 @@
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/units.hpp"
+#include "validation.hpp"
 
 namespace fogradar {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 TEST(Units, DecibelRoundTrip) {
   EXPECT_DOUBLE_EQ(db_to_power_ratio(10.0), 10.0);
@@ -22,17 +26,44 @@ TEST(Units, DbmIsDecibelsAboveOneMilliwatt) {
   EXPECT_DOUBLE_EQ(dbm_to_watt(0.0), 1e-3);
   EXPECT_DOUBLE_EQ(dbm_to_watt(30.0), 1.0);
   EXPECT_DOUBLE_EQ(dbm_to_watt(10.0), 1e-2);  // the paper radar's 10 dBm transmit power
-  EXPECT_NEAR(watt_to_dbm(2.0), 30.0 + 10.0 * std::log10(2.0), 1e-12);
+  validate({.id = "core.units.watt_to_dbm.2W",
+            .group = "experiment: statistics",
+            .quantity = "power level of 2 W",
+            .unit = "dBm",
+            .conditions = "2 W",
+            .reference = 30.0 + 10.0 * std::log10(2.0),
+            .source = "definition: 10 log10(P / 1 mW)",
+            .value = watt_to_dbm(2.0),
+            .tolerance = 1e-12,
+            .kind = Tolerance::absolute});
 }
 
 // 10 log10(e): the dB per neper-of-power factor of paper eq. 5.
 TEST(Units, NeperToDecibelFactor) {
-  EXPECT_NEAR(db_per_neper_power, 10.0 / std::log(10.0), 1e-15);
+  validate({.id = "core.units.db_per_neper_power",
+            .group = "experiment: statistics",
+            .quantity = "dB per neper of power",
+            .unit = "dB/Np",
+            .conditions = "power ratio",
+            .reference = 10.0 / std::log(10.0),
+            .source = "closed form: 10 log10(e) = 10 / ln 10 (paper eq. 5)",
+            .value = db_per_neper_power,
+            .tolerance = 1e-15,
+            .kind = Tolerance::absolute});
 }
 
 TEST(Units, WavelengthOf77GHz) {
   // c / 77 GHz = 3.893 408 545 mm (c exact, SI 2019).
-  EXPECT_NEAR(wavelength_from_frequency_m(77e9), 3.893408545e-3, 1e-12);
+  validate({.id = "core.units.wavelength.77GHz",
+            .group = "experiment: statistics",
+            .quantity = "wavelength",
+            .unit = "m",
+            .conditions = "77 GHz",
+            .reference = 3.893408545e-3,
+            .source = "c / f with c = 299 792 458 m/s exact (SI 2019)",
+            .value = wavelength_from_frequency_m(77e9),
+            .tolerance = 1e-12,
+            .kind = Tolerance::absolute});
   EXPECT_NEAR(frequency_from_wavelength_hz(wavelength_from_frequency_m(77e9)), 77e9, 1e-3);
   EXPECT_DOUBLE_EQ(celsius_to_kelvin(20.0), 293.15);
 }

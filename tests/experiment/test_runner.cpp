@@ -5,18 +5,24 @@
 
 #include <atomic>
 #include <cmath>
+#include <string>
 
 #include "fogradar/core/units.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "sensors.hpp"
+#include "validation.hpp"
 
 namespace fogradar::experiment {
 namespace {
 
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 using radar::MeasurementRecord;
 using radar::StepResult;
 using radar::StepSummary;
+
+constexpr const char* kGroup = "experiment: statistics";
 
 Scenario small_scenario() {
   Scenario s = paper_scenario();
@@ -64,14 +70,53 @@ TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
   target.micro_motion_std_m = 0.0;
   const radar::RadarSummary summary = radar_report(summarize(run_experiment(s))).summary();
   ASSERT_EQ(summary.steps.size(), 5u);
+  const std::string point = "10 dBsm point target at 10 m, 10 dBm, paper fog, 12 measurements";
   for (const StepSummary& step : summary.steps) {
-    EXPECT_EQ(step.detection_rate, 1.0);
-    EXPECT_NEAR(step.rcs.median, 10.0 - step.two_way_attenuation_db, 0.2) << step.active_layers;
-    EXPECT_LT(step.two_way_attenuation_db, 0.05);
+    const std::string layers = std::to_string(step.active_layers);
+    validate({.id = "experiment.runner.point_target.detection_rate.layers" + layers,
+              .group = kGroup,
+              .quantity = "detection rate",
+              .unit = "1",
+              .conditions = point + ", " + layers + " active layers",
+              .reference = 1.0,
+              .source = "limiting case: about 75 dB SNR per cell, every measurement detects",
+              .value = step.detection_rate,
+              .tolerance = 0.0,
+              .kind = Tolerance::absolute});
+    validate({.id = "experiment.runner.point_target.median_rcs.layers" + layers,
+              .group = kGroup,
+              .quantity = "median RCS read back",
+              .unit = "dBsm",
+              .conditions = point + ", " + layers + " active layers",
+              .reference = 10.0 - step.two_way_attenuation_db,
+              .source = "the target's set 10 dBsm less the fog's two-way loss (calibration, "
+                        "issue criterion)",
+              .value = step.rcs.median,
+              .tolerance = 0.2,
+              .kind = Tolerance::absolute});
+    validate({.id = "experiment.runner.point_target.two_way_attenuation.layers" + layers,
+              .group = kGroup,
+              .quantity = "two-way attenuation of the paper fog",
+              .unit = "dB",
+              .conditions = point + ", " + layers + " active layers",
+              .reference = 0.05,
+              .source = "limiting case: the paper fog's two-way loss is < 0.01 dB at 77 GHz",
+              .value = step.two_way_attenuation_db,
+              .tolerance = 0.0,
+              .kind = Tolerance::at_most});
   }
   EXPECT_FALSE(summary.sensor_limit_layers.has_value());
   ASSERT_TRUE(summary.attenuation_margin_db.has_value());
-  EXPECT_GT(*summary.attenuation_margin_db, 40.0);
+  validate({.id = "experiment.runner.point_target.attenuation_margin",
+            .group = kGroup,
+            .quantity = "attenuation margin",
+            .unit = "dB",
+            .conditions = point,
+            .reference = 40.0,
+            .source = "limiting case: about 75 dB SNR per cell against the CA threshold",
+            .value = *summary.attenuation_margin_db,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
   EXPECT_TRUE(std::isnan(summary.steps[0].p_value));
   EXPECT_EQ(summary.steps[0].median_shift_db, 0.0);
 }
@@ -93,10 +138,43 @@ TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
   s.fog.density = propagation::LiquidWaterContent{100.0};
   s.fog.droplets = propagation::Monodisperse{0.5e-3};
   const radar::RadarSummary summary = radar_report(summarize(run_experiment(s))).summary();
-  EXPECT_EQ(summary.steps[0].detection_rate, 1.0);
+  const std::string dense =
+      "-8 dBsm point target, -19 dBm, 100 g/m^3 of 0.5 mm drops in 3 m layers, 12 measurements";
+  validate({.id = "experiment.runner.dense_fog.detection_rate.layers0",
+            .group = kGroup,
+            .quantity = "detection rate",
+            .unit = "1",
+            .conditions = dense + ", 0 active layers",
+            .reference = 1.0,
+            .source = "radar equation: median SNR about 19 dB against the CA threshold factor "
+                      "of 14.8 dB",
+            .value = summary.steps[0].detection_rate,
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
   ASSERT_TRUE(summary.sensor_limit_layers.has_value());
-  EXPECT_GE(*summary.sensor_limit_layers, 1u);
-  EXPECT_LE(*summary.sensor_limit_layers, 3u);
+  const auto limit = static_cast<double>(*summary.sensor_limit_layers);
+  validate({.id = "experiment.runner.dense_fog.sensor_limit.low",
+            .group = kGroup,
+            .quantity = "sensor limit",
+            .unit = "active layers",
+            .conditions = dense,
+            .reference = 1.0,
+            .source = "radar equation: 3.87 dB two-way per layer (644.7 dB/km) against 19 dB "
+                      "median SNR and a 14.8 dB threshold",
+            .value = limit,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
+  validate({.id = "experiment.runner.dense_fog.sensor_limit.high",
+            .group = kGroup,
+            .quantity = "sensor limit",
+            .unit = "active layers",
+            .conditions = dense,
+            .reference = 3.0,
+            .source = "radar equation: 3.87 dB two-way per layer (644.7 dB/km) against 19 dB "
+                      "median SNR and a 14.8 dB threshold",
+            .value = limit,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
   // Monotone physics: more layers, more loss.
   for (std::size_t k = 1; k < summary.steps.size(); ++k) {
     EXPECT_GT(summary.steps[k].two_way_attenuation_db, summary.steps[k - 1].two_way_attenuation_db);
@@ -141,7 +219,18 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
     std::size_t associated = 0;
     for (const MeasurementRecord& r : steps[k].records) associated += r.associated ? 1 : 0;
     EXPECT_EQ(step.detections, 0u);
-    EXPECT_EQ(step.detection_rate, 0.0);
+    validate({.id = "experiment.runner.lost_target.detection_rate.layers" +
+                    std::to_string(step.active_layers),
+              .group = kGroup,
+              .quantity = "detection rate",
+              .unit = "1",
+              .conditions = "-60 dBsm point target, -30 dBm, P_fa = 1e-2, " +
+                            std::to_string(step.active_layers) + " active layers",
+              .reference = 0.0,
+              .source = "limiting case: the target about 35 dB under the noise per cell",
+              .value = step.detection_rate,
+              .tolerance = 0.0,
+              .kind = Tolerance::absolute});
     EXPECT_EQ(step.false_association_rate,
               static_cast<double>(associated) / static_cast<double>(step.n));
     EXPECT_GT(step.false_alarms_per_frame, 0.0);
@@ -153,7 +242,16 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   }
   EXPECT_GT(false_association_sum, 0.0);
   ASSERT_TRUE(summary.sensor_limit_layers.has_value());
-  EXPECT_EQ(*summary.sensor_limit_layers, 0u);
+  validate({.id = "experiment.runner.lost_target.sensor_limit",
+            .group = kGroup,
+            .quantity = "sensor limit",
+            .unit = "active layers",
+            .conditions = "-60 dBsm point target, -30 dBm, P_fa = 1e-2",
+            .reference = 0.0,
+            .source = "limiting case: the target about 35 dB under the noise per cell",
+            .value = static_cast<double>(*summary.sensor_limit_layers),
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
   EXPECT_FALSE(summary.attenuation_margin_db.has_value());
 }
 

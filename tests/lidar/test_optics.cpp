@@ -11,13 +11,18 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
 
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
+#include "validation.hpp"
 
 namespace fogradar::lidar {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 constexpr double pi = std::numbers::pi;
 constexpr double wavelength_m = 905e-9;
@@ -54,10 +59,27 @@ TEST(LidarOptics, SmallDropletsMatchTheRayleighLimit) {
   const double absorption = pi * pi * std::pow(d, 3) / wavelength_m * k.imag();
   const double backscatter =
       std::pow(pi, 5) * std::pow(d, 6) / std::pow(wavelength_m, 4) * std::norm(k);
-  EXPECT_NEAR(lidar.layer_extinction_per_m(0), n * (scattering + absorption),
-              0.01 * n * (scattering + absorption));
-  EXPECT_NEAR(lidar.layer_backscatter_per_m_sr(0), n * backscatter / (4.0 * pi),
-              0.01 * n * backscatter / (4.0 * pi));
+  validate({.id = "lidar.optics.rayleigh.extinction.D10nm",
+            .group = "lidar",
+            .quantity = "fog extinction coefficient alpha",
+            .unit = "1/m",
+            .conditions = "905 nm, monodisperse D = 10 nm (x = 0.035), 0.1 g/m^3",
+            .reference = n * (scattering + absorption),
+            .source = "Rayleigh limit: Bohren & Huffman 1983 eq. 5.7-5.8",
+            .value = lidar.layer_extinction_per_m(0),
+            .tolerance = 0.01,
+            .kind = Tolerance::relative});
+  validate({.id = "lidar.optics.rayleigh.backscatter.D10nm",
+            .group = "lidar",
+            .quantity = "fog backscatter coefficient beta_pi",
+            .unit = "1/(m sr)",
+            .conditions = "905 nm, monodisperse D = 10 nm (x = 0.035), 0.1 g/m^3",
+            .reference = n * backscatter / (4.0 * pi),
+            .source = "Rayleigh limit: Bohren & Huffman 1983 eq. 5.7-5.8, dipole phase function "
+                      "3/2 at 180 deg",
+            .value = lidar.layer_backscatter_per_m_sr(0),
+            .tolerance = 0.01,
+            .kind = Tolerance::relative});
 }
 
 // Anomalous diffraction, Q = 2 - 4/rho sin(rho) + 4/rho^2 (1 - cos(rho)), rho = 2 x (n - 1). It
@@ -72,7 +94,17 @@ TEST(LidarOptics, LargeDropletExtinctionMatchesAnomalousDiffraction) {
     const double rho = 2.0 * x * (table().refractive_index(wavelength_m).real() - 1.0);
     const double q = 2.0 - 4.0 / rho * std::sin(rho) + 4.0 / (rho * rho) * (1.0 - std::cos(rho));
     const double expected = concentration(d, lwc) * q * pi * d * d / 4.0;
-    EXPECT_NEAR(lidar.layer_extinction_per_m(0), expected, 0.05 * expected) << "D = " << d;
+    const std::string diameter_um = std::to_string(static_cast<int>(std::round(d * 1e6)));
+    validate({.id = "lidar.optics.anomalous_diffraction.extinction.D" + diameter_um + "um",
+              .group = "lidar",
+              .quantity = "fog extinction coefficient alpha",
+              .unit = "1/m",
+              .conditions = "905 nm, monodisperse D = " + diameter_um + " um, 0.2 g/m^3",
+              .reference = expected,
+              .source = "anomalous diffraction: van de Hulst 1957 §11.22",
+              .value = lidar.layer_extinction_per_m(0),
+              .tolerance = 0.05,
+              .kind = Tolerance::relative});
   }
 }
 
@@ -86,7 +118,16 @@ TEST(LidarOptics, LidarRatioOfNaturalFogIsAbout19Sr) {
       one_layer(propagation::Lognormal{.median_diameter_m = 10e-6, .geometric_std = 1.5}, 0.1),
       table());
   const double ratio = lidar.layer_extinction_per_m(0) / lidar.layer_backscatter_per_m_sr(0);
-  EXPECT_NEAR(ratio, 18.8, 0.15 * 18.8);
+  validate({.id = "lidar.optics.lidar_ratio.lognormal10um",
+            .group = "lidar",
+            .quantity = "lidar ratio S = alpha / beta_pi",
+            .unit = "sr",
+            .conditions = "905 nm, lognormal fog, median 10 um, sigma_g 1.5, 0.1 g/m^3",
+            .reference = 18.8,
+            .source = "O'Connor, Illingworth & Hogan 2004, J. Atmos. Oceanic Technol. 21, 777-786",
+            .value = ratio,
+            .tolerance = 0.15,
+            .kind = Tolerance::relative});
 }
 
 // The same fog in every layer: each layer resolved identically, at its own interval of the chamber.

@@ -19,9 +19,13 @@
 #include "fogradar/propagation/water.hpp"
 #include "rejected_field.hpp"
 #include "svg_check.hpp"
+#include "validation.hpp"
 
 namespace fogradar::lidar {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 constexpr double degree_rad = 3.14159265358979323846 / 180.0;
 
@@ -64,7 +68,23 @@ TEST(LidarSensor, FalseAlarmRateOnNoiseAloneMatchesTheDesign) {
   const double n = static_cast<double>(lidar.samples_per_beam());
   const double expected =
       static_cast<double>(scans * lidar.beam_count()) * (p + (n - 1.0) * p * (1.0 - p));
-  EXPECT_NEAR(static_cast<double>(echoes), expected, 5.0 * std::sqrt(expected));
+  validate({.id = "lidar.noise.false_alarm_echoes.pfa1e-3",
+            .group = "lidar",
+            .quantity = "false-alarm echoes on noise alone",
+            .unit = "echoes",
+            .conditions = "p = 1e-3 per sample, " + std::to_string(scans) + " scans x " +
+                          std::to_string(lidar.beam_count()) + " beams x " +
+                          std::to_string(lidar.samples_per_beam()) + " samples",
+            .reference = expected,
+            .source = "closed form: upward crossings of Gaussian noise, p + (N - 1) p (1 - p) "
+                      "per beam",
+            .value = static_cast<double>(echoes),
+            .tolerance = 5.0 * std::sqrt(expected),
+            .kind = Tolerance::statistical,
+            .samples = scans * lidar.beam_count() * lidar.samples_per_beam(),
+            .interval_low = expected - 5.0 * std::sqrt(expected),
+            .interval_high = expected + 5.0 * std::sqrt(expected),
+            .confidence = "5 standard deviations of the count (variance ~ mean)"});
 }
 
 // The series: unit mean of the factor, lag-one correlation of its log rho = exp(-T / tau), std of
@@ -96,10 +116,51 @@ TEST(LidarSensor, FogFluctuationSeriesHasTheStatedDistributionAndCorrelation) {
   mean /= 16000.0;
   const double log_mean = log_sum / 16000.0;
   const double log_var = log_sq / 16000.0 - log_mean * log_mean;
-  EXPECT_NEAR(mean, 1.0, 0.05);
-  EXPECT_NEAR(std::sqrt(log_var), 0.2, 0.03);
+  const std::string conditions =
+      "log std 0.2, correlation time 0.5 s, 40 Hz scans, 4000 scans x 4 layers";
+  validate({.id = "lidar.fog_fluctuation.mean",
+            .group = "lidar",
+            .quantity = "mean optical-depth factor",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 1.0,
+            .source = "design: unit-mean lognormal factor",
+            .value = mean,
+            .tolerance = 0.05,
+            .kind = Tolerance::statistical,
+            .samples = 16000,
+            .interval_low = 1.0 - 0.05,
+            .interval_high = 1.0 + 0.05,
+            .confidence = "about 5 standard errors (std ~0.2 / sqrt(n_eff), n_eff ~ 400)"});
+  validate({.id = "lidar.fog_fluctuation.log_std",
+            .group = "lidar",
+            .quantity = "standard deviation of the factor's log",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 0.2,
+            .source = "design: log_std",
+            .value = std::sqrt(log_var),
+            .tolerance = 0.03,
+            .kind = Tolerance::statistical,
+            .samples = 16000,
+            .interval_low = 0.2 - 0.03,
+            .interval_high = 0.2 + 0.03,
+            .confidence = "0.03 about the design (sampling of n_eff ~ 400 correlated values)"});
   const double rho = std::exp(-1.0 / (40.0 * 0.5));
-  EXPECT_NEAR(lag / static_cast<double>(pairs) / log_var, rho, 0.02);
+  validate({.id = "lidar.fog_fluctuation.lag1_correlation",
+            .group = "lidar",
+            .quantity = "lag-one correlation of the factor's log",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = rho,
+            .source = "closed form: AR(1) correlation exp(-T / tau)",
+            .value = lag / static_cast<double>(pairs) / log_var,
+            .tolerance = 0.02,
+            .kind = Tolerance::statistical,
+            .samples = pairs,
+            .interval_low = rho - 0.02,
+            .interval_high = rho + 0.02,
+            .confidence = "0.02 about the design (sampling std ~ (1 - rho^2) / sqrt(n) ~ 0.001)"});
   params.fog_fluctuation.log_std = 0.0;
   const Lidar steady(params, propagation::ChamberSpec{}, table());
   for (const double f : steady.fog_fluctuation(RandomStream(1)).factors) EXPECT_EQ(f, 1.0);
@@ -231,20 +292,58 @@ const PaperRun& paper_run() {
 TEST(LidarPaperScenario, Fig6TargetIntensityPattern) {
   const PaperRun& run = paper_run();
   ASSERT_EQ(run.summary.steps.size(), 5u);
+  const auto check = [](const std::string& id, const std::string& quantity, std::size_t layers,
+                        double reference, double value, Tolerance kind, const std::string& source) {
+    validate({.id = "lidar.paper.fig6." + id + "." + std::to_string(layers) + "layers",
+              .group = "lidar",
+              .quantity = quantity,
+              .unit = quantity == "target detections" ? "scans of 40" : "1",
+              .conditions = "paper scenario, " + std::to_string(layers) + " active layers",
+              .reference = reference,
+              .source = source,
+              .value = value,
+              .tolerance = 0.0,
+              .kind = kind,
+              .plot = "paper_comparison",
+              .x = static_cast<double>(layers),
+              .x_label = "active fog layers"});
+  };
   const LidarStepSummary& clear = run.summary.steps[0];
-  EXPECT_EQ(clear.target_detections, 40u);
-  EXPECT_GT(clear.target_intensity.median, 0.0);
+  check("target_detections", "target detections", 0, 40.0,
+        static_cast<double>(clear.target_detections), Tolerance::absolute,
+        "the study's Fig. 6 and text: the target is seen in every scan in clear weather");
+  // Strictly positive: at least the smallest positive double.
+  check("target_intensity_median", "median target intensity", 0, std::nextafter(0.0, 1.0),
+        clear.target_intensity.median, Tolerance::at_least,
+        "the study's Fig. 6: the target's intensity is above 0 in clear weather");
   const LidarStepSummary& one = run.summary.steps[1];
-  EXPECT_EQ(one.target_intensity.median, 0.0);
-  EXPECT_LE(one.target_detections, 10u);
+  check("target_intensity_median", "median target intensity", 1, 0.0, one.target_intensity.median,
+        Tolerance::absolute, "the study's Fig. 6: the median intensity drops to 0 at 1 layer");
+  check("target_detections", "target detections", 1, 10.0,
+        static_cast<double>(one.target_detections), Tolerance::at_most,
+        "the study's Fig. 6 and text: \"a few outliers\" at 1 layer (at most 10 of 40 scans)");
   for (std::size_t step = 2; step <= 4; ++step) {
-    EXPECT_EQ(run.summary.steps[step].target_detections, 0u) << step;
+    check("target_detections", "target detections", step, 0.0,
+          static_cast<double>(run.summary.steps[step].target_detections), Tolerance::absolute,
+          "the study's text: from 2 layers on \"no signal is received from the EVT\"");
     for (const LidarScan& scan : run.steps[step].scans) {
       for (const LidarEcho& e : scan.echoes) EXPECT_NE(e.origin, EchoOrigin::target);
     }
   }
   ASSERT_TRUE(run.summary.sensor_limit_layers.has_value());
-  EXPECT_EQ(*run.summary.sensor_limit_layers, 1u);
+  validate({.id = "lidar.paper.fig6.sensor_limit",
+            .group = "lidar",
+            .quantity = "lidar sensor limit",
+            .unit = "layers",
+            .conditions = "paper scenario, 0-4 active layers, 40 scans each",
+            .reference = 1.0,
+            .source = "the study's Fig. 6 and text: the lidar loses the target after one fog layer",
+            .value = static_cast<double>(*run.summary.sensor_limit_layers),
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute,
+            .plot = "paper_comparison",
+            .x = 1.0,
+            .x_label = "active fog layers"});
 }
 
 // The study's Fig. 5: with one or more layers the beams through the fog (here those within 20 deg
@@ -273,7 +372,18 @@ TEST(LidarPaperScenario, Fig5FirstEchoesAtTheFogsNearEdge) {
         if (std::abs(run.lidar->beam_angle_deg(b)) <= 20.0) ++beams;
       }
     }
-    EXPECT_GE(static_cast<double>(at_edge), 0.95 * static_cast<double>(beams)) << step;
+    validate({.id = "lidar.paper.fig5.first_echo_at_fog_edge." + std::to_string(step) + "layers",
+              .group = "lidar",
+              .quantity = "beams within 20 deg whose first echo is the fog's near edge",
+              .unit = "beams",
+              .conditions = "paper scenario, " + std::to_string(step) + " active layers, " +
+                            std::to_string(beams) + " beams within 20 deg over 40 scans",
+              .reference = 0.95 * static_cast<double>(beams),
+              .source = "the study's Fig. 5: first echoes from the fog's near edge (at least 95 "
+                        "% of the beams, within [-0.5, +0.75] m of the edge)",
+              .value = static_cast<double>(at_edge),
+              .tolerance = 0.0,
+              .kind = Tolerance::at_least});
     EXPECT_NEAR(run.summary.steps[step].median_first_echo_range_m,
                 run.summary.steps[1].median_first_echo_range_m, 0.15)
         << step;

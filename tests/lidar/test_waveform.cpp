@@ -5,15 +5,28 @@
 #include <boost/math/special_functions/expint.hpp>
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/lidar/waveform.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
+#include "validation.hpp"
 
 namespace fogradar::lidar {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
+
+// A number as a check's id and conditions show it ("12.34", "1e-06").
+std::string str(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 constexpr double c = 299792458.0;
 constexpr double ln2 = std::numbers::ln2;
@@ -43,10 +56,34 @@ TEST(LidarWaveform, HardTargetPeakIsTheClosedForm) {
   const double amplitude = 0.4 * 0.8 / pi * 0.3 / (range_m * range_m);
   EXPECT_DOUBLE_EQ(hard_target_peak(0.4, 0.8, 0.3, range_m), amplitude);
   add_hard_target(w, grid, range_m, amplitude);
-  EXPECT_NEAR(w[k], amplitude, 1e-12 * amplitude);
+  validate({.id = "lidar.waveform.hard_target.peak",
+            .group = "lidar",
+            .quantity = "hard-target waveform peak",
+            .unit = "1/(m^2 sr)",
+            .conditions = "target on sample 400 (R = " + str(range_m) +
+                          " m), rho 0.4, cos i 0.8, "
+                          "T^2 0.3",
+            .reference = amplitude,
+            .source = "closed form: lidar equation rho cos(i) / pi T^2 / R^2 (Rasshofer et al. "
+                      "2011 eq. 1-3)",
+            .value = w[k],
+            .tolerance = 1e-12,
+            .kind = Tolerance::relative});
   for (const std::size_t j : {k - 7, k - 3, k + 1, k + 9}) {
     const double t = (static_cast<double>(j) - static_cast<double>(k)) * grid.sample_interval_s;
-    EXPECT_NEAR(w[j], amplitude * gaussian(t, grid.pulse_fwhm_s), 1e-12 * amplitude) << j;
+    const long offset = static_cast<long>(j) - static_cast<long>(k);
+    validate({.id = "lidar.waveform.hard_target.sample" + std::string(offset > 0 ? "+" : "") +
+                    std::to_string(offset),
+              .group = "lidar",
+              .quantity = "hard-target waveform sample beside the peak",
+              .unit = "1/(m^2 sr)",
+              .conditions = std::to_string(offset) + " samples from the peak, 5 ns FWHM pulse",
+              .reference = amplitude * gaussian(t, grid.pulse_fwhm_s),
+              .source = "closed form: peak amplitude times the Gaussian pulse "
+                        "exp(-4 ln 2 t^2 / fwhm^2)",
+              .value = w[j],
+              .tolerance = 1e-12 * amplitude,
+              .kind = Tolerance::absolute});
   }
   EXPECT_EQ(w[k - 21], 0.0);  // beyond the 2 FWHM (20-sample) support
 }
@@ -68,7 +105,17 @@ TEST(LidarWaveform, ThickTransparentLayerPlateau) {
   for (const std::size_t k : {800u, 900u, 1000u}) {
     const double r = c * static_cast<double>(k) * grid.sample_interval_s / 2.0;
     const double expected = beta * (c * tau_e / 2.0) / (r * r);
-    EXPECT_NEAR(w[k], expected, 1e-4 * expected) << k;
+    validate({.id = "lidar.waveform.transparent_layer.plateau.sample" + std::to_string(k),
+              .group = "lidar",
+              .quantity = "fog waveform inside a thick transparent layer",
+              .unit = "1/(m^2 sr)",
+              .conditions = "r = " + str(r) + " m, beta_pi 2e-3 /(m sr), alpha 0, 5 ns FWHM",
+              .reference = expected,
+              .source = "closed form: beta_pi (c tau_e / 2) / r^2 (Rasshofer et al. 2011 eq. 3, "
+                        "T = 1)",
+              .value = w[k],
+              .tolerance = 1e-4,
+              .kind = Tolerance::relative});
   }
 }
 
@@ -95,7 +142,17 @@ TEST(LidarWaveform, AbsorbingLayerEnergyMatchesTheExponentialIntegralForm) {
                          k * (boost::math::expint(1, k * a) - boost::math::expint(1, k * b)));
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   const double expected = tau_e * beta * t0 * integral;
-  EXPECT_NEAR(energy, expected, 1e-5 * expected);
+  validate({.id = "lidar.waveform.absorbing_layer.energy",
+            .group = "lidar",
+            .quantity = "time integral of an absorbing layer's waveform",
+            .unit = "s/(m^2 sr)",
+            .conditions = "layer 5-6 m, alpha 0.9 /m, beta_pi 0.05 /(m sr), T^2(a) 0.4",
+            .reference = expected,
+            .source = "closed form: lidar equation integrated by parts with the exponential "
+                      "integral E1 (Boost.Math expint)",
+            .value = energy,
+            .tolerance = 1e-5,
+            .kind = Tolerance::relative});
 }
 
 // Inside the overlap range the fog return is weighted by O(r) = (r / r_full)^2: with r_full = 20 m,
@@ -115,8 +172,26 @@ TEST(LidarWaveform, OverlapFunctionInsideTheFullOverlapRange) {
   for (const double v : w) energy += v * grid.sample_interval_s;
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   const double expected = tau_e * 1e-3 * 5.0 / 400.0;
-  EXPECT_NEAR(energy, expected, 1e-5 * expected);
-  EXPECT_NEAR(overlap(10.0, 20.0), 0.25, 1e-15);
+  validate({.id = "lidar.waveform.overlap_range.energy",
+            .group = "lidar",
+            .quantity = "time integral of a transparent layer's waveform inside the overlap range",
+            .unit = "s/(m^2 sr)",
+            .conditions = "layer 10-15 m, full overlap at 20 m, beta_pi 1e-3 /(m sr), alpha 0",
+            .reference = expected,
+            .source = "closed form: tau_e beta_pi (15 - 10) / r_full^2 with O(r) = (r / r_full)^2",
+            .value = energy,
+            .tolerance = 1e-5,
+            .kind = Tolerance::relative});
+  validate({.id = "lidar.waveform.overlap.r10m.full20m",
+            .group = "lidar",
+            .quantity = "overlap function O(r)",
+            .unit = "1",
+            .conditions = "r = 10 m, full overlap at 20 m",
+            .reference = 0.25,
+            .source = "closed form: O(r) = (r / r_full)^2",
+            .value = overlap(10.0, 20.0),
+            .tolerance = 1e-15,
+            .kind = Tolerance::absolute});
 }
 
 // The target's echo through k active layers falls by exactly exp(-2 alpha_i L_i) per added layer
@@ -140,11 +215,32 @@ TEST(LidarWaveform, TargetEchoFallsByTheTwoWayBeerLambertLossOfEachLayer) {
       const double tau = 2.0 * range_m / c;
       const double offset = tau - std::round(tau / dt) * dt;
       const double expected = 0.3 / pi / (range_m * range_m) * gaussian(offset, 5e-9);
-      EXPECT_NEAR(peak, expected, 1e-12 * expected);
+      validate({.id = "lidar.waveform.target_echo.peak.0layers",
+                .group = "lidar",
+                .quantity = "target echo peak in clear air",
+                .unit = "1/(m^2 sr)",
+                .conditions = "study's chamber, 0 active layers, target at " + str(range_m) +
+                              " m, nearest sample " + str(offset * 1e9) + " ns off the peak",
+                .reference = expected,
+                .source = "closed form: lidar equation 0.3 / pi / R^2 times the Gaussian pulse "
+                          "at the sample's offset",
+                .value = peak,
+                .tolerance = 1e-12,
+                .kind = Tolerance::relative});
     } else {
       const double loss = std::exp(-2.0 * lidar.layer_extinction_per_m(n - 1) *
                                    (lidar.layer_end_m(n - 1) - lidar.layer_start_m(n - 1)));
-      EXPECT_NEAR(peak / previous, loss, 1e-12) << n << " layers";
+      validate({.id = "lidar.waveform.target_echo.layer_loss." + std::to_string(n) + "layers",
+                .group = "lidar",
+                .quantity = "target echo ratio for one added fog layer",
+                .unit = "1",
+                .conditions = "study's chamber, layer " + std::to_string(n) + " added (" +
+                              std::to_string(n) + " active layers), no fluctuation",
+                .reference = loss,
+                .source = "closed form: two-way Beer-Lambert loss exp(-2 alpha L)",
+                .value = peak / previous,
+                .tolerance = 1e-12,
+                .kind = Tolerance::absolute});
     }
     previous = peak;
   }
@@ -161,7 +257,16 @@ TEST(LidarWaveform, FluctuationFactorScalesTheOpticalDepth) {
   double a = 0.0, b = 0.0;
   for (const double v : one.target) a = std::max(a, v);
   for (const double v : scaled.target) b = std::max(b, v);
-  EXPECT_NEAR(b / a, std::exp(-2.0 * 0.7 * lidar.layer_extinction_per_m(0)), 1e-12);
+  validate({.id = "lidar.waveform.fluctuation_factor.1.7",
+            .group = "lidar",
+            .quantity = "target echo ratio for an optical-depth factor",
+            .unit = "1",
+            .conditions = "study's chamber, 1 active layer (1 m), factor 1.7 against 1",
+            .reference = std::exp(-2.0 * 0.7 * lidar.layer_extinction_per_m(0)),
+            .source = "closed form: two-way Beer-Lambert loss exp(-2 (f - 1) alpha L)",
+            .value = b / a,
+            .tolerance = 1e-12,
+            .kind = Tolerance::absolute});
 }
 
 // ---- Echo extraction on constructed waveforms (Gaussian pulses evaluated directly here). ----
@@ -193,10 +298,38 @@ TEST(LidarEchoes, OneEchoAtTwiceTheThresholdReadsItsRange) {
   w.add(12.34, 2.0);
   const DetectedEchoes e = extract_echoes(w.w, detector());
   ASSERT_EQ(e.count, 1u);
-  EXPECT_NEAR(e.echoes[0].range_m, 12.34, 3e-3);
+  validate({.id = "lidar.echoes.range.twice_threshold",
+            .group = "lidar",
+            .quantity = "echo range read at the threshold crossing",
+            .unit = "m",
+            .conditions = "constructed Gaussian echo at 12.34 m, peak 2 x threshold",
+            .reference = 12.34,
+            .source = "constructed waveform: the echo's true range (half-maximum crossing, offset "
+                      "c fwhm / 4)",
+            .value = e.echoes[0].range_m,
+            .tolerance = 3e-3,
+            .kind = Tolerance::absolute});
   // The peak sample is within dt/2 of the pulse centre: peak in [2 p(dt/2), 2].
-  EXPECT_LE(e.echoes[0].peak, 2.0);
-  EXPECT_GE(e.echoes[0].peak, 2.0 * gaussian(0.25e-9, grid.pulse_fwhm_s));
+  validate({.id = "lidar.echoes.peak.twice_threshold.upper",
+            .group = "lidar",
+            .quantity = "echo peak sample",
+            .unit = "threshold",
+            .conditions = "constructed Gaussian echo at 12.34 m, peak 2 x threshold",
+            .reference = 2.0,
+            .source = "constructed waveform: the pulse's peak 2",
+            .value = e.echoes[0].peak,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
+  validate({.id = "lidar.echoes.peak.twice_threshold.lower",
+            .group = "lidar",
+            .quantity = "echo peak sample",
+            .unit = "threshold",
+            .conditions = "constructed Gaussian echo at 12.34 m, peak 2 x threshold",
+            .reference = 2.0 * gaussian(0.25e-9, grid.pulse_fwhm_s),
+            .source = "closed form: the Gaussian pulse 2 p(dt/2) half a sample off its centre",
+            .value = e.echoes[0].peak,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
 }
 
 // A stronger echo crosses earlier on its leading edge (the range walk the study's Fig. 5 shows as
@@ -209,7 +342,16 @@ TEST(LidarEchoes, StrongerEchoReadsNearerByTheLeadingEdgeWalk) {
     const DetectedEchoes e = extract_echoes(w.w, detector());
     ASSERT_EQ(e.count, 1u);
     const double expected = 20.0 + c * grid.pulse_fwhm_s / 4.0 * (1.0 - std::sqrt(std::log2(peak)));
-    EXPECT_NEAR(e.echoes[0].range_m, expected, 3e-3) << peak;
+    validate({.id = "lidar.echoes.range_walk.peak" + str(peak),
+              .group = "lidar",
+              .quantity = "echo range read at the threshold crossing",
+              .unit = "m",
+              .conditions = "constructed Gaussian echo at 20 m, peak " + str(peak) + " x threshold",
+              .reference = expected,
+              .source = "closed form: leading-edge walk R + c fwhm / 4 (1 - sqrt(log2 P))",
+              .value = e.echoes[0].range_m,
+              .tolerance = 3e-3,
+              .kind = Tolerance::absolute});
   }
 }
 
@@ -224,8 +366,31 @@ TEST(LidarEchoes, TwoThreeAndFourEchoesInRangeOrder) {
         << n;  // the fourth (strongest) is beyond max_echoes
     for (std::size_t i = 0; i < e.count; ++i) {
       const double walk = c * grid.pulse_fwhm_s / 4.0 * (1.0 - std::sqrt(std::log2(peaks[i])));
-      EXPECT_NEAR(e.echoes[i].range_m, ranges[i] + walk, 3e-3) << n << " " << i;
-      EXPECT_NEAR(e.echoes[i].peak, peaks[i], 0.02 * peaks[i]);
+      const std::string id =
+          "lidar.echoes.multiple." + std::to_string(n) + "echoes.echo" + std::to_string(i);
+      const std::string conditions = std::to_string(n) + " constructed echoes; echo " +
+                                     std::to_string(i) + " at " + str(ranges[i]) + " m, peak " +
+                                     str(peaks[i]) + " x threshold";
+      validate({.id = id + ".range",
+                .group = "lidar",
+                .quantity = "echo range read at the threshold crossing",
+                .unit = "m",
+                .conditions = conditions,
+                .reference = ranges[i] + walk,
+                .source = "closed form: leading-edge walk R + c fwhm / 4 (1 - sqrt(log2 P))",
+                .value = e.echoes[i].range_m,
+                .tolerance = 3e-3,
+                .kind = Tolerance::absolute});
+      validate({.id = id + ".peak",
+                .group = "lidar",
+                .quantity = "echo peak",
+                .unit = "threshold",
+                .conditions = conditions,
+                .reference = peaks[i],
+                .source = "constructed waveform: the echo's peak",
+                .value = e.echoes[i].peak,
+                .tolerance = 0.02,
+                .kind = Tolerance::relative});
     }
   }
 }
@@ -241,11 +406,25 @@ TEST(LidarEchoes, EchoesCloserThanTheSeparationMerge) {
             1.0);
   const DetectedEchoes merged = extract_echoes(w.w, detector(3, 2.0));
   ASSERT_EQ(merged.count, 1u);
-  EXPECT_NEAR(merged.echoes[0].peak, 5.0, 0.02 * 5.0);
+  const auto check_peak = [](const std::string& id, const std::string& conditions, double reference,
+                             double value) {
+    validate(
+        {.id = "lidar.echoes.separation." + id,
+         .group = "lidar",
+         .quantity = "echo peak",
+         .unit = "threshold",
+         .conditions = "constructed echoes at 10 m (peak 3) and 11.5 m (peak 5), " + conditions,
+         .reference = reference,
+         .source = "constructed waveform: the echoes' peaks (merged: the larger)",
+         .value = value,
+         .tolerance = 0.02,
+         .kind = Tolerance::relative});
+  };
+  check_peak("2m.merged.peak", "2 m minimum separation, merged", 5.0, merged.echoes[0].peak);
   const DetectedEchoes split = extract_echoes(w.w, detector(3, 1.0));
   ASSERT_EQ(split.count, 2u);
-  EXPECT_NEAR(split.echoes[0].peak, 3.0, 0.02 * 3.0);
-  EXPECT_NEAR(split.echoes[1].peak, 5.0, 0.02 * 5.0);
+  check_peak("1m.echo0.peak", "1 m minimum separation, first echo", 3.0, split.echoes[0].peak);
+  check_peak("1m.echo1.peak", "1 m minimum separation, second echo", 5.0, split.echoes[1].peak);
 }
 
 TEST(LidarEchoes, BelowThresholdAndTooNearGiveNothing) {

@@ -3,18 +3,22 @@
 // eta over a spherical shell sector; eq. 4 of the virtual layer model as a second method.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/layer_model.hpp"
+#include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 const SegelsteinTable& table() {
   static const SegelsteinTable instance;
@@ -42,19 +46,49 @@ TEST(Chamber, TwoWayAttenuationIsThePathIntegral) {
   const Chamber chamber(paper_chamber(2.0), 77e9, table());
   const double a_db_per_m = chamber.layer(0).optics.specific_attenuation_db_per_km * 1e-3;
   ASSERT_GT(a_db_per_m, 0.0);
+  const std::string path_integral =
+      "closed form: path integral of the piecewise-constant attenuation, 2 x layer length x "
+      "specific attenuation";
+  const auto check = [&](const std::string& id, const std::string& quantity,
+                         const std::string& unit, const std::string& conditions, double value,
+                         double reference, Tolerance kind, double tolerance) {
+    validate({.id = "propagation.chamber.two_way." + id,
+              .group = "physics: chamber",
+              .quantity = quantity,
+              .unit = unit,
+              .conditions = "77 GHz, 2 g/m³ per layer, " + conditions,
+              .reference = reference,
+              .source = path_integral,
+              .value = value,
+              .tolerance = tolerance,
+              .kind = kind});
+  };
   for (std::size_t k = 0; k <= 4; ++k) {
     const ActiveLayers active = first_layers_active(k, 4);
+    const std::string layers = std::to_string(k) + " layers on";
     // To the target every active layer is crossed twice over its full metre.
-    EXPECT_NEAR(chamber.two_way_attenuation_db(10.0, active), 2.0 * static_cast<double>(k) * a_db_per_m, 1e-12);
+    check("attenuation.target10m." + std::to_string(k) + "layers", "two-way attenuation", "dB",
+          "target at 10 m, " + layers, chamber.two_way_attenuation_db(10.0, active),
+          2.0 * static_cast<double>(k) * a_db_per_m, Tolerance::absolute, 1e-12);
     // In front of the fog nothing is lost.
-    EXPECT_EQ(chamber.two_way_attenuation_db(1.5, active), 0.0);
+    check("attenuation.before_fog1.5m." + std::to_string(k) + "layers", "two-way attenuation", "dB",
+          "range 1.5 m (before the fog), " + layers, chamber.two_way_attenuation_db(1.5, active),
+          0.0, Tolerance::absolute, 0.0);
   }
   // Half way into the third layer with three layers on: 2 * (1 + 1 + 0.5) m.
-  EXPECT_NEAR(chamber.two_way_attenuation_db(4.5, first_layers_active(3, 4)), 5.0 * a_db_per_m, 1e-12);
+  check("attenuation.range4.5m.3layers", "two-way attenuation", "dB",
+        "range 4.5 m (half way into layer 3), 3 layers on",
+        chamber.two_way_attenuation_db(4.5, first_layers_active(3, 4)), 5.0 * a_db_per_m,
+        Tolerance::absolute, 1e-12);
   // Only the last layer switched on (not the study's order, but a valid chamber state).
-  EXPECT_NEAR(chamber.two_way_attenuation_db(10.0, {false, false, false, true}), 2.0 * a_db_per_m, 1e-12);
-  EXPECT_NEAR(chamber.two_way_transmittance(10.0, first_layers_active(4, 4)),
-              std::pow(10.0, -0.8 * a_db_per_m), 1e-12);
+  check("attenuation.target10m.last_layer_only", "two-way attenuation", "dB",
+        "target at 10 m, only layer 4 on",
+        chamber.two_way_attenuation_db(10.0, {false, false, false, true}), 2.0 * a_db_per_m,
+        Tolerance::absolute, 1e-12);
+  check("transmittance.target10m.4layers", "two-way transmittance", "1",
+        "target at 10 m, 4 layers on",
+        chamber.two_way_transmittance(10.0, first_layers_active(4, 4)),
+        std::pow(10.0, -0.8 * a_db_per_m), Tolerance::absolute, 1e-12);
 }
 
 // Second method: a layer of thickness d is kappa virtual layers of d/kappa with tau = exp(-alpha d/kappa);
@@ -84,9 +118,30 @@ TEST(Chamber, BackscatterIsTheVolumeIntegral) {
     const double r = r0 + width * (i + 0.5);
     midpoint += eta * omega * r * r * width;
   }
-  EXPECT_NEAR(chamber.backscatter_cross_section_m2(r0, r1, omega, active) / midpoint, 1.0, 1e-8);
-  EXPECT_EQ(chamber.backscatter_cross_section_m2(0.0, 2.0, omega, active), 0.0);
-  EXPECT_EQ(chamber.backscatter_cross_section_m2(0.0, 10.0, omega, first_layers_active(0, 4)), 0.0);
+  const auto check = [](const std::string& id, const std::string& conditions, double value,
+                        double reference, const std::string& source, Tolerance kind,
+                        double tolerance) {
+    validate({.id = "propagation.chamber.backscatter_cross_section." + id,
+              .group = "physics: chamber",
+              .quantity = "fog backscatter cross section",
+              .unit = "m^2",
+              .conditions = "77 GHz, 0.5 g/m³ per layer, omega = 0.03 sr, " + conditions,
+              .reference = reference,
+              .source = source,
+              .value = value,
+              .tolerance = tolerance,
+              .kind = kind});
+  };
+  check("shell2.5_7m.2layers", "shell 2.5-7 m, layers 1-2 on",
+        chamber.backscatter_cross_section_m2(r0, r1, omega, active), midpoint,
+        "volume integral of eta omega r^2 dr, midpoint sum (1e5 steps) in the test",
+        Tolerance::relative, 1e-8);
+  check("shell0_2m.2layers", "shell 0-2 m (before the fog), layers 1-2 on",
+        chamber.backscatter_cross_section_m2(0.0, 2.0, omega, active), 0.0,
+        "limiting case: no fog in the shell, no backscatter", Tolerance::absolute, 0.0);
+  check("shell0_10m.no_layers", "shell 0-10 m, no layer on",
+        chamber.backscatter_cross_section_m2(0.0, 10.0, omega, first_layers_active(0, 4)), 0.0,
+        "limiting case: no fog in the shell, no backscatter", Tolerance::absolute, 0.0);
 }
 
 // Layers of the same fog share one resolution of it (chamber.cpp); each layer must still carry what

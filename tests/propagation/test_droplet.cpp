@@ -5,24 +5,27 @@
 // are entered with k >= 0.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <cmath>
 #include <complex>
 #include <functional>
 #include <limits>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/droplet.hpp"
+#include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
 
 using Complex = std::complex<double>;
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -37,6 +40,47 @@ const double kLambda77GHz_m = speed_of_light_m_per_s / 77e9;
   if (rel_error <= rel_tol) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "actual " << actual << " vs expected " << expected
                                        << ": relative error " << rel_error << " > " << rel_tol;
+}
+
+// A number as written in a check's id and conditions: "0.099", "1e-06", "10000".
+std::string num(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// A refractive index as written in a check's id and conditions: "1.33+1e-05i".
+std::string index_text(Complex m) { return num(m.real()) + "+" + num(m.imag()) + "i"; }
+
+// One Mie efficiency against its reference, relative tolerance.
+struct MieCheck {
+  std::string id;          // after "propagation.droplet."
+  std::string quantity;    // "extinction efficiency Q_ext"
+  std::string conditions;  // "x = 10, m = 1.5+0i"
+  std::string source;
+  std::string plot = {};  // "mie_miev0" for Wiscombe's MIEV0 cases
+  double x = nan;
+};
+
+void validate_mie(const MieCheck& c, double value, double reference, double rel_tol) {
+  validate({.id = "propagation.droplet." + c.id,
+            .group = "physics: droplets",
+            .quantity = c.quantity,
+            .unit = "1",
+            .conditions = c.conditions,
+            .reference = reference,
+            .source = c.source,
+            .value = value,
+            .tolerance = rel_tol,
+            .kind = Tolerance::relative,
+            .plot = c.plot,
+            .x = c.plot.empty() ? nan : c.x,
+            .x_label = c.plot.empty() ? std::string() : std::string("size parameter x")});
+}
+
+// The conditions of a Mie check: size parameter and refractive index.
+std::string mie_conditions(double x, Complex m) {
+  return "x = " + num(x) + ", m = " + index_text(m);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -81,8 +125,13 @@ class MieDu2004 : public ::testing::TestWithParam<DuCase> {};
 TEST_P(MieDu2004, ExtinctionAndScatteringMatchTable1) {
   const DuCase& c = GetParam();
   const MieEfficiencies q = mie_efficiencies(c.x, c.m);
-  EXPECT_TRUE(RelativelyNear(q.extinction, c.qext, 1e-6));
-  EXPECT_TRUE(RelativelyNear(q.scattering, c.qsca, 1e-6));
+  const std::string id = std::string("mie.du2004.") + c.label + ".";
+  const std::string source = std::string("Du 2004, Appl. Opt. 43, 1951, Table 1 case ") + c.label;
+  const std::string conditions = mie_conditions(c.x, c.m);
+  validate_mie({id + "qext", "extinction efficiency Q_ext", conditions, source}, q.extinction,
+               c.qext, 1e-6);
+  validate_mie({id + "qsca", "scattering efficiency Q_sca", conditions, source}, q.scattering,
+               c.qsca, 1e-6);
 }
 
 INSTANTIATE_TEST_SUITE_P(Table1, MieDu2004, ::testing::ValuesIn(kDu2004));
@@ -136,10 +185,19 @@ class MieWiscombeMiev0 : public ::testing::TestWithParam<WiscombeCase> {};
 TEST_P(MieWiscombeMiev0, EfficienciesAsymmetryAndBackscatterMatchTestCases) {
   const WiscombeCase& c = GetParam();
   const MieEfficiencies q = mie_efficiencies(c.x, c.m);
-  EXPECT_TRUE(RelativelyNear(q.extinction, c.qext, 1e-6));
-  EXPECT_TRUE(RelativelyNear(q.scattering, c.qsca, 1e-6));
-  EXPECT_TRUE(RelativelyNear(q.asymmetry * q.scattering, c.g_qsca, 2e-6));
-  EXPECT_TRUE(RelativelyNear(q.backscatter, std::norm(2.0 * c.s1_backward / c.x), 1e-5));
+  const std::string id = "mie.miev0.case" + std::to_string(c.number) + ".";
+  const std::string source =
+      "Wiscombe 1979 (rev. 1996) NCAR/TN-140+STR, MIEV0 test case " + std::to_string(c.number);
+  const std::string conditions = mie_conditions(c.x, c.m);
+  validate_mie({id + "qext", "extinction efficiency Q_ext", conditions, source, "mie_miev0", c.x},
+               q.extinction, c.qext, 1e-6);
+  validate_mie({id + "qsca", "scattering efficiency Q_sca", conditions, source, "mie_miev0", c.x},
+               q.scattering, c.qsca, 1e-6);
+  validate_mie({id + "g_qsca", "g Q_sca", conditions, source, "mie_miev0", c.x},
+               q.asymmetry * q.scattering, c.g_qsca, 2e-6);
+  validate_mie({id + "qback", "backscatter efficiency Q_back = |2 S1(180 deg)/x|^2", conditions,
+                source + ", tabulated S1(180 deg)", "mie_miev0", c.x},
+               q.backscatter, std::norm(2.0 * c.s1_backward / c.x), 1e-5);
 }
 
 INSTANTIATE_TEST_SUITE_P(Ncar1979, MieWiscombeMiev0, ::testing::ValuesIn(kWiscombeMiev0));
@@ -156,8 +214,15 @@ TEST(MieWiscombe1979, NonAbsorbingSpheresMatchOldTestCases) {
                          Row{1000.0, 2.0139, {565.2, 1502.0}}}) {
     SCOPED_TRACE(row.x);
     const MieEfficiencies q = mie_efficiencies(row.x, {1.5, 0.0});
-    EXPECT_TRUE(RelativelyNear(q.scattering, row.qsca, 3e-5));
-    EXPECT_TRUE(RelativelyNear(q.backscatter, std::norm(2.0 * row.s1_backward / row.x), 2e-4));
+    const std::string id = "mie.miev0_1979.x" + num(row.x) + ".";
+    const std::string source = "Wiscombe 1979 NCAR/TN-140 original (old MIEV0) test case";
+    const std::string conditions = mie_conditions(row.x, {1.5, 0.0});
+    validate_mie(
+        {id + "qsca", "scattering efficiency Q_sca", conditions, source, "mie_miev0", row.x},
+        q.scattering, row.qsca, 3e-5);
+    validate_mie({id + "qback", "backscatter efficiency Q_back = |2 S1(180 deg)/x|^2", conditions,
+                  source + ", tabulated S1(180 deg)", "mie_miev0", row.x},
+                 q.backscatter, std::norm(2.0 * row.s1_backward / row.x), 2e-4);
   }
 }
 
@@ -167,9 +232,14 @@ TEST(MieWiscombe1979, NonAbsorbingSpheresMatchOldTestCases) {
 TEST(MieBohrenHuffman, AppendixASampleOutput) {
   const double x = 2.0 * pi * 0.525 / 0.6328;
   const MieEfficiencies q = mie_efficiencies(x, {1.55, 0.0});
-  EXPECT_TRUE(RelativelyNear(q.extinction, 3.10543, 2e-6));
-  EXPECT_TRUE(RelativelyNear(q.scattering, 3.10543, 2e-6));
-  EXPECT_TRUE(RelativelyNear(q.backscatter, 2.92534, 2e-6));
+  const std::string source = "Bohren & Huffman 1983 Appendix A, BHMIE sample output";
+  const std::string conditions = mie_conditions(x, {1.55, 0.0});
+  validate_mie({"mie.bhmie_sample.qext", "extinction efficiency Q_ext", conditions, source},
+               q.extinction, 3.10543, 2e-6);
+  validate_mie({"mie.bhmie_sample.qsca", "scattering efficiency Q_sca", conditions, source},
+               q.scattering, 3.10543, 2e-6);
+  validate_mie({"mie.bhmie_sample.qback", "backscatter efficiency Q_back", conditions, source},
+               q.backscatter, 2.92534, 2e-6);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -264,10 +334,18 @@ class MieOracle : public ::testing::TestWithParam<OracleCase> {};
 TEST_P(MieOracle, AgreesWithFiftyDigitReference) {
   const OracleCase& c = GetParam();
   const MieEfficiencies q = mie_efficiencies(c.x, c.m);
-  EXPECT_TRUE(RelativelyNear(q.extinction, c.qext, 1e-9));
-  EXPECT_TRUE(RelativelyNear(q.scattering, c.qsca, 1e-9));
-  EXPECT_TRUE(RelativelyNear(q.backscatter, c.qback, 1e-9));
-  EXPECT_TRUE(RelativelyNear(q.asymmetry, c.asymmetry, 1e-9));
+  const std::string id = "mie.mpmath.x" + num(c.x) + ".m" + index_text(c.m) + ".";
+  const std::string source =
+      "50-digit oracle: Riccati-Bessel a_n, b_n (Bohren & Huffman 1983 ch. 4), mpmath";
+  const std::string conditions = mie_conditions(c.x, c.m);
+  validate_mie({id + "qext", "extinction efficiency Q_ext", conditions, source}, q.extinction,
+               c.qext, 1e-9);
+  validate_mie({id + "qsca", "scattering efficiency Q_sca", conditions, source}, q.scattering,
+               c.qsca, 1e-9);
+  validate_mie({id + "qback", "backscatter efficiency Q_back", conditions, source}, q.backscatter,
+               c.qback, 1e-9);
+  validate_mie({id + "g", "asymmetry parameter g", conditions, source}, q.asymmetry, c.asymmetry,
+               1e-9);
 }
 
 INSTANTIATE_TEST_SUITE_P(Mpmath, MieOracle, ::testing::ValuesIn(kOracle));
@@ -314,10 +392,19 @@ TEST(MieSmallParticle, MatchesRayleighSeriesToItsTruncationOrder) {
       const double mx = std::abs(m) * x;
       const double tol_4 = 1e-13 + std::pow(mx, 4);
       const double tol_2 = 1e-12 + 10.0 * mx * mx;
-      EXPECT_TRUE(RelativelyNear(q.extinction, s.extinction, tol_2));
-      EXPECT_TRUE(RelativelyNear(q.scattering, s.scattering, tol_4));
-      EXPECT_TRUE(RelativelyNear(q.backscatter, s.backscatter, tol_4));
-      EXPECT_TRUE(RelativelyNear(q.asymmetry, s.asymmetry, tol_2));
+      const std::string id = "mie.rayleigh_series.x" + num(x) + ".m" + index_text(m) + ".";
+      const std::string source =
+          "small-particle expansion of a_1, b_1, a_2 (Bohren & Huffman 1983 p. 131), written out "
+          "in the test";
+      const std::string conditions = mie_conditions(x, m);
+      validate_mie({id + "qext", "extinction efficiency Q_ext", conditions, source}, q.extinction,
+                   s.extinction, tol_2);
+      validate_mie({id + "qsca", "scattering efficiency Q_sca", conditions, source}, q.scattering,
+                   s.scattering, tol_4);
+      validate_mie({id + "qback", "backscatter efficiency Q_back", conditions, source},
+                   q.backscatter, s.backscatter, tol_4);
+      validate_mie({id + "g", "asymmetry parameter g", conditions, source}, q.asymmetry,
+                   s.asymmetry, tol_2);
     }
   }
 }
@@ -328,9 +415,17 @@ TEST(RayleighVsMie, EfficienciesReachLeadingRayleighTerms) {
   const double x = 1e-6;
   const Complex k = clausius_mossotti(kWater77GHz);
   const MieEfficiencies q = mie_efficiencies(x, kWater77GHz);
-  EXPECT_TRUE(RelativelyNear(q.absorption, 4.0 * x * k.imag(), 1e-9));
-  EXPECT_TRUE(RelativelyNear(q.scattering, 8.0 / 3.0 * std::pow(x, 4) * std::norm(k), 1e-9));
-  EXPECT_TRUE(RelativelyNear(q.backscatter, 4.0 * std::pow(x, 4) * std::norm(k), 1e-9));
+  const std::string conditions = mie_conditions(x, kWater77GHz) + " (water, 77 GHz)";
+  const std::string source = "Rayleigh limit, leading terms (Bohren & Huffman 1983 §5.1-5.2)";
+  validate_mie(
+      {"rayleigh_limit.qabs.x1e-06", "absorption efficiency Q_abs = 4x Im K", conditions, source},
+      q.absorption, 4.0 * x * k.imag(), 1e-9);
+  validate_mie({"rayleigh_limit.qsca.x1e-06", "scattering efficiency Q_sca = 8/3 x^4 |K|^2",
+                conditions, source},
+               q.scattering, 8.0 / 3.0 * std::pow(x, 4) * std::norm(k), 1e-9);
+  validate_mie({"rayleigh_limit.qback.x1e-06", "backscatter efficiency Q_back = 4 x^4 |K|^2",
+                conditions, source},
+               q.backscatter, 4.0 * std::pow(x, 4) * std::norm(k), 1e-9);
 }
 
 // Fog droplets at 77 GHz (x = 4e-4 .. 0.016, |m| x <= 0.072): Rayleigh and Mie cross sections
@@ -357,12 +452,40 @@ TEST(RayleighScaling, CrossSectionsScaleAsD6OverLambda4AndD3OverLambda) {
   const CrossSections base = rayleigh_cross_sections(d_m, kLambda77GHz_m, kWater77GHz);
   const CrossSections twice_d = rayleigh_cross_sections(2.0 * d_m, kLambda77GHz_m, kWater77GHz);
   const CrossSections half_lambda = rayleigh_cross_sections(d_m, kLambda77GHz_m / 2.0, kWater77GHz);
-  EXPECT_TRUE(RelativelyNear(twice_d.backscatter_m2 / base.backscatter_m2, 64.0, 1e-12));
-  EXPECT_TRUE(RelativelyNear(twice_d.scattering_m2 / base.scattering_m2, 64.0, 1e-12));
-  EXPECT_TRUE(RelativelyNear(twice_d.absorption_m2 / base.absorption_m2, 8.0, 1e-12));
-  EXPECT_TRUE(RelativelyNear(half_lambda.backscatter_m2 / base.backscatter_m2, 16.0, 1e-12));
-  EXPECT_TRUE(RelativelyNear(half_lambda.scattering_m2 / base.scattering_m2, 16.0, 1e-12));
-  EXPECT_TRUE(RelativelyNear(half_lambda.absorption_m2 / base.absorption_m2, 2.0, 1e-12));
+  struct Ratio {
+    const char* id;
+    const char* quantity;
+    double value;
+    double reference;
+    const char* source;
+  };
+  const char* d6 = "closed form: Rayleigh sigma_s, sigma_b ~ D^6 / lambda^4";
+  const char* d3 = "closed form: Rayleigh sigma_a ~ D^3 / lambda";
+  for (const Ratio& r : {
+           Ratio{"backscatter.2D", "sigma_b(2D) / sigma_b(D)",
+                 twice_d.backscatter_m2 / base.backscatter_m2, 64.0, d6},
+           Ratio{"scattering.2D", "sigma_s(2D) / sigma_s(D)",
+                 twice_d.scattering_m2 / base.scattering_m2, 64.0, d6},
+           Ratio{"absorption.2D", "sigma_a(2D) / sigma_a(D)",
+                 twice_d.absorption_m2 / base.absorption_m2, 8.0, d3},
+           Ratio{"backscatter.half_lambda", "sigma_b(lambda/2) / sigma_b(lambda)",
+                 half_lambda.backscatter_m2 / base.backscatter_m2, 16.0, d6},
+           Ratio{"scattering.half_lambda", "sigma_s(lambda/2) / sigma_s(lambda)",
+                 half_lambda.scattering_m2 / base.scattering_m2, 16.0, d6},
+           Ratio{"absorption.half_lambda", "sigma_a(lambda/2) / sigma_a(lambda)",
+                 half_lambda.absorption_m2 / base.absorption_m2, 2.0, d3},
+       }) {
+    validate({.id = std::string("propagation.droplet.rayleigh_scaling.") + r.id + ".D10um",
+              .group = "physics: droplets",
+              .quantity = r.quantity,
+              .unit = "1",
+              .conditions = "Rayleigh cross sections, water, D = 10 um, 77 GHz",
+              .reference = r.reference,
+              .source = r.source,
+              .value = r.value,
+              .tolerance = 1e-12,
+              .kind = Tolerance::relative});
+  }
 }
 
 TEST(MieScaling, SmallDropletBackscatterScalesAsD6OverLambda4) {
@@ -373,8 +496,27 @@ TEST(MieScaling, SmallDropletBackscatterScalesAsD6OverLambda4) {
         mie_cross_sections(2.0 * d_m, kLambda77GHz_m, kWater77GHz).backscatter_m2;
     const double half_lambda =
         mie_cross_sections(d_m, kLambda77GHz_m / 2.0, kWater77GHz).backscatter_m2;
-    EXPECT_TRUE(RelativelyNear(twice_d / base, 64.0, 1e-3));
-    EXPECT_TRUE(RelativelyNear(half_lambda / base, 16.0, 1e-3));
+    const std::string d_um = num(d_m * 1e6);
+    validate({.id = "propagation.droplet.mie_scaling.backscatter.2D.D" + d_um + "um",
+              .group = "physics: droplets",
+              .quantity = "Mie sigma_b(2D) / sigma_b(D)",
+              .unit = "1",
+              .conditions = "water, D = " + d_um + " um, 77 GHz",
+              .reference = 64.0,
+              .source = "small-particle limit: sigma_b ~ D^6 / lambda^4 (Rayleigh)",
+              .value = twice_d / base,
+              .tolerance = 1e-3,
+              .kind = Tolerance::relative});
+    validate({.id = "propagation.droplet.mie_scaling.backscatter.half_lambda.D" + d_um + "um",
+              .group = "physics: droplets",
+              .quantity = "Mie sigma_b(lambda/2) / sigma_b(lambda)",
+              .unit = "1",
+              .conditions = "water, D = " + d_um + " um, 77 GHz",
+              .reference = 16.0,
+              .source = "small-particle limit: sigma_b ~ D^6 / lambda^4 (Rayleigh)",
+              .value = half_lambda / base,
+              .tolerance = 1e-3,
+              .kind = Tolerance::relative});
   }
 }
 
@@ -399,7 +541,10 @@ TEST(MieEnergyConservation, ExtinctionTendsToTwoForLargeSpheres) {
   for (const Complex m :
        {kWater77GHz, Complex{1.33, 1e-5}, Complex{1.5, 0.0}, Complex{10.0, 10.0}}) {
     SCOPED_TRACE(::testing::Message() << "m = " << m);
-    EXPECT_TRUE(RelativelyNear(mie_efficiencies(1e4, m).extinction, 2.0, 0.01));
+    validate_mie({"mie.extinction_paradox.x10000.m" + index_text(m), "extinction efficiency Q_ext",
+                  mie_conditions(1e4, m),
+                  "limiting case: extinction paradox Q_ext -> 2 (van de Hulst 1957)"},
+                 mie_efficiencies(1e4, m).extinction, 2.0, 0.01);
   }
 }
 
@@ -424,9 +569,25 @@ TEST(MieEnergyConservation, IndexMatchedSphereDoesNotScatter) {
   for (const double x : {1e-6, 0.5, 100.0}) {
     SCOPED_TRACE(x);
     const MieEfficiencies q = mie_efficiencies(x, {1.0, 0.0});
-    EXPECT_LT(std::abs(q.extinction), 1e-25);
-    EXPECT_LT(q.scattering, 1e-25);
-    EXPECT_LT(q.backscatter, 1e-25);
+    struct Bound {
+      const char* id;
+      const char* quantity;
+      double value;
+    };
+    for (const Bound& b : {Bound{"qext", "|Q_ext|", std::abs(q.extinction)},
+                           Bound{"qsca", "scattering efficiency Q_sca", q.scattering},
+                           Bound{"qback", "backscatter efficiency Q_back", q.backscatter}}) {
+      validate({.id = "propagation.droplet.mie.index_matched.x" + num(x) + "." + b.id,
+                .group = "physics: droplets",
+                .quantity = b.quantity,
+                .unit = "1",
+                .conditions = mie_conditions(x, {1.0, 0.0}),
+                .reference = 1e-25,
+                .source = "limiting case m = 1: a_n = b_n = 0, no scattering",
+                .value = b.value,
+                .tolerance = 0.0,
+                .kind = Tolerance::at_most});
+    }
     EXPECT_LE(std::abs(q.asymmetry), 1.0);
   }
 }
@@ -435,14 +596,34 @@ TEST(MieEnergyConservation, IndexMatchedSphereDoesNotScatter) {
 // 6. Helpers and geometry.
 
 TEST(DropletHelpers, ClausiusMossottiAndSizeParameter) {
-  EXPECT_NEAR(std::abs(clausius_mossotti({1.0, 0.0})), 0.0, 1e-15);
+  const auto check = [](const std::string& id, const std::string& quantity,
+                        const std::string& conditions, double value, double reference,
+                        const std::string& source) {
+    validate({.id = "propagation.droplet." + id,
+              .group = "physics: droplets",
+              .quantity = quantity,
+              .unit = "1",
+              .conditions = conditions,
+              .reference = reference,
+              .source = source,
+              .value = value,
+              .tolerance = 1e-15,
+              .kind = Tolerance::absolute});
+  };
+  check("clausius_mossotti.abs.m1", "|K|, K = (m^2 - 1)/(m^2 + 2)", "m = 1",
+        std::abs(clausius_mossotti({1.0, 0.0})), 0.0, "closed form: K = 0 for m = 1");
   // m = sqrt(3): eps = 3, K = 2/5.
-  EXPECT_NEAR(clausius_mossotti({std::sqrt(3.0), 0.0}).real(), 0.4, 1e-15);
+  check("clausius_mossotti.re.m_sqrt3", "Re K", "m = sqrt(3)",
+        clausius_mossotti({std::sqrt(3.0), 0.0}).real(), 0.4, "closed form: eps = 3, K = 2/5");
   // m = 2 + i: m^2 = 3 + 4i, K = (2 + 4i)/(5 + 4i) = (26 + 12i)/41.
   const Complex k = clausius_mossotti({2.0, 1.0});
-  EXPECT_NEAR(k.real(), 26.0 / 41.0, 1e-15);
-  EXPECT_NEAR(k.imag(), 12.0 / 41.0, 1e-15);
-  EXPECT_NEAR(size_parameter(1e-3, pi * 1e-3), 1.0, 1e-15);
+  check("clausius_mossotti.re.m2+1i", "Re K", "m = 2 + i", k.real(), 26.0 / 41.0,
+        "closed form: K = (26 + 12i)/41");
+  check("clausius_mossotti.im.m2+1i", "Im K", "m = 2 + i", k.imag(), 12.0 / 41.0,
+        "closed form: K = (26 + 12i)/41");
+  check("size_parameter.D1mm.lambda_pi_mm", "size parameter x = pi D / lambda",
+        "D = 1 mm, lambda = pi mm", size_parameter(1e-3, pi * 1e-3), 1.0,
+        "closed form: x = pi D / lambda");
 }
 
 // sigma = Q pi D^2/4 with x = pi D / lambda (the definition in droplet.hpp): a 10 um droplet at

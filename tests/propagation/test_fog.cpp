@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <variant>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
@@ -15,9 +17,13 @@
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/visibility.hpp"
 #include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 class FogTest : public ::testing::Test {
  protected:
@@ -37,13 +43,31 @@ FogSpec lwc_fog(double lwc, DropSizeDistribution droplets,
 // Issue criterion: the Liebe model's specific attenuation within 3 % of ITU-R P.840 at several
 // frequencies and temperatures. P.840's K_l is Rayleigh absorption; fog droplets of a few um are
 // deep in the Rayleigh regime at these frequencies (x < 0.01), so the full Mie sum must agree.
+// The reference is P.840 as written out in this file (p840_k_l, below), not water.cpp's.
+double p840_k_l(double frequency_ghz, double temperature_c);
+
 TEST_F(FogTest, LiebeAttenuationMatchesItuP840) {
   for (double f_ghz : {10.0, 35.0, 77.0, 94.0, 150.0}) {
     for (double t_c : {-10.0, 0.0, 20.0, 40.0}) {
       const Fog fog(lwc_fog(1.0, Lognormal{4e-6, 1.6}, t_c, WaterModel::liebe), table());
       const double ours = fog.at_frequency(f_ghz * 1e9).specific_attenuation_db_per_km;
-      const double itu = itu_p840_specific_attenuation_coefficient(f_ghz * 1e9, celsius_to_kelvin(t_c));
-      EXPECT_NEAR(ours / itu, 1.0, 0.03) << f_ghz << " GHz, " << t_c << " C";
+      const std::string f = std::to_string(std::lround(f_ghz));
+      const std::string t = std::to_string(std::lround(t_c));
+      validate({.id = "propagation.fog.p840.liebe_mie." + f + "GHz." + t + "C",
+                .group = "physics: fog",
+                .quantity = "specific attenuation of 1 g/m^3 at " + t + " °C",
+                .unit = "dB/km",
+                .conditions = f + " GHz, " + t +
+                              " °C, 1 g/m³ lognormal fog (median 4 µm, "
+                              "sigma_g 1.6), Liebe water, Mie sum",
+                .reference = p840_k_l(f_ghz, t_c),
+                .source = "ITU-R P.840-8 eqs. (2)-(9), written out in the test",
+                .value = ours,
+                .tolerance = 0.03,
+                .kind = Tolerance::relative,
+                .plot = "p840_frequency",
+                .x = f_ghz,
+                .x_label = "frequency (GHz)"});
     }
   }
 }
@@ -81,11 +105,33 @@ TEST_F(FogTest, WaterTemperatureMovesThe77GHzAttenuationAsP840) {
   ASSERT_EQ(cold.water_model, WaterModel::liebe);
   const FogOptics at_0 = Fog(cold, table()).at_frequency(77e9);
   const FogOptics at_20 = Fog(mild, table()).at_frequency(77e9);
-  EXPECT_NEAR(at_0.specific_attenuation_db_per_km / p840_k_l(77.0, 0.0), 1.0, 0.01);
-  EXPECT_NEAR(at_20.specific_attenuation_db_per_km / p840_k_l(77.0, 20.0), 1.0, 0.01);
-  EXPECT_NEAR((at_0.specific_attenuation_db_per_km / at_20.specific_attenuation_db_per_km) /
-                  (p840_k_l(77.0, 0.0) / p840_k_l(77.0, 20.0)),
-              1.0, 0.005);
+  const std::string p840 = "ITU-R P.840-8 eqs. (2)-(9), written out in the test";
+  for (const auto& [temperature_c, optics] : {std::pair{0.0, at_0}, std::pair{20.0, at_20}}) {
+    const std::string t = temperature_c == 0.0 ? "0" : "20";
+    validate({.id = "propagation.fog.p840.specific_attenuation.77GHz." + t + "C.1gm3",
+              .group = "physics: fog",
+              .quantity = "specific attenuation (Mie sum, Liebe water)",
+              .unit = "dB/km",
+              .conditions = "77 GHz, " + t + " °C, 1 g/m³, default fog droplets",
+              .reference = p840_k_l(77.0, temperature_c),
+              .source = p840,
+              .value = optics.specific_attenuation_db_per_km,
+              .tolerance = 0.01,
+              .kind = Tolerance::relative,
+              .plot = "p840_temperature",
+              .x = temperature_c,
+              .x_label = "temperature (°C)"});
+  }
+  validate({.id = "propagation.fog.p840.attenuation_ratio_0C_20C.77GHz",
+            .group = "physics: fog",
+            .quantity = "specific attenuation ratio 0 °C / 20 °C",
+            .unit = "1",
+            .conditions = "77 GHz, 1 g/m³, default fog droplets",
+            .reference = p840_k_l(77.0, 0.0) / p840_k_l(77.0, 20.0),
+            .source = p840,
+            .value = at_0.specific_attenuation_db_per_km / at_20.specific_attenuation_db_per_km,
+            .tolerance = 0.005,
+            .kind = Tolerance::relative});
   EXPECT_EQ(at_0.water_model, WaterModel::liebe);
   EXPECT_EQ(at_0.water_temperature_c, 0.0);
   EXPECT_EQ(at_20.water_temperature_c, 20.0);
@@ -99,8 +145,26 @@ TEST_F(FogTest, AttenuationAndBackscatterScaleLinearlyWithLwc) {
   const Fog dense(lwc_fog(5.0, default_fog_droplets()), table());
   const FogOptics a = thin.at_frequency(77e9);
   const FogOptics b = dense.at_frequency(77e9);
-  EXPECT_NEAR(b.specific_attenuation_db_per_km / a.specific_attenuation_db_per_km, 100.0, 1e-9);
-  EXPECT_NEAR(b.volume_backscatter_m2_per_m3 / a.volume_backscatter_m2_per_m3, 100.0, 1e-9);
+  validate({.id = "propagation.fog.lwc_scaling.specific_attenuation.77GHz",
+            .group = "physics: fog",
+            .quantity = "specific attenuation ratio, 5 g/m³ / 0.05 g/m³",
+            .unit = "1",
+            .conditions = "77 GHz, 25 °C (Segelstein), default fog droplets",
+            .reference = 100.0,
+            .source = "closed form: attenuation proportional to LWC (fixed droplet distribution)",
+            .value = b.specific_attenuation_db_per_km / a.specific_attenuation_db_per_km,
+            .tolerance = 1e-9,
+            .kind = Tolerance::absolute});
+  validate({.id = "propagation.fog.lwc_scaling.volume_backscatter.77GHz",
+            .group = "physics: fog",
+            .quantity = "volume backscatter ratio, 5 g/m³ / 0.05 g/m³",
+            .unit = "1",
+            .conditions = "77 GHz, 25 °C (Segelstein), default fog droplets",
+            .reference = 100.0,
+            .source = "closed form: backscatter proportional to LWC (fixed droplet distribution)",
+            .value = b.volume_backscatter_m2_per_m3 / a.volume_backscatter_m2_per_m3,
+            .tolerance = 1e-9,
+            .kind = Tolerance::absolute});
 }
 
 // eta = N pi^5 |K|^2 <D^6> / lambda^4 (Rayleigh, docs/physics.md §2) with the closed-form <D^6>: the Mie sum
@@ -115,7 +179,18 @@ TEST_F(FogTest, BackscatterMatchesRayleighClosedForm) {
     const double rayleigh_eta = fog.number_concentration_per_m3() * std::pow(std::numbers::pi, 5) *
                                 std::norm(k) * diameter_moment(dsd, 6) /
                                 std::pow(optics.wavelength_m, 4);
-    EXPECT_NEAR(optics.volume_backscatter_m2_per_m3 / rayleigh_eta, 1.0, 0.01) << distribution_name(dsd);
+    const std::string name(distribution_name(dsd));  // one of each family
+    validate({.id = "propagation.fog.rayleigh_eta.77GHz." + name,
+              .group = "physics: fog",
+              .quantity = "volume backscatter eta",
+              .unit = "m^2/m^3",
+              .conditions = "77 GHz, 25 °C (Segelstein), 0.4 g/m³, " + name,
+              .reference = rayleigh_eta,
+              .source = "closed form: Rayleigh eta = N pi^5 |K|^2 <D^6> / lambda^4 "
+                        "(docs/physics.md §2)",
+              .value = optics.volume_backscatter_m2_per_m3,
+              .tolerance = 0.01,
+              .kind = Tolerance::relative});
   }
 }
 
@@ -142,8 +217,18 @@ TEST_F(FogTest, OpticalQuadratureMatchesAdaptiveIntegral) {
     const double mean_sigma = boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
         integrand, std::log(r.min_m), std::log(r.max_m), 12, 1e-7);
     const double reference_per_km = 1e3 * number_concentration_per_m3(c.dsd, lwc) * mean_sigma;
-    EXPECT_NEAR(fog.optical_extinction_per_km() / reference_per_km, 1.0, c.tolerance)
-        << distribution_name(c.dsd);
+    const std::string name =
+        std::holds_alternative<Lognormal>(c.dsd) ? "lognormal_1um" : "radiation_fog";
+    validate({.id = "propagation.fog.optical_extinction.550nm." + name,
+              .group = "physics: fog",
+              .quantity = "optical extinction coefficient",
+              .unit = "1/km",
+              .conditions = "550 nm, 0.2 g/m³, " + name,
+              .reference = reference_per_km,
+              .source = "independent adaptive Gauss-Kronrod integral (Boost) of Mie extinction",
+              .value = fog.optical_extinction_per_km(),
+              .tolerance = c.tolerance,
+              .kind = Tolerance::relative});
   }
 }
 
@@ -155,8 +240,28 @@ TEST_F(FogTest, DensityRoundTrips) {
   EXPECT_NEAR(by_extinction.visibility_m(), visibility_m_from_extinction(0.9), 1e-9);
   // Geometric-optics sanity: beta = (3/2) Q_ext LWC / (rho_w D) with Q_ext ~ 2..4 for 1 um drops,
   // so 900 1/km needs roughly 0.1-0.3 g/m^3.
-  EXPECT_GT(by_extinction.lwc_g_per_m3(), 0.05);
-  EXPECT_LT(by_extinction.lwc_g_per_m3(), 0.5);
+  const std::string geometric =
+      "geometric-optics estimate: beta = (3/2) Q_ext LWC / (rho_w D), Q_ext ~ 2..4, D ~ 1 um";
+  validate({.id = "propagation.fog.lwc_for_900per_km.lower_bound",
+            .group = "physics: fog",
+            .quantity = "liquid water content",
+            .unit = "g/m^3",
+            .conditions = "beta = 900 1/km at 550 nm, default fog droplets",
+            .reference = 0.05,
+            .source = geometric,
+            .value = by_extinction.lwc_g_per_m3(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
+  validate({.id = "propagation.fog.lwc_for_900per_km.upper_bound",
+            .group = "physics: fog",
+            .quantity = "liquid water content",
+            .unit = "g/m^3",
+            .conditions = "beta = 900 1/km at 550 nm, default fog droplets",
+            .reference = 0.5,
+            .source = geometric,
+            .value = by_extinction.lwc_g_per_m3(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
 
   spec.density = Visibility{25.0};
   const Fog by_visibility(spec, table());
@@ -172,13 +277,41 @@ TEST_F(FogTest, GeometricOpticsLimit) {
   const double d = 200e-6, lwc = 1.0;
   const Fog fog(lwc_fog(lwc, Monodisperse{d}), table());
   const double geometric_per_km = 1e3 * 3.0 * lwc / (1e6 * d);
-  EXPECT_NEAR(fog.optical_extinction_per_km() / geometric_per_km, 1.0, 0.05);
+  validate({.id = "propagation.fog.geometric_optics_limit.550nm.D200um",
+            .group = "physics: fog",
+            .quantity = "optical extinction coefficient",
+            .unit = "1/km",
+            .conditions = "550 nm, monodisperse D = 200 um (x = 1142), 1 g/m³",
+            .reference = geometric_per_km,
+            .source = "limiting case: extinction paradox Q_ext -> 2 (Bohren & Huffman §4.4), "
+                      "beta = 3 LWC / (rho_w D)",
+            .value = fog.optical_extinction_per_km(),
+            .tolerance = 0.05,
+            .kind = Tolerance::relative});
 }
 
 TEST_F(FogTest, NoWaterNoFog) {
   const Fog fog(lwc_fog(0.0, default_fog_droplets()), table());
-  EXPECT_EQ(fog.at_frequency(77e9).specific_attenuation_db_per_km, 0.0);
-  EXPECT_EQ(fog.optical_extinction_per_km(), 0.0);
+  validate({.id = "propagation.fog.no_water.specific_attenuation.77GHz",
+            .group = "physics: fog",
+            .quantity = "specific attenuation",
+            .unit = "dB/km",
+            .conditions = "77 GHz, 0 g/m³",
+            .reference = 0.0,
+            .source = "limiting case: no liquid water, no attenuation",
+            .value = fog.at_frequency(77e9).specific_attenuation_db_per_km,
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
+  validate({.id = "propagation.fog.no_water.optical_extinction.550nm",
+            .group = "physics: fog",
+            .quantity = "optical extinction coefficient",
+            .unit = "1/km",
+            .conditions = "550 nm, 0 g/m³",
+            .reference = 0.0,
+            .source = "limiting case: no liquid water, no extinction",
+            .value = fog.optical_extinction_per_km(),
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
   EXPECT_TRUE(std::isinf(fog.visibility_m()));
 }
 

@@ -3,20 +3,22 @@
 // (independent of the dynamic programming under test); eq. 4 for a stack without reflections.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/layer_model.hpp"
+#include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
@@ -24,6 +26,42 @@ namespace {
 constexpr double kRelTol = 1e-12;      // brute force and closed forms, kappa <= 15
 constexpr double kDeepRelTol = 1e-10;  // eq. 3 against the DP over hundreds of bins
 constexpr unsigned kMaxKappa = 15;
+// EXPECT_DOUBLE_EQ's 4 units in the last place, as a relative tolerance.
+constexpr double kDoubleEqRelTol = 4.0 * std::numeric_limits<double>::epsilon();
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
+
+// A number as written in a check's id and conditions: "0.9", "0.35".
+std::string num(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Records one check of the virtual layer model against its reference.
+void check(const std::string& id, const std::string& quantity, const std::string& conditions,
+           double value, double reference, const std::string& source, double tolerance,
+           Tolerance kind) {
+  validate({.id = "propagation.layer_model." + id,
+            .group = "physics: chamber",
+            .quantity = quantity,
+            .unit = "1",
+            .conditions = conditions,
+            .reference = reference,
+            .source = source,
+            .value = value,
+            .tolerance = tolerance,
+            .kind = kind});
+}
+
+// An integer sequence term against a published one: exact (a double holds every term below 2^53;
+// larger terms are also compared as integers next to this record).
+void check_term(const std::string& id, const std::string& quantity, const std::string& conditions,
+                std::uint64_t value, std::uint64_t reference, const std::string& source) {
+  check(id, quantity, conditions, static_cast<double>(value), static_cast<double>(reference),
+        source, 0.0, Tolerance::absolute);
+}
 
 // Expects `call` to throw InvalidParameter naming `field`.
 void expect_invalid(const std::function<void()>& call, const std::string& field) {
@@ -36,9 +74,19 @@ TEST(Catalan, MatchesOeisA000108) {
   // OEIS A000108, n = 0..15, plus n = 30, 35 and 36 (the largest that fits in uint64).
   const std::array<std::uint64_t, 16> oeis = {
       1, 1, 2, 5, 14, 42, 132, 429, 1430, 4862, 16796, 58786, 208012, 742900, 2674440, 9694845};
-  for (unsigned n = 0; n < oeis.size(); ++n) EXPECT_EQ(catalan(n), oeis[n]) << "n = " << n;
-  EXPECT_EQ(catalan(30), 3814986502092304ULL);
+  const std::string a000108 = "OEIS A000108 (Catalan numbers)";
+  for (unsigned n = 0; n < oeis.size(); ++n) {
+    check_term("catalan.n" + std::to_string(n), "Catalan number C_n", "n = " + std::to_string(n),
+               catalan(n), oeis[n], a000108);
+  }
+  check_term("catalan.n30", "Catalan number C_n", "n = 30", catalan(30), 3814986502092304ULL,
+             a000108);
+  // C_35 and C_36 exceed 2^53: recorded as doubles, compared exactly as integers.
+  check_term("catalan.n35", "Catalan number C_n", "n = 35", catalan(35), 3116285494907301262ULL,
+             a000108);
   EXPECT_EQ(catalan(35), 3116285494907301262ULL);
+  check_term("catalan.n36", "Catalan number C_n", "n = 36", catalan(36), 11959798385860453492ULL,
+             a000108);
   EXPECT_EQ(catalan(36), 11959798385860453492ULL);
 }
 
@@ -56,17 +104,34 @@ TEST(Narayana, MatchesOeisA001263) {
                                                         {1, 15, 50, 50, 15, 1},
                                                         {1, 21, 105, 175, 105, 21, 1},
                                                         {1, 28, 196, 490, 490, 196, 28, 1}};
+  const std::string a001263 = "OEIS A001263 (Narayana triangle)";
+  const std::string zero = "Narayana number definition: N(n, k) = 0 outside 1 <= k <= n";
   for (unsigned n = 1; n <= rows.size(); ++n) {
-    for (unsigned k = 1; k <= n; ++k)
-      EXPECT_EQ(narayana(n, k), rows[n - 1][k - 1]) << n << ", " << k;
-    EXPECT_EQ(narayana(n, 0), 0U);
-    EXPECT_EQ(narayana(n, n + 1), 0U);
+    const std::string row = "narayana.n" + std::to_string(n);
+    for (unsigned k = 1; k <= n; ++k) {
+      check_term(row + ".k" + std::to_string(k), "Narayana number N(n, k)",
+                 "n = " + std::to_string(n) + ", k = " + std::to_string(k), narayana(n, k),
+                 rows[n - 1][k - 1], a001263);
+    }
+    check_term(row + ".k0", "Narayana number N(n, k)", "n = " + std::to_string(n) + ", k = 0",
+               narayana(n, 0), 0U, zero);
+    check_term(row + ".k" + std::to_string(n + 1), "Narayana number N(n, k)",
+               "n = " + std::to_string(n) + ", k = " + std::to_string(n + 1), narayana(n, n + 1),
+               0U, zero);
   }
   // Python math.comb: N(37, 18), N(37, 19) (largest row that fits), N(100, 2).
+  // The first two exceed 2^53: recorded as doubles, compared exactly as integers.
+  const std::string comb = "N(n, k) = C(n, k) C(n, k - 1) / n by Python math.comb";
+  check_term("narayana.n37.k18", "Narayana number N(n, k)", "n = 37, k = 18", narayana(37, 18),
+             7597019633665077000ULL, comb);
   EXPECT_EQ(narayana(37, 18), 7597019633665077000ULL);
+  check_term("narayana.n37.k19", "Narayana number N(n, k)", "n = 37, k = 19", narayana(37, 19),
+             8441132926294530000ULL, comb);
   EXPECT_EQ(narayana(37, 19), 8441132926294530000ULL);
-  EXPECT_EQ(narayana(100, 2), 4950U);
-  EXPECT_EQ(narayana(100, 100), 1U);
+  check_term("narayana.n100.k2", "Narayana number N(n, k)", "n = 100, k = 2", narayana(100, 2),
+             4950U, comb);
+  check_term("narayana.n100.k100", "Narayana number N(n, k)", "n = 100, k = 100",
+             narayana(100, 100), 1U, comb);
 }
 
 TEST(Narayana, RowSumsAreCatalanNumbers) {
@@ -161,11 +226,17 @@ TEST(LayerPathCount, EqualsBruteForceCountPerReflectionNumber) {
       ++count_by_peaks[(reflections_of(steps) + 1) / 2];  // 2i - 1 reflections -> i peaks
     }
     std::uint64_t total = 0;
+    const std::string brute_force = "brute-force enumeration of every reflection path (test)";
     for (unsigned i = 1; i <= std::max(1U, n - 1); ++i) {
-      EXPECT_EQ(layer_path_count(kappa, i), count_by_peaks[i]) << "kappa " << kappa << " i " << i;
+      check_term("path_count.kappa" + std::to_string(kappa) + ".i" + std::to_string(i),
+                 "paths p_i with 2i - 1 reflections",
+                 "kappa = " + std::to_string(kappa) + ", i = " + std::to_string(i),
+                 layer_path_count(kappa, i), count_by_peaks[i], brute_force);
       total += count_by_peaks[i];
     }
-    EXPECT_EQ(total, n == 1 ? 1U : catalan(n - 1)) << "kappa " << kappa;
+    check_term("path_count.total.kappa" + std::to_string(kappa), "all paths to bin kappa",
+               "kappa = " + std::to_string(kappa), n == 1 ? 1U : catalan(n - 1), total,
+               brute_force);
   }
 }
 
@@ -174,8 +245,13 @@ TEST(LayerModelIntensity, EqualsBruteForceSumForUnboundedIdenticalStack) {
     for (unsigned kappa = 1; kappa <= kMaxKappa; kappa += 2) {
       const unsigned n = (kappa + 1) / 2;
       const double expected = 2.5 * brute_force_bin(n, identical_stack(n, tau, rho), 0.0);
-      EXPECT_NEAR(layer_model_intensity(kappa, tau, rho, 2.5), expected, kRelTol * expected)
-          << "kappa " << kappa << " tau " << tau << " rho " << rho;
+      check("intensity.unbounded.tau" + num(tau) + ".rho" + num(rho) + ".kappa" +
+                std::to_string(kappa),
+            "bin intensity I_kappa / I_0 (eq. 3)",
+            "identical layers tau = " + num(tau) + ", rho = " + num(rho) +
+                ", I_0 = 2.5, kappa = " + std::to_string(kappa),
+            layer_model_intensity(kappa, tau, rho, 2.5), expected,
+            "brute-force sum over every reflection path (test)", kRelTol, Tolerance::relative);
     }
   }
 }
@@ -192,8 +268,13 @@ TEST(LayerStackResponse, EqualsBruteForceForFiniteMixedStacksWithObject) {
       ASSERT_EQ(response.size(), max_bin);
       for (unsigned n = 1; n <= max_bin; ++n) {
         const double expected = 0.7 * brute_force_bin(n, stack, rho_object);
-        EXPECT_NEAR(response[n - 1], expected, kRelTol * expected)
-            << "depth " << depth << " rho_object " << rho_object << " bin " << n;
+        check("stack_response.mixed.depth" + std::to_string(depth) + ".rho_object" +
+                  num(rho_object) + ".bin" + std::to_string(n),
+              "bin intensity I_n / I_0",
+              "mixed stack of " + std::to_string(depth) + " layers, rho_object = " +
+                  num(rho_object) + ", I_0 = 0.7, bin " + std::to_string(n),
+              response[n - 1], expected, "brute-force sum over every reflection path (test)",
+              kRelTol, Tolerance::relative);
       }
     }
   }
@@ -226,14 +307,26 @@ TEST(LayerStackResponse, LosslessHalfSplitStackIsTheRecurrentRandomWalk) {
     for (double intensity : response) total += intensity;
     double no_return_yet = 1.0;  // binom(2N, N) / 4^N = prod_{k<=N} (2k-1)/(2k)
     for (unsigned k = 1; k <= max_bin; ++k) no_return_yet *= (2.0 * k - 1.0) / (2.0 * k);
-    EXPECT_NEAR(total, 1.0 - no_return_yet, kRelTol) << max_bin << " bins";
+    check("stack_response.lossless_half_split.sum" + std::to_string(max_bin) + "bins",
+          "sum of bin intensities", "tau = rho = 1/2, " + std::to_string(max_bin) + " bins", total,
+          1.0 - no_return_yet,
+          "closed form: first return of the symmetric random walk, 1 - binom(2N, N) / 4^N "
+          "(Feller vol. 1, sec. III.3, lemma 1)",
+          kRelTol, Tolerance::absolute);
   }
 }
 
 TEST(LayerModelIntensity, FirstBinIsTheFirstLayerEcho) {
-  EXPECT_DOUBLE_EQ(layer_model_intensity(1, 0.7, 0.2, 3.0), 0.6);  // I_1 = I_0 rho
-  EXPECT_EQ(layer_model_intensity(7, 0.0, 0.9), 0.0);              // no crossing, no deeper echo
-  EXPECT_EQ(layer_model_intensity(7, 0.9, 0.0), 0.0);
+  check("intensity.first_bin", "bin intensity I_1", "tau = 0.7, rho = 0.2, I_0 = 3",
+        layer_model_intensity(1, 0.7, 0.2, 3.0), 0.6, "closed form: I_1 = I_0 rho (eq. 3)",
+        kDoubleEqRelTol, Tolerance::relative);
+  // no crossing, no deeper echo
+  check("intensity.kappa7.tau0", "bin intensity I_7 / I_0", "tau = 0, rho = 0.9",
+        layer_model_intensity(7, 0.0, 0.9), 0.0, "limiting case: tau = 0, no deeper echo", 0.0,
+        Tolerance::absolute);
+  check("intensity.kappa7.rho0", "bin intensity I_7 / I_0", "tau = 0.9, rho = 0",
+        layer_model_intensity(7, 0.9, 0.0), 0.0, "limiting case: rho = 0, no reflection", 0.0,
+        Tolerance::absolute);
 }
 
 // ---- rho = 0: only the object's direct echo, eq. 4 ------------------------------------------
@@ -251,8 +344,14 @@ TEST(LayerStackResponse, WithoutReflectionsReducesToEq4) {
   // Non-identical transmittances: I_obj = I_0 rho_obj prod tau_j^2.
   const std::vector<VirtualLayer> stack = {{0.9, 0.0}, {0.5, 0.0}, {0.7, 0.0}};
   const double expected = 0.4 * std::pow(0.9 * 0.5 * 0.7, 2);
-  EXPECT_NEAR(layer_stack_response(stack, 0.4, 6)[3], expected, kRelTol * expected);
-  EXPECT_DOUBLE_EQ(object_intensity(4, 0.9, 0.5, 2.0), 2.0 * 0.5 * std::pow(0.9, 8));
+  check("stack_response.no_reflection.object_bin", "object bin intensity I_4 / I_0",
+        "tau = 0.9, 0.5, 0.7, rho = 0, rho_object = 0.4", layer_stack_response(stack, 0.4, 6)[3],
+        expected, "closed form: I_obj = I_0 rho_obj prod tau_j^2 (eq. 4)", kRelTol,
+        Tolerance::relative);
+  check("object_intensity.kappa4", "object intensity I_obj",
+        "4 layers, tau = 0.9, rho_object = 0.5, I_0 = 2", object_intensity(4, 0.9, 0.5, 2.0),
+        2.0 * 0.5 * std::pow(0.9, 8), "closed form: I_obj = I_0 rho_obj tau^(2 kappa) (eq. 4)",
+        kDoubleEqRelTol, Tolerance::relative);
 }
 
 TEST(LayerStackResponse, ZeroBinsGiveEmptyResponse) {
@@ -264,8 +363,12 @@ TEST(LayerStackResponse, ZeroBinsGiveEmptyResponse) {
 TEST(VirtualLayerFromFog, BeerLambertTransmittanceAndAreaReflectivity) {
   // 0.15 m range resolution, alpha = 2e-3 /m, eta = 1e-5 m^2/m^3.
   const VirtualLayer layer = virtual_layer_from_fog(2e-3, 1e-5, 0.15);
-  EXPECT_DOUBLE_EQ(layer.transmittance, std::exp(-3e-4));
-  EXPECT_DOUBLE_EQ(layer.reflectance, 1.5e-6);
+  const std::string conditions = "alpha = 2e-3 1/m, eta = 1e-5 m^2/m^3, thickness 0.15 m";
+  check("virtual_layer.transmittance", "virtual layer transmittance tau", conditions,
+        layer.transmittance, std::exp(-3e-4), "closed form: Beer-Lambert tau = exp(-alpha d)",
+        kDoubleEqRelTol, Tolerance::relative);
+  check("virtual_layer.reflectance", "virtual layer reflectance rho", conditions, layer.reflectance,
+        1.5e-6, "closed form: area reflectivity rho = eta d", kDoubleEqRelTol, Tolerance::relative);
 }
 
 // ---- Rejected inputs --------------------------------------------------------------------------

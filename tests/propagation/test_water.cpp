@@ -16,6 +16,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -26,9 +27,13 @@
 #include "fogradar/propagation/water.hpp"
 #include "gtest/gtest.h"
 #include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 constexpr double kExactRelTol = 1e-12;
 constexpr double kCarrierFrequencyHz = 77e9;
@@ -39,8 +44,11 @@ const SegelsteinTable& table() {
   return shared;
 }
 
-double relative_error(double value, double reference) {
-  return std::abs(value - reference) / std::abs(reference);
+// A number as written in a check's id and conditions: "77", "0.5495", "1e-08".
+std::string num(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
 }
 
 // Runs `call` and checks it throws InvalidParameter naming `field`.
@@ -71,8 +79,27 @@ TEST(SegelsteinTableTest, ReturnsTabulatedRowsExactly) {
   };
   for (const TableRow& row : rows) {
     const std::complex<double> m = table().refractive_index(row.wavelength_m);
-    EXPECT_LE(relative_error(m.real(), row.n), kExactRelTol) << row.wavelength_m;
-    EXPECT_LE(relative_error(m.imag(), row.k), kExactRelTol) << row.wavelength_m;
+    const std::string lambda_um = num(row.wavelength_m * 1e6);
+    validate({.id = "propagation.water.segelstein.n." + lambda_um + "um",
+              .group = "physics: water",
+              .quantity = "real refractive index n",
+              .unit = "1",
+              .conditions = "lambda = " + lambda_um + " um (a tabulated row)",
+              .reference = row.n,
+              .source = "Segelstein 1981 table row (data/segelstein81_index.txt)",
+              .value = m.real(),
+              .tolerance = kExactRelTol,
+              .kind = Tolerance::relative});
+    validate({.id = "propagation.water.segelstein.k." + lambda_um + "um",
+              .group = "physics: water",
+              .quantity = "imaginary refractive index k",
+              .unit = "1",
+              .conditions = "lambda = " + lambda_um + " um (a tabulated row)",
+              .reference = row.k,
+              .source = "Segelstein 1981 table row (data/segelstein81_index.txt)",
+              .value = m.imag(),
+              .tolerance = kExactRelTol,
+              .kind = Tolerance::relative});
   }
 }
 
@@ -93,10 +120,47 @@ TEST(SegelsteinTableTest, ParsesAllRowsInOrder) {
 TEST(SegelsteinTableTest, IndexAt77GHzLiesBetweenNeighbouringRows) {
   const std::complex<double> m =
       table().refractive_index(wavelength_from_frequency_m(kCarrierFrequencyHz));
-  EXPECT_GT(m.real(), 3.741930);
-  EXPECT_LT(m.real(), 3.785136);
-  EXPECT_GT(m.imag(), 2.310);
-  EXPECT_LT(m.imag(), 2.333);
+  const std::string conditions = "77 GHz (lambda = 3893.4 um)";
+  validate({.id = "propagation.water.segelstein.n.77GHz.above_3800um_row",
+            .group = "physics: water",
+            .quantity = "real refractive index n",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 3.741930,
+            .source = "Segelstein 1981 table row at 3800 um (lower neighbour)",
+            .value = m.real(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
+  validate({.id = "propagation.water.segelstein.n.77GHz.below_3900um_row",
+            .group = "physics: water",
+            .quantity = "real refractive index n",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 3.785136,
+            .source = "Segelstein 1981 table row at 3900 um (upper neighbour)",
+            .value = m.real(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
+  validate({.id = "propagation.water.segelstein.k.77GHz.above_3800um_row",
+            .group = "physics: water",
+            .quantity = "imaginary refractive index k",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 2.310,
+            .source = "Segelstein 1981 table row at 3800 um (lower neighbour)",
+            .value = m.imag(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
+  validate({.id = "propagation.water.segelstein.k.77GHz.below_3900um_row",
+            .group = "physics: water",
+            .quantity = "imaginary refractive index k",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 2.333,
+            .source = "Segelstein 1981 table row at 3900 um (upper neighbour)",
+            .value = m.imag(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
 }
 
 // PCHIP is monotone on each interval, so between any two rows the interpolant stays within the two
@@ -157,9 +221,29 @@ TEST(LiebePermittivityTest, AgreesWithSegelsteinTableAt77GHzAnd25C) {
   const std::complex<double> eps_table = m_table * m_table;
   const std::complex<double> eps_liebe =
       liebe1991_permittivity(kCarrierFrequencyHz, celsius_to_kelvin(25.0));
-  EXPECT_LE(relative_error(eps_liebe.real(), eps_table.real()), 0.10);
-  EXPECT_LE(relative_error(eps_liebe.imag(), eps_table.imag()), 0.10);
-  EXPECT_LE(relative_error(std::abs(eps_liebe), std::abs(eps_table)), 0.10);
+  struct Part {
+    const char* name;
+    const char* quantity;
+    double liebe;
+    double table;
+  };
+  for (const Part& part :
+       {Part{"eps_re", "real permittivity eps'", eps_liebe.real(), eps_table.real()},
+        Part{"eps_im", "imaginary permittivity eps''", eps_liebe.imag(), eps_table.imag()},
+        Part{"eps_abs", "permittivity magnitude |eps|", std::abs(eps_liebe),
+             std::abs(eps_table)}}) {
+    validate(
+        {.id = std::string("propagation.water.liebe.") + part.name + ".vs_segelstein.77GHz.25C",
+         .group = "physics: water",
+         .quantity = part.quantity,
+         .unit = "1",
+         .conditions = "77 GHz, 25 °C",
+         .reference = part.table,
+         .source = "Segelstein 1981 table (measurements at about 25 °C), m^2 at 3893.4 um",
+         .value = part.liebe,
+         .tolerance = 0.10,
+         .kind = Tolerance::relative});
+  }
 }
 
 struct PermittivityReference {
@@ -183,12 +267,41 @@ TEST(LiebePermittivityTest, AgreesWithEllisonAndMeissnerWentzAt77GHz) {
   for (const PermittivityReference& reference : references) {
     const std::complex<double> eps =
         liebe1991_permittivity(kCarrierFrequencyHz, celsius_to_kelvin(reference.temperature_c));
-    for (const std::complex<double> expected :
-         {reference.ellison2007, reference.meissner_wentz2004}) {
-      EXPECT_LE(relative_error(eps.real(), expected.real()), kModelSpreadTol)
-          << reference.temperature_c << " C: " << eps << " vs " << expected;
-      EXPECT_LE(relative_error(eps.imag(), expected.imag()), kModelSpreadTol)
-          << reference.temperature_c << " C: " << eps << " vs " << expected;
+    struct Model {
+      const char* name;
+      const char* source;
+      std::complex<double> eps;
+    };
+    for (const Model& model :
+         {Model{"ellison2007",
+                "Ellison 2007, J. Phys. Chem. Ref. Data 36(1), Table 2 (evaluated offline)",
+                reference.ellison2007},
+          Model{"meissner_wentz2004",
+                "Meissner & Wentz 2004, IEEE TGRS 42(9), Table III (evaluated offline)",
+                reference.meissner_wentz2004}}) {
+      const std::string t = num(reference.temperature_c);
+      validate({.id = "propagation.water.liebe.eps_re.vs_" + std::string(model.name) + ".77GHz." +
+                      t + "C",
+                .group = "physics: water",
+                .quantity = "real permittivity eps'",
+                .unit = "1",
+                .conditions = "77 GHz, " + t + " °C",
+                .reference = model.eps.real(),
+                .source = model.source,
+                .value = eps.real(),
+                .tolerance = kModelSpreadTol,
+                .kind = Tolerance::relative});
+      validate({.id = "propagation.water.liebe.eps_im.vs_" + std::string(model.name) + ".77GHz." +
+                      t + "C",
+                .group = "physics: water",
+                .quantity = "imaginary permittivity eps''",
+                .unit = "1",
+                .conditions = "77 GHz, " + t + " °C",
+                .reference = model.eps.imag(),
+                .source = model.source,
+                .value = eps.imag(),
+                .tolerance = kModelSpreadTol,
+                .kind = Tolerance::relative});
     }
   }
 }
@@ -198,7 +311,16 @@ TEST(LiebePermittivityTest, AgreesWithEllisonAndMeissnerWentzAt77GHz) {
 TEST(LiebePermittivityTest, ReducesToStaticPermittivityAtLowFrequency) {
   const double temperature_k = 300.0;  // theta = 1, so eps0 = 77.66 exactly
   const std::complex<double> eps = liebe1991_permittivity(1e6, temperature_k);
-  EXPECT_LE(relative_error(eps.real(), 77.66), 1e-6);
+  validate({.id = "propagation.water.liebe.eps_static.1MHz.27C",
+            .group = "physics: water",
+            .quantity = "real permittivity eps' (static limit eps0)",
+            .unit = "1",
+            .conditions = "1 MHz, 300 K (theta = 1)",
+            .reference = 77.66,
+            .source = "limiting case f -> 0: eps0 = 77.66 + 103.3 (theta - 1), ITU-R P.840-8",
+            .value = eps.real(),
+            .tolerance = 1e-6,
+            .kind = Tolerance::relative});
   EXPECT_GT(eps.imag(), 0.0);
 }
 
@@ -217,8 +339,21 @@ TEST(WaterAttenuationCoefficientTest, AgreesWithEllisonRayleighValueAt77GHz) {
   for (const AttenuationReference& reference : references) {
     const double k_l = itu_p840_specific_attenuation_coefficient(
         kCarrierFrequencyHz, celsius_to_kelvin(reference.temperature_c));
-    EXPECT_LE(relative_error(k_l, reference.ellison2007_db_per_km_per_g_m3), 0.10)
-        << reference.temperature_c << " C: K_l = " << k_l;
+    const std::string t = num(reference.temperature_c);
+    validate({.id = "propagation.water.p840.k_l.vs_ellison2007.77GHz." + t + "C",
+              .group = "physics: water",
+              .quantity = "specific attenuation coefficient K_l",
+              .unit = "(dB/km)/(g/m^3)",
+              .conditions = "77 GHz, " + t + " °C",
+              .reference = reference.ellison2007_db_per_km_per_g_m3,
+              .source = "Rayleigh absorption with the Ellison 2007 permittivity (evaluated "
+                        "offline)",
+              .value = k_l,
+              .tolerance = 0.10,
+              .kind = Tolerance::relative,
+              .plot = "p840_temperature",
+              .x = reference.temperature_c,
+              .x_label = "temperature (°C)"});
   }
 }
 
@@ -238,7 +373,19 @@ TEST(WaterAttenuationCoefficientTest, MatchesRayleighAbsorptionLaw) {
       const double k_l = itu_p840_specific_attenuation_coefficient(frequency_hz, temperature_k);
       const double expected = rayleigh_absorption_db_per_km_per_g_m3(
           frequency_hz, liebe1991_permittivity(frequency_hz, temperature_k));
-      EXPECT_LE(relative_error(k_l, expected), 1e-3) << frequency_hz << " Hz, " << temperature_k;
+      const std::string f = num(frequency_hz / 1e9);
+      const std::string t = num(std::round((temperature_k - 273.15) * 100.0) / 100.0);
+      validate({.id = "propagation.water.p840.k_l.rayleigh_law." + f + "GHz." + t + "C",
+                .group = "physics: water",
+                .quantity = "specific attenuation coefficient K_l",
+                .unit = "(dB/km)/(g/m^3)",
+                .conditions = f + " GHz, " + t + " °C",
+                .reference = expected,
+                .source = "closed form: Rayleigh absorption 6 pi f Im K / (c rho_w) (Bohren & "
+                          "Huffman 1983 §5.2) with the Liebe 1991 permittivity",
+                .value = k_l,
+                .tolerance = 1e-3,
+                .kind = Tolerance::relative});
     }
   }
 }
@@ -251,7 +398,20 @@ TEST(WaterAttenuationCoefficientTest, AgreesWithSegelsteinRayleighValueAt77GHz) 
   const double expected = rayleigh_absorption_db_per_km_per_g_m3(kCarrierFrequencyHz, m * m);
   const double k_l =
       itu_p840_specific_attenuation_coefficient(kCarrierFrequencyHz, celsius_to_kelvin(25.0));
-  EXPECT_LE(relative_error(k_l, expected), 0.10) << "K_l = " << k_l << ", table " << expected;
+  validate({.id = "propagation.water.p840.k_l.vs_segelstein_rayleigh.77GHz.25C",
+            .group = "physics: water",
+            .quantity = "specific attenuation coefficient K_l",
+            .unit = "(dB/km)/(g/m^3)",
+            .conditions = "77 GHz, 25 °C",
+            .reference = expected,
+            .source = "Rayleigh absorption (Bohren & Huffman 1983 §5.2) with the Segelstein 1981 "
+                      "index at 3893.4 um",
+            .value = k_l,
+            .tolerance = 0.10,
+            .kind = Tolerance::relative,
+            .plot = "p840_temperature",
+            .x = 25.0,
+            .x_label = "temperature (°C)"});
 }
 
 // ---- Conversions and model selection --------------------------------------------------------

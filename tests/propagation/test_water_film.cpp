@@ -4,8 +4,6 @@
 // exp(-4 pi k t / lambda) (B&W sec. 14.1); energy balance and reciprocity on random stacks.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -13,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,11 +19,15 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 #include "fogradar/propagation/water_film.hpp"
+#include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
 
 using complex = std::complex<double>;
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 constexpr double kTol = 1e-12;            // closed forms and energy balance of lossless stacks
 constexpr double kBeerLambertTol = 1e-3;  // thick film against its single-pass limit
@@ -38,6 +41,29 @@ void expect_invalid(const std::function<void()>& call, const std::string& field)
   EXPECT_EQ(test_support::rejected_field(call), field);
 }
 
+// A number as written in a check's id and conditions: "1.5", "3.76".
+std::string num(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Records one check of the slab response against its reference.
+void check(const std::string& id, const std::string& quantity, const std::string& unit,
+           const std::string& conditions, double value, double reference, const std::string& source,
+           double tolerance, Tolerance kind) {
+  validate({.id = "propagation.water_film." + id,
+            .group = "physics: water",
+            .quantity = quantity,
+            .unit = unit,
+            .conditions = conditions,
+            .reference = reference,
+            .source = source,
+            .value = value,
+            .tolerance = tolerance,
+            .kind = kind});
+}
+
 // Fresnel amplitude coefficients at normal incidence from a into b.
 complex fresnel_r(complex a, complex b) { return (a - b) / (a + b); }
 complex fresnel_t(complex a, complex b) { return 2.0 * a / (a + b); }
@@ -48,9 +74,16 @@ TEST(Slab, LosslessHalfWaveSlabTransmitsFully) {
   const double lambda = 3.9e-3;
   const std::vector<SlabLayer> slab = {{{2.0, 0.0}, lambda / (2.0 * 2.0)}};
   const SlabResponse response = slab_response(slab, lambda);
-  EXPECT_NEAR(response.transmittance, 1.0, kTol);
-  EXPECT_NEAR(response.reflectance, 0.0, kTol);
-  EXPECT_NEAR(response.absorptance, 0.0, kTol);
+  const std::string conditions = "lossless slab n = 2, half-wave thick, lambda = 3.9 mm";
+  const std::string source =
+      "closed form: lossless half-wave slab is transparent (Born & Wolf "
+      "sec. 1.6; Hecht sec. 9.7)";
+  check("half_wave.transmittance", "transmittance T", "1", conditions, response.transmittance, 1.0,
+        source, kTol, Tolerance::absolute);
+  check("half_wave.reflectance", "reflectance R", "1", conditions, response.reflectance, 0.0,
+        source, kTol, Tolerance::absolute);
+  check("half_wave.absorptance", "absorptance A", "1", conditions, response.absorptance, 0.0,
+        source, kTol, Tolerance::absolute);
 }
 
 TEST(Slab, LosslessQuarterWaveSlabReflectanceMatchesClosedForm) {
@@ -59,8 +92,17 @@ TEST(Slab, LosslessQuarterWaveSlabReflectanceMatchesClosedForm) {
     const std::vector<SlabLayer> slab = {{{n, 0.0}, lambda / (4.0 * n)}};
     const double expected = std::pow((1.0 - n * n) / (1.0 + n * n), 2);
     const SlabResponse response = slab_response(slab, lambda);
-    EXPECT_NEAR(response.reflectance, expected, kTol * expected) << "n = " << n;
-    EXPECT_NEAR(response.transmittance, 1.0 - expected, kTol) << "n = " << n;
+    const std::string conditions = "lossless slab n = " + num(n) +
+                                   ", quarter-wave thick, "
+                                   "lambda = 3.9 mm";
+    const std::string source =
+        "closed form: quarter-wave slab R = ((1 - n^2)/(1 + n^2))^2 "
+        "(Born & Wolf sec. 1.6; Hecht sec. 9.7)";
+    check("quarter_wave.reflectance.n" + num(n), "reflectance R", "1", conditions,
+          response.reflectance, expected, source, kTol, Tolerance::relative);
+    check("quarter_wave.transmittance.n" + num(n), "transmittance T", "1", conditions,
+          response.transmittance, 1.0 - expected, source + ", T = 1 - R", kTol,
+          Tolerance::absolute);
   }
 }
 
@@ -73,17 +115,35 @@ TEST(Slab, SingleInterfaceGivesFresnelCoefficients) {
     const std::vector<SlabLayer> zero_thickness = {{{2.7, 0.4}, 0.0}};
     for (const auto& layers : {no_layer, zero_thickness}) {
       const SlabResponse response = slab_response(layers, lambda, 1.0, n_out);
-      EXPECT_NEAR(std::abs(response.reflection_amplitude - fresnel_r(1.0, n_out)), 0.0, kTol);
-      EXPECT_NEAR(std::abs(response.transmission_amplitude - fresnel_t(1.0, n_out)), 0.0, kTol);
+      const std::string id = "interface.n_out" + num(n_out.real()) + "+" + num(n_out.imag()) +
+                             "i." + (layers.empty() ? "no_layer" : "zero_thickness_layer") + ".";
+      const std::string conditions = "air into n = " + num(n_out.real()) + " + " +
+                                     num(n_out.imag()) + "i, 77 GHz, " +
+                                     (layers.empty() ? "no layer" : "a zero-thickness layer");
+      const std::string fresnel =
+          "Fresnel coefficients at normal incidence (Born & Wolf sec. "
+          "1.5.2; Hecht sec. 4.6)";
+      check(id + "r", "|r - r_Fresnel|", "1", conditions,
+            std::abs(response.reflection_amplitude - fresnel_r(1.0, n_out)), 0.0, fresnel, kTol,
+            Tolerance::absolute);
+      check(id + "t", "|t - t_Fresnel|", "1", conditions,
+            std::abs(response.transmission_amplitude - fresnel_t(1.0, n_out)), 0.0, fresnel, kTol,
+            Tolerance::absolute);
       // Into a semi-infinite medium all power that is not reflected is transmitted, lossy or not.
-      EXPECT_NEAR(response.absorptance, 0.0, kTol);
+      check(id + "absorptance", "absorptance A", "1", conditions, response.absorptance, 0.0,
+            "closed form: a single interface absorbs nothing", kTol, Tolerance::absolute);
     }
   }
   // From glass into air (n_in > n_out): r changes sign, T carries Re(n_out)/Re(n_in).
   const SlabResponse inside = slab_response({}, lambda, 1.5, 1.0);
-  EXPECT_NEAR(inside.reflection_amplitude.real(), 0.2, kTol);
-  EXPECT_NEAR(inside.transmittance, 1.0 / 1.5 * std::norm(fresnel_t(1.5, 1.0)), kTol);
-  EXPECT_NEAR(inside.transmittance, 0.96, kTol);
+  const std::string glass_air = "glass n = 1.5 into air, 77 GHz";
+  check("interface.glass_to_air.r", "Re r", "1", glass_air, inside.reflection_amplitude.real(), 0.2,
+        "Fresnel: r = (1.5 - 1)/(1.5 + 1)", kTol, Tolerance::absolute);
+  check("interface.glass_to_air.transmittance", "transmittance T", "1", glass_air,
+        inside.transmittance, 1.0 / 1.5 * std::norm(fresnel_t(1.5, 1.0)),
+        "Fresnel: T = Re(n_out)/Re(n_in) |t|^2", kTol, Tolerance::absolute);
+  check("interface.glass_to_air.transmittance.by_hand", "transmittance T", "1", glass_air,
+        inside.transmittance, 0.96, "Fresnel: T = 1 - R = 1 - 0.2^2", kTol, Tolerance::absolute);
 }
 
 // ---- Thick absorbing film: Beer-Lambert ------------------------------------------------------
@@ -104,7 +164,12 @@ TEST(Film, ThickWaterFilmFollowsBeerLambert) {
     const std::vector<SlabLayer> film = {{kWater77Ghz, t}};
     const double expected = single_pass_transmittance(kWater77Ghz, t, lambda);
     const double transmittance = slab_response(film, lambda).transmittance;
-    EXPECT_NEAR(transmittance / expected, 1.0, kBeerLambertTol) << depths << " skin depths";
+    check("thick_film.transmittance." + num(depths) + "skin_depths", "transmittance T", "1",
+          "water film m = 3.76 + 2.32i, " + num(depths) + " skin depths, 77 GHz", transmittance,
+          expected,
+          "thick-film limit of the Airy sum: |t_12 t_21|^2 exp(-4 pi k t / lambda) (Born & Wolf "
+          "sec. 14.1)",
+          kBeerLambertTol, Tolerance::relative);
   }
   // Log-slope d ln T / dt = -4 pi k / lambda, by a finite difference deep in the film.
   const double t1 = 8.0 * skin_depth_m;
@@ -115,7 +180,9 @@ TEST(Film, ThickWaterFilmFollowsBeerLambert) {
                         std::log(slab_response(film1, lambda).transmittance)) /
                        (t2 - t1);
   const double expected_slope = -4.0 * pi * kWater77Ghz.imag() / lambda;
-  EXPECT_NEAR(slope / expected_slope, 1.0, kBeerLambertTol);
+  check("thick_film.log_slope", "d ln T / dt", "1/m",
+        "water film m = 3.76 + 2.32i, 8 to 12 skin depths, 77 GHz", slope, expected_slope,
+        "Beer-Lambert: d ln T / dt = -4 pi k / lambda", kBeerLambertTol, Tolerance::relative);
 }
 
 // ---- Energy balance and reciprocity on random stacks ------------------------------------------
@@ -186,8 +253,10 @@ TEST(Film, TwoWayLossIsTwiceTheOneWayTransmittanceInDb) {
   EXPECT_NEAR(film_two_way_loss_db(0.2e-3, kWater77Ghz, radome, 3e-3, lambda),
               -20.0 * std::log10(one_way), kTol);
   // A dry lossless half-wave radome is transparent.
-  EXPECT_NEAR(film_two_way_loss_db(0.0, kWater77Ghz, 1.7, lambda / (2.0 * 1.7), lambda), 0.0,
-              1e-10);
+  check("radome.dry_half_wave.two_way_loss", "two-way loss", "dB",
+        "no water, lossless radome n = 1.7, half-wave thick, 77 GHz",
+        film_two_way_loss_db(0.0, kWater77Ghz, 1.7, lambda / (2.0 * 1.7), lambda), 0.0,
+        "closed form: lossless half-wave slab is transparent", 1e-10, Tolerance::absolute);
 }
 
 TEST(Film, ThickFilmLossGrowsAtTheBeerLambertRate) {
@@ -197,7 +266,10 @@ TEST(Film, ThickFilmLossGrowsAtTheBeerLambertRate) {
                           film_two_way_loss_db(1e-3, kWater77Ghz, 1.7, 3e-3, lambda);
   const double expected_db =
       2.0 * db_per_neper_power * 4.0 * pi * kWater77Ghz.imag() / lambda * 1e-3;
-  EXPECT_NEAR(extra_db / expected_db, 1.0, kBeerLambertTol);
+  check("radome.thick_film.loss_per_mm", "two-way loss of the 2nd millimetre of water", "dB",
+        "water m = 3.76 + 2.32i on radome n = 1.7, 3 mm, 77 GHz", extra_db, expected_db,
+        "Beer-Lambert: 2 x 10 log10(e) x 4 pi k / lambda per metre", kBeerLambertTol,
+        Tolerance::relative);
 }
 
 // ---- Rejected inputs --------------------------------------------------------------------------

@@ -24,7 +24,7 @@ inline constexpr WindowType kAllWindows[] = {WindowType::rectangular, WindowType
                                              WindowType::hamming, WindowType::blackman_harris,
                                              WindowType::chebyshev};
 
-inline std::string window_name(const testing::TestParamInfo<WindowType>& info) {
+inline std::string window_name(const ::testing::TestParamInfo<WindowType>& info) {
   return std::string(to_string(info.param));
 }
 

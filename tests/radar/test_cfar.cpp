@@ -16,6 +16,7 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/binomial.hpp>
 #include <boost/math/tools/roots.hpp>
+#include <cctype>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -30,13 +31,30 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/cfar.hpp"
 #include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
 
+using fogradar::testing::Tolerance;
+
+// A number as check ids and conditions show it ("1e-06", "0.5", "16").
+std::string id_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// "CA-CFAR", "OS-CFAR", ... for check conditions.
+std::string kind_label(CfarKind kind) {
+  std::string label(to_string(kind));
+  for (char& c : label) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return label + "-CFAR";
+}
+
 const CfarKind kAllKinds[] = {CfarKind::ca, CfarKind::go, CfarKind::so, CfarKind::os};
 
-std::string kind_name(const testing::TestParamInfo<CfarKind>& info) {
+std::string kind_name(const ::testing::TestParamInfo<CfarKind>& info) {
   return std::string(to_string(info.param));
 }
 
@@ -176,14 +194,25 @@ TEST(CfarThreshold, CaClosedFormMatchesNumericalSolution) {
       const auto [lo, hi] = boost::math::tools::toms748_solve(
           f, 0.0, 1e6, boost::math::tools::eps_tolerance<double>(52), iterations);
       const double solved = 0.5 * (lo + hi);
-      EXPECT_NEAR(alpha, solved, 1e-12 * solved) << "N=" << 2 * n << " Pfa=" << pfa;
+      fogradar::testing::validate(
+          {.id = "radar.cfar.ca.alpha.N" + std::to_string(2 * n) + ".pfa" + id_number(pfa),
+           .group = "radar: CFAR",
+           .quantity = "CA-CFAR threshold factor alpha",
+           .unit = "1",
+           .conditions = "CA-CFAR, " + std::to_string(2 * n) + " training cells, design P_fa " +
+                         id_number(pfa),
+           .reference = solved,
+           .source = "(1 + alpha/N)^-N = P_fa [GK88] solved numerically (TOMS 748, this test)",
+           .value = alpha,
+           .tolerance = 1e-12,
+           .kind = Tolerance::relative});
     }
   }
 }
 
 // GO, SO, OS (and CA): the published Pfa expression [GK88, R83], evaluated at the solved
 // threshold factor, equals the design Pfa within 1e-9 relative.
-class CfarThresholdKind : public testing::TestWithParam<CfarKind> {};
+class CfarThresholdKind : public ::testing::TestWithParam<CfarKind> {};
 
 TEST_P(CfarThresholdKind, PublishedPfaAtSolvedFactorEqualsDesign) {
   for (const unsigned n : {1u, 2u, 4u, 8u, 16u, 24u}) {
@@ -192,18 +221,43 @@ TEST_P(CfarThresholdKind, PublishedPfaAtSolvedFactorEqualsDesign) {
           .kind = GetParam(), .training_cells = n, .false_alarm_probability = pfa};
       const double alpha = cfar_threshold_factor(config);
       ASSERT_TRUE(std::isfinite(alpha) && alpha > 0.0);
-      EXPECT_NEAR(published_pfa(config, alpha) / pfa, 1.0, 1e-9)
-          << to_string(GetParam()) << " n=" << n << " Pfa=" << pfa << " alpha=" << alpha;
+      const std::string kind(to_string(GetParam()));
+      const std::string conditions = kind_label(GetParam()) + ", " + std::to_string(n) +
+                                     " training cells per side, design P_fa " + id_number(pfa);
+      const std::string id =
+          "radar.cfar." + kind + ".n" + std::to_string(n) + ".pfa" + id_number(pfa);
+      fogradar::testing::validate(
+          {.id = id + ".published_pfa_at_factor",
+           .group = "radar: CFAR",
+           .quantity = "published P_fa at the solved threshold factor",
+           .unit = "1",
+           .conditions = conditions,
+           .reference = pfa,
+           .source = "design P_fa; closed forms of Gandhi & Kassam 1988 (CA, GO, SO) and "
+                     "Rohling 1983 (OS)",
+           .value = published_pfa(config, alpha),
+           .tolerance = 1e-9,
+           .kind = Tolerance::relative});
       // The library's own Pfa function agrees with the published form at nearby factors too.
       for (const double scale : {0.5, 1.0, 2.0}) {
         const double expected = published_pfa(config, scale * alpha);
-        EXPECT_NEAR(cfar_false_alarm_probability(config, scale * alpha) / expected, 1.0, 1e-9);
+        fogradar::testing::validate(
+            {.id = id + ".pfa_function.scale" + id_number(scale),
+             .group = "radar: CFAR",
+             .quantity = "P_fa at " + id_number(scale) + " x the threshold factor",
+             .unit = "1",
+             .conditions = conditions,
+             .reference = expected,
+             .source = "closed forms Gandhi & Kassam 1988 (CA, GO, SO), Rohling 1983 (OS)",
+             .value = cfar_false_alarm_probability(config, scale * alpha),
+             .tolerance = 1e-9,
+             .kind = Tolerance::relative});
       }
     }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllKinds, CfarThresholdKind, testing::ValuesIn(kAllKinds), kind_name);
+INSTANTIATE_TEST_SUITE_P(AllKinds, CfarThresholdKind, ::testing::ValuesIn(kAllKinds), kind_name);
 
 // Limiting case n = 1 (one cell per side), exact inverses of [GK88] by hand:
 //   SO: Pfa = 2 / (2 + alpha)                    =>  alpha = 2 / Pfa - 2
@@ -214,14 +268,37 @@ TEST(CfarThreshold, SingleCellPerSideClosedForms) {
   for (const double pfa : {0.5, 1e-3, 1e-6}) {
     const double so = cfar_threshold_factor(
         {.kind = CfarKind::so, .training_cells = 1, .false_alarm_probability = pfa});
-    EXPECT_NEAR(so, 2.0 / pfa - 2.0, 1e-12 * so);
     const double go = cfar_threshold_factor(
         {.kind = CfarKind::go, .training_cells = 1, .false_alarm_probability = pfa});
     const double go_exact = (-3.0 * pfa + std::sqrt(pfa * pfa + 8.0 * pfa)) / (2.0 * pfa);
-    EXPECT_NEAR(go, go_exact, 1e-12 * go_exact);
     const double os = cfar_threshold_factor(
         {.kind = CfarKind::os, .training_cells = 1, .false_alarm_probability = pfa, .os_rank = 1});
-    EXPECT_NEAR(os, 2.0 / pfa - 2.0, 1e-12 * os);
+    const struct {
+      CfarKind kind;
+      double value, reference, tolerance;
+      const char* source;
+    } checks[] = {{CfarKind::so, so, 2.0 / pfa - 2.0, 1e-12 * so,
+                   "inverse of [GK88] SO, n = 1: alpha = 2/P_fa - 2"},
+                  {CfarKind::go, go, go_exact, 1e-12 * go_exact,
+                   "inverse of [GK88] GO, n = 1: root of P alpha^2 + 3 P alpha + 2 P - 2 = 0"},
+                  {CfarKind::os, os, 2.0 / pfa - 2.0, 1e-12 * os,
+                   "inverse of [R83] OS, N = 2, k = 1: alpha = 2/P_fa - 2"}};
+    for (const auto& check : checks) {
+      // The tolerance is 1e-12 of the factor (absolute, as the expectation it replaces).
+      fogradar::testing::validate(
+          {.id = "radar.cfar." + std::string(to_string(check.kind)) + ".alpha.n1.pfa" +
+                 id_number(pfa),
+           .group = "radar: CFAR",
+           .quantity = "threshold factor alpha, one cell per side",
+           .unit = "1",
+           .conditions =
+               kind_label(check.kind) + ", 1 training cell per side, design P_fa " + id_number(pfa),
+           .reference = check.reference,
+           .source = check.source,
+           .value = check.value,
+           .tolerance = check.tolerance,
+           .kind = Tolerance::absolute});
+    }
   }
 }
 
@@ -231,7 +308,16 @@ TEST(CfarThreshold, SingleCellPerSideClosedForms) {
 TEST(CfarThreshold, RichardsOsExample) {
   const double alpha = cfar_threshold_factor(
       {.kind = CfarKind::os, .training_cells = 10, .false_alarm_probability = 1e-3, .os_rank = 15});
-  EXPECT_NEAR(alpha, 6.857, 5e-4 * 6.857);
+  fogradar::testing::validate({.id = "radar.cfar.os.alpha.richards_example",
+                               .group = "radar: CFAR",
+                               .quantity = "OS-CFAR threshold factor alpha",
+                               .unit = "1",
+                               .conditions = "OS-CFAR, N = 20, k = 15, design P_fa 1e-3",
+                               .reference = 6.857,
+                               .source = "Richards 2014 §6.5.6 (four significant figures)",
+                               .value = alpha,
+                               .tolerance = 5e-4,
+                               .kind = Tolerance::relative});
 }
 
 // Ordering (a property of the estimators): SO's noise estimate is the smallest, GO's the
@@ -296,7 +382,7 @@ std::vector<double> brute_force_threshold(const std::vector<double>& power,
   return threshold;
 }
 
-class CfarDetectorKind : public testing::TestWithParam<CfarKind> {};
+class CfarDetectorKind : public ::testing::TestWithParam<CfarKind> {};
 
 // The window-sum / sorted-buffer implementation equals the brute-force reference of the edge
 // policy in every cell (edge and interior), profile lengths from the minimum upward, with a
@@ -368,7 +454,7 @@ TEST_P(CfarDetectorKind, WorkspaceReuseIsStateless) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllKinds, CfarDetectorKind, testing::ValuesIn(kAllKinds), kind_name);
+INSTANTIATE_TEST_SUITE_P(AllKinds, CfarDetectorKind, ::testing::ValuesIn(kAllKinds), kind_name);
 
 // The edge cells of CA/GO/SO bit for bit: each half of the reference cells (the first and the last
 // n in range order) summed run by run, every contiguous run cell by cell in range order from 0.0
@@ -511,7 +597,7 @@ std::pair<double, double> binomial_interval(double cells, double p) {
           boost::math::quantile(boost::math::complement(count, 0.0005))};
 }
 
-class CfarFalseAlarmRate : public testing::TestWithParam<CfarKind> {};
+class CfarFalseAlarmRate : public ::testing::TestWithParam<CfarKind> {};
 
 // Square-law detected noise (exponential, mean 1), design Pfa = 1e-3, guard 2, n = 8 (N = 16),
 // 25'000 profiles of 64 cells = 1.6e6 cells: 1.1e6 interior cells (nominal window inside the
@@ -564,13 +650,38 @@ TEST_P(CfarFalseAlarmRate, MatchesDesignInInteriorAndEdgeCells) {
       static_cast<double>(alarms_interior) / interior_cells, alarms_interior, interior_cells,
       interior_low, interior_high, alarms_edge / edge_cells, alarms_left, alarms_right, edge_cells,
       edge_low, edge_high);
-  EXPECT_GE(static_cast<double>(alarms_interior), interior_low);
-  EXPECT_LE(static_cast<double>(alarms_interior), interior_high);
-  EXPECT_GE(alarms_edge, edge_low);
-  EXPECT_LE(alarms_edge, edge_high);
+  const std::string kind(to_string(GetParam()));
+  const struct {
+    const char* cells;
+    double alarms, count, low, high;
+  } groups[] = {{"interior", static_cast<double>(alarms_interior), interior_cells, interior_low,
+                 interior_high},
+                {"edge", alarms_edge, edge_cells, edge_low, edge_high}};
+  for (const auto& group : groups) {
+    // The counts' interval as rates: dividing by the cell count keeps the order.
+    fogradar::testing::validate(
+        {.id = "radar.cfar." + kind + ".realised_pfa." + group.cells + ".pfa1e-3",
+         .group = "radar: CFAR",
+         .quantity = std::string("realised P_fa, ") + group.cells + " cells",
+         .unit = "1",
+         .conditions = kind_label(GetParam()) +
+                       ", 16 training cells, guard 2, exponential noise, design P_fa 1e-3",
+         .reference = kDesignPfa,
+         .source = "design P_fa (binomial acceptance interval, Boost.Math quantiles)",
+         .value = group.alarms / group.count,
+         .tolerance = 0.0,
+         .kind = Tolerance::statistical,
+         .samples = static_cast<std::size_t>(group.count),
+         .interval_low = group.low / group.count,
+         .interval_high = group.high / group.count,
+         .confidence = "99.9 % two-sided binomial interval of the design P_fa",
+         .plot = "cfar_pfa",
+         .x = kDesignPfa,
+         .x_label = "design P_fa"});
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllKinds, CfarFalseAlarmRate, testing::ValuesIn(kAllKinds), kind_name);
+INSTANTIATE_TEST_SUITE_P(AllKinds, CfarFalseAlarmRate, ::testing::ValuesIn(kAllKinds), kind_name);
 
 // --- Detection probability (CA) ---------------------------------------------------------------
 
@@ -622,7 +733,21 @@ TEST(CfarDetection, CaSwerling1MatchesClosedForm) {
     const double measured = monte_carlo_pd(rng, [&](std::mt19937_64& g) { return target(g); });
     std::printf("[ measured ] CA Swerling 1 SNR %4.1f dB: Pd %.4f, closed form %.4f, error %+.4f\n",
                 snr_db, measured, expected, measured - expected);
-    EXPECT_NEAR(measured, expected, kPdTolerance) << "SNR " << snr_db << " dB";
+    fogradar::testing::validate(
+        {.id = "radar.cfar.ca.swerling1_pd.snr" + id_number(snr_db) + "dB",
+         .group = "radar: detection",
+         .quantity = "detection probability, Swerling 1 (Monte Carlo)",
+         .unit = "1",
+         .conditions = "CA-CFAR, 32 training cells, guard 2, design P_fa 1e-6, SNR " +
+                       id_number(snr_db) + " dB, 20000 trials",
+         .reference = expected,
+         .source = "closed form Pd = (1 + alpha / (N (1 + SNR)))^-N [Ri14 §6.5.3]",
+         .value = measured,
+         .tolerance = kPdTolerance,
+         .kind = Tolerance::absolute,
+         .plot = "swerling1_pd",
+         .x = snr_db,
+         .x_label = "SNR (dB)"});
   }
 }
 
@@ -650,7 +775,17 @@ TEST(CfarDetection, Swerling0IntegralReducesToPfaWithoutTarget) {
                                               .guard_cells = kPdGuard,
                                               .training_cells = kPdTraining,
                                               .false_alarm_probability = kPdDesignPfa});
-  EXPECT_NEAR(swerling0_ca_pd(1e-12, alpha, 2.0 * kPdTraining) / kPdDesignPfa, 1.0, 1e-6);
+  fogradar::testing::validate(
+      {.id = "radar.cfar.ca.swerling0_integral.no_target",
+       .group = "radar: detection",
+       .quantity = "Swerling 0 detection integral at SNR -> 0 (1e-12)",
+       .unit = "1",
+       .conditions = "CA-CFAR, 32 training cells, guard 2, design P_fa 1e-6",
+       .reference = kPdDesignPfa,
+       .source = "closed form CA P_fa (1 + alpha/N)^-N = design P_fa [GK88]",
+       .value = swerling0_ca_pd(1e-12, alpha, 2.0 * kPdTraining),
+       .tolerance = 1e-6,
+       .kind = Tolerance::relative});
 }
 
 // Swerling 0 (constant amplitude, random phase, complex Gaussian noise) Monte Carlo against the
@@ -673,7 +808,22 @@ TEST(CfarDetection, CaSwerling0MatchesNumericalIntegral) {
     });
     std::printf("[ measured ] CA Swerling 0 SNR %4.1f dB: Pd %.4f, integral %.4f, error %+.4f\n",
                 snr_db, measured, expected, measured - expected);
-    EXPECT_NEAR(measured, expected, kPdTolerance) << "SNR " << snr_db << " dB";
+    fogradar::testing::validate(
+        {.id = "radar.cfar.ca.swerling0_pd.snr" + id_number(snr_db) + "dB",
+         .group = "radar: detection",
+         .quantity = "detection probability, Swerling 0 (Monte Carlo)",
+         .unit = "1",
+         .conditions = "CA-CFAR, 32 training cells, guard 2, design P_fa 1e-6, SNR " +
+                       id_number(snr_db) + " dB, 20000 trials",
+         .reference = expected,
+         .source = "numerical integral of Marcum Q1 over the Gamma(N, 1) noise estimate "
+                   "(Gauss-Kronrod, Boost.Math, this test)",
+         .value = measured,
+         .tolerance = kPdTolerance,
+         .kind = Tolerance::absolute,
+         .plot = "swerling0_pd",
+         .x = snr_db,
+         .x_label = "SNR (dB)"});
   }
 }
 

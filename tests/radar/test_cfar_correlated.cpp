@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -19,9 +20,51 @@
 #include "fogradar/radar/processing.hpp"
 #include "fogradar/radar/synthesis.hpp"
 #include "fogradar/radar/window.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
+
+using fogradar::testing::Tolerance;
+
+// A number as check ids and conditions show it ("1e-06", "0.05").
+std::string id_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// "CA-CFAR", "OS-CFAR", ... for check conditions.
+std::string kind_label(CfarKind kind) {
+  std::string label(to_string(kind));
+  for (char& c : label) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return label + "-CFAR";
+}
+
+// A realised false-alarm count of `cells` cells against its acceptance interval [low, high] of
+// the design P_fa, recorded as rates (dividing by the cell count keeps the order).
+void validate_realised_pfa(const std::string& id, const std::string& quantity,
+                           const std::string& conditions, const std::string& source,
+                           double design_pfa, double alarms, double cells, double low, double high,
+                           const std::string& confidence) {
+  fogradar::testing::validate({.id = id,
+                               .group = "radar: CFAR",
+                               .quantity = quantity,
+                               .unit = "1",
+                               .conditions = conditions,
+                               .reference = design_pfa,
+                               .source = source,
+                               .value = alarms / cells,
+                               .tolerance = 0.0,
+                               .kind = Tolerance::statistical,
+                               .samples = static_cast<std::size_t>(cells),
+                               .interval_low = low / cells,
+                               .interval_high = high / cells,
+                               .confidence = confidence,
+                               .plot = "cfar_pfa",
+                               .x = design_pfa,
+                               .x_label = "design P_fa"});
+}
 
 constexpr CfarKind kKinds[] = {CfarKind::ca, CfarKind::go, CfarKind::so, CfarKind::os};
 constexpr WindowType kWindows[] = {WindowType::rectangular, WindowType::hann, WindowType::hamming,
@@ -116,7 +159,7 @@ std::string name_of(CfarKind kind, WindowType window) {
 // uncorrelated with its reference cells) and Blackman-Harris (correlated with the nearest one at
 // g = 2, rho(3) = -0.15). Acceptance: the binomial 99.9 % interval of 1e-2 (+-7 %); the
 // independent-cell factor gives 1.5-2.5 x, far outside.
-class CorrelatedPfa : public testing::TestWithParam<std::tuple<CfarKind, WindowType>> {};
+class CorrelatedPfa : public ::testing::TestWithParam<std::tuple<CfarKind, WindowType>> {};
 
 TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
   const auto [kind, window_type] = GetParam();
@@ -136,15 +179,22 @@ TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
         "(accept [%.4e, %.4e])\n",
         name_of(kind, window_type).c_str(), from_end, measured, alpha, low / kSamples,
         high / kSamples);
-    EXPECT_GE(measured * kSamples, low);
-    EXPECT_LE(measured * kSamples, high);
+    validate_realised_pfa(
+        "radar.cfar_correlated." + name_of(kind, window_type) + ".brute_force_pfa.from_end" +
+            std::to_string(from_end),
+        "P_fa of correlated noise vectors at the designed factor (brute-force Monte Carlo)",
+        kind_label(kind) + ", 16 training cells, guard 2, " + std::string(to_string(window_type)) +
+            " window, cell " + std::to_string(from_end) + " from the end, design P_fa 1e-2",
+        "design P_fa (brute-force Monte Carlo of Cholesky-correlated Gaussian vectors, this test)",
+        1e-2, measured * kSamples, kSamples, low, high,
+        "99.9 % two-sided binomial interval (normal approximation, z = 3.29, +1 continuity)");
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(HannAndBlackmanHarris, CorrelatedPfa,
-                         testing::Combine(testing::ValuesIn(kKinds),
-                                          testing::Values(WindowType::hann,
-                                                          WindowType::blackman_harris)),
+                         ::testing::Combine(::testing::ValuesIn(kKinds),
+                                            ::testing::Values(WindowType::hann,
+                                                              WindowType::blackman_harris)),
                          [](const auto& test_info) {
                            return name_of(std::get<0>(test_info.param),
                                           std::get<1>(test_info.param));
@@ -167,7 +217,21 @@ TEST(CorrelatedPfa, SampledMethodOnWhiteNoiseMatchesIndependentFormulas) {
         const double tolerance = design > 1e-4 || kind != CfarKind::os ? 0.05 : 0.30;
         std::printf("[ measured ] white %s design %.0e cell %zu: sampled / closed form %.4f\n",
                     std::string(to_string(kind)).c_str(), design, from_end, sampled / design);
-        EXPECT_NEAR(sampled / design, 1.0, tolerance) << to_string(kind) << " " << design;
+        fogradar::testing::validate(
+            {.id = "radar.cfar_correlated." + std::string(to_string(kind)) + ".sampled_white.pfa" +
+                   id_number(design) + ".from_end" + std::to_string(from_end),
+             .group = "radar: CFAR",
+             .quantity = "P_fa by the sampled method on white noise",
+             .unit = "1",
+             .conditions = kind_label(kind) + ", 16 training cells, guard 2, white noise, cell " +
+                           std::to_string(from_end) + " from the end, design P_fa " +
+                           id_number(design),
+             .reference = design,
+             .source = "independent-cell closed forms (Gandhi & Kassam 1988; Rohling 1983) at "
+                       "their own factor",
+             .value = sampled,
+             .tolerance = tolerance,
+             .kind = Tolerance::relative});
       }
     }
   }
@@ -201,8 +265,19 @@ TEST(CorrelatedPfa, CaExactEqualsDeterminantFormWhenCellUnderTestIsUncorrelated)
       }
     }
     const double expected = static_cast<double>(1.0L / det);
-    EXPECT_NEAR(correlated_false_alarm_probability(config, noise, offsets, alpha) / expected, 1.0,
-                1e-12);
+    fogradar::testing::validate(
+        {.id = "radar.cfar_correlated.ca.determinant_form.from_end" + std::to_string(from_end),
+         .group = "radar: CFAR",
+         .quantity = "CA-CFAR P_fa of window-correlated cells at alpha = 30",
+         .unit = "1",
+         .conditions = "CA-CFAR, 16 training cells, guard 2, Hann window (N = 512), cell " +
+                       std::to_string(from_end) + " from the end",
+         .reference = expected,
+         .source = "closed form 1/det(I + (alpha/N) C), Gaussian elimination in long double "
+                   "(this test)",
+         .value = correlated_false_alarm_probability(config, noise, offsets, alpha),
+         .tolerance = 1e-12,
+         .kind = Tolerance::relative});
   }
 }
 
@@ -277,7 +352,7 @@ std::vector<RealisedRate> realised_rates(const RadarParams& p,
 // 99.9 % interval of 1e-3 (frame_interval; interior about +-11 %, edge about +-55 %: adjacent edge
 // cells share their reference cells). The sanitizer build (Debug, ~20 x slower) runs 300 frames
 // and the rectangular and Hann windows only.
-class ChainRealisedPfa : public testing::TestWithParam<std::tuple<CfarKind, WindowType>> {};
+class ChainRealisedPfa : public ::testing::TestWithParam<std::tuple<CfarKind, WindowType>> {};
 
 #ifdef FOGRADAR_SANITIZE_BUILD
 constexpr std::size_t kFrames = 300;
@@ -314,14 +389,26 @@ TEST_P(ChainRealisedPfa, DesignValueAtOneInAThousand) {
       name_of(kind, window_type).c_str(), rate.interior / rate.interior_cells, rate.interior,
       rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el,
       eh);
-  EXPECT_GE(rate.interior, il);
-  EXPECT_LE(rate.interior, ih);
-  EXPECT_GE(rate.edges, el);
-  EXPECT_LE(rate.edges, eh);
+  const std::string conditions = kind_label(kind) + ", 16 training cells, guard 2, " +
+                                 std::string(to_string(window_type)) + " window, " +
+                                 std::to_string(kFrames) + " noise-only frames of 1 x 512";
+  const char* source = "design P_fa (noise-only frames through the chain)";
+  const char* confidence =
+      "99.9 % two-sided interval of the frames' total (CLT, variance the larger of the per-frame "
+      "and the binomial one, +1 continuity)";
+  validate_realised_pfa(
+      "radar.cfar_correlated.chain." + name_of(kind, window_type) + ".interior.pfa1e-3",
+      "realised P_fa through the chain, interior cells", conditions, source, 1e-3, rate.interior,
+      rate.interior_cells, il, ih, confidence);
+  validate_realised_pfa(
+      "radar.cfar_correlated.chain." + name_of(kind, window_type) + ".edge.pfa1e-3",
+      "realised P_fa through the chain, edge cells", conditions, source, 1e-3, rate.edges,
+      rate.edge_cells, el, eh, confidence);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKindsAndWindows, ChainRealisedPfa,
-                         testing::Combine(testing::ValuesIn(kKinds), testing::ValuesIn(kWindows)),
+                         ::testing::Combine(::testing::ValuesIn(kKinds),
+                                            ::testing::ValuesIn(kWindows)),
                          [](const auto& test_info) {
                            return name_of(std::get<0>(test_info.param),
                                           std::get<1>(test_info.param));
@@ -388,10 +475,20 @@ TEST(ChainRealisedPfaSlow, CaAndOsHannAtOneInAMillion) {
         k == 0 ? "ca" : "os", rate.interior / rate.interior_cells, rate.interior,
         rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el,
         eh);
-    EXPECT_GE(rate.interior, il);
-    EXPECT_LE(rate.interior, ih);
-    EXPECT_GE(rate.edges, std::max(0.0, el));
-    EXPECT_LE(rate.edges, eh);
+    const std::string kind = k == 0 ? "ca" : "os";
+    const std::string conditions = kind_label(k == 0 ? CfarKind::ca : CfarKind::os) +
+                                   ", 16 training cells, guard 2, Hann window, 30520 noise-only "
+                                   "frames of 64 x 512";
+    const char* source = "design P_fa (noise-only frames through the chain)";
+    const char* confidence =
+        "99.9 % two-sided interval of the frames' total (CLT, variance the larger of the "
+        "per-frame and the binomial one, +1 continuity)";
+    validate_realised_pfa("radar.cfar_correlated.chain." + kind + "_hann.interior.pfa1e-6",
+                          "realised P_fa through the chain, interior cells", conditions, source,
+                          1e-6, rate.interior, rate.interior_cells, il, ih, confidence);
+    validate_realised_pfa("radar.cfar_correlated.chain." + kind + "_hann.edge.pfa1e-6",
+                          "realised P_fa through the chain, edge cells", conditions, source, 1e-6,
+                          rate.edges, rate.edge_cells, std::max(0.0, el), eh, confidence);
   }
 }
 

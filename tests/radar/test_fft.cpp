@@ -23,11 +23,32 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/fft.hpp"
 #include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
 
+using fogradar::testing::Tolerance;
+
 constexpr double kRelTol = 1e-12;
+
+const char* direction_name(FftDirection direction) {
+  return direction == FftDirection::forward ? "forward" : "inverse";
+}
+
+// Records and checks max |FFT - DFT| / max |DFT| <= kRelTol against the long-double DFT.
+void validate_against_dft(const std::string& id, const std::string& conditions, double error) {
+  fogradar::testing::validate({.id = id,
+                               .group = "radar: signal processing",
+                               .quantity = "max |FFT - DFT| / max |DFT|",
+                               .unit = "1",
+                               .conditions = conditions,
+                               .reference = kRelTol,
+                               .source = "direct O(n^2) DFT in long double (this test)",
+                               .value = error,
+                               .tolerance = 0.0,
+                               .kind = Tolerance::at_most});
+}
 
 ComplexVector random_signal(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -83,7 +104,7 @@ ComplexVector column_of(const ComplexVector& matrix, std::size_t rows, std::size
 
 // --- Against the naive DFT --------------------------------------------------------------------
 
-class FftSize : public testing::TestWithParam<std::size_t> {};
+class FftSize : public ::testing::TestWithParam<std::size_t> {};
 
 // Forward and inverse transforms against the long-double DFT for powers of 2, composite and
 // prime sizes (FFTW uses different algorithms for each). Tolerance kRelTol.
@@ -95,7 +116,9 @@ TEST_P(FftSize, MatchesNaiveDft) {
     ComplexVector y(n);
     plan.execute(x, y);
     const double error = relative_error(y, naive_dft(x, direction), n);
-    EXPECT_LE(error, kRelTol) << "n=" << n;
+    validate_against_dft(
+        "radar.fft.naive_dft." + std::string(direction_name(direction)) + ".n" + std::to_string(n),
+        std::string(direction_name(direction)) + ", n = " + std::to_string(n), error);
     if (direction == FftDirection::forward && (n == 1000 || n == 1009 || n == 1024)) {
       std::printf("[ measured ] n=%zu forward FFT relative error vs long-double DFT %.2e\n", n,
                   error);
@@ -116,7 +139,16 @@ TEST_P(FftSize, Parseval) {
     energy_freq += std::norm(std::complex<long double>(y[i].real(), y[i].imag()));
   }
   const double ratio = static_cast<double>(energy_freq / static_cast<long double>(n) / energy_time);
-  EXPECT_NEAR(ratio, 1.0, 1e-12) << "n=" << n;
+  fogradar::testing::validate({.id = "radar.fft.parseval.n" + std::to_string(n),
+                               .group = "radar: signal processing",
+                               .quantity = "sum |X|^2 / (n sum |x|^2)",
+                               .unit = "1",
+                               .conditions = "forward, n = " + std::to_string(n),
+                               .reference = 1.0,
+                               .source = "Parseval's theorem of the DFT",
+                               .value = ratio,
+                               .tolerance = 1e-12,
+                               .kind = Tolerance::relative});
 }
 
 // inverse(forward(x)) = n x (FFTW's unnormalised inverse), within kRelTol of n max|x|; the
@@ -132,7 +164,16 @@ TEST_P(FftSize, ForwardThenInverseReturnsScaledInput) {
   FftPlan(n, FftDirection::inverse).execute(spectrum, back);
   ComplexVector scaled(n);
   for (std::size_t i = 0; i < n; ++i) scaled[i] = static_cast<double>(n) * x[i];
-  EXPECT_LE(relative_error(back, scaled, n), kRelTol) << "n=" << n;
+  fogradar::testing::validate({.id = "radar.fft.inverse_of_forward.n" + std::to_string(n),
+                               .group = "radar: signal processing",
+                               .quantity = "max |inverse(forward(x)) - n x| / max |n x|",
+                               .unit = "1",
+                               .conditions = "out of place, n = " + std::to_string(n),
+                               .reference = kRelTol,
+                               .source = "DFT inversion identity: unnormalised inverse gives n x",
+                               .value = relative_error(back, scaled, n),
+                               .tolerance = 0.0,
+                               .kind = Tolerance::at_most});
 
   ComplexVector in_place = x;
   FftPlan(n, FftDirection::forward, {.placement = FftPlacement::in_place}).execute(in_place);
@@ -140,8 +181,8 @@ TEST_P(FftSize, ForwardThenInverseReturnsScaledInput) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sizes, FftSize,
-                         testing::Values(1, 2, 3, 5, 7, 8, 12, 60, 64, 97, 100, 243, 512, 1000,
-                                         1009, 1024));
+                         ::testing::Values(1, 2, 3, 5, 7, 8, 12, 60, 64, 97, 100, 243, 512, 1000,
+                                           1009, 1024));
 
 // --- Batched layouts --------------------------------------------------------------------------
 
@@ -226,8 +267,14 @@ TEST(FftColumnBlocks, MatchesNaiveDftOfEveryColumn) {
       for (std::size_t col = 0; col < c.columns; ++col) {
         const ComplexVector column = column_of(input, c.rows, c.columns, col);
         const ComplexVector got = column_of(data, c.rows, c.columns, col);
-        EXPECT_LE(relative_error(got, naive_dft(column, direction), c.rows), kRelTol)
-            << c.rows << "x" << c.columns << " block " << c.block << " column " << col;
+        validate_against_dft("radar.fft.column_blocks." + std::to_string(c.rows) + "x" +
+                                 std::to_string(c.columns) + ".block" + std::to_string(c.block) +
+                                 "." + direction_name(direction) + ".column" + std::to_string(col),
+                             "ColumnBlockFft " + std::string(direction_name(direction)) + ", " +
+                                 std::to_string(c.rows) + " x " + std::to_string(c.columns) +
+                                 ", block " + std::to_string(c.block) + ", column " +
+                                 std::to_string(col),
+                             relative_error(got, naive_dft(column, direction), c.rows));
       }
     }
   }
@@ -390,7 +437,9 @@ TEST(FftAlignment, UnalignedBuffersNeedAnUnalignedPlan) {
   const FftPlan unaligned(n, FftDirection::forward, {.alignment = FftAlignment::unaligned});
   unaligned.execute(std::span<const std::complex<double>>(in, n),
                     std::span<std::complex<double>>(out, n));
-  EXPECT_LE(relative_error(out, naive_dft(x, FftDirection::forward), n), kRelTol);
+  validate_against_dft("radar.fft.unaligned_plan.n60",
+                       "forward, n = 60, buffers 8 bytes past SIMD alignment",
+                       relative_error(out, naive_dft(x, FftDirection::forward), n));
 }
 
 TEST(FftPlanMisuse, WrongPlacementOrShortBufferIsAnInternalError) {
@@ -469,8 +518,9 @@ TEST(FftShippedWisdom, PlansComputeTheDft) {
     ComplexVector shipped(n);
     FftPlan(n, FftDirection::forward, shipped_one_chirp()).execute(x, shipped);
     if (n <= 4096) {
-      EXPECT_LE(relative_error(shipped, naive_dft(x, FftDirection::forward), n), kRelTol)
-          << "n = " << n;
+      validate_against_dft("radar.fft.shipped_wisdom.range.n" + std::to_string(n),
+                           "shipped-wisdom range plan, forward, n = " + std::to_string(n),
+                           relative_error(shipped, naive_dft(x, FftDirection::forward), n));
     } else {
       ComplexVector estimate(n);
       FftPlan(n, FftDirection::forward).execute(x, estimate);
@@ -485,8 +535,11 @@ TEST(FftShippedWisdom, PlansComputeTheDft) {
     for (std::size_t col = 0; col < columns; ++col) {
       const ComplexVector column = column_of(input, rows, columns, col);
       const ComplexVector got = column_of(data, rows, columns, col);
-      EXPECT_LE(relative_error(got, naive_dft(column, FftDirection::forward), rows), kRelTol)
-          << "rows = " << rows << ", column " << col;
+      validate_against_dft("radar.fft.shipped_wisdom.doppler.rows" + std::to_string(rows) +
+                               ".column" + std::to_string(col),
+                           "shipped-wisdom Doppler blocks, forward, " + std::to_string(rows) +
+                               " x 20, column " + std::to_string(col),
+                           relative_error(got, naive_dft(column, FftDirection::forward), rows));
     }
   }
 }

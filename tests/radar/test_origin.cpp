@@ -8,6 +8,7 @@
 #include <complex>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "chain_test_support.hpp"
@@ -15,10 +16,12 @@
 #include "fogradar/radar/attribution.hpp"
 #include "fogradar/radar/measurement.hpp"
 #include "fogradar/radar/synthesis.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
 
+using fogradar::testing::Tolerance;
 using test::kAllWindows;
 using test::reference_noise_power_w;
 using test::sum_of;
@@ -114,7 +117,7 @@ TEST(Origin, NamesAndDominance) {
   EXPECT_EQ(dominant_origin(0.0, 0.0, 0.0), Origin::target);
 }
 
-class Spectrum : public testing::TestWithParam<WindowType> {};
+class Spectrum : public ::testing::TestWithParam<WindowType> {};
 
 // The table against the direct sum W(u) = sum_n w[n] exp(-i 2 pi n u / N) at 2000 offsets spread
 // over three periods (the table is one period), N = 16, 50, 128: within the interpolation bound
@@ -138,15 +141,37 @@ TEST_P(Spectrum, TableMatchesTheDirectDtftSum) {
     }
     std::printf("[ measured ] %s N = %zu: worst |table - direct| = %.2e sum|w| (bound %.2e)\n",
                 std::string(to_string(GetParam())).c_str(), n, worst, kInterpolationEps);
-    EXPECT_LE(worst, kInterpolationEps) << n;
+    const std::string name(to_string(GetParam()));
+    const std::string id = "radar.origin.window_spectrum." + name + ".N" + std::to_string(n);
+    const std::string conditions = name + " window, N = " + std::to_string(n);
+    fogradar::testing::validate(
+        {.id = id + ".interpolation_error",
+         .group = "radar: signal processing",
+         .quantity = "worst |table - direct DTFT| / sum|w| over 2000 offsets",
+         .unit = "1",
+         .conditions = conditions + ", offsets over three periods",
+         .reference = kInterpolationEps,
+         .source = "direct DTFT sum (this test); linear-interpolation bound sqrt(2) pi^2 / (2 M^2)",
+         .value = worst,
+         .tolerance = 0.0,
+         .kind = Tolerance::at_most});
     // On the table's own grid the value is the zero-padded FFT's, equal to the sum to rounding.
-    EXPECT_NEAR(spectrum.at(0.0).real(), sum_of(w), 1e-12 * sum_abs);
+    fogradar::testing::validate({.id = id + ".at_zero",
+                                 .group = "radar: signal processing",
+                                 .quantity = "real part of the table's W(0)",
+                                 .unit = "1",
+                                 .conditions = conditions,
+                                 .reference = sum_of(w),
+                                 .source = "DTFT at 0: sum of the window samples",
+                                 .value = spectrum.at(0.0).real(),
+                                 .tolerance = 1e-12 * sum_abs,
+                                 .kind = Tolerance::absolute});
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllWindows, Spectrum, testing::ValuesIn(kAllWindows), window_name);
+INSTANTIATE_TEST_SUITE_P(AllWindows, Spectrum, ::testing::ValuesIn(kAllWindows), window_name);
 
-class Contributions : public testing::TestWithParam<WindowType> {};
+class Contributions : public ::testing::TestWithParam<WindowType> {};
 
 // The classifier's target and fog contributions at every cell of the map against the FFT-processed,
 // noise-free frame of the target tones alone and of the fog tones alone (the chain's synthesis and
@@ -193,12 +218,21 @@ TEST_P(Contributions, EqualTheProcessedFrameOfEachOriginsTones) {
   EXPECT_LE(worst_target, target_tol);
   EXPECT_LE(worst_fog, fog_tol);
   const double noise = chain.origin_classifier().contributions(all, 0, 0).noise_power;
-  EXPECT_NEAR(noise / (reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d)), 1.0,
-              1e-12);
+  fogradar::testing::validate(
+      {.id = "radar.origin.noise_power." + std::string(to_string(p.window)),
+       .group = "radar: SNR",
+       .quantity = "thermal noise power per map cell",
+       .unit = "W",
+       .conditions = std::string(to_string(p.window)) + " window, 128 samples x 16 chirps",
+       .reference = reference_noise_power_w(p) * sum_of_squares(w_r) * sum_of_squares(w_d),
+       .source = "k T0 F fs sum w_r^2 sum w_d^2 (white noise through the windowed 2-D DFT)",
+       .value = noise,
+       .tolerance = 1e-12,
+       .kind = Tolerance::relative});
   EXPECT_EQ(noise_free.origin_classifier().contributions(all, 0, 0).noise_power, 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllWindows, Contributions, testing::ValuesIn(kAllWindows), window_name);
+INSTANTIATE_TEST_SUITE_P(AllWindows, Contributions, ::testing::ValuesIn(kAllWindows), window_name);
 
 // A lone moving target at 30 dB SNR (range bin 20.3, 1.1 m/s): it is detected, and every detection
 // at its cell (within 1 cell) is target; anything else is a noise false alarm.

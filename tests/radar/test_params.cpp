@@ -7,23 +7,50 @@
 // Tolerances: derived quantities 1e-12 relative (the same formulas in double precision).
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include "chain_test_support.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
 
+using fogradar::testing::Tolerance;
+
 constexpr double kC = 299'792'458.0;
+
+// A number as check ids and conditions show it ("1", "55.5").
+std::string id_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// A derived quantity of the paper radar against its textbook relation, 1e-12 relative.
+void validate_derived(const std::string& name, const std::string& group,
+                      const std::string& quantity, const std::string& unit,
+                      const std::string& conditions, double reference, const std::string& source,
+                      double value) {
+  fogradar::testing::validate({.id = "radar.params." + name,
+                               .group = group,
+                               .quantity = quantity,
+                               .unit = unit,
+                               .conditions = conditions,
+                               .reference = reference,
+                               .source = source,
+                               .value = value,
+                               .tolerance = 1e-12,
+                               .kind = Tolerance::relative});
+}
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -110,30 +137,60 @@ TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
   const double slope = 1e9 / 51.2e-6;
   const double max_range = kC * 10e6 / (2.0 * slope);
   const double deg = std::numbers::pi / 180.0;
-  EXPECT_NEAR(d.wavelength_m / lambda, 1.0, 1e-12);
+  const std::string paper = "paper radar: 77 GHz, 1 GHz sweep in 51.2 us, 10 MS/s, 512 x 64";
+  const std::string sp = "radar: signal processing";
+  validate_derived("wavelength.up", sp, "wavelength", "m", paper + ", up-chirp", lambda,
+                   "lambda = c / f_c", d.wavelength_m);
   // Default up-chirp centred on 77 GHz: 76.5 -> 77.5 GHz.
   EXPECT_EQ(p.sweep_direction, SweepDirection::up);
   EXPECT_EQ(d.sweep_sign, 1.0);
-  EXPECT_NEAR(d.start_frequency_hz / 76.5e9, 1.0, 1e-12);
+  validate_derived("start_frequency.up", sp, "sweep start frequency", "Hz", paper + ", up-chirp",
+                   76.5e9, "f_c - B/2", d.start_frequency_hz);
   RadarParams down = p;
   down.sweep_direction = SweepDirection::down;
   EXPECT_EQ(derive(down).sweep_sign, -1.0);
-  EXPECT_NEAR(derive(down).start_frequency_hz / 77.5e9, 1.0, 1e-12);
-  EXPECT_NEAR(derive(down).wavelength_m / lambda, 1.0, 1e-12);
-  EXPECT_NEAR(d.chirp_slope_hz_per_s / slope, 1.0, 1e-12);
-  EXPECT_NEAR(d.range_resolution_m / (kC / 2e9), 1.0, 1e-12);
-  EXPECT_NEAR(d.max_range_m / max_range, 1.0, 1e-12);
-  EXPECT_NEAR(d.range_bin_m / (max_range / 512.0), 1.0, 1e-12);
-  EXPECT_NEAR(d.range_bin_m / test::reference_range_bin_m(p), 1.0, 1e-12);
-  EXPECT_NEAR(d.velocity_resolution_m_per_s / (lambda / (2.0 * 64 * 51.2e-6)), 1.0, 1e-12);
-  EXPECT_NEAR(d.max_unambiguous_velocity_m_per_s / (lambda / (4.0 * 51.2e-6)), 1.0, 1e-12);
-  EXPECT_NEAR(d.noise_power_w / test::reference_noise_power_w(p), 1.0, 1e-12);
-  EXPECT_NEAR(d.tx_power_w, 0.01, 1e-15);
-  EXPECT_NEAR(d.tx_gain / std::pow(10.0, 2.5), 1.0, 1e-12);
-  EXPECT_NEAR(d.rx_gain / std::pow(10.0, 2.5), 1.0, 1e-12);
-  EXPECT_NEAR(
-      d.beam_solid_angle_sr / (std::numbers::pi * 100.0 * deg * deg / (8.0 * std::log(2.0))), 1.0,
-      1e-12);
+  validate_derived("start_frequency.down", sp, "sweep start frequency", "Hz",
+                   paper + ", down-chirp", 77.5e9, "f_c + B/2", derive(down).start_frequency_hz);
+  validate_derived("wavelength.down", sp, "wavelength", "m", paper + ", down-chirp", lambda,
+                   "lambda = c / f_c", derive(down).wavelength_m);
+  validate_derived("chirp_slope", sp, "chirp slope", "Hz/s", paper, slope, "S = B / T_c",
+                   d.chirp_slope_hz_per_s);
+  validate_derived("range_resolution", sp, "range resolution", "m", paper, kC / 2e9,
+                   "c / (2B) [Ri14]", d.range_resolution_m);
+  validate_derived("max_range", sp, "maximum range", "m", paper, max_range, "c fs / (2 S) [Ri14]",
+                   d.max_range_m);
+  validate_derived("range_bin", sp, "range bin", "m", paper, max_range / 512.0,
+                   "c fs / (2 S N) [Ri14]", d.range_bin_m);
+  validate_derived("range_bin.reference_function", sp, "range bin", "m", paper,
+                   test::reference_range_bin_m(p),
+                   "c fs / (2 S N), reference_range_bin_m (chain_test_support.hpp)", d.range_bin_m);
+  validate_derived("velocity_resolution", "radar: Doppler", "velocity resolution", "m/s", paper,
+                   lambda / (2.0 * 64 * 51.2e-6), "lambda / (2 N_c T_i) [Ri14]",
+                   d.velocity_resolution_m_per_s);
+  validate_derived("max_unambiguous_velocity", "radar: Doppler", "maximum unambiguous |velocity|",
+                   "m/s", paper, lambda / (4.0 * 51.2e-6), "lambda / (4 T_i) [Ri14]",
+                   d.max_unambiguous_velocity_m_per_s);
+  validate_derived("noise_power", "radar: SNR", "thermal noise power k T0 F fs", "W", paper,
+                   test::reference_noise_power_w(p),
+                   "k T0 F fs, reference_noise_power_w (chain_test_support.hpp)", d.noise_power_w);
+  fogradar::testing::validate({.id = "radar.params.tx_power",
+                               .group = "radar: SNR",
+                               .quantity = "transmit power",
+                               .unit = "W",
+                               .conditions = paper + ", 10 dBm",
+                               .reference = 0.01,
+                               .source = "10 dBm = 1e-3 W x 10^(10/10)",
+                               .value = d.tx_power_w,
+                               .tolerance = 1e-15,
+                               .kind = Tolerance::absolute});
+  validate_derived("tx_gain", "radar: SNR", "transmit antenna gain", "1", paper + ", 25 dBi",
+                   std::pow(10.0, 2.5), "10^(25/10)", d.tx_gain);
+  validate_derived("rx_gain", "radar: SNR", "receive antenna gain", "1", paper + ", 25 dBi",
+                   std::pow(10.0, 2.5), "10^(25/10)", d.rx_gain);
+  validate_derived("beam_solid_angle", "radar: SNR", "two-way beam solid angle", "sr",
+                   paper + ", 10 deg x 10 deg beam",
+                   std::numbers::pi * 100.0 * deg * deg / (8.0 * std::log(2.0)),
+                   "pi theta_az theta_el / (8 ln 2) [PJ62]", d.beam_solid_angle_sr);
   std::printf(
       "[ measured ] paper radar: lambda %.4f mm, range resolution %.4f m, range bin %.4f m, max "
       "range %.2f m, "
@@ -167,12 +224,33 @@ TEST(RadarParams, RadarEquationAndEq7AreInverse) {
   const RadarDerived d = derive(p);
   for (const double r : {1.0, 10.0, 55.5}) {
     const double pr = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, 3.3, r);
-    EXPECT_NEAR(pr / test::reference_received_power_w(p, 3.3, r), 1.0, 1e-12);
-    EXPECT_NEAR(
-        rcs_from_received_power_m2(pr, d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, r), 3.3,
-        3.3e-12);
+    const std::string conditions =
+        "Pt 3 dBm, Gt 21 dBi, Gr 14 dBi, 79 GHz, RCS 3.3 m^2, R = " + id_number(r) + " m";
+    validate_derived("received_power.R" + id_number(r) + "m", "radar: SNR", "received power", "W",
+                     conditions, test::reference_received_power_w(p, 3.3, r),
+                     "radar equation, Skolnik eq. 2.1 (reference_received_power_w)", pr);
+    fogradar::testing::validate({.id = "radar.params.rcs_round_trip.R" + id_number(r) + "m",
+                                 .group = "radar: RCS",
+                                 .quantity = "RCS from the received power (paper eq. 7)",
+                                 .unit = "m^2",
+                                 .conditions = conditions,
+                                 .reference = 3.3,
+                                 .source = "the set RCS (eq. 7 inverts the radar equation)",
+                                 .value = rcs_from_received_power_m2(pr, d.tx_power_w, d.tx_gain,
+                                                                     d.rx_gain, d.wavelength_m, r),
+                                 .tolerance = 3.3e-12,
+                                 .kind = Tolerance::absolute});
   }
-  EXPECT_NEAR(beat_frequency_hz(20.0, 1e9 / 51.2e-6), 20.0 * 1e9 / 51.2e-6 / kC, 1e-6);
+  fogradar::testing::validate({.id = "radar.params.beat_frequency",
+                               .group = "radar: signal processing",
+                               .quantity = "beat frequency of a 20 m two-way path",
+                               .unit = "Hz",
+                               .conditions = "path 20 m, slope 1 GHz / 51.2 us",
+                               .reference = 20.0 * 1e9 / 51.2e-6 / kC,
+                               .source = "f_b = S L / c",
+                               .value = beat_frequency_hz(20.0, 1e9 / 51.2e-6),
+                               .tolerance = 1e-6,
+                               .kind = Tolerance::absolute});
 }
 
 // The Gaussian beam is 3 dB down at half the beamwidth off axis, and its two-way solid angle
@@ -180,9 +258,24 @@ TEST(RadarParams, RadarEquationAndEq7AreInverse) {
 // Probert-Jones closed form within 1e-6.
 TEST(RadarParams, GaussianBeamAndTwoWaySolidAngle) {
   const double bw = 10.0 * std::numbers::pi / 180.0;
-  EXPECT_NEAR(gaussian_beam_power(0.5 * bw, bw), 0.5, 1e-15);
-  EXPECT_NEAR(gaussian_beam_power(-0.5 * bw, bw), 0.5, 1e-15);
-  EXPECT_EQ(gaussian_beam_power(0.0, bw), 1.0);
+  for (const auto& [name, angle, expected, tolerance] :
+       {std::tuple<const char*, double, double, double>{"plus_half_beamwidth", 0.5 * bw, 0.5,
+                                                        1e-15},
+        {"minus_half_beamwidth", -0.5 * bw, 0.5, 1e-15},
+        {"boresight", 0.0, 1.0, 0.0}}) {
+    fogradar::testing::validate(
+        {.id = "radar.params.gaussian_beam." + std::string(name),
+         .group = "radar: SNR",
+         .quantity = "one-way Gaussian beam power pattern",
+         .unit = "1",
+         .conditions =
+             "10 deg beamwidth, angle " + id_number(angle * 180.0 / std::numbers::pi) + " deg",
+         .reference = expected,
+         .source = "the beamwidth's definition: 3 dB down (0.5) at half the beamwidth, 1 on axis",
+         .value = gaussian_beam_power(angle, bw),
+         .tolerance = tolerance,
+         .kind = Tolerance::absolute});
+  }
   const double bw_el = 6.0 * std::numbers::pi / 180.0;
   const auto line_integral = [](double beam) {
     const int n = 20000;

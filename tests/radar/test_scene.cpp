@@ -13,15 +13,18 @@
 #include <complex>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "chain_test_support.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/radar/scene.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
 
+using fogradar::testing::Tolerance;
 using test::make_chamber;
 using test::paper_chamber_spec;
 using test::reference_received_power_w;
@@ -54,7 +57,16 @@ struct Fixture {
 TEST(SceneFactories, PointTargetAndEvt) {
   const Scene point = point_target_scene(13.0);
   ASSERT_EQ(point.centres.size(), 1u);
-  EXPECT_NEAR(point.centres[0].rcs_m2, std::pow(10.0, 1.3), 1e-12);
+  fogradar::testing::validate({.id = "radar.scene.point_target.rcs_13dbsm",
+                               .group = "radar: RCS",
+                               .quantity = "point target RCS",
+                               .unit = "m^2",
+                               .conditions = "point_target_scene(13 dBsm)",
+                               .reference = std::pow(10.0, 1.3),
+                               .source = "dBsm definition: 10^(13/10) m^2",
+                               .value = point.centres[0].rcs_m2,
+                               .tolerance = 1e-12,
+                               .kind = Tolerance::absolute});
   EXPECT_EQ(point.centres[0].height_m, point.sensor_height_m);
   EXPECT_EQ(point.centres[0].swerling, Swerling::zero);
   EXPECT_EQ(point.micro_motion_std_m, 0.0);
@@ -71,9 +83,29 @@ TEST(SceneFactories, PointTargetAndEvt) {
     EXPECT_LE(c.height_m, 1.4);
     EXPECT_EQ(c.swerling, Swerling::zero);
   }
-  EXPECT_NEAR(total, 10.0, 1e-12);
-  EXPECT_NEAR(evt.centres[0].rcs_m2, 4.0, 1e-12);
-  for (std::size_t i = 1; i < 5; ++i) EXPECT_NEAR(evt.centres[i].rcs_m2, 1.5, 1e-12);
+  fogradar::testing::validate({.id = "radar.scene.evt.total_rcs",
+                               .group = "radar: RCS",
+                               .quantity = "sum of the EVT rear centres' mean RCS",
+                               .unit = "m^2",
+                               .conditions = "evt_rear_scene(10 dBsm), five centres",
+                               .reference = 10.0,
+                               .source = "the set 10 dBsm = 10 m^2",
+                               .value = total,
+                               .tolerance = 1e-12,
+                               .kind = Tolerance::absolute});
+  for (std::size_t i = 0; i < 5; ++i) {
+    fogradar::testing::validate(
+        {.id = "radar.scene.evt.centre" + std::to_string(i) + ".rcs",
+         .group = "radar: RCS",
+         .quantity = "EVT rear centre mean RCS",
+         .unit = "m^2",
+         .conditions = "evt_rear_scene(10 dBsm), centre " + std::to_string(i),
+         .reference = i == 0 ? 4.0 : 1.5,
+         .source = "the EVT rear's shares 40/15/15/15/15 % of the set 10 m^2 (this test)",
+         .value = evt.centres[i].rcs_m2,
+         .tolerance = 1e-12,
+         .kind = Tolerance::absolute});
+  }
   EXPECT_EQ(evt.micro_motion_std_m, 0.2e-3);
 }
 
@@ -91,12 +123,39 @@ TEST(SceneTones, DirectPathPowerPhaseAndPattern) {
     p.sweep_direction = direction;
     scene_tones(scene, f.chamber, f.no_fog, p, derive(p), rng, f.tones);
     ASSERT_EQ(f.tones.size(), 1u);
-    EXPECT_NEAR(f.tones[0].path_length_m, 20.0, 1e-12);
-    EXPECT_NEAR(std::norm(f.tones[0].amplitude) / reference_received_power_w(p, 10.0, 10.0), 1.0,
-                1e-12);
-    EXPECT_NEAR(wrap_phase(std::arg(f.tones[0].amplitude) - reference_echo_phase_rad(p, 20.0)), 0.0,
-                1e-6)
-        << to_string(direction);
+    const std::string dir(to_string(direction));
+    const std::string conditions = "point target 10 m^2 on boresight at 10 m, " + dir + "-chirp";
+    fogradar::testing::validate({.id = "radar.scene.direct.path_length." + dir,
+                                 .group = "radar: signal processing",
+                                 .quantity = "two-way path length",
+                                 .unit = "m",
+                                 .conditions = conditions,
+                                 .reference = 20.0,
+                                 .source = "geometry: 2 R",
+                                 .value = f.tones[0].path_length_m,
+                                 .tolerance = 1e-12,
+                                 .kind = Tolerance::absolute});
+    fogradar::testing::validate({.id = "radar.scene.direct.power." + dir,
+                                 .group = "radar: SNR",
+                                 .quantity = "tone power",
+                                 .unit = "W",
+                                 .conditions = conditions,
+                                 .reference = reference_received_power_w(p, 10.0, 10.0),
+                                 .source = "radar equation, Skolnik eq. 2.1",
+                                 .value = std::norm(f.tones[0].amplitude),
+                                 .tolerance = 1e-12,
+                                 .kind = Tolerance::relative});
+    fogradar::testing::validate(
+        {.id = "radar.scene.direct.phase." + dir,
+         .group = "radar: signal processing",
+         .quantity = "echo phase error (wrapped to [-pi, pi])",
+         .unit = "rad",
+         .conditions = conditions,
+         .reference = 0.0,
+         .source = "dechirped echo phase eps 2 pi (f_0 tau - s tau^2 / 2) (docs/radar.md §3.2)",
+         .value = wrap_phase(std::arg(f.tones[0].amplitude) - reference_echo_phase_rad(p, 20.0)),
+         .tolerance = 1e-6,
+         .kind = Tolerance::absolute});
     EXPECT_EQ(f.tones[0].radial_velocity_m_per_s, 0.0);
   }
 
@@ -107,10 +166,28 @@ TEST(SceneTones, DirectPathPowerPhaseAndPattern) {
   const double az = std::atan2(1.0, 10.0);
   const double beam = 10.0 * std::numbers::pi / 180.0;
   const double g = std::exp(-4.0 * std::log(2.0) * (az / beam) * (az / beam));
-  EXPECT_NEAR(f.tones[0].path_length_m, 2.0 * r, 1e-12);
-  EXPECT_NEAR(
-      std::norm(f.tones[0].amplitude) / (reference_received_power_w(f.params, 10.0, r) * g * g),
-      1.0, 1e-12);
+  const std::string off_axis = "point target 10 m^2 at 10 m, 1 m lateral, up-chirp";
+  fogradar::testing::validate({.id = "radar.scene.off_boresight.path_length",
+                               .group = "radar: signal processing",
+                               .quantity = "two-way path length",
+                               .unit = "m",
+                               .conditions = off_axis,
+                               .reference = 2.0 * r,
+                               .source = "geometry: 2 hypot(10 m, 1 m)",
+                               .value = f.tones[0].path_length_m,
+                               .tolerance = 1e-12,
+                               .kind = Tolerance::absolute});
+  fogradar::testing::validate(
+      {.id = "radar.scene.off_boresight.power",
+       .group = "radar: SNR",
+       .quantity = "tone power",
+       .unit = "W",
+       .conditions = off_axis,
+       .reference = reference_received_power_w(f.params, 10.0, r) * g * g,
+       .source = "radar equation (Skolnik eq. 2.1) times the two-way Gaussian pattern g(az)^2",
+       .value = std::norm(f.tones[0].amplitude),
+       .tolerance = 1e-12,
+       .kind = Tolerance::relative});
 }
 
 // Floor on: three tones, lengths 2 r_d, r_d + r_f, 2 r_f; relative amplitudes of the expansion
@@ -140,15 +217,47 @@ TEST(SceneTones, FloorPathsAreTheTwoRayExpansion) {
     const auto expected = [&](int i) {
       return magnitudes[i] * std::polar(1.0, reference_echo_phase_rad(p, lengths[i]));
     };
+    const std::string dir(to_string(direction));
+    const std::string conditions =
+        "sensor 0.5 m, target 0.8 m high at 10 m, floor Gamma -0.6, " + dir + "-chirp";
+    const char* paths[] = {"direct", "mixed", "floor"};
     for (int i = 0; i < 3; ++i) {
-      EXPECT_NEAR(f.tones[i].path_length_m, lengths[i], 1e-12);
+      fogradar::testing::validate(
+          {.id = "radar.scene.floor." + std::string(paths[i]) + ".path_length." + dir,
+           .group = "radar: signal processing",
+           .quantity = "two-way path length",
+           .unit = "m",
+           .conditions = conditions + ", " + paths[i] + " path",
+           .reference = lengths[i],
+           .source = "two-ray geometry (image below the floor)",
+           .value = f.tones[i].path_length_m,
+           .tolerance = 1e-12,
+           .kind = Tolerance::absolute});
       const std::complex<double> ratio =
           (f.tones[i].amplitude / f.tones[0].amplitude) / (expected(i) / expected(0));
-      EXPECT_NEAR(std::abs(ratio - 1.0), 0.0, 1e-9) << "path " << i << ", " << to_string(direction);
+      fogradar::testing::validate(
+          {.id = "radar.scene.floor." + std::string(paths[i]) + ".relative_amplitude." + dir,
+           .group = "radar: SNR",
+           .quantity = "|amplitude ratio to the direct path / expected ratio - 1|",
+           .unit = "1",
+           .conditions = conditions + ", " + paths[i] + " path",
+           .reference = 0.0,
+           .source = "expansion of (g_d / r_d + Gamma g_f / r_f)^2 with each path's echo phase",
+           .value = std::abs(ratio - 1.0),
+           .tolerance = 1e-9,
+           .kind = Tolerance::absolute});
     }
-    EXPECT_NEAR(std::norm(f.tones[0].amplitude) /
-                    (reference_received_power_w(p, 10.0, r_d) * std::pow(g_d, 4)),
-                1.0, 1e-12);
+    fogradar::testing::validate(
+        {.id = "radar.scene.floor.direct.power." + dir,
+         .group = "radar: SNR",
+         .quantity = "direct-path tone power",
+         .unit = "W",
+         .conditions = conditions,
+         .reference = reference_received_power_w(p, 10.0, r_d) * std::pow(g_d, 4),
+         .source = "radar equation (Skolnik eq. 2.1) times the two-way pattern g_d^4",
+         .value = std::norm(f.tones[0].amplitude),
+         .tolerance = 1e-12,
+         .kind = Tolerance::relative});
   }
 }
 
@@ -176,8 +285,32 @@ TEST(SceneTones, MicroMotionMovesThePathByTwiceTheJitter) {
       "[ measured ] micro-motion 0.2 mm: path std %.4f mm (expected 0.4), phase std %.3f rad (4 pi "
       "s / lambda = %.3f)\n",
       std * 1e3, 2.0 * std::numbers::pi * std / lambda, 4.0 * std::numbers::pi * 0.2e-3 / lambda);
-  EXPECT_NEAR(std / 0.4e-3, 1.0, 0.05);
-  EXPECT_NEAR(mean, 0.0, 4.0 * 0.4e-3 / std::sqrt(kDraws));
+  const std::string conditions = "micro-motion 0.2 mm rms, point target at 10 m, 4000 draws";
+  fogradar::testing::validate({.id = "radar.scene.micro_motion.path_std",
+                               .group = "radar: signal processing",
+                               .quantity = "standard deviation of the two-way path length",
+                               .unit = "m",
+                               .conditions = conditions,
+                               .reference = 0.4e-3,
+                               .source = "2 s for a line-of-sight displacement N(0, s^2)",
+                               .value = std,
+                               .tolerance = 0.05,
+                               .kind = Tolerance::relative});
+  const double half_width = 4.0 * 0.4e-3 / std::sqrt(kDraws);
+  fogradar::testing::validate({.id = "radar.scene.micro_motion.path_mean",
+                               .group = "radar: signal processing",
+                               .quantity = "mean two-way path length change",
+                               .unit = "m",
+                               .conditions = conditions,
+                               .reference = 0.0,
+                               .source = "zero-mean displacement N(0, s^2)",
+                               .value = mean,
+                               .tolerance = 0.0,
+                               .kind = Tolerance::statistical,
+                               .samples = kDraws,
+                               .interval_low = -half_width,
+                               .interval_high = half_width,
+                               .confidence = "+-4 sigma of the sample mean, sigma 2 s / sqrt(n)"});
 }
 
 // Swerling 1 and 3 tone power over 4000 draws against the exponential and the chi-square with 4
@@ -206,7 +339,19 @@ TEST(SceneTones, SwerlingFluctuationDistributions) {
         boost::math::chi_squared_distribution<double>(kCells - 1), statistic));
     std::printf("[ measured ] Swerling %s tone power GoF p = %.3f\n",
                 std::string(to_string(model)).c_str(), p);
-    EXPECT_GT(p, 1e-3);
+    fogradar::testing::validate(
+        {.id = "radar.scene.swerling" + std::string(to_string(model)) + ".gof_p_value",
+         .group = "radar: RCS",
+         .quantity = "chi-square goodness-of-fit p-value of the tone power",
+         .unit = "1",
+         .conditions = "Swerling " + std::string(to_string(model)) +
+                       ", 4000 draws, 10 equiprobable cells, df 9",
+         .reference = 1e-3,
+         .source = model == Swerling::one ? "exponential distribution [Sk sec. 2.8]"
+                                          : "chi-square with 4 degrees of freedom [Sk sec. 2.8]",
+         .value = p,
+         .tolerance = 0.0,
+         .kind = Tolerance::at_least});
   }
   Scene steady = point_target_scene(10.0);
   RandomStream a(1), b(2);
@@ -264,14 +409,36 @@ TEST(SceneTones, FogClutterPowerIsTheVolumeIntegral) {
     std::printf(
         "[ measured ] fog clutter tones (%u per bin): mean total power / volume integral = %.4f\n",
         per_bin, mean / expected);
-    EXPECT_NEAR(mean / expected, 1.0, 0.03);
+    fogradar::testing::validate(
+        {.id = "radar.scene.fog_clutter.mean_power." + std::to_string(per_bin) + "_per_bin",
+         .group = "radar: SNR",
+         .quantity = "mean total power of the fog clutter tones",
+         .unit = "W",
+         .conditions = "LWC 20 g/m^3, 50 um droplets, four layers, " + std::to_string(per_bin) +
+                       " scatterers per bin, 400 draws",
+         .reference = expected,
+         .source = "volume radar equation integral eta Omega r^2 x Skolnik eq. 2.1 x T(r) "
+                   "(Simpson, this test; Omega [PJ62])",
+         .value = mean,
+         .tolerance = 0.03,
+         .kind = Tolerance::relative});
   }
   // The target tone carries the chamber's two-way transmittance 10^(-2 a 4 m / 10).
   RandomStream rng(1);
   scene_tones(point_target_scene(10.0), chamber, all_on, f.params, f.derived, rng, f.tones);
-  EXPECT_NEAR(std::norm(f.tones[0].amplitude) / (reference_received_power_w(f.params, 10.0, 10.0) *
-                                                 std::pow(10.0, -2.0 * a_db_per_m * 4.0 / 10.0)),
-              1.0, 1e-12);
+  fogradar::testing::validate(
+      {.id = "radar.scene.fog_clutter.target_power",
+       .group = "radar: SNR",
+       .quantity = "target tone power behind four fog layers",
+       .unit = "W",
+       .conditions = "LWC 20 g/m^3, 50 um droplets, four 1 m layers, target 10 m^2 at 10 m",
+       .reference = reference_received_power_w(f.params, 10.0, 10.0) *
+                    std::pow(10.0, -2.0 * a_db_per_m * 4.0 / 10.0),
+       .source = "radar equation (Skolnik eq. 2.1) times the two-way transmittance "
+                 "10^(-2 a 4 m / 10)",
+       .value = std::norm(f.tones[0].amplitude),
+       .tolerance = 1e-12,
+       .kind = Tolerance::relative});
 }
 
 // The tone list is cleared and refilled: calling twice does not accumulate.

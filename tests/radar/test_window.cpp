@@ -3,8 +3,6 @@
 // equivalent noise bandwidth, highest sidelobe level) and eqs. 30-33, 44-45.
 #include <gtest/gtest.h>
 
-#include "rejected_field.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -17,9 +15,20 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/window.hpp"
+#include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
+
+using fogradar::testing::Tolerance;
+
+// A number as check ids and conditions show it ("512", "0.005", "1e-12").
+std::string id_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 const WindowType kAllWindows[] = {WindowType::rectangular, WindowType::hann, WindowType::hamming,
                                   WindowType::blackman_harris, WindowType::chebyshev};
@@ -67,13 +76,13 @@ struct HarrisRow {
   double exact_enbw;     // (a0^2 + sum_{m>0} a_m^2 / 2) / a0^2
 };
 
-class HarrisTable : public testing::TestWithParam<HarrisRow> {};
+class HarrisTable : public ::testing::TestWithParam<HarrisRow> {};
 
-std::string harris_row_name(const testing::TestParamInfo<HarrisRow>& info) {
+std::string harris_row_name(const ::testing::TestParamInfo<HarrisRow>& info) {
   return std::string(to_string(info.param.type));
 }
 
-std::string window_name(const testing::TestParamInfo<WindowType>& info) {
+std::string window_name(const ::testing::TestParamInfo<WindowType>& info) {
   return std::string(to_string(info.param));
 }
 
@@ -89,24 +98,65 @@ TEST_P(HarrisTable, CoherentGainAndNoiseBandwidth) {
     ASSERT_EQ(w.size(), n);
     const double cg = coherent_gain(w);
     const double enbw = noise_equivalent_bandwidth_bins(w);
-    EXPECT_NEAR(cg, row.coherent_gain, 0.005) << to_string(row.type) << " N=" << n;
-    EXPECT_NEAR(enbw, row.enbw_bins, 0.005) << to_string(row.type) << " N=" << n;
-    EXPECT_NEAR(cg, row.exact_cg, 1e-12) << to_string(row.type) << " N=" << n;
-    EXPECT_NEAR(enbw, row.exact_enbw, 1e-12) << to_string(row.type) << " N=" << n;
+    const std::string name(to_string(row.type));
+    const std::string conditions = name + " window, periodic, N = " + std::to_string(n);
+    const std::string id = "radar.window." + name + ".";
+    const std::string size = ".N" + std::to_string(n);
+    fogradar::testing::validate({.id = id + "coherent_gain.harris_table" + size,
+                                 .group = "radar: signal processing",
+                                 .quantity = "coherent gain sum(w)/N",
+                                 .unit = "1",
+                                 .conditions = conditions,
+                                 .reference = row.coherent_gain,
+                                 .source = "Harris 1978 Table 1 (two decimals)",
+                                 .value = cg,
+                                 .tolerance = 0.005,
+                                 .kind = Tolerance::absolute});
+    fogradar::testing::validate({.id = id + "enbw.harris_table" + size,
+                                 .group = "radar: signal processing",
+                                 .quantity = "equivalent noise bandwidth N sum(w^2)/sum(w)^2",
+                                 .unit = "bins",
+                                 .conditions = conditions,
+                                 .reference = row.enbw_bins,
+                                 .source = "Harris 1978 Table 1 (two decimals)",
+                                 .value = enbw,
+                                 .tolerance = 0.005,
+                                 .kind = Tolerance::absolute});
+    fogradar::testing::validate({.id = id + "coherent_gain.exact" + size,
+                                 .group = "radar: signal processing",
+                                 .quantity = "coherent gain sum(w)/N",
+                                 .unit = "1",
+                                 .conditions = conditions,
+                                 .reference = row.exact_cg,
+                                 .source = "closed form: a0 of the periodic cosine sum",
+                                 .value = cg,
+                                 .tolerance = 1e-12,
+                                 .kind = Tolerance::absolute});
+    fogradar::testing::validate(
+        {.id = id + "enbw.exact" + size,
+         .group = "radar: signal processing",
+         .quantity = "equivalent noise bandwidth N sum(w^2)/sum(w)^2",
+         .unit = "bins",
+         .conditions = conditions,
+         .reference = row.exact_enbw,
+         .source = "closed form: (a0^2 + sum a_m^2 / 2) / a0^2 of the periodic cosine sum",
+         .value = enbw,
+         .tolerance = 1e-12,
+         .kind = Tolerance::absolute});
   }
 }
 
 constexpr double kBh0 = 0.35875, kBh1 = 0.48829, kBh2 = 0.14128, kBh3 = 0.01168;
-INSTANTIATE_TEST_SUITE_P(Harris1978, HarrisTable,
-                         testing::Values(HarrisRow{WindowType::rectangular, 1.00, 1.00, 1.0, 1.0},
-                                         HarrisRow{WindowType::hann, 0.50, 1.50, 0.5, 1.5},
-                                         HarrisRow{WindowType::hamming, 0.54, 1.36, 0.54,
-                                                   (0.54 * 0.54 + 0.46 * 0.46 / 2) / (0.54 * 0.54)},
-                                         HarrisRow{WindowType::blackman_harris, 0.36, 2.00, kBh0,
-                                                   (kBh0 * kBh0 +
-                                                    (kBh1 * kBh1 + kBh2 * kBh2 + kBh3 * kBh3) / 2) /
-                                                       (kBh0 * kBh0)}),
-                         harris_row_name);
+INSTANTIATE_TEST_SUITE_P(
+    Harris1978, HarrisTable,
+    ::testing::Values(HarrisRow{WindowType::rectangular, 1.00, 1.00, 1.0, 1.0},
+                      HarrisRow{WindowType::hann, 0.50, 1.50, 0.5, 1.5},
+                      HarrisRow{WindowType::hamming, 0.54, 1.36, 0.54,
+                                (0.54 * 0.54 + 0.46 * 0.46 / 2) / (0.54 * 0.54)},
+                      HarrisRow{WindowType::blackman_harris, 0.36, 2.00, kBh0,
+                                (kBh0 * kBh0 + (kBh1 * kBh1 + kBh2 * kBh2 + kBh3 * kBh3) / 2) /
+                                    (kBh0 * kBh0)}),
+    harris_row_name);
 
 // Highest sidelobe against [H78] Table 1 (rectangular -13.3 dB, Hann -31.5 dB, Hamming -43 dB,
 // 4-term Blackman-Harris -92 dB), zero-padded DFT at 1/64-bin resolution, periodic, N = 512.
@@ -125,7 +175,18 @@ TEST(Window, HighestSidelobeMatchesHarrisTable) {
     const double measured = highest_sidelobe_db(make_window(row.type, 512));
     std::printf("[ measured ] %s highest sidelobe %.2f dB (Harris %.1f dB)\n",
                 std::string(to_string(row.type)).c_str(), measured, row.sidelobe_db);
-    EXPECT_NEAR(measured, row.sidelobe_db, 0.5) << to_string(row.type);
+    fogradar::testing::validate(
+        {.id = "radar.window." + std::string(to_string(row.type)) + ".highest_sidelobe",
+         .group = "radar: signal processing",
+         .quantity = "highest sidelobe level",
+         .unit = "dB",
+         .conditions = std::string(to_string(row.type)) +
+                       " window, periodic, N = 512, zero-padded DFT at 1/64 bin",
+         .reference = row.sidelobe_db,
+         .source = "Harris 1978 Table 1",
+         .value = measured,
+         .tolerance = 0.5,
+         .kind = Tolerance::absolute});
   }
 }
 
@@ -140,8 +201,30 @@ TEST(Window, PeriodicHannHasThreeDftBins) {
     const double nd = static_cast<double>(n);
     for (std::size_t k = 0; k < n; ++k) {
       const double expected = k == 0 ? nd / 2 : (k == 1 || k == n - 1) ? -nd / 4 : 0.0;
-      EXPECT_NEAR(buffer[k].real(), expected, 1e-12 * nd) << "N=" << n << " k=" << k;
-      EXPECT_NEAR(buffer[k].imag(), 0.0, 1e-12 * nd) << "N=" << n << " k=" << k;
+      const std::string id =
+          "radar.window.hann.dft_bin.N" + std::to_string(n) + ".k" + std::to_string(k);
+      const std::string conditions =
+          "periodic Hann, N = " + std::to_string(n) + ", bin k = " + std::to_string(k);
+      fogradar::testing::validate({.id = id + ".real",
+                                   .group = "radar: signal processing",
+                                   .quantity = "real part of the window's N-point DFT bin",
+                                   .unit = "1",
+                                   .conditions = conditions,
+                                   .reference = expected,
+                                   .source = "Harris 1978 §II: W[0] = N/2, W[1] = W[N-1] = -N/4",
+                                   .value = buffer[k].real(),
+                                   .tolerance = 1e-12 * nd,
+                                   .kind = Tolerance::absolute});
+      fogradar::testing::validate({.id = id + ".imag",
+                                   .group = "radar: signal processing",
+                                   .quantity = "imaginary part of the window's N-point DFT bin",
+                                   .unit = "1",
+                                   .conditions = conditions,
+                                   .reference = 0.0,
+                                   .source = "Harris 1978 §II: real, even DFT of the Hann window",
+                                   .value = buffer[k].imag(),
+                                   .tolerance = 1e-12 * nd,
+                                   .kind = Tolerance::absolute});
     }
   }
 }
@@ -153,7 +236,7 @@ TEST(Window, PeriodicHannHasThreeDftBins) {
 // N+1 [H78 §II], periodic Chebyshev is [0, symmetric Chebyshev of length N-1].
 // Values in [0, 1], peak exactly 1 where a sample sits on the centre (periodic even N,
 // symmetric odd N, always for Chebyshev). Tolerance 1e-12 (Chebyshev goes through an FFT).
-class WindowShape : public testing::TestWithParam<WindowType> {};
+class WindowShape : public ::testing::TestWithParam<WindowType> {};
 
 TEST_P(WindowShape, SymmetryAndPeak) {
   const WindowType type = GetParam();
@@ -184,17 +267,27 @@ TEST_P(WindowShape, SymmetryAndPeak) {
     const bool centred_per = n % 2 == 0 || type == WindowType::chebyshev;
     const bool centred_sym =
         n % 2 == 1 || type == WindowType::chebyshev || type == WindowType::rectangular;
-    if (centred_per) {
-      EXPECT_NEAR(*std::max_element(per.begin(), per.end()), 1.0, 1e-15) << to_string(type);
-    }
-    if (centred_sym) {
-      EXPECT_NEAR(*std::max_element(sym.begin(), sym.end()), 1.0, 1e-15) << to_string(type);
-    }
+    const std::string name(to_string(type));
+    const auto validate_peak = [&](const std::vector<double>& w, const std::string& symmetry) {
+      fogradar::testing::validate(
+          {.id = "radar.window." + name + ".peak." + symmetry + ".N" + std::to_string(n),
+           .group = "radar: signal processing",
+           .quantity = "window peak (a sample on the centre)",
+           .unit = "1",
+           .conditions = name + " window, " + symmetry + ", N = " + std::to_string(n),
+           .reference = 1.0,
+           .source = "closed form: the window's normalisation, peak 1 at the centre [H78 §II]",
+           .value = *std::max_element(w.begin(), w.end()),
+           .tolerance = 1e-15,
+           .kind = Tolerance::absolute});
+    };
+    if (centred_per) validate_peak(per, "periodic");
+    if (centred_sym) validate_peak(sym, "symmetric");
   }
   EXPECT_EQ(make_window(type, 1), std::vector<double>{1.0});
 }
 
-INSTANTIATE_TEST_SUITE_P(AllWindows, WindowShape, testing::ValuesIn(kAllWindows), window_name);
+INSTANTIATE_TEST_SUITE_P(AllWindows, WindowShape, ::testing::ValuesIn(kAllWindows), window_name);
 
 // --- Dolph-Chebyshev --------------------------------------------------------------------------
 
@@ -209,8 +302,22 @@ TEST(ChebyshevWindow, SymmetricSidelobesEqualDesignLevel) {
       const std::vector<double> peaks = sidelobe_peaks_db(normalised_spectrum(w, 64));
       ASSERT_FALSE(peaks.empty());
       const auto [lowest, highest] = std::minmax_element(peaks.begin(), peaks.end());
-      EXPECT_NEAR(*highest, -design_db, 0.1) << "N=" << n << " design " << design_db;
-      EXPECT_NEAR(*lowest, -design_db, 0.1) << "N=" << n << " design " << design_db;
+      for (const auto& [which, level] : {std::pair<const char*, double>{"highest", *highest},
+                                         std::pair<const char*, double>{"lowest", *lowest}}) {
+        fogradar::testing::validate(
+            {.id = "radar.window.chebyshev.symmetric." + std::string(which) + "_sidelobe.design" +
+                   id_number(design_db) + "dB.N" + std::to_string(n),
+             .group = "radar: signal processing",
+             .quantity = std::string(which) + " sidelobe peak",
+             .unit = "dB",
+             .conditions = "symmetric Dolph-Chebyshev, design -" + id_number(design_db) +
+                           " dB, N = " + std::to_string(n) + ", zero-padded DFT at 1/64 bin",
+             .reference = -design_db,
+             .source = "equiripple design level [H78 §V.D; Dolph 1946]",
+             .value = level,
+             .tolerance = 0.1,
+             .kind = Tolerance::absolute});
+      }
     }
   }
 }
@@ -231,8 +338,22 @@ TEST(ChebyshevWindow, PeriodicSidelobesEqualDesignLevel) {
           "[ measured ] Chebyshev N=%zu design -%.0f dB: periodic highest sidelobe "
           "%.2f dB; truncated N+1 design would give %.2f dB\n",
           n, design_db, *highest, highest_sidelobe_db(truncated));
-      EXPECT_NEAR(*highest, -design_db, 0.1) << "N=" << n;
-      EXPECT_NEAR(*lowest, -design_db, 0.1) << "N=" << n;
+      for (const auto& [which, level] : {std::pair<const char*, double>{"highest", *highest},
+                                         std::pair<const char*, double>{"lowest", *lowest}}) {
+        fogradar::testing::validate(
+            {.id = "radar.window.chebyshev.periodic." + std::string(which) + "_sidelobe.design" +
+                   id_number(design_db) + "dB.N" + std::to_string(n),
+             .group = "radar: signal processing",
+             .quantity = std::string(which) + " sidelobe peak",
+             .unit = "dB",
+             .conditions = "periodic Dolph-Chebyshev, design -" + id_number(design_db) +
+                           " dB, N = " + std::to_string(n) + ", zero-padded DFT at 1/64 bin",
+             .reference = -design_db,
+             .source = "equiripple design level [H78 §V.D; Dolph 1946]",
+             .value = level,
+             .tolerance = 0.1,
+             .kind = Tolerance::absolute});
+      }
     }
   }
 }

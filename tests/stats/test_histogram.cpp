@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "fogradar/core/random.hpp"
@@ -13,9 +14,13 @@
 #include "fogradar/stats/line_plot.hpp"
 #include "rejected_field.hpp"
 #include "svg_check.hpp"
+#include "validation.hpp"
 
 namespace fogradar::stats {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 TEST(Histogram, MatchesTheExpandedSample) {
   RandomStream stream(3);
@@ -36,9 +41,29 @@ TEST(Histogram, MatchesTheExpandedSample) {
     for (const double v : sample) squares += (v - mean) * (v - mean);
     const HistogramSummary summary = histogram_summary(counts);
     EXPECT_EQ(summary.n, n);
-    EXPECT_NEAR(summary.mean, mean, 1e-12);
+    const std::string conditions =
+        "trial " + std::to_string(trial) + ": " + std::to_string(n) + " values in 40..69 (seed 3)";
+    validate({.id = "stats.histogram.mean.trial" + std::to_string(trial),
+              .group = "experiment: statistics",
+              .quantity = "mean of a histogram",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = mean,
+              .source = "second method: the mean of the expanded sample, summed here",
+              .value = summary.mean,
+              .tolerance = 1e-12,
+              .kind = Tolerance::absolute});
     if (n > 1) {
-      EXPECT_NEAR(summary.std_dev, std::sqrt(squares / static_cast<double>(n - 1)), 1e-12);
+      validate({.id = "stats.histogram.std_dev.trial" + std::to_string(trial),
+                .group = "experiment: statistics",
+                .quantity = "sample standard deviation of a histogram",
+                .unit = "1",
+                .conditions = conditions,
+                .reference = std::sqrt(squares / static_cast<double>(n - 1)),
+                .source = "second method: two-pass standard deviation of the expanded sample",
+                .value = summary.std_dev,
+                .tolerance = 1e-12,
+                .kind = Tolerance::absolute});
     }
     for (const double p : {0.0, 0.05, 0.25, 0.5, 0.95, 1.0}) {
       EXPECT_NEAR(histogram_quantile_type7(counts, p), quantile_type7(sample, p), 1e-12) << p;

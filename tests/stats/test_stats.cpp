@@ -33,6 +33,7 @@
 #include "fogradar/stats/format.hpp"
 #include "fogradar/stats/median_interval.hpp"
 #include "fogradar/stats/shift_test.hpp"
+#include "validation.hpp"
 
 namespace fogradar::stats {
 namespace {
@@ -66,6 +67,47 @@ std::vector<double> normal_sample(RandomStream& rng, std::size_t n, double mean)
 // Two-sided 4-sigma band of a binomial proportion with success probability p over `trials`.
 double four_sigma(double p, int trials) { return 4.0 * std::sqrt(p * (1.0 - p) / trials); }
 
+using fogradar::testing::Tolerance;
+
+// A comparison of a statistic with its reference from this file's header, checked and recorded
+// (validation.hpp): `value` against `reference` within `tolerance` of `kind`.
+void check(const std::string& id, const std::string& quantity, const std::string& conditions,
+           double value, double reference, const std::string& source, double tolerance,
+           Tolerance kind = Tolerance::absolute) {
+  fogradar::testing::validate({.id = "stats." + id,
+                               .group = "experiment: statistics",
+                               .quantity = quantity,
+                               .unit = "1",
+                               .conditions = conditions,
+                               .reference = reference,
+                               .source = source,
+                               .value = value,
+                               .tolerance = tolerance,
+                               .kind = kind});
+}
+
+// A Monte Carlo proportion over `trials` against its probability `p`, within the 4-sigma
+// binomial band (four_sigma), checked and recorded.
+void check_proportion(const std::string& id, const std::string& quantity,
+                      const std::string& conditions, double value, double p,
+                      const std::string& source, int trials) {
+  const double band = four_sigma(p, trials);
+  fogradar::testing::validate({.id = "stats." + id,
+                               .group = "experiment: statistics",
+                               .quantity = quantity,
+                               .unit = "1",
+                               .conditions = conditions,
+                               .reference = p,
+                               .source = source,
+                               .value = value,
+                               .tolerance = band,
+                               .kind = Tolerance::statistical,
+                               .samples = static_cast<std::size_t>(trials),
+                               .interval_low = p - band,
+                               .interval_high = p + band,
+                               .confidence = "4-sigma binomial band (normal approximation)"});
+}
+
 template <class F>
 std::string expect_invalid(F&& f, const std::string& field) {
   try {
@@ -82,23 +124,34 @@ std::string expect_invalid(F&& f, const std::string& field) {
 
 TEST(Quantile, MatchesROneToTen) {  // [Rq], exact decimals
   const std::vector<double> x = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
-  EXPECT_NEAR(quantile_type7(x, 0.25), 3.25, kExactTol);
-  EXPECT_NEAR(quantile_type7(x, 0.50), 5.5, kExactTol);
-  EXPECT_NEAR(quantile_type7(x, 0.75), 7.75, kExactTol);
+  const char* source = "R quantile(1:10, c(.25, .5, .75)) [Rq]";
+  check("quantile.r_1_to_10.p0.25", "type-7 quantile", "x = 1..10, p = 0.25",
+        quantile_type7(x, 0.25), 3.25, source, kExactTol);
+  check("quantile.r_1_to_10.p0.50", "type-7 quantile", "x = 1..10, p = 0.50",
+        quantile_type7(x, 0.50), 5.5, source, kExactTol);
+  check("quantile.r_1_to_10.p0.75", "type-7 quantile", "x = 1..10, p = 0.75",
+        quantile_type7(x, 0.75), 7.75, source, kExactTol);
 }
 
 TEST(Quantile, MatchesROneToNineDeciles) {  // [Rq], exact decimals
   const std::vector<double> x = {1, 2, 3, 4, 5, 6, 7, 8, 9};
   const double expected[] = {1.0, 1.8, 2.6, 3.4, 4.2, 5.0, 5.8, 6.6, 7.4, 8.2, 9.0};
-  for (int i = 0; i <= 10; ++i)
-    EXPECT_NEAR(quantile_type7(x, i / 10.0), expected[i], kExactTol) << i;
+  for (int i = 0; i <= 10; ++i) {
+    check("quantile.r_1_to_9.decile" + std::to_string(i), "type-7 quantile",
+          "x = 1..9, p = " + std::to_string(i) + "/10", quantile_type7(x, i / 10.0), expected[i],
+          "R quantile(1:9, seq(0, 1, .1)) [Rq]", kExactTol);
+  }
 }
 
 TEST(Quantile, MatchesRMtcarsWeight) {  // [Rq], printed digits are exact
   const std::vector<double> wt = sorted(kMtcarsWt);
   const double p[] = {0.0, 0.25, 0.5, 0.75, 1.0};
   const double expected[] = {1.513, 2.58125, 3.325, 3.61, 5.424};
-  for (int i = 0; i < 5; ++i) EXPECT_NEAR(quantile_type7(wt, p[i]), expected[i], kExactTol) << p[i];
+  for (int i = 0; i < 5; ++i) {
+    check("quantile.r_mtcars_wt.p" + std::to_string(p[i]).substr(0, 4), "type-7 quantile",
+          "mtcars$wt (32 values), p = " + std::to_string(p[i]).substr(0, 4),
+          quantile_type7(wt, p[i]), expected[i], "R quantile(mtcars$wt) [Rq]", kExactTol);
+  }
 }
 
 TEST(Quantile, PlottingPositionsHitOrderStatistics) {
@@ -108,18 +161,28 @@ TEST(Quantile, PlottingPositionsHitOrderStatistics) {
   RandomStream rng(7);
   const std::vector<double> x = sorted(normal_sample(rng, 23, 0.0));
   for (std::size_t k = 0; k < x.size(); ++k) {
-    EXPECT_NEAR(quantile_type7(x, static_cast<double>(k) / 22.0), x[k], 1e-14) << k;
+    check("quantile.plotting_position.k" + std::to_string(k), "type-7 quantile at p_k",
+          "23 N(0, 1) values (seed 7), p_k = " + std::to_string(k) + "/22",
+          quantile_type7(x, static_cast<double>(k) / 22.0), x[k],
+          "Hyndman & Fan 1996 definition 7: p_k = (k - 1)/(n - 1) hits x_(k) [HF96]", 1e-14);
   }
 }
 
 TEST(Quantile, SmallSamples) {  // closed forms: n = 1 constant, n = 2 linear a + p (b - a)
   const std::vector<double> one = {4.5};
-  for (const double p : {0.0, 0.3, 1.0}) EXPECT_EQ(quantile_type7(one, p), 4.5);
+  for (const double p : {0.0, 0.3, 1.0}) {
+    check("quantile.n1.p" + std::to_string(p).substr(0, 4), "type-7 quantile",
+          "x = {4.5}, p = " + std::to_string(p).substr(0, 4), quantile_type7(one, p), 4.5,
+          "closed form: n = 1, the quantile is the value", 0.0);
+  }
   const std::vector<double> two = {-1.0, 3.0};
   for (const double p : {0.0, 0.25, 0.5, 0.9, 1.0}) {
-    EXPECT_NEAR(quantile_type7(two, p), -1.0 + 4.0 * p, kExactTol) << p;
+    check("quantile.n2.p" + std::to_string(p).substr(0, 4), "type-7 quantile",
+          "x = {-1, 3}, p = " + std::to_string(p).substr(0, 4), quantile_type7(two, p),
+          -1.0 + 4.0 * p, "closed form: n = 2, a + p (b - a)", kExactTol);
   }
-  EXPECT_NEAR(median(std::vector<double>{5.0, -2.0, 9.0, 1.0}), 3.0, kExactTol);
+  check("median.n4", "median", "x = {5, -2, 9, 1}",
+        median(std::vector<double>{5.0, -2.0, 9.0, 1.0}), 3.0, "by hand: (1 + 5) / 2", kExactTol);
 }
 
 // --- Box plot -----------------------------------------------------------------------------------
@@ -131,16 +194,23 @@ TEST(BoxPlot, TukeyOnOneToTenAndFifty) {
   std::vector<double> x = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 50};
   const BoxPlot b = box_plot(x);
   EXPECT_EQ(b.n, 11u);
-  EXPECT_NEAR(b.min, 1.0, kExactTol);
-  EXPECT_NEAR(b.q1, 3.5, kExactTol);
-  EXPECT_NEAR(b.median, 6.0, kExactTol);
-  EXPECT_NEAR(b.q3, 8.5, kExactTol);
-  EXPECT_NEAR(b.max, 50.0, kExactTol);
-  EXPECT_NEAR(b.whisker_low, 1.0, kExactTol);
-  EXPECT_NEAR(b.whisker_high, 10.0, kExactTol);
+  const char* data = "x = 1..10, 50";
+  const char* source = "R boxplot.stats(c(1:10, 50)) [Rbs] and by hand";
+  check("box_plot.r_1_to_10_50.min", "minimum", data, b.min, 1.0, source, kExactTol);
+  check("box_plot.r_1_to_10_50.q1", "type-7 lower quartile", data, b.q1, 3.5, source, kExactTol);
+  check("box_plot.r_1_to_10_50.median", "median", data, b.median, 6.0, source, kExactTol);
+  check("box_plot.r_1_to_10_50.q3", "type-7 upper quartile", data, b.q3, 8.5, source, kExactTol);
+  check("box_plot.r_1_to_10_50.max", "maximum", data, b.max, 50.0, source, kExactTol);
+  check("box_plot.r_1_to_10_50.whisker_low", "lower whisker", data, b.whisker_low, 1.0, source,
+        kExactTol);
+  check("box_plot.r_1_to_10_50.whisker_high", "upper whisker", data, b.whisker_high, 10.0, source,
+        kExactTol);
   EXPECT_EQ(b.outliers, std::vector<double>{50.0});
-  EXPECT_NEAR(b.mean, 105.0 / 11.0, kExactTol);
-  EXPECT_NEAR(b.std_dev, std::sqrt((2885.0 - 105.0 * 105.0 / 11.0) / 10.0), kExactTol);
+  check("box_plot.r_1_to_10_50.mean", "mean", data, b.mean, 105.0 / 11.0, "closed form: 105 / 11",
+        kExactTol);
+  check("box_plot.r_1_to_10_50.std_dev", "sample standard deviation", data, b.std_dev,
+        std::sqrt((2885.0 - 105.0 * 105.0 / 11.0) / 10.0),
+        "closed form: sqrt((sum x^2 - n mean^2) / (n - 1)), sum x^2 = 2885", kExactTol);
 }
 
 TEST(BoxPlot, LowerFenceIsInclusive) {
@@ -149,15 +219,21 @@ TEST(BoxPlot, LowerFenceIsInclusive) {
   // the whisker (whisker_low = smallest value >= q1 - 1.5 IQR).
   std::vector<double> x = {-6, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
   BoxPlot b = box_plot(x);
-  EXPECT_NEAR(b.q1, 2.5, kExactTol);
-  EXPECT_NEAR(b.median, 5.0, kExactTol);
-  EXPECT_NEAR(b.q3, 7.5, kExactTol);
-  EXPECT_EQ(b.whisker_low, 1.0);
-  EXPECT_EQ(b.whisker_high, 10.0);
+  const char* source = "by hand: type-7 quartiles, fences q1 - 1.5 IQR and q3 + 1.5 IQR";
+  check("box_plot.fence.q1", "type-7 lower quartile", "x = -6, 1..10", b.q1, 2.5, source,
+        kExactTol);
+  check("box_plot.fence.median", "median", "x = -6, 1..10", b.median, 5.0, source, kExactTol);
+  check("box_plot.fence.q3", "type-7 upper quartile", "x = -6, 1..10", b.q3, 7.5, source,
+        kExactTol);
+  check("box_plot.fence.whisker_low.v-6", "lower whisker", "x = -6, 1..10", b.whisker_low, 1.0,
+        source, 0.0);
+  check("box_plot.fence.whisker_high.v-6", "upper whisker", "x = -6, 1..10", b.whisker_high, 10.0,
+        source, 0.0);
   EXPECT_EQ(b.outliers, std::vector<double>{-6.0});
   x[0] = -5.0;
   b = box_plot(x);
-  EXPECT_EQ(b.whisker_low, -5.0);
+  check("box_plot.fence.whisker_low.v-5", "lower whisker (a value on the lower fence)",
+        "x = -5, 1..10", b.whisker_low, -5.0, source, 0.0);
   EXPECT_TRUE(b.outliers.empty());
 }
 
@@ -167,12 +243,17 @@ TEST(BoxPlot, TypeSevenDiffersFromTukeyHingesOnMtcarsWeight) {
   // three outliers 5.25, 5.345, 5.424. R's boxplot.stats uses Tukey's hinges 2.5425 and 3.65
   // instead (fence 5.31125): whisker 5.25 and two outliers. Our box states type 7.
   const BoxPlot b = box_plot(kMtcarsWt);
-  EXPECT_NEAR(b.q1, 2.58125, kExactTol);
-  EXPECT_NEAR(b.q3, 3.61, kExactTol);
-  EXPECT_NEAR(b.whisker_low, 1.513, kExactTol);
-  EXPECT_NEAR(b.whisker_high, 4.07, kExactTol);
+  const char* data = "mtcars$wt (32 values)";
+  const char* source = "by hand: type-7 quartiles of the 32 values [Rq], fences 1.5 IQR";
+  check("box_plot.mtcars_wt.q1", "type-7 lower quartile", data, b.q1, 2.58125, source, kExactTol);
+  check("box_plot.mtcars_wt.q3", "type-7 upper quartile", data, b.q3, 3.61, source, kExactTol);
+  check("box_plot.mtcars_wt.whisker_low", "lower whisker", data, b.whisker_low, 1.513, source,
+        kExactTol);
+  check("box_plot.mtcars_wt.whisker_high", "upper whisker", data, b.whisker_high, 4.07, source,
+        kExactTol);
   EXPECT_EQ(b.outliers, (std::vector<double>{5.25, 5.345, 5.424}));
-  EXPECT_NEAR(b.mean, 3.21725, kExactTol);  // sum 102.952 / 32
+  check("box_plot.mtcars_wt.mean", "mean", data, b.mean, 3.21725, "by hand: sum 102.952 / 32",
+        kExactTol);  // sum 102.952 / 32
 }
 
 TEST(BoxPlot, EmptyAndSingleton) {
@@ -187,9 +268,17 @@ TEST(BoxPlot, EmptyAndSingleton) {
   const BoxPlot one = box_plot(std::vector<double>{14.97});
   EXPECT_EQ(one.n, 1u);
   EXPECT_TRUE(std::isnan(one.std_dev));
-  for (const double v : {one.mean, one.min, one.q1, one.median, one.q3, one.max, one.whisker_low,
-                         one.whisker_high}) {
-    EXPECT_EQ(v, 14.97);
+  const std::pair<const char*, double> statistics[] = {{"mean", one.mean},
+                                                       {"min", one.min},
+                                                       {"q1", one.q1},
+                                                       {"median", one.median},
+                                                       {"q3", one.q3},
+                                                       {"max", one.max},
+                                                       {"whisker_low", one.whisker_low},
+                                                       {"whisker_high", one.whisker_high}};
+  for (const auto& [name, v] : statistics) {
+    check(std::string("box_plot.singleton.") + name, name, "x = {14.97}", v, 14.97,
+          "limiting case: n = 1, every statistic is the value", 0.0);
   }
   EXPECT_TRUE(one.outliers.empty());
 }
@@ -218,23 +307,33 @@ TEST(MannWhitney, MatchesRWithTies) {  // [Rw]; R prints 4 significant digits of
   const std::vector<double> x = {1, 5, 9, 24, 56, 21, 3, 7, 21, 4};
   const ShiftTestResult r =
       mann_whitney_u(x, std::vector<double>{12, 15, 5, 9, 9, 14, 56, 22, 3, 7, 32, 5});
-  EXPECT_EQ(r.u_statistic, 51.5);
-  EXPECT_NEAR(r.p_value, 0.5966, 5e-5);
+  const char* data = "x, y of [Rw] (10 and 12 values, ties)";
+  const char* source = "R wilcox.test: W = 51.5, p-value = 0.5966 [Rw]";
+  check("mann_whitney.r_ties.u", "U statistic", data, r.u_statistic, 51.5, source, 0.0);
+  check("mann_whitney.r_ties.p", "two-sided p-value", data, r.p_value, 0.5966, source, 5e-5);
   EXPECT_STREQ(r.method, mann_whitney_normal_method);
-  EXPECT_NEAR(r.median_shift, 8.0 - 10.5, kExactTol);  // medians 8 and 10.5
+  check("mann_whitney.r_ties.median_shift", "median shift", data, r.median_shift, 8.0 - 10.5,
+        "by hand: medians 8 and 10.5", kExactTol);  // medians 8 and 10.5
 
   const ShiftTestResult far =
       mann_whitney_u(x, std::vector<double>{1233, 4356, 987, 39999, 1111, 200000});
-  EXPECT_EQ(far.u_statistic, 0.0);
-  EXPECT_NEAR(far.p_value, 0.001364, 5e-7);
+  const char* far_data = "x of [Rw], y = c(1233, 4356, 987, 39999, 1111, 200000)";
+  const char* far_source = "R wilcox.test: W = 0, p-value = 0.001364 [Rw]";
+  check("mann_whitney.r_far.u", "U statistic", far_data, far.u_statistic, 0.0, far_source, 0.0);
+  check("mann_whitney.r_far.p", "two-sided p-value", far_data, far.p_value, 0.001364, far_source,
+        5e-7);
   EXPECT_STREQ(far.method, mann_whitney_normal_method);
 }
 
 TEST(MannWhitney, MatchesRExactOnDepressionData) {  // [Rw]: W = 35, two-sided 764/3003
   const ShiftTestResult r = mann_whitney_u(kDepressionX, kDepressionY);
-  EXPECT_EQ(r.u_statistic, 35.0);
-  EXPECT_NEAR(r.p_value, 764.0 / 3003.0, kExactTol);
-  EXPECT_NEAR(r.p_value, 0.2544, 5e-5);
+  const char* data = "Hollander & Wolfe depression data (10 and 5 values)";
+  check("mann_whitney.depression.u", "U statistic", data, r.u_statistic, 35.0,
+        "R wilcox.test help example: W = 35 [Rw]", 0.0);
+  check("mann_whitney.depression.p_exact", "two-sided exact p-value", data, r.p_value,
+        764.0 / 3003.0, "full enumeration: 764 / 3003 [Rw]", kExactTol);
+  check("mann_whitney.depression.p_r", "two-sided exact p-value", data, r.p_value, 0.2544,
+        "R wilcox.test help example: one-sided 0.1272, two-sided 0.2544 [Rw]", 5e-5);
   EXPECT_STREQ(r.method, mann_whitney_exact_method);
 }
 
@@ -271,7 +370,11 @@ TEST(MannWhitney, ExactDistributionMatchesEnumeration) {  // second method, 1e-1
       const ShiftTestResult r = mann_whitney_u(x, y);
       ASSERT_STREQ(r.method, mann_whitney_exact_method);
       const double expected = brute_force_p(x, y);
-      EXPECT_NEAR(r.p_value, expected, 1e-12 * expected) << m << "x" << n << " rep " << rep;
+      const std::string where =
+          std::to_string(m) + "x" + std::to_string(n) + ".rep" + std::to_string(rep);
+      check("mann_whitney.exact_vs_enumeration." + where, "two-sided exact p-value",
+            "normal samples " + where, r.p_value, expected,
+            "second method: enumeration of all C(m + n, m) rank sets", 1e-12, Tolerance::relative);
     }
   }
 }
@@ -308,14 +411,20 @@ TEST(MannWhitney, DetectsShiftOfHalfSigmaWith200Samples) {
   const ShiftTestResult r =
       mann_whitney_u(normal_sample(rng, 200, 0.5), normal_sample(rng, 200, 0.0));
   EXPECT_STREQ(r.method, mann_whitney_normal_method);
-  EXPECT_LT(r.p_value, 1e-3);
-  EXPECT_NEAR(r.median_shift, 0.5, 3.5 * std::sqrt(std::numbers::pi / 200.0));
+  const char* data = "two samples of 200 N(0, 1) values 0.5 apart (seed 77)";
+  check("mann_whitney.half_sigma_shift.p", "two-sided p-value", data, r.p_value, 1e-3,
+        "closed form: z ~ 0.5 sqrt(3 n / (2 pi)) ~ 4.9 (Pitman efficiency 3/pi), p ~ 1e-6", 0.0,
+        Tolerance::at_most);
+  check("mann_whitney.half_sigma_shift.median_shift", "median shift", data, r.median_shift, 0.5,
+        "the samples' true shift; 3.5 standard errors sqrt(pi / n)",
+        3.5 * std::sqrt(std::numbers::pi / 200.0));
 }
 
 // Under H0 the p-value is (nearly) uniform: rejection rates at 0.05 and 0.5 within 4 sigma.
 // The exact 12 x 12 test is conservative by discreteness (its size at 0.05 is 0.0449 from the
 // permutation distribution), still inside the band.
-void expect_uniform_p_under_null(std::size_t n, const char* method, std::uint64_t seed) {
+void expect_uniform_p_under_null(std::size_t n, const char* method, std::uint64_t seed,
+                                 const std::string& id) {
   constexpr int trials = 2000;
   int below_05 = 0, below_50 = 0;
   for (int t = 0; t < trials; ++t) {
@@ -326,16 +435,22 @@ void expect_uniform_p_under_null(std::size_t n, const char* method, std::uint64_
     below_05 += r.p_value <= 0.05 ? 1 : 0;
     below_50 += r.p_value <= 0.5 ? 1 : 0;
   }
-  EXPECT_NEAR(below_05 / double(trials), 0.05, four_sigma(0.05, trials));
-  EXPECT_NEAR(below_50 / double(trials), 0.5, four_sigma(0.5, trials));
+  const std::string conditions = std::to_string(trials) + " pairs of " + std::to_string(n) +
+                                 " N(0, 1) values under H0, " + method;
+  check_proportion("mann_whitney.null." + id + ".rejection_0.05", "rejection rate at 0.05",
+                   conditions, below_05 / double(trials), 0.05,
+                   "uniform p-value under H0: P(p <= 0.05) = 0.05", trials);
+  check_proportion("mann_whitney.null." + id + ".rejection_0.5", "rejection rate at 0.5",
+                   conditions, below_50 / double(trials), 0.5,
+                   "uniform p-value under H0: P(p <= 0.5) = 0.5", trials);
 }
 
 TEST(MannWhitney, UniformPValuesUnderNullNormalApproximation) {
-  expect_uniform_p_under_null(200, mann_whitney_normal_method, 31);
+  expect_uniform_p_under_null(200, mann_whitney_normal_method, 31, "normal_200");
 }
 
 TEST(MannWhitney, UniformPValuesUnderNullExact) {
-  expect_uniform_p_under_null(12, mann_whitney_exact_method, 32);
+  expect_uniform_p_under_null(12, mann_whitney_exact_method, 32, "exact_12");
 }
 
 TEST(MannWhitney, ExactOnlyBelowFiftyAndWithoutTies) {  // R's wilcox.test rule (exact = NULL)
@@ -353,9 +468,13 @@ TEST(MannWhitney, ExactOnlyBelowFiftyAndWithoutTies) {  // R's wilcox.test rule 
 
 TEST(MannWhitney, AllTiedGivesPOne) {  // sigma = 0: U = m n / 2, no evidence of a shift
   const ShiftTestResult r = mann_whitney_u(std::vector<double>{3, 3}, std::vector<double>{3, 3, 3});
-  EXPECT_EQ(r.u_statistic, 3.0);
-  EXPECT_EQ(r.p_value, 1.0);
-  EXPECT_EQ(r.median_shift, 0.0);
+  const char* source = "limiting case: all tied, sigma = 0, U = m n / 2, no evidence of a shift";
+  check("mann_whitney.all_tied.u", "U statistic", "x = {3, 3}, y = {3, 3, 3}", r.u_statistic, 3.0,
+        source, 0.0);
+  check("mann_whitney.all_tied.p", "two-sided p-value", "x = {3, 3}, y = {3, 3, 3}", r.p_value, 1.0,
+        source, 0.0);
+  check("mann_whitney.all_tied.median_shift", "median shift", "x = {3, 3}, y = {3, 3, 3}",
+        r.median_shift, 0.0, source, 0.0);
 }
 
 // --- Welch t ------------------------------------------------------------------------------------
@@ -364,17 +483,21 @@ TEST(Welch, MatchesRSleep) {  // [Rt]; half a unit in R's last printed digit
   const std::vector<double> g1 = {0.7, -1.6, -0.2, -1.2, -0.1, 3.4, 3.7, 0.8, 0.0, 2.0};
   const std::vector<double> g2 = {1.9, 0.8, 1.1, 0.1, -0.1, 4.4, 5.5, 1.6, 4.6, 3.4};
   const WelchResult r = welch_t_test(g1, g2);
-  EXPECT_NEAR(r.t_statistic, -1.8608, 5e-5);
-  EXPECT_NEAR(r.degrees_of_freedom, 17.776, 5e-4);
-  EXPECT_NEAR(r.p_value, 0.07939, 5e-6);
-  EXPECT_NEAR(r.mean_shift, 0.75 - 2.33, kExactTol);
+  const char* data = "R's sleep data, extra ~ group";
+  const char* source = "R t.test: t = -1.8608, df = 17.776, p-value = 0.07939 [Rt]";
+  check("welch.r_sleep.t", "t statistic", data, r.t_statistic, -1.8608, source, 5e-5);
+  check("welch.r_sleep.df", "degrees of freedom", data, r.degrees_of_freedom, 17.776, source, 5e-4);
+  check("welch.r_sleep.p", "two-sided p-value", data, r.p_value, 0.07939, source, 5e-6);
+  check("welch.r_sleep.mean_shift", "mean shift", data, r.mean_shift, 0.75 - 2.33,
+        "by hand: means 0.75 and 2.33", kExactTol);
 }
 
 TEST(Welch, ConstantSamplesGiveNaN) {
   const WelchResult r = welch_t_test(std::vector<double>{1, 1, 1}, std::vector<double>{2, 2});
   EXPECT_TRUE(std::isnan(r.t_statistic));
   EXPECT_TRUE(std::isnan(r.p_value));
-  EXPECT_EQ(r.mean_shift, -1.0);
+  check("welch.constant.mean_shift", "mean shift", "x = {1, 1, 1}, y = {2, 2}", r.mean_shift, -1.0,
+        "by hand: 1 - 2", 0.0);
 }
 
 // --- Median intervals ---------------------------------------------------------------------------
@@ -395,20 +518,27 @@ TEST(MedianInterval, HandComputedOrderStatistics) {  // [Bin]
   std::iota(twenty.begin(), twenty.end(), 1.0);
   // n = 10: P(B <= 1) = 11/1024 <= 0.025 < P(B <= 2) = 56/1024 -> (x_(2), x_(9)).
   Interval i = median_confidence_interval(ten, 0.95);
-  EXPECT_EQ(i.low, 2.0);
-  EXPECT_EQ(i.high, 9.0);
+  const char* source = "Binomial(n, 1/2) order statistics by hand (Conover 1999 sec. 3.2) [Bin]";
+  check("median_interval.n10.low", "95 % median interval, low end", "x = 1..10", i.low, 2.0, source,
+        0.0);
+  check("median_interval.n10.high", "95 % median interval, high end", "x = 1..10", i.high, 9.0,
+        source, 0.0);
   // n = 20: P(B <= 5) = 0.0207 <= 0.025 < P(B <= 6) = 0.0577 -> (x_(6), x_(15)).
   i = median_confidence_interval(twenty, 0.95);
-  EXPECT_EQ(i.low, 6.0);
-  EXPECT_EQ(i.high, 15.0);
+  check("median_interval.n20.low", "95 % median interval, low end", "x = 1..20", i.low, 6.0, source,
+        0.0);
+  check("median_interval.n20.high", "95 % median interval, high end", "x = 1..20", i.high, 15.0,
+        source, 0.0);
   // n = 5: P(B <= 0) = 1/32 > 0.025, nothing reaches 95 %; at 90 % (x_(1), x_(5)).
   const std::vector<double> five = {1, 2, 3, 4, 5};
   i = median_confidence_interval(five, 0.95);
   EXPECT_EQ(i.low, -inf);
   EXPECT_EQ(i.high, inf);
   i = median_confidence_interval(five, 0.90);
-  EXPECT_EQ(i.low, 1.0);
-  EXPECT_EQ(i.high, 5.0);
+  check("median_interval.n5.90.low", "90 % median interval, low end", "x = 1..5", i.low, 1.0,
+        source, 0.0);
+  check("median_interval.n5.90.high", "90 % median interval, high end", "x = 1..5", i.high, 5.0,
+        source, 0.0);
 }
 
 TEST(MedianInterval, CoverageBySimulation) {
@@ -427,7 +557,10 @@ TEST(MedianInterval, CoverageBySimulation) {
     ASSERT_EQ(i.low, x[7]);
     covered += (i.low <= std::log(2.0) && std::log(2.0) <= i.high) ? 1 : 0;
   }
-  EXPECT_NEAR(covered / double(trials), expected, four_sigma(expected, trials));
+  check_proportion("median_interval.coverage.exponential_n25", "coverage of the median ln 2",
+                   "4000 samples of 25 Exp(1) values, 95 % interval (x_(8), x_(18))",
+                   covered / double(trials), expected,
+                   "closed form: 1 - 2 P(B <= 7), B ~ Binomial(25, 1/2) = 0.95671", trials);
 }
 
 TEST(MedianStandardError, HandComputed) {
@@ -436,12 +569,16 @@ TEST(MedianStandardError, HandComputed) {
   std::vector<double> x(10);
   std::iota(x.begin(), x.end(), 1.0);
   std::reverse(x.begin(), x.end());  // any order
-  EXPECT_NEAR(median_standard_error(x), 1.5221611678823752, 1e-9);
+  check("median_standard_error.n10", "standard error of the median", "x = 1..10",
+        median_standard_error(x), 1.5221611678823752,
+        "by hand: 7 / (2 z), z = Phi^-1(0.98926) (Python statistics.NormalDist)", 1e-9);
   // 1..30: P(B <= 9) = 0.0213870 <= 0.025 < P(B <= 10) = 0.0493686 -> (x_(10), x_(21)) = (10, 21),
   // coverage 0.9572261, z = 2.0259106, SE = 11 / (2 z) = 2.7148286.
   std::vector<double> thirty(30);
   std::iota(thirty.begin(), thirty.end(), 1.0);
-  EXPECT_NEAR(median_standard_error(thirty), 2.714828561065118, 1e-9);
+  check("median_standard_error.n30", "standard error of the median", "x = 1..30",
+        median_standard_error(thirty), 2.714828561065118,
+        "by hand: 11 / (2 z), z = 2.0259106 (Python statistics.NormalDist)", 1e-9);
   EXPECT_TRUE(std::isnan(median_standard_error(std::vector<double>{1.0})));
 }
 
@@ -459,8 +596,14 @@ TEST(MedianStandardError, AgreesWithSimulatedSpreadOfTheMedian) {
     se_sum += median_standard_error(x);
   }
   const BoxPlot spread = box_plot(medians);
-  EXPECT_NEAR(se_sum / trials / spread.std_dev, 1.0, 0.10);
-  EXPECT_NEAR(spread.std_dev, std::sqrt(std::numbers::pi / 202.0), 0.1 * spread.std_dev);
+  const char* data = "2000 samples of 101 N(0, 1) values (seed 43)";
+  check("median_standard_error.vs_simulated_spread", "mean standard error / simulated SD", data,
+        se_sum / trials / spread.std_dev, 1.0,
+        "second method: SD of 2000 simulated medians; 10 % (estimator bias and sampling)", 0.10,
+        Tolerance::relative);
+  check("median_standard_error.simulated_spread", "SD of the simulated medians", data,
+        spread.std_dev, std::sqrt(std::numbers::pi / 202.0),
+        "closed form: asymptotic sqrt(pi / (2 n)); 10 % of the simulated SD", 0.1 * spread.std_dev);
 }
 
 TEST(ShiftInterval, MatchesEnumerationOnDepressionData) {
@@ -468,12 +611,20 @@ TEST(ShiftInterval, MatchesEnumerationOnDepressionData) {
   // differences x_i - y_j: 95 % (d_(9), d_(42)) = (-0.15, 0.76), 90 % (d_(12), d_(39)) =
   // (-0.08, 0.72); Hodges-Lehmann (d_(25) + d_(26)) / 2 = 0.305.
   Interval i = median_shift_interval(kDepressionX, kDepressionY, 0.95);
-  EXPECT_NEAR(i.low, -0.15, kExactTol);
-  EXPECT_NEAR(i.high, 0.76, kExactTol);
+  const char* data = "Hollander & Wolfe depression data";
+  const char* source = "second method: the 3003 rank sets enumerated, 50 sorted differences";
+  check("shift_interval.depression.95.low", "95 % shift interval, low end", data, i.low, -0.15,
+        source, kExactTol);
+  check("shift_interval.depression.95.high", "95 % shift interval, high end", data, i.high, 0.76,
+        source, kExactTol);
   i = median_shift_interval(kDepressionX, kDepressionY, 0.90);
-  EXPECT_NEAR(i.low, -0.08, kExactTol);
-  EXPECT_NEAR(i.high, 0.72, kExactTol);
-  EXPECT_NEAR(hodges_lehmann_shift(kDepressionX, kDepressionY), 0.305, kExactTol);
+  check("shift_interval.depression.90.low", "90 % shift interval, low end", data, i.low, -0.08,
+        source, kExactTol);
+  check("shift_interval.depression.90.high", "90 % shift interval, high end", data, i.high, 0.72,
+        source, kExactTol);
+  check("shift_interval.depression.hodges_lehmann", "Hodges-Lehmann shift", data,
+        hodges_lehmann_shift(kDepressionX, kDepressionY), 0.305,
+        "second method: (d_(25) + d_(26)) / 2 of the sorted differences", kExactTol);
 }
 
 TEST(ShiftInterval, TooSmallForTheConfidenceIsUnbounded) {
@@ -501,8 +652,12 @@ TEST(ShiftInterval, NormalApproximationUsesHollanderWolfeOrderStatistics) {
   const auto c = static_cast<std::size_t>(std::lround(1250.0 - 1.959963984540054 * sigma));
   ASSERT_EQ(c, 966u);
   const Interval i = median_shift_interval(x, y, 0.95);
-  EXPECT_EQ(i.low, d[c - 1]);
-  EXPECT_EQ(i.high, d[2500 - c]);
+  const char* data = "50 N(0.7, 1) and 50 N(0, 1) values (seed 61)";
+  const char* source = "Hollander, Wolfe & Chicken C = 966, differences formed independently";
+  check("shift_interval.normal_approximation.low", "95 % shift interval, low end", data, i.low,
+        d[c - 1], source, 0.0);
+  check("shift_interval.normal_approximation.high", "95 % shift interval, high end", data, i.high,
+        d[2500 - c], source, 0.0);
   EXPECT_LT(d[c - 2], i.low);  // neighbouring order statistics differ: the check is sharp
   EXPECT_LT(i.high, d[2500 - c + 1]);
 }
@@ -524,12 +679,17 @@ double shift_coverage(std::size_t n, int trials, std::uint64_t seed) {
 TEST(ShiftInterval, ExactCoverageBySimulation) {
   // m = n = 10, exact: C = 24, coverage 1 - 2 P(U <= 23) = 0.95674 (permutation distribution),
   // exact for a pure shift of any continuous law; 2000 trials, 4 sigma.
-  EXPECT_NEAR(shift_coverage(10, 2000, 51), 0.95674, four_sigma(0.95674, 2000));
+  check_proportion("shift_interval.coverage.exact_10", "coverage of the true shift 1.3",
+                   "2000 pairs of 10 exponential values, exact interval",
+                   shift_coverage(10, 2000, 51), 0.95674,
+                   "permutation distribution: 1 - 2 P(U <= 23) = 0.95674", 2000);
 }
 
 TEST(ShiftInterval, NormalApproximationCoverageBySimulation) {
   // m = n = 60, normal approximation: nominal 0.95; 1000 trials, 4 sigma.
-  EXPECT_NEAR(shift_coverage(60, 1000, 52), 0.95, four_sigma(0.95, 1000));
+  check_proportion("shift_interval.coverage.normal_60", "coverage of the true shift 1.3",
+                   "1000 pairs of 60 exponential values, normal approximation",
+                   shift_coverage(60, 1000, 52), 0.95, "nominal confidence 0.95", 1000);
 }
 
 // --- Number formatting --------------------------------------------------------------------------
@@ -555,7 +715,10 @@ TEST(ShiftInterval, SelectionEqualsFullSortOfDifferences) {
     const double h = 0.5 * static_cast<double>(differences.size() - 1);
     const auto j = static_cast<std::size_t>(h);
     const double brute_median = differences[j] + (h - static_cast<double>(j)) * (differences[j + 1] - differences[j]);
-    EXPECT_EQ(hodges_lehmann_shift(x, y), brute_median) << "grid " << grid;
+    check("shift_interval.hodges_lehmann_vs_sort.grid" + std::to_string(grid).substr(0, 3),
+          "Hodges-Lehmann shift", "37 and 53 values, grid " + std::to_string(grid).substr(0, 3),
+          hodges_lehmann_shift(x, y), brute_median,
+          "second method: median of the fully sorted pairwise differences", 0.0);
     const Interval ci = median_shift_interval(x, y, 0.95);
     EXPECT_TRUE(std::binary_search(differences.begin(), differences.end(), ci.low));
     EXPECT_TRUE(std::binary_search(differences.begin(), differences.end(), ci.high));

@@ -113,7 +113,8 @@ inline void validate(const Check& c) {
     record["x"] = number(c.x);
     record["x_label"] = c.x_label;
   }
-  ::testing::Test::RecordProperty("validation:" + c.id, record.dump());
+  // ASCII only (\u escapes): GoogleTest's JSON output escapes each byte of UTF-8 on its own.
+  ::testing::Test::RecordProperty("validation:" + c.id, record.dump(-1, ' ', true));
 }
 
 }  // namespace fogradar::testing

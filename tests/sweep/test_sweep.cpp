@@ -5,13 +5,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/sweep/spec.hpp"
+#include "validation.hpp"
 
 namespace fogradar::sweep {
 namespace {
+
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
+
+constexpr const char* kGroup = "experiment: statistics";
 
 SweepSpec parse(const std::string& text) { return parse_sweep(text, "s.toml", "."); }
 
@@ -44,7 +51,16 @@ range = { from = 8, to = 16, count = 3 }
   // log spacing: the ends as written, the middle the geometric mean.
   EXPECT_EQ(spec.axes[0].positions[0][0].toml, "100.0");
   EXPECT_EQ(spec.axes[0].positions[2][0].toml, "1000.0");
-  EXPECT_NEAR(*spec.axes[0].positions[1][0].number, std::sqrt(100.0 * 1000.0), 1e-9);
+  validate({.id = "sweep.axis.log_spacing.middle",
+            .group = kGroup,
+            .quantity = "middle value of a 3-point log-spaced axis",
+            .unit = "1/km",
+            .conditions = "fog.extinction_per_km from 100 to 1000, count 3, spacing log",
+            .reference = std::sqrt(100.0 * 1000.0),
+            .source = "closed form: geometric mean sqrt(100 x 1000)",
+            .value = *spec.axes[0].positions[1][0].number,
+            .tolerance = 1e-9,
+            .kind = Tolerance::absolute});
   // Integer ends with an even step: integers (an integer key takes them).
   EXPECT_EQ(spec.axes[2].positions[1][0].toml, "12");
   const std::vector<Point> points = expand(spec);
@@ -168,10 +184,32 @@ values = [0.0002]
   }
   std::sort(normal_strata.begin(), normal_strata.end());
   std::sort(uniform_strata.begin(), uniform_strata.end());
+  // Sorted, the strata must be 0 .. 49: the largest |stratum - k| over k is 0.
+  int normal_offset = 0, uniform_offset = 0;
   for (int k = 0; k < 50; ++k) {
-    EXPECT_EQ(normal_strata[k], k);
-    EXPECT_EQ(uniform_strata[k], k);
+    normal_offset = std::max(normal_offset, std::abs(normal_strata[k] - k));
+    uniform_offset = std::max(uniform_offset, std::abs(uniform_strata[k] - k));
   }
+  validate({.id = "sweep.uncertain.latin_hypercube.normal.strata",
+            .group = kGroup,
+            .quantity = "largest |k-th sorted stratum - k| of 50 Latin hypercube draws",
+            .unit = "strata",
+            .conditions = "target.sensor_height_m normal, mean 0.5, std 0.01, 50 setups",
+            .reference = 0.0,
+            .source = "definition of Latin hypercube sampling; strata by the normal CDF (erfc)",
+            .value = static_cast<double>(normal_offset),
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
+  validate({.id = "sweep.uncertain.latin_hypercube.uniform.strata",
+            .group = kGroup,
+            .quantity = "largest |k-th sorted stratum - k| of 50 Latin hypercube draws",
+            .unit = "strata",
+            .conditions = "target.floor_reflection_coefficient uniform on [-0.9, -0.5], 50 setups",
+            .reference = 0.0,
+            .source = "definition of Latin hypercube sampling; strata by the uniform CDF",
+            .value = static_cast<double>(uniform_offset),
+            .tolerance = 0.0,
+            .kind = Tolerance::absolute});
   // Each setup is the point's scenario with its draws, and its seed.
   EXPECT_EQ(points[0].setups[7].experiment.seed, points[0].seed);
   for (const auto& [key, value] : points[0].setup_values[7]) {
@@ -200,8 +238,28 @@ high = -0.5
   std::vector<double> v;
   for (const auto& setup : points[0].setup_values) v.push_back(*setup[0].second.number);
   std::sort(v.begin(), v.end());
-  EXPECT_GE(v.front(), -0.8);
-  EXPECT_LE(v.back(), -0.5);
+  const std::string conditions =
+      "truncated normal, mean -0.7, std 0.1, on [-0.8, -0.5], 2000 Monte Carlo draws";
+  validate({.id = "sweep.uncertain.monte_carlo.truncated_normal.smallest",
+            .group = kGroup,
+            .quantity = "smallest draw",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = -0.8,
+            .source = "support of the truncated normal: low = -0.8",
+            .value = v.front(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
+  validate({.id = "sweep.uncertain.monte_carlo.truncated_normal.largest",
+            .group = kGroup,
+            .quantity = "largest draw",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = -0.5,
+            .source = "support of the truncated normal: high = -0.5",
+            .value = v.back(),
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
   // The truncated normal's CDF: (Phi(x) - Phi(a)) / (Phi(b) - Phi(a)).
   const auto phi = [](double x) { return 0.5 * std::erfc(-(x + 0.7) / (0.1 * std::sqrt(2.0))); };
   double worst = 0.0;
@@ -210,7 +268,21 @@ high = -0.5
     worst = std::max({worst, std::abs(cdf - static_cast<double>(i) / 2000.0),
                       std::abs(cdf - static_cast<double>(i + 1) / 2000.0)});
   }
-  EXPECT_LT(worst, 1.628 / std::sqrt(2000.0)) << worst;
+  validate({.id = "sweep.uncertain.monte_carlo.truncated_normal.ks",
+            .group = kGroup,
+            .quantity = "Kolmogorov-Smirnov distance of the draws to the truncated normal CDF",
+            .unit = "1",
+            .conditions = conditions,
+            .reference = 0.0,
+            .source = "Kolmogorov-Smirnov 99 % bound 1.628 / sqrt(n) (Massey 1951); CDF "
+                      "(Phi(x) - Phi(a)) / (Phi(b) - Phi(a))",
+            .value = worst,
+            .tolerance = 0.0,
+            .kind = Tolerance::statistical,
+            .samples = 2000,
+            .interval_low = 0.0,
+            .interval_high = 1.628 / std::sqrt(2000.0),
+            .confidence = "99 % Kolmogorov-Smirnov bound (Massey 1951)"});
   const std::vector<Point> again = expand(parse(text));
   EXPECT_EQ(again[0].setup_values[1234][0].second.toml,
             points[0].setup_values[1234][0].second.toml);
