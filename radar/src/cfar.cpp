@@ -31,25 +31,6 @@ constexpr std::array<std::pair<CfarThresholdDesign, std::string_view>, 2> kDesig
     {CfarThresholdDesign::independent, "independent"},
 }};
 
-// Accumulates sum(exp(log_term)) without overflow or underflow (running log-sum-exp).
-class LogSum {
- public:
-  void add(double log_term) {
-    if (log_term == -std::numeric_limits<double>::infinity()) return;
-    if (log_term > max_) {
-      scaled_sum_ = scaled_sum_ * std::exp(max_ - log_term) + 1.0;
-      max_ = log_term;
-    } else {
-      scaled_sum_ += std::exp(log_term - max_);
-    }
-  }
-  double log() const { return max_ + std::log(scaled_sum_); }
-
- private:
-  double max_ = -std::numeric_limits<double>::infinity();
-  double scaled_sum_ = 0.0;
-};
-
 // log Pfa of SO-CFAR, n cells per side, t = alpha / n (Gandhi & Kassam 1988):
 //   Pfa_SO = 2 sum_{k=0}^{n-1} C(n-1+k, k) (2+t)^-(n+k).
 double log_pfa_so(double n, double t) {

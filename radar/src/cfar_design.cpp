@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -55,7 +56,9 @@ Matrix cholesky_factor(const Matrix& r) {
 
 // log P_fa of CA at factor alpha for the cells at `offsets` around a cell under test at 0:
 // log prod_{i>1} 1 / (1 + |lambda_i| / lambda_1), lambda the eigenvalues of L^T Q L
-// (cfar_design.hpp).
+// (cfar_design.hpp). The solver resolves eigenvalues to ~eps max|lambda_i| ~ eps a: for a > ~1e12
+// (P_fa < ~1e-200) lambda_1 ~ s^2 <= 1 is lost, and is taken from the product of all eigenvalues,
+// det(L^T Q L) = det(R) det(Q) = det(R) (-a)^N: lambda_1 = det(R) a^N / prod_{i>1} |lambda_i|.
 double log_pfa_ca_exact(const Matrix& cut_first_factor, double alpha) {
   const Eigen::Index size = cut_first_factor.rows();
   const double a = alpha / static_cast<double>(size - 1);
@@ -65,35 +68,57 @@ double log_pfa_ca_exact(const Matrix& cut_first_factor, double alpha) {
   const Eigen::SelfAdjointEigenSolver<Matrix> solver(m, Eigen::EigenvaluesOnly);
   FOGRADAR_CHECK(solver.info() == Eigen::Success);
   const Eigen::VectorXd& lambda = solver.eigenvalues();  // ascending
-  const double top = lambda(size - 1);
+  double top = lambda(size - 1);
+  if (!(top > 1e-6 * std::abs(lambda(0)))) {
+    // log lambda_1 = log det R + N log a - sum_{i>1} log |lambda_i|
+    double log_top = 2.0 * cut_first_factor.diagonal().array().log().sum() +
+                     static_cast<double>(size - 1) * std::log(a);
+    for (Eigen::Index i = 0; i + 1 < size; ++i) log_top -= std::log(std::abs(lambda(i)));
+    top = std::exp(log_top);
+  }
   FOGRADAR_CHECK(top > 0.0);
   double log_pfa = 0.0;
   for (Eigen::Index i = 0; i + 1 < size; ++i) log_pfa -= std::log1p(std::abs(lambda(i)) / top);
   return log_pfa;
 }
 
-// P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2: Marcum Q_1(sqrt(2 lambda), sqrt(2
-// y)) as sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i! (Poisson mixture of Gamma(j+1) tails),
-// all terms positive. The gamma tails are <= 1, so the sum after term j is below the Poisson tail,
-// which for j > lambda is below p_j r / (1 - r), r = lambda / (j + 1).
-double cut_tail(double lambda, double y) {
+// log P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2: log Marcum
+// Q_1(sqrt(2 lambda), sqrt(2 y)), Q_1 = sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i! (Poisson
+// mixture of Gamma(j+1) tails), summed in log space (P_fa down to the smallest double). The gamma
+// tails are <= 1, so the sum after term j is below the Poisson tail, which for j > lambda is below
+// p_j r / (1 - r), r = lambda / (j + 1).
+double log_cut_tail(double lambda, double y) {
   // The series' first-order term lambda (1 + y) e^-y below the rounding of e^-y: a cell under test
   // uncorrelated with its reference cells (lambda at rounding level, ~1e-30).
-  if (lambda * (1.0 + y) < 1e-17) return std::exp(-y);
-  double poisson = std::exp(-lambda);
-  double gamma_term = std::exp(-y);
-  double gamma_tail = gamma_term;
-  double sum = poisson * gamma_tail;
-  for (double j = 1.0;; j += 1.0) {
-    poisson *= lambda / j;
-    gamma_term *= y / j;
-    gamma_tail += gamma_term;
-    sum += poisson * gamma_tail;
-    const double ratio = lambda / (j + 1.0);
-    if (ratio < 1.0 && poisson * ratio / (1.0 - ratio) <= 1e-17 * sum) break;
-    if (poisson == 0.0) break;
+  if (lambda * (1.0 + y) < 1e-17) return -y;
+  // Q_1(a, b) <= exp(-(b - a)^2 / 2) for b > a (Simon & Alouini 2000): below e^-1500 a sample
+  // weighs nothing against any design P_fa (>= e^-745, sample weights <= 4); the bound stays
+  // decreasing in y.
+  if (y > lambda) {
+    const double gap = std::sqrt(y) - std::sqrt(lambda);
+    if (gap * gap > 1500.0) return -gap * gap;
   }
-  return sum;
+  const double log_y = std::log(y);
+  const double log_lambda = std::log(lambda);
+  double log_poisson = -lambda;
+  double log_gamma_term = -y;
+  double log_gamma_tail = log_gamma_term;
+  LogSum sum;
+  sum.add(log_poisson + log_gamma_tail);
+  for (double j = 1.0;; j += 1.0) {
+    log_poisson += log_lambda - std::log(j);
+    log_gamma_term += log_y - std::log(j);
+    // log(e^tail + e^term), the larger first
+    const double high = std::max(log_gamma_tail, log_gamma_term);
+    const double low = std::min(log_gamma_tail, log_gamma_term);
+    if (high > -std::numeric_limits<double>::infinity())
+      log_gamma_tail = high + std::log1p(std::exp(low - high));
+    sum.add(log_poisson + log_gamma_tail);
+    const double ratio = lambda / (j + 1.0);
+    if (ratio < 1.0 && log_poisson + std::log(ratio / (1.0 - ratio)) <= sum.log() - 39.2) break;
+    if (log_poisson < -1e4) break;
+  }
+  return sum.log();
 }
 
 // The noise estimate Z of the kind (threshold alpha Z) from the N reference powers in range order;
@@ -168,13 +193,21 @@ class SampledPfa {
       Eigen::VectorXd d = Eigen::VectorXd::Zero(size);
       for (std::size_t j = tilt.begin; j < tilt.end; ++j)
         d(static_cast<Eigen::Index>(j)) = tilt.theta;
-      const Matrix a = Matrix::Identity(size, size) + lr.transpose() * d.asDiagonal() * lr;
-      const Matrix h = cholesky_factor(a);
-      upper.push_back(h.transpose());
-      log_det.push_back(2.0 * h.diagonal().array().log().sum());
+      // A = S^T S, S = [sqrt(D) Lr; I], so QR of S gives A = R^T R without forming A (whose
+      // Cholesky fails at theta ~ 1e25, P_fa ~ 1e-300: A's condition number ~ theta).
+      Matrix stacked = Matrix::Zero(2 * size, size);
+      stacked.topRows(size) = d.cwiseSqrt().asDiagonal() * lr;
+      stacked.bottomRows(size) = Matrix::Identity(size, size);
+      const Eigen::HouseholderQR<Matrix> qr(stacked);
+      Matrix r_factor = qr.matrixQR().topRows(size).triangularView<Eigen::Upper>();
+      // Rows signed to a positive diagonal: the transposed Cholesky factor of A, to rounding.
+      const Eigen::VectorXd signs = r_factor.diagonal().array().sign().matrix();
+      r_factor = (signs.asDiagonal() * r_factor).eval();
+      upper.push_back(r_factor);
+      log_det.push_back(2.0 * r_factor.diagonal().array().log().sum());
     }
 
-    weight_.resize(kSamples);
+    log_weight_.resize(kSamples);
     scaled_noise_.resize(kSamples);
     lambda_.resize(kSamples);
     FOGRADAR_CHECK(draws.size() == kSamples * big_n);
@@ -199,28 +232,30 @@ class SampledPfa {
         x[static_cast<std::size_t>(j)] = std::norm(r);
         mu += l(j) * u[static_cast<std::size_t>(j)];
       }
-      // Balance-heuristic weight p / (sum_c q_c / components).
-      double mixture = 1.0;
+      // Balance-heuristic weight p / (sum_c q_c / components), in logs (q/p reaches e^900).
+      LogSum mixture;
+      mixture.add(0.0);
       for (std::size_t t = 0; t < tilts.size(); ++t) {
         double tilted = 0.0;
         for (std::size_t j = tilts[t].begin; j < tilts[t].end; ++j) tilted += x[j];
-        mixture += std::exp(log_det[t + 1] - tilts[t].theta * tilted);
+        mixture.add(log_det[t + 1] - tilts[t].theta * tilted);
       }
-      weight_[i] = static_cast<double>(components) / mixture;
+      log_weight_[i] = std::log(static_cast<double>(components)) - mixture.log();
       scaled_noise_[i] = noise_estimate(config, x, scratch) / s2;
       lambda_[i] = std::norm(mu) / s2;
     }
   }
 
+  // log P_fa at factor alpha: log((1/K) sum_i w_i Q_1,i).
   double operator()(double alpha) const {
-    double sum = 0.0;
+    LogSum sum;
     for (std::size_t i = 0; i < kSamples; ++i)
-      sum += weight_[i] * cut_tail(lambda_[i], alpha * scaled_noise_[i]);
-    return sum / static_cast<double>(kSamples);
+      sum.add(log_weight_[i] + log_cut_tail(lambda_[i], alpha * scaled_noise_[i]));
+    return sum.log() - std::log(static_cast<double>(kSamples));
   }
 
  private:
-  std::vector<double> weight_;
+  std::vector<double> log_weight_;
   std::vector<double> scaled_noise_;
   std::vector<double> lambda_;
 };
@@ -267,8 +302,8 @@ double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise
   if (config.kind == CfarKind::ca) return ca_factor(config, noise, offsets, independent_factor);
   const double start = tilt_factor(config, noise, offsets, independent_factor);
   const SampledPfa pfa(config, noise, offsets, start, draws);
-  return solve_threshold_factor([&](double alpha) { return std::log(pfa(alpha)); },
-                      config.false_alarm_probability, start);
+  return solve_threshold_factor([&](double alpha) { return pfa(alpha); },
+                                config.false_alarm_probability, start);
 }
 
 }  // namespace
@@ -284,7 +319,7 @@ double correlated_false_alarm_probability(const CfarConfig& config, const NoiseC
     return std::exp(log_pfa_ca_for(noise, offsets, alpha));
   }
   const std::vector<std::complex<double>> draws = standard_draws(offsets.size(), seed);
-  return SampledPfa(config, noise, offsets, alpha, draws)(alpha);
+  return std::exp(SampledPfa(config, noise, offsets, alpha, draws)(alpha));
 }
 
 CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,

@@ -1,14 +1,34 @@
-// The threshold-factor root finder shared by the independent-cell (cfar.cpp) and the
-// correlated-cell (cfar_design.cpp) CFAR designs.
+// The threshold-factor root finder and log-space sum shared by the independent-cell (cfar.cpp)
+// and the correlated-cell (cfar_design.cpp) CFAR designs.
 #pragma once
 
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "fogradar/core/error.hpp"
 
 namespace fogradar::radar {
+
+// Accumulates sum(exp(log_term)) without overflow or underflow (running log-sum-exp).
+class LogSum {
+ public:
+  void add(double log_term) {
+    if (log_term == -std::numeric_limits<double>::infinity()) return;
+    if (log_term > max_) {
+      scaled_sum_ = scaled_sum_ * std::exp(max_ - log_term) + 1.0;
+      max_ = log_term;
+    } else {
+      scaled_sum_ += std::exp(log_term - max_);
+    }
+  }
+  double log() const { return max_ + std::log(scaled_sum_); }
+
+ private:
+  double max_ = -std::numeric_limits<double>::infinity();
+  double scaled_sum_ = 0.0;
+};
 
 // Solves log_pfa(alpha) = log(design) for the threshold factor alpha, starting from `start`:
 // log_pfa is continuous and decreasing, so the root is bracketed by halving/doubling from start
@@ -37,11 +57,27 @@ double solve_threshold_factor(const LogPfa& log_pfa, double design, double start
   }
   if (f_low == 0.0) return low;
   if (f_high == 0.0) return high;
+  // TOMS 748 converges in a few steps on a smooth residual; where log_pfa is flat to rounding
+  // near the root (a residual of ~700 whose ulp exceeds its change over one ulp of alpha, P_fa
+  // below ~1e-300) it may stall, and bisection of its last bracket ends the solve.
   std::uintmax_t max_iterations = 200;
-  const auto [lower, upper] = boost::math::tools::toms748_solve(
+  auto [lower, upper] = boost::math::tools::toms748_solve(
       residual, low, high, f_low, f_high, boost::math::tools::eps_tolerance<double>(50),
       max_iterations);
-  FOGRADAR_CHECK(max_iterations < 200);
+  if (max_iterations >= 200) {
+    double f_lower = residual(lower);
+    for (int step = 0; step < 200 && upper - lower > 4.0 * 0x1p-52 * upper; ++step) {
+      const double middle = 0.5 * (lower + upper);
+      const double f_middle = residual(middle);
+      if (f_middle == 0.0) return middle;
+      if ((f_middle > 0.0) == (f_lower > 0.0)) {
+        lower = middle;
+        f_lower = f_middle;
+      } else {
+        upper = middle;
+      }
+    }
+  }
   return 0.5 * (lower + upper);
 }
 

@@ -302,6 +302,80 @@ TEST(CfarThreshold, SingleCellPerSideClosedForms) {
   }
 }
 
+// Issue 27: the design P_fa down to the smallest positive double (the key's range is (0, 1)).
+// log P_fa at the solved factor by the published closed forms, written out in long double log
+// space here: CA N = 16 and OS N = 16, k = 12 [R83] (default n = 8), SO n = 8 [GK88]
+// 2 sum_{k<n} C(n-1+k, k) (2+t)^-(n+k), and GO at n = 1, where 2 (1+t)^-1 - 2 (2+t)^-1 [GK88]
+// is 2 / ((1+t)(2+t)) without cancellation. Tolerance 1e-12 relative on log P_fa (|log P_fa| ~
+// 700 has an ulp of 1.1e-13; the solve ends within a few ulps of alpha).
+long double tiny_log_pfa(CfarKind kind, unsigned n, long double alpha) {
+  const long double big_n = 2.0L * n;
+  const long double t = alpha / n;
+  long double result = 0.0L;
+  switch (kind) {
+    case CfarKind::ca:  // N log(N / (N + alpha))
+      return -big_n * std::log1p(alpha / big_n);
+    case CfarKind::go:  // n = 1: log 2 - log(1+t) - log(2+t)
+      return std::log(2.0L) - std::log1p(t) - std::log(2.0L + t);
+    case CfarKind::so: {  // log 2 + log sum_k C(n-1+k, k) (2+t)^-(n+k), largest term factored out
+      std::vector<long double> terms;
+      for (unsigned k = 0; k < n; ++k) {
+        terms.push_back(std::lgamma(static_cast<long double>(n + k)) -
+                        std::lgamma(static_cast<long double>(k + 1)) -
+                        std::lgamma(static_cast<long double>(n)) -
+                        static_cast<long double>(n + k) * std::log(2.0L + t));
+      }
+      const long double top = *std::max_element(terms.begin(), terms.end());
+      for (const long double term : terms) result += std::exp(term - top);
+      return std::log(2.0L) + top + std::log(result);
+    }
+    case CfarKind::os:  // sum_{i<k} log((N-i) / (N-i+alpha)), k = 12
+      for (unsigned i = 0; i < 12; ++i) result -= std::log1p(alpha / (big_n - i));
+      return result;
+  }
+  return std::numeric_limits<long double>::quiet_NaN();
+}
+
+TEST(CfarThreshold, TinyDesignPfaSolvesTheClosedForms) {
+  const double smallest = std::numeric_limits<double>::denorm_min();
+  for (const CfarKind kind : kAllKinds) {
+    const unsigned n = kind == CfarKind::go ? 1 : 8;
+    for (const double pfa : {1e-300, 1e-310, smallest}) {
+      const CfarConfig config{.kind = kind, .training_cells = n, .false_alarm_probability = pfa};
+      double alpha = 0.0;
+      ASSERT_NO_THROW(alpha = cfar_threshold_factor(config)) << kind_label(kind) << ' ' << pfa;
+      ASSERT_TRUE(std::isfinite(alpha) && alpha > 0.0) << alpha;
+      const std::string label = pfa == smallest ? "denorm_min" : id_number(pfa);
+      fogradar::testing::validate(
+          {.id = "radar.cfar." + std::string(to_string(kind)) + ".tiny_pfa.log_pfa." + label,
+           .group = "radar: CFAR",
+           .quantity = "log P_fa at the solved threshold factor",
+           .unit = "1",
+           .conditions = kind_label(kind) + ", n = " + std::to_string(n) +
+                         " per side, design P_fa " + id_number(pfa),
+           .reference = std::log(pfa),
+           .source = kind == CfarKind::os ? "Rohling 1983 closed form, long double logs (this test)"
+                                          : "Gandhi & Kassam 1988 closed form, long double logs "
+                                            "(this test)",
+           .value = static_cast<double>(tiny_log_pfa(kind, n, alpha)),
+           .tolerance = 1e-12,
+           .kind = Tolerance::relative});
+    }
+  }
+}
+
+// Below the range: 0 and the negative smallest double are refused naming the key.
+TEST(CfarConfig, RejectsPfaBelowTheSmallestPositiveDouble) {
+  for (const CfarKind kind : kAllKinds) {
+    const double smallest = std::numeric_limits<double>::denorm_min();
+    EXPECT_NO_THROW((CfarConfig{.kind = kind, .false_alarm_probability = smallest}.validate()));
+    for (const double pfa : {0.0, -smallest}) {
+      expect_invalid_field({.kind = kind, .false_alarm_probability = pfa},
+                           "cfar.false_alarm_probability");
+    }
+  }
+}
+
 // Published value [Ri14 §6.5.6]: OS-CFAR with N = 20, k = 15 needs alpha = 6.857 for
 // Pfa = 1e-3. Richards quotes four significant figures (6.857 gives Pfa = 0.99872e-3 by [R83]),
 // so the tolerance is 5e-4 relative; we solve 6.8554.

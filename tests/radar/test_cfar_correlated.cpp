@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -278,6 +279,62 @@ TEST(CorrelatedPfa, CaExactEqualsDeterminantFormWhenCellUnderTestIsUncorrelated)
          .value = correlated_false_alarm_probability(config, noise, offsets, alpha),
          .tolerance = 1e-12,
          .kind = Tolerance::relative});
+  }
+}
+
+// Issue 27: the correlated design at design P_fa 1e-300, 1e-310 and the smallest double, for
+// every kind (Hann, 8 training and 2 guard cells per side), runs and gives finite factors; CA's
+// interior factor (cell under test uncorrelated with its reference cells) satisfies
+// log P_fa = -log det(I + (alpha/N) C), C by cell_correlation, Gaussian elimination in long double
+// (this test). Tolerance 1e-9 relative on log P_fa (the eigenvalues' relative rounding, ~1e-14
+// times the condition number of C, over 16 of them).
+TEST(CorrelatedPfa, TinyDesignPfaSolvesForEveryKind) {
+  const std::vector<double> window = make_window(WindowType::hann, 512);
+  const NoiseCorrelation noise = window_noise_correlation(window, 18);
+  const double smallest = std::numeric_limits<double>::denorm_min();
+  for (const CfarKind kind : {CfarKind::ca, CfarKind::go, CfarKind::so, CfarKind::os}) {
+    for (const double pfa : {1e-300, 1e-310, smallest}) {
+      const CfarConfig config{.kind = kind, .false_alarm_probability = pfa};
+      CfarThresholdFactors factors;
+      ASSERT_NO_THROW(factors = design_cfar_threshold_factors(config, noise))
+          << to_string(kind) << ' ' << pfa;
+      EXPECT_TRUE(std::isfinite(factors.interior) && factors.interior > 0.0);
+      for (const double edge : factors.edge) EXPECT_TRUE(std::isfinite(edge) && edge > 0.0);
+      if (kind != CfarKind::ca) continue;
+      const auto offsets = cfar_reference_offsets(config, 10);
+      const std::size_t n = offsets.size();
+      const long double a = factors.interior / static_cast<double>(n);
+      std::vector<long double> m(n * n);
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j) {
+          m[i * n + j] =
+              (i == j ? 1.0L : 0.0L) + a * cell_correlation(window, offsets[i] - offsets[j]).real();
+        }
+      }
+      long double log_det = 0.0L;
+      for (std::size_t k = 0; k < n; ++k) {
+        log_det += std::log(m[k * n + k]);
+        for (std::size_t i = k + 1; i < n; ++i) {
+          const long double f = m[i * n + k] / m[k * n + k];
+          for (std::size_t j = k; j < n; ++j) m[i * n + j] -= f * m[k * n + j];
+        }
+      }
+      const std::string label = pfa == smallest ? "denorm_min" : id_number(pfa);
+      fogradar::testing::validate(
+          {.id = "radar.cfar.correlated.ca.tiny_pfa.log_pfa." + label,
+           .group = "radar: CFAR",
+           .quantity = "log P_fa of window-correlated cells at the designed CA factor",
+           .unit = "1",
+           .conditions = "CA-CFAR, 16 training cells, guard 2, Hann window (N = 512), interior "
+                         "cell, design P_fa " +
+                         id_number(pfa),
+           .reference = std::log(pfa),
+           .source = "closed form -log det(I + (alpha/N) C), Gaussian elimination in long "
+                     "double (this test)",
+           .value = static_cast<double>(-log_det),
+           .tolerance = 1e-9,
+           .kind = Tolerance::relative});
+    }
   }
 }
 
