@@ -1,7 +1,11 @@
 #include "fogradar/lidar/params.hpp"
 
 #include <cmath>
+#include <functional>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
@@ -26,19 +30,48 @@ std::vector<BackgroundSegment> default_background() {
 
 KeyTable<BackgroundSegment> background_segment_keys(std::string prefix) {
   KeyTable<BackgroundSegment> keys(prefix);
+  struct Required {
+    std::string name;
+    std::function<double(const BackgroundSegment&)> get;
+    Interval range;
+  };
+  std::vector<Required> required;
+  // Every key is required (BackgroundSegment: NaN is "not given"). A missing key is refused only
+  // after every given key's own check, so that a value the user wrote out of range is named first,
+  // at its line; the range check alone would say "= nan: must be in ...", not that the key is
+  // missing.
+  const auto add = [&](std::string_view name, auto field, Interval range,
+                       const std::string& meaning) -> Key<BackgroundSegment>& {
+    Key<BackgroundSegment>& key = keys.number(name, field, range, "required; " + meaning);
+    key.check = [get = key.get_number,
+                 in_range = std::move(key.check)](const BackgroundSegment& s) {
+      if (!std::isnan(get(s))) in_range(s);
+    };
+    required.push_back({key.name, key.get_number, range});
+    return key;
+  };
   const Interval coordinate = closed(-max_coordinate_m, max_coordinate_m);
-  keys.number("x0_m", FOGRADAR_KEY_FIELD(x0_m), coordinate, "segment start, along boresight");
-  keys.number("y0_m", FOGRADAR_KEY_FIELD(y0_m), coordinate, "segment start, lateral (+ right)");
-  keys.number("x1_m", FOGRADAR_KEY_FIELD(x1_m), coordinate, "segment end, along boresight")
+  add("x0_m", FOGRADAR_KEY_FIELD(x0_m), coordinate, "segment start, along boresight");
+  add("y0_m", FOGRADAR_KEY_FIELD(y0_m), coordinate, "segment start, lateral (+ right)");
+  add("x1_m", FOGRADAR_KEY_FIELD(x1_m), coordinate, "segment end, along boresight")
       .with_check([key = prefix + "x1_m"](const BackgroundSegment& s) {
         if (s.x0_m == s.x1_m && s.y0_m == s.y1_m) {
           throw_invalid(key, s.x1_m, "a point distinct from (x0_m, y0_m): a segment of length > 0");
         }
       })
       .documented_as(coordinate.doc() + ", (x1, y1) ≠ (x0, y0)");
-  keys.number("y1_m", FOGRADAR_KEY_FIELD(y1_m), coordinate, "segment end, lateral");
-  keys.number("reflectivity", FOGRADAR_KEY_FIELD(reflectivity), closed(0.0, 1.0),
-              "Lambertian reflectivity at the wavelength");
+  add("y1_m", FOGRADAR_KEY_FIELD(y1_m), coordinate, "segment end, lateral");
+  add("reflectivity", FOGRADAR_KEY_FIELD(reflectivity), closed(0.0, 1.0),
+      "Lambertian reflectivity at the wavelength")
+      .with_check([required](const BackgroundSegment& s) {
+        for (const Required& key : required) {
+          if (!std::isnan(key.get(s))) continue;
+          throw InvalidParameter(key.name, key.name +
+                                               " is missing: every [[lidar.background]] segment "
+                                               "must give it, a number " +
+                                               key.range.constraint());
+        }
+      });
   return keys;
 }
 
@@ -136,7 +169,8 @@ KeyTable<LidarParams> lidar_keys() {
               "between the barrels of Fig. 2; the study gives no width");
   keys.table_array("background", FOGRADAR_KEY_FIELD(background), &background_segment_keys, 1000,
                    "≤ 1000 segments",
-                   "static reflecting segments `[[lidar.background]]`, each with every key below; "
+                   "static reflecting segments `[[lidar.background]]`, each with every key below "
+                   "(none has a default; a segment that lacks one is refused); "
                    "assumption (`default_background()`): a wall 3 m left from x = 0.5 to 12 m "
                    "(ρ 0.5), a 0.6 m barrel chord 2 m left of each layer centre (ρ 0.3); the "
                    "study shows them in Fig. 2 and 5 without dimensions");

@@ -127,8 +127,7 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
     const double value = yt.first + static_cast<double>(i) * yt.step;
     line(svg, left, to_y(value), right, to_y(value),
          "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
-    text(svg, left - 8.0, to_y(value) + 4.0, "end", "class=\"tick\"",
-         format_fixed(value, yt.decimals));
+    text(svg, left - 8.0, to_y(value) + 4.0, "end", "class=\"tick\"", axis_tick_label(value, yt));
   }
   const auto x_ticks = std::lround((xt.last - xt.first) / xt.step);
   for (long i = 0; i <= x_ticks; ++i) {
@@ -137,7 +136,7 @@ std::string line_plot_svg(std::span<const LineSeries> series, const LinePlotOpti
     line(svg, to_x(value), bottom, to_x(value), bottom + 5.0,
          "stroke=\"#333333\" stroke-width=\"1\"");
     text(svg, to_x(value), bottom + tick_baseline, "middle", "class=\"tick\"",
-         format_fixed(value, xt.decimals));
+         axis_tick_label(value, xt));
   }
   svg += "<rect class=\"frame\" x=\"" + px(left) + "\" y=\"" + px(plot_top) + "\" width=\"" +
          px(right - left) + "\" height=\"" + px(bottom - plot_top) +

@@ -1,6 +1,8 @@
 #include "fogradar/stats/svg_plot.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -372,6 +374,33 @@ AxisTicks nice_axis_ticks(double low, double high, int max_intervals) {
   }
 }
 
+namespace {
+
+// Fixed-point labels of finer steps need more than 6 decimals, of coarser ones 10 or more digits:
+// wider than the tick-label margin, and past 17 decimals not printable at all.
+constexpr double min_fixed_step = 1e-6;
+constexpr double max_fixed_step = 1e9;
+
+// floor(log10(v)) for v > 0; the nudge keeps an exact power of ten that log10 rounds down
+// (1e-20 -> -20.000000000000004) in its own decade.
+int decade(double v) { return static_cast<int>(std::floor(std::log10(v) + 1e-9)); }
+
+}  // namespace
+
+std::string axis_tick_label(double value, const AxisTicks& ticks) {
+  if (ticks.step >= min_fixed_step && ticks.step <= max_fixed_step) {
+    return format_fixed(value, ticks.decimals);
+  }
+  // first + i step leaves a rounding residue (1e-36) where the tick is zero.
+  if (std::abs(value) < 0.5 * ticks.step) return "0";
+  const int digits = std::clamp(decade(std::abs(value)) - decade(ticks.step) + 1, 1, 17);
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                    std::chars_format::scientific, digits - 1);
+  FOGRADAR_CHECK(result.ec == std::errc());
+  return std::string(buffer.data(), result.ptr);
+}
+
 std::size_t category_label_stride(std::span<const BoxPlotSeries> series, double band_px) {
   if (!(std::isfinite(band_px) && band_px > 0.0))
     throw_invalid("band_px", band_px, "finite and > 0");
@@ -475,8 +504,7 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
     line(svg, at.plot_left, y, at.plot_right, y,
          "class=\"grid\" stroke=\"#dddddd\" stroke-width=\"1\"");
     line(svg, at.plot_left - 5.0, y, at.plot_left, y, "stroke=\"#333333\" stroke-width=\"1\"");
-    text(svg, at.plot_left - 8.0, y + 4.0, "end", "class=\"tick\"",
-         format_fixed(value, ticks.decimals));
+    text(svg, at.plot_left - 8.0, y + 4.0, "end", "class=\"tick\"", axis_tick_label(value, ticks));
   }
   rect(svg, at.plot_left, plot_top, at.plot_right - at.plot_left, at.plot_bottom - plot_top,
        "class=\"frame\" fill=\"none\" stroke=\"#333333\" stroke-width=\"1\"");

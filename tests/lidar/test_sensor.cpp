@@ -9,6 +9,7 @@
 #include <numeric>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "fogradar/core/random.hpp"
@@ -289,6 +290,65 @@ const PaperRun& paper_run() {
 // intensity drops to 0 with "a few outliers" (here: at most 10 of the 40 scans see it); from 2
 // layers on "no signal is received from the EVT" (no target-origin echo in any beam of any scan).
 // The sensor limit is 1 layer.
+// A [[lidar.background]] segment has no defaults (issue 27: one with only x0_m ran with the other
+// coordinates 0 and reflectivity 0.5). Segments are set as the scenario reader sets them, through
+// the key table onto freshly resized elements; each missing key is refused naming it as the user
+// writes it, and the message says it is missing and what it must be.
+TEST(LidarSensor, BackgroundSegmentMissingAKeyIsRefusedNamingIt) {
+  const KeyTable<LidarParams> keys = lidar_keys();
+  const auto background = std::find_if(keys.keys().begin(), keys.keys().end(), [](const auto& key) {
+    return key.name == "lidar.background";
+  });
+  ASSERT_NE(background, keys.keys().end());
+  const std::vector<std::pair<std::string, double>> segment{
+      {"x0_m", 1.0}, {"y0_m", -2.0}, {"x1_m", 6.0}, {"y1_m", -2.0}, {"reflectivity", 0.4}};
+  // Two segments from the reader's starting values, each given `segment` but for `missing[i]`.
+  const auto read = [&](const std::vector<std::string>& missing) {
+    LidarParams p;
+    background->array_resize(p, 0);
+    background->array_resize(p, missing.size());
+    for (std::size_t i = 0; i < missing.size(); ++i) {
+      KeyTable<LidarParams> element;
+      background->array_element(i, element);
+      for (const auto& key : element.keys()) {
+        for (const auto& [name, value] : segment) {
+          if (name != missing[i] && key.short_name() == name) key.set_number(p, value);
+        }
+      }
+    }
+    return p;
+  };
+  EXPECT_EQ(test_support::rejected_field([&] { read({"", ""}).validate(); }), "accepted");
+  for (const auto& [name, value] : segment) {
+    for (const std::size_t index : {0u, 1u}) {
+      std::vector<std::string> missing{"", ""};
+      missing[index] = name;
+      const std::string key = "lidar.background[" + std::to_string(index) + "]." + name;
+      try {
+        read(missing).validate();
+        ADD_FAILURE() << key << " missing: accepted";
+      } catch (const InvalidParameter& e) {
+        EXPECT_EQ(e.field(), key);
+        const std::string range = name == "reflectivity" ? "[0, 1]" : "[-10000, 10000]";
+        EXPECT_EQ(std::string(e.what()),
+                  key +
+                      " is missing: every [[lidar.background]] segment must give it, a number "
+                      "in " +
+                      range);
+      }
+    }
+  }
+  // A value given out of range is named before a key not given (the reader points at its line).
+  LidarParams bad = read({"y0_m", ""});
+  bad.background[0].reflectivity = 1.5;
+  EXPECT_EQ(test_support::rejected_field([&] { bad.validate(); }),
+            "lidar.background[0].reflectivity");
+  // A segment that gives nothing names its first key.
+  LidarParams bare;
+  bare.background.assign(1, BackgroundSegment{});
+  EXPECT_EQ(test_support::rejected_field([&] { bare.validate(); }), "lidar.background[0].x0_m");
+}
+
 TEST(LidarPaperScenario, Fig6TargetIntensityPattern) {
   const PaperRun& run = paper_run();
   ASSERT_EQ(run.summary.steps.size(), 5u);

@@ -5,16 +5,19 @@
 // axis ticks (hand-worked cases of Heckbert's rule, exact).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/heat_map.hpp"
+#include "fogradar/stats/line_plot.hpp"
 #include "fogradar/stats/svg_plot.hpp"
 #include "rejected_field.hpp"
 #include "svg_check.hpp"
@@ -301,6 +304,97 @@ TEST(NiceAxisTicks, OneTwoFiveSteps) {  // hand-worked: smallest 1-2-5 step with
   t = nice_axis_ticks(1e-7, 3e-7);  // 5e-8 -> 4 intervals, 8 decimals
   EXPECT_DOUBLE_EQ(t.step, 5e-8);
   EXPECT_EQ(t.decimals, 8);
+}
+
+// Tick labels of any finite scale (issue 27: a lidar.intensity_scale of 1e-20 made the box plot
+// ask for 20 fixed-point decimals and fail after the run). Each label reads back to its tick within
+// 1e-12 of the larger of the tick's magnitude and the step (labels round only the ticks' arithmetic
+// residue, ~1e-16 relative), and no two ticks share a label.
+void expect_labels_read_back(const AxisTicks& t) {
+  const auto n = std::lround((t.last - t.first) / t.step);
+  std::string previous;
+  for (long i = 0; i <= n; ++i) {
+    const double tick = t.first + static_cast<double>(i) * t.step;
+    const std::string label = axis_tick_label(tick, t);
+    EXPECT_NEAR(number(label), tick, 1e-12 * std::max(std::abs(tick), t.step))
+        << label << ", step " << t.step;
+    EXPECT_NE(label, previous) << "step " << t.step;
+    previous = label;
+  }
+}
+
+TEST(NiceAxisTicks, LabelsOfAnyFiniteStepReadBackToTheirTicks) {
+  struct Case {
+    double low, high, step;
+    std::vector<std::string> labels;  // hand-worked
+  };
+  const Case cases[] = {
+      {0.0, 3.7e-20, 1e-20, {"0", "1e-20", "2e-20", "3e-20", "4e-20"}},
+      {0.0, 3.7e-300, 1e-300, {"0", "1e-300", "2e-300", "3e-300", "4e-300"}},
+      {0.0, 3.7e12, 1e12, {"0", "1e+12", "2e+12", "3e+12", "4e+12"}},
+      // Digits down to the step's decade; zero without a rounding residue's sign or exponent.
+      {-2.2e-20, 2.8e-20, 1e-20, {"-3e-20", "-2e-20", "-1e-20", "0", "1e-20", "2e-20", "3e-20"}},
+      {1.01e12,
+       1.29e12,
+       5e10,
+       {"1.00e+12", "1.05e+12", "1.10e+12", "1.15e+12", "1.20e+12", "1.25e+12", "1.30e+12"}},
+      // Steps in [1e-6, 1e9] keep their fixed-point labels.
+      {14.2, 15.9, 0.5, {"14.0", "14.5", "15.0", "15.5", "16.0"}},
+      {0.0, 3.7e-6, 1e-6, {"0.000000", "0.000001", "0.000002", "0.000003", "0.000004"}},
+      {0.0, 3.7e9, 1e9, {"0", "1000000000", "2000000000", "3000000000", "4000000000"}},
+  };
+  for (const Case& c : cases) {
+    const AxisTicks t = nice_axis_ticks(c.low, c.high);
+    EXPECT_DOUBLE_EQ(t.step, c.step) << c.low << " to " << c.high;
+    std::vector<std::string> labels;
+    for (long i = 0; i <= std::lround((t.last - t.first) / t.step); ++i) {
+      labels.push_back(axis_tick_label(t.first + static_cast<double>(i) * t.step, t));
+    }
+    EXPECT_EQ(labels, c.labels) << c.low << " to " << c.high;
+    // At most 10 characters: the tick-label margin's width.
+    for (const std::string& label : labels) EXPECT_LE(label.size(), 10u) << label;
+    expect_labels_read_back(t);
+  }
+  // Spans near the smallest normal double and the largest; a tiny step far from zero, down to
+  // 17 significant digits.
+  for (const auto& [low, high] :
+       std::vector<std::pair<double, double>>{{0.0, 1e-305},
+                                              {-1e307, 1e307},
+                                              {1.0, 1.0 + 1e-12},
+                                              {-7.5e-12, -7.4e-12},
+                                              {123456789.0, 123456789.0 + 1e-7}}) {
+    expect_labels_read_back(nice_axis_ticks(low, high));
+  }
+}
+
+// The plots draw those labels: box plot and line plot at scales of 1e-20, 1e-300 and 1e12.
+TEST(NiceAxisTicks, PlotsOfExtremeScalesDrawTheirTicks) {
+  for (const double scale : {1e-20, 1e-300, 1e12}) {
+    std::vector<BoxPlotSeries> series = paper_like_series();
+    for (BoxPlotSeries& s : series) {
+      std::vector<double> sample = rcs_sample(7, 50, 30.0);
+      for (double& v : sample) v *= scale;
+      s.box = box_plot(sample);
+    }
+    std::string svg;
+    ASSERT_NO_THROW(svg = box_plot_svg(series, full_options())) << scale;
+    EXPECT_EQ(xml_error(svg), "");
+    std::vector<LineSeries> lines(1);
+    lines[0] = {"a", {0.0, scale, 2.0 * scale}, {0.0, 2.5 * scale, 4.0 * scale}, std::nullopt, ""};
+    std::string line_svg;
+    ASSERT_NO_THROW(line_svg = line_plot_svg(lines, LinePlotOptions{})) << scale;
+    EXPECT_EQ(xml_error(line_svg), "");
+    for (const std::string* doc : {&svg, &line_svg}) {
+      const std::vector<test_support::SvgText> ticks = texts_of_class(*doc, "tick");
+      ASSERT_GE(ticks.size(), 3u);
+      for (const test_support::SvgText& tick : ticks) {
+        const double value = number(tick.content);
+        EXPECT_TRUE(value == 0.0 ||
+                    (std::abs(value) >= 0.1 * scale && std::abs(value) <= 1e4 * scale))
+            << tick.content << " at scale " << scale;
+      }
+    }
+  }
 }
 
 TEST(SvgConfig, EveryInvalidInputNamesItsField) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,13 +18,16 @@
 namespace fogradar::lidar {
 
 // A static reflecting segment from (x0_m, y0_m) to (x1_m, y1_m): a Lambertian surface of 905 nm
-// reflectivity `reflectivity` (the study's wall and rain barrels, Fig. 5).
+// reflectivity `reflectivity` (the study's wall and rain barrels, Fig. 5). Every key of a
+// `[[lidar.background]]` segment is required: no position or reflectivity is a sensible default
+// for a wall the user describes. A field starts as NaN, "not given", so that the scenario reader,
+// which starts each segment from these defaults, leaves a missing key for validate() to refuse.
 struct BackgroundSegment {
-  double x0_m = 0.0;
-  double y0_m = 0.0;
-  double x1_m = 0.0;
-  double y1_m = 0.0;
-  double reflectivity = 0.5;
+  double x0_m = std::numeric_limits<double>::quiet_NaN();
+  double y0_m = std::numeric_limits<double>::quiet_NaN();
+  double x1_m = std::numeric_limits<double>::quiet_NaN();
+  double y1_m = std::numeric_limits<double>::quiet_NaN();
+  double reflectivity = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The paper scenario's background (an assumption: the study's Fig. 2 and Fig. 5 show a wall and

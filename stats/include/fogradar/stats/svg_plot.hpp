@@ -58,7 +58,8 @@ struct SvgPlotOptions {
 
 // Ticks first, first + step, ..., last covering [low, high], step in {1, 2, 5} x 10^k chosen as
 // the smallest such step giving at most `max_intervals` intervals (after Heckbert, "Nice numbers
-// for graph labels", Graphics Gems, 1990); `decimals` digits print every tick exactly.
+// for graph labels", Graphics Gems, 1990); `decimals` digits print every tick exactly in
+// fixed-point, which axis_tick_label uses for moderate steps.
 struct AxisTicks {
   double first;
   double last;
@@ -68,6 +69,13 @@ struct AxisTicks {
 // low == high is widened to [low - 1, high + 1]. Throws InvalidParameter naming "low", "high"
 // (finite, high >= low) or "max_intervals" (>= 2).
 AxisTicks nice_axis_ticks(double low, double high, int max_intervals = 6);
+
+// The label of tick `value` of `ticks`: fixed-point with ticks.decimals digits ("14.5") while the
+// step is in [1e-6, 1e9]; beyond, scientific with the significant digits that reach the step's
+// decade ("2.5e-20", "1.5e+12", at most 17), so that any finite scale plots with labels no longer
+// than its ticks need (a value within half a step of zero is "0"). Every label reads back to its
+// tick within 1e-12 of the larger of the tick's magnitude and the step.
+std::string axis_tick_label(double value, const AxisTicks& ticks);
 
 // Every how many categories a label is written: the smallest stride in 1, 2, 5, 10, 20, 50, ...
 // with stride * band_px >= the widest label's estimated width plus a gap. Throws InvalidParameter
