@@ -26,7 +26,9 @@ bool is_roi_file_name(std::string_view name) {
   }
   const std::string_view digits =
       name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  return digits.size() <= 7 &&
+  // The step as roi_file_name writes it: no leading zero, so a camera_roi_01.pgm is never taken
+  // for a set's file.
+  return digits.size() <= 7 && (digits.size() == 1 || digits.front() != '0') &&
          std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 

@@ -10,7 +10,10 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -47,23 +50,52 @@ void write_file(const fs::path& path, const std::string& content) {
   if (::fsync(file.fd) != 0) refuse(path, "a writable location (" + errno_text() + ")");
 }
 
-bool is_result_file(const fs::directory_entry& entry, const ResultFileNames& names) {
-  return names(entry.path().filename().string()) &&
-         entry.symlink_status().type() == fs::file_type::regular;
+bool is_regular(const fs::directory_entry& entry) {
+  return entry.symlink_status().type() == fs::file_type::regular;
 }
 
-// An existing `dir` must hold nothing but result files: it is replaced whole, and no file of the
-// user's may go with it.
-void require_only_result_files(const fs::path& dir, const fs::path& given,
-                               const ResultFileNames& names) {
+// The names a set's record lists, one a line; refuses a record that is not a regular file or
+// cannot be read (it is then the user's, or the set's files cannot be told from the user's).
+std::set<std::string> recorded_names(const fs::directory_entry& record, const fs::path& given) {
+  const std::string allowed = "a directory whose record of its result files ('" +
+                              std::string(record_file_name) + "') is a readable file";
+  if (!is_regular(record)) refuse(given, allowed);
+  std::ifstream in(record.path(), std::ios::binary);
+  std::set<std::string> names;
+  for (std::string line; std::getline(in, line);) names.insert(line);
+  if (in.bad() || !in.eof()) refuse(given, allowed);
+  return names;
+}
+
+// The entries of an existing `dir` that are its result set's: those the set's record lists (and a
+// registered sensor names, regular files), and the record. A set written before sets were
+// recorded is known by its summary.json, which every run writes: its files are those of the
+// result names. Any other entry is the user's: the directory is replaced whole, and no file of the
+// user's may go with it, so it is refused, naming the file.
+std::vector<fs::path> previous_set(const fs::path& dir, const fs::path& given,
+                                   const ResultFileNames& names) {
   std::error_code error;
-  if (!fs::is_directory(fs::symlink_status(dir, error))) return;
+  std::vector<fs::path> set;
+  if (!fs::is_directory(fs::symlink_status(dir, error))) return set;
+  const fs::directory_entry record(dir / record_file_name, error);
+  std::optional<std::set<std::string>> recorded;
+  if (fs::exists(record.symlink_status(error))) recorded = recorded_names(record, given);
+  const fs::directory_entry summary(dir / "summary.json", error);
+  const bool earlier_set = recorded || is_regular(summary);
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-    if (!is_result_file(entry, names)) {
-      refuse(given, "a directory holding only fogradar's result files, as it is replaced whole ('" +
-                        entry.path().filename().string() + "' is not one)");
+    const std::string name = entry.path().filename().string();
+    const bool ours = recorded ? (name == record_file_name ||
+                                  (recorded->contains(name) && names(name) && is_regular(entry)))
+                               : earlier_set && names(name) && is_regular(entry);
+    if (!ours) {
+      refuse(given,
+             "a directory holding only the result files of an earlier run, as it is "
+             "replaced whole ('" +
+                 name + "' is not one)");
     }
+    set.push_back(entry.path());
   }
+  return set;
 }
 
 }  // namespace
@@ -151,33 +183,63 @@ OutputDirectory::OutputDirectory(fs::path dir, ResultFileNames names) : names_(s
   if (fs::is_symlink(status))
     refuse(given, "a directory, not a symbolic link (it is replaced whole)");
   if (fs::exists(status) && !fs::is_directory(status)) refuse(given, "a directory");
-  fs::create_directories(parent_, error);
-  if (error) refuse(given, "a directory that can be created (" + error.message() + ")");
-
-  lock_ = std::make_unique<detail::PathLock>(dir_, "--out", given.string(), "a directory");
-  require_only_result_files(dir_, given, names_);
-  std::string staging =
-      (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
-  if (::mkdtemp(staging.data()) == nullptr) {
-    refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
+  // The lock and the staging directory need the parent; what of it this run creates goes again
+  // unless a set is put in place, so a failed run leaves no directory it made.
+  for (fs::path missing = parent_;
+       fs::symlink_status(missing, error).type() == fs::file_type::not_found &&
+       missing != missing.parent_path();
+       missing = missing.parent_path()) {
+    created_.push_back(missing);
   }
-  staging_ = staging;
+  try {
+    fs::create_directories(parent_, error);
+    if (error) refuse(given, "a directory that can be created (" + error.message() + ")");
+
+    lock_ = std::make_unique<detail::PathLock>(dir_, "--out", given.string(), "a directory");
+    previous_set(dir_, given, names_);
+    std::string staging =
+        (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
+    if (::mkdtemp(staging.data()) == nullptr) {
+      refuse(given, "a directory whose parent is writable (" + errno_text() + ")");
+    }
+    staging_ = staging;
+  } catch (...) {
+    release();
+    throw;
+  }
 }
 
-OutputDirectory::~OutputDirectory() {
+OutputDirectory::~OutputDirectory() { release(); }
+
+void OutputDirectory::release() noexcept {
   std::error_code ignored;
   if (!staging_.empty()) fs::remove_all(staging_, ignored);
+  staging_.clear();
+  lock_.reset();  // its file stands in the parent
+  // Deepest first; one that is no longer empty (another run's, or the user's by now) stays.
+  for (const fs::path& created : created_) fs::remove(created, ignored);
+  created_.clear();
 }
 
 bool OutputDirectory::replace(const std::vector<sensor::ResultFile>& files,
                               const std::function<bool()>& abandon) {
-  for (const sensor::ResultFile& file : files) write_file(staging_ / file.name, file.content);
+  std::vector<std::string> names;
+  for (const sensor::ResultFile& file : files) {
+    write_file(staging_ / file.name, file.content);
+    names.push_back(file.name);
+  }
+  // Sorted, so that a set's bytes depend only on its files.
+  std::sort(names.begin(), names.end());
+  std::string record;
+  for (const std::string& name : names) record += name + '\n';
+  write_file(staging_ / record_file_name, record);
   if (!sync_path(staging_, true))
     refuse(staging_, "a directory that can be synced (" + errno_text() + ")");
   if (abandon && abandon()) return false;
+  std::vector<fs::path> previous;
   if (fs::exists(fs::symlink_status(dir_))) {
     // Checked again: a file put into `dir` while the run measured must not go with the old set.
-    require_only_result_files(dir_, dir_, names_);
+    previous = previous_set(dir_, dir_, names_);
     // Readers see the old set or the new one, never a mixture and never no directory at all.
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) != 0) {
       refuse(dir_, "a directory that can be replaced (renameat2: " + errno_text() + ")");
@@ -187,16 +249,16 @@ bool OutputDirectory::replace(const std::vector<sensor::ResultFile>& files,
   } else {
     staging_.clear();
   }
+  created_.clear();
   // The set is in place; a failed sync of the rename is the kernel's to retry, not the run's
   // failure.
   sync_path(parent_, true);
-  // The previous set, now under the staging name: its result files by name, then the directory if
-  // that left it empty (only a file put into `dir` in the instant of the swap would keep it).
+  // The previous set, now under the staging name: the files found to be its before the swap,
+  // then the directory if that left it empty (only a file put into `dir` in the instant of the
+  // swap would keep it).
   if (!staging_.empty()) {
     std::error_code ignored;
-    for (const fs::directory_entry& entry : fs::directory_iterator(staging_, ignored)) {
-      if (is_result_file(entry, names_)) fs::remove(entry.path(), ignored);
-    }
+    for (const fs::path& file : previous) fs::remove(staging_ / file.filename(), ignored);
     fs::remove(staging_, ignored);
   }
   staging_.clear();

@@ -11,8 +11,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -63,6 +65,11 @@ std::string joined(const std::vector<std::string>& items, std::string_view separ
   return text;
 }
 
+// The range experiment.max_active_layers allows in `s`.
+std::string integer_range_of_active(const Scenario& s) {
+  return "an integer in [0, chamber.layer_count = " + std::to_string(s.chamber.layer_count) + "]";
+}
+
 // [chamber], [fog] and [experiment]: the keys of the experiment itself.
 KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names) {
   KeyTable<Scenario> keys;
@@ -107,18 +114,20 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
                FOGRADAR_KEY_FIELD(experiment.measurements_per_step), 1, 1000000,
                "the study's series length: measurements per step of the sensors that take its "
                "measurements (the others count their own items)");
-  // Its upper bound is chamber.layer_count, checked with that key.
-  keys.integer("experiment.max_active_layers", FOGRADAR_KEY_FIELD(experiment.max_active_layers), 0,
-               std::numeric_limits<std::int64_t>::max(), "steps k = 0 … max_active_layers")
-      .with_check([](const Scenario& s) {
-        if (s.experiment.max_active_layers > s.chamber.layer_count) {
-          throw_invalid(
-              "experiment.max_active_layers", static_cast<double>(s.experiment.max_active_layers),
-              "an integer in [0, chamber.layer_count = " + std::to_string(s.chamber.layer_count) +
-                  "]");
-        }
-      })
-      .documented_as("integer [0, layer_count]");
+  // Its true upper bound is chamber.layer_count: the key's own bound is only the widest one the
+  // reader accepts before it states that (chamber is read first), and the check states it too.
+  ScenarioKey& active =
+      keys.integer("experiment.max_active_layers", FOGRADAR_KEY_FIELD(experiment.max_active_layers),
+                   0, static_cast<std::int64_t>(propagation::max_chamber_layers),
+                   "steps k = 0 … max_active_layers");
+  active.check = [](const Scenario& s) {
+    if (s.experiment.max_active_layers > s.chamber.layer_count) {
+      throw_invalid("experiment.max_active_layers",
+                    static_cast<double>(s.experiment.max_active_layers),
+                    integer_range_of_active(s));
+    }
+  };
+  active.documented_as("integer [0, layer_count]");
   // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
   keys.integer("experiment.seed", FOGRADAR_KEY_FIELD(experiment.seed), 0,
                std::numeric_limits<std::int64_t>::max(), "overridden by `--seed`");
@@ -243,11 +252,49 @@ std::string other_key_lines(const std::string& message, const std::string& key,
   return listed.empty() ? listed : listed + ")";
 }
 
+// An integer key's allowed values in `s`, checked and stated by the reader.
+struct IntegerRange {
+  std::int64_t low = 0;
+  std::int64_t high = 0;
+  std::string text;  // after "must be "
+};
+
+IntegerRange integer_range(const ScenarioKey& key, const Scenario& s) {
+  if (key.name == "experiment.max_active_layers") {
+    return {0, static_cast<std::int64_t>(s.chamber.layer_count), integer_range_of_active(s)};
+  }
+  // A key read through functions names its own set (target.swerling: 0, 1, 3).
+  if (key.integer_low == std::numeric_limits<std::int64_t>::min()) {
+    return {key.integer_low, key.integer_high, "an integer (" + key.allowed + ")"};
+  }
+  std::string text = "an integer in [" + std::to_string(key.integer_low) + ", " +
+                     std::to_string(key.integer_high) + "]";
+  if (key.integer_also) text += " " + key.integer_also(s);
+  return {key.integer_low, key.integer_high, text};
+}
+
+// docs/scenario.md's allowed values as a message states them (no Markdown).
+std::string plain(std::string text) {
+  std::erase(text, '`');
+  return text;
+}
+
+// The byte offset of 1-based `column` (counted in UTF-8 code points, as toml++ counts) in `line`.
+std::size_t byte_of_column(std::string_view line, std::size_t column) {
+  std::size_t at = 0;
+  for (std::size_t c = 1; c < column && at < line.size(); ++c) {
+    ++at;
+    while (at < line.size() && (static_cast<unsigned char>(line[at]) & 0xC0U) == 0x80U) ++at;
+  }
+  return at;
+}
+
 // Reads a scenario file's tables into a Scenario by its keys.
 class Reader {
  public:
-  Reader(const toml::table& root, std::string_view source, Scenario& scenario)
-      : root_(root), source_(source), scenario_(scenario) {}
+  Reader(const toml::table& root, std::string_view text, std::string_view source,
+         Scenario& scenario)
+      : root_(root), text_(text), source_(source), scenario_(scenario) {}
 
   void read() {
     const detail::ScenarioKeys& keys = detail::keys_of(scenario_);
@@ -282,15 +329,103 @@ class Reader {
   }
 
   const KeyLines& lines() const { return lines_; }
+  // The number each key was given as, as typed ("3e-7", "1e5", "0x10").
+  const std::map<std::string, std::string>& typed_numbers() const { return typed_numbers_; }
 
  private:
+  // A value as the file gives it: a number as typed, anything else as TOML writes it.
+  std::string typed(const toml::node& node) const {
+    const toml::source_region& at = node.source();
+    if (!node.is_number() || at.begin.line == 0 || at.end.line != at.begin.line) {
+      return as_written(node);
+    }
+    std::string_view rest = text_;
+    for (std::size_t line = 1; line < at.begin.line; ++line) {
+      const std::size_t end = rest.find('\n');
+      if (end == std::string_view::npos) return as_written(node);
+      rest.remove_prefix(end + 1);
+    }
+    const std::string_view line = rest.substr(0, rest.find('\n'));
+    const std::size_t begin = byte_of_column(line, at.begin.column);
+    const std::size_t end = byte_of_column(line, at.end.column);
+    if (end <= begin) return as_written(node);
+    return std::string(line.substr(begin, end - begin));
+  }
+
+  // What `key` allows as its own message states it, for a value of the wrong type: `set` puts a
+  // value no key allows into a copy of the scenario, whose setter or check then refuses it.
+  std::optional<std::string> refusal(const ScenarioKey& key,
+                                     const std::function<void(Scenario&)>& set) const {
+    try {
+      Scenario probe = scenario_;
+      set(probe);
+      if (key.check) key.check(probe);
+    } catch (const InvalidParameter& e) {
+      const std::string_view what = e.what(), must = ": must be ";
+      const std::size_t at = what.find(must);
+      if (e.field() == key.name && at != std::string_view::npos) {
+        return std::string(what.substr(at + must.size()));
+      }
+    }
+    return std::nullopt;
+  }
+
+  // A NaN is outside every range: the range comes with the values of the keys it involves.
+  std::string number_range(const ScenarioKey& key) const {
+    const std::optional<std::string> range = refusal(key, [&key](Scenario& probe) {
+      key.set_number(probe, std::numeric_limits<double>::quiet_NaN());
+    });
+    if (range && range->starts_with("finite and ")) return "a finite number " + range->substr(11);
+    if (range) return "a number " + *range;
+    const std::string allowed = plain(key.allowed);
+    const bool interval = allowed.starts_with('[') || allowed.starts_with('(');
+    return (interval ? "a number in " : "a number ") + allowed;
+  }
+
+  // The empty name is no choice's: the parser states the set.
+  std::string choice_range(const ScenarioKey& key) const {
+    const std::optional<std::string> range =
+        refusal(key, [&key](Scenario& probe) { key.set_text(probe, ""); });
+    return "a string, " + range.value_or("one of " + plain(key.allowed));
+  }
+
+  // A key read through functions (target.swerling) names its own set when given none of it.
+  std::string integer_text(const ScenarioKey& key, const IntegerRange& range) const {
+    if (key.integer_low != std::numeric_limits<std::int64_t>::min()) return range.text;
+    const std::optional<std::string> own = refusal(key, [&key](Scenario& probe) {
+      key.set_integer(probe, std::numeric_limits<std::int64_t>::min());
+    });
+    return own ? "an integer, " + *own : range.text;
+  }
+
+  // The keys a table of `section` takes, sub-tables included, for the messages that list them.
+  std::set<std::string> keys_of_table(const std::string& section) const {
+    std::set<std::string> known;
+    for (const Section& s : detail::keys_of(scenario_).sections) {
+      if (s.name != section) continue;
+      for (const ScenarioKey* key : s.keys) {
+        if (key->type != KeyType::retired) known.emplace(key->short_name());
+      }
+    }
+    for (const std::string& name : declared_) {
+      if (name.size() > section.size() + 1 && name.starts_with(section + ".") &&
+          name.find('.', section.size() + 1) == std::string::npos) {
+        known.insert(name.substr(section.size() + 1));
+      }
+    }
+    return known;
+  }
+
   [[noreturn]] void fail(const toml::node& node, const std::string& key,
                          const std::string& message) const {
     throw_at(source_, node.source().begin.line, key, message);
   }
 
   [[noreturn]] void fail_not_table(const toml::node& node, const std::string& section) const {
-    fail(node, section, section + " = " + as_written(node) + ": must be a table [" + section + "]");
+    const std::set<std::string> keys = keys_of_table(section);
+    fail(node, section,
+         section + " = " + typed(node) + ": must be a table [" + section + "] with keys " +
+             joined(std::vector<std::string>(keys.begin(), keys.end()), ", "));
   }
 
   // Reads `keys` (all of section `section`) from `table`, then refuses what is left.
@@ -299,7 +434,6 @@ class Reader {
     std::set<std::string> known;
     for (const ScenarioKey* key : keys) {
       if (key->type != KeyType::retired) known.emplace(key->short_name());
-      if (const toml::node* node = table.get(key->short_name())) read_key(*key, *node);
     }
     std::set<std::string> subsections;
     for (const std::string& name : declared_) {
@@ -308,13 +442,20 @@ class Reader {
         subsections.insert(name.substr(section.size() + 1));
       }
     }
+    // A sub-table given a plain value is refused as that sub-table before any key is read, so
+    // its message is the first one even where a key of the section is bad too.
+    for (const auto& [name, node] : table) {
+      const std::string key(name.str());
+      if (!known.contains(key) && subsections.contains(key) && !node.is_table()) {
+        fail_not_table(node, section + "." + key);
+      }
+    }
+    for (const ScenarioKey* key : keys) {
+      if (const toml::node* node = table.get(key->short_name())) read_key(*key, *node);
+    }
     for (const auto& [name, node] : table) {
       const std::string key(name.str()), full = section + "." + key;
-      if (known.contains(key)) continue;
-      if (subsections.contains(key)) {
-        if (!node.is_table()) fail_not_table(node, full);
-        continue;
-      }
+      if (known.contains(key) || subsections.contains(key)) continue;
       std::set<std::string> all = known;
       all.insert(subsections.begin(), subsections.end());
       std::string hint;
@@ -325,33 +466,28 @@ class Reader {
 
   void read_key(const ScenarioKey& key, const toml::node& node) {
     lines_[key.name] = node.source().begin.line;
+    if (node.is_number()) typed_numbers_[key.name] = typed(node);
     if (key.type == KeyType::retired) {
       fail(node, key.name, "'" + key.name + "' is no longer read: " + key.meaning);
     }
     if (!key.group.empty()) require_alone_in_group(key, node);
     if (key.group.empty() && !key.takes_effect(scenario_)) {
       fail(node, key.name,
-           key.name + " = " + as_written(node) + ": takes effect only " + key.applies_text);
+           key.name + " = " + typed(node) + ": takes effect only " + key.applies_text);
     }
-    const std::string given = key.name + " = " + as_written(node) + ": must be ";
+    const std::string given = key.name + " = " + typed(node) + ": must be ";
     switch (key.type) {
       case KeyType::number: {
         const std::optional<double> value = node.is_number() ? node.value<double>() : std::nullopt;
-        if (!value) fail(node, key.name, given + "a number");
+        if (!value) fail(node, key.name, given + number_range(key));
         key.set_number(scenario_, *value);
         return;
       }
       case KeyType::integer: {
-        const bool custom = key.integer_low == std::numeric_limits<std::int64_t>::min();
-        std::string range = custom ? "an integer (" + key.allowed + ")"
-                                   : "an integer in [" + std::to_string(key.integer_low) + ", " +
-                                         std::to_string(key.integer_high) + "]";
-        if (key.integer_also) range += " " + key.integer_also(scenario_);
-        if (!node.is_integer()) fail(node, key.name, given + range);
+        const IntegerRange range = integer_range(key, scenario_);
+        if (!node.is_integer()) fail(node, key.name, given + integer_text(key, range));
         const std::int64_t value = *node.value<std::int64_t>();
-        if (value < key.integer_low || value > key.integer_high) {
-          fail(node, key.name, key.name + " = " + std::to_string(value) + ": must be " + range);
-        }
+        if (value < range.low || value > range.high) fail(node, key.name, given + range.text);
         key.set_integer(scenario_, value);
         return;
       }
@@ -360,7 +496,7 @@ class Reader {
         key.set_boolean(scenario_, *node.value<bool>());
         return;
       case KeyType::choice:
-        if (!node.is_string()) fail(node, key.name, given + "a string");
+        if (!node.is_string()) fail(node, key.name, given + choice_range(key));
         key.set_text(scenario_, *node.value<std::string>());
         return;
       case KeyType::name_list:
@@ -433,9 +569,11 @@ class Reader {
   }
 
   const toml::table& root_;
+  std::string_view text_;
   std::string_view source_;
   Scenario& scenario_;
   KeyLines lines_;
+  std::map<std::string, std::string> typed_numbers_;
   std::set<std::string> declared_;                          // every section and its parents
   std::map<std::string, std::vector<std::string>> groups_;  // group -> its keys
   std::map<std::string, std::string> given_in_group_;       // group -> the key given
@@ -465,6 +603,18 @@ std::string toml_value(const ScenarioKey& key, const Scenario& s) {
   return "";
 }
 
+// A check's message "<key> = <value>: must be ..." with the number as the file typed it, where it
+// gave one (a check writes the double it holds: "3e-07" for 3e-7, "100000" for 1e5).
+std::string as_typed(const std::string& message, const std::string& key,
+                     const std::map<std::string, std::string>& typed_numbers) {
+  const auto typed = typed_numbers.find(key);
+  const std::string head = key + " = ";
+  if (typed == typed_numbers.end() || !message.starts_with(head)) return message;
+  const std::size_t end = message.find(": ", head.size());
+  if (end == std::string::npos || message[head.size()] == '\'') return message;
+  return head + typed->second + message.substr(end);
+}
+
 // Reads `toml_text` over `base`: keys the file gives replace the base's values.
 Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name) {
   detail::require_toml_safe_bytes(toml_text, source_name);
@@ -475,9 +625,18 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     throw_at(source_name, e.source().begin.line, "toml",
              std::string("malformed TOML: ") + std::string(e.description()));
   }
-  Reader reader(root, source_name, s);
+  Reader reader(root, toml_text, source_name, s);
   try {
     reader.read();
+    // The table has no temperature dependence: a file that chooses it without a temperature
+    // takes the table's own, as `fogradar fog --water-model segelstein` does, rather than the
+    // paper scenario's assumed 20 C (which the table cannot use). A temperature the file gives
+    // is checked as given.
+    const KeyLines& given = reader.lines();
+    if (given.contains("fog.water_model") && !given.contains("fog.temperature_c") &&
+        s.fog.water_model == propagation::WaterModel::segelstein) {
+      s.fog.temperature_c = propagation::segelstein_table_temperature_c;
+    }
     s.validate();
   } catch (const InvalidParameter& e) {
     const KeyLines& lines = reader.lines();
@@ -487,7 +646,8 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     }
     // A range check: point at the key as the user wrote it, and its line.
     const std::string& key = e.field();
-    const std::string message = e.what() + other_key_lines(e.what(), key, lines);
+    const std::string message =
+        as_typed(e.what(), key, reader.typed_numbers()) + other_key_lines(e.what(), key, lines);
     // A key the file does not give keeps its paper value; a check combining it with keys the file
     // gives points at the first of those.
     std::size_t line = 0;

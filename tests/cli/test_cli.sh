@@ -24,7 +24,10 @@ for f in radar_samples.csv radar_detections.csv radar_summary.csv radar_summary.
   camera_histograms.csv camera_summary.csv camera_summary.json camera_histograms.svg benchmark.svg; do
   if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
 done
-[ "$(ls -A "$work/t1" | wc -l)" -eq 17 ] && pass || fail "result set is not the 17 files: $(ls -A "$work/t1")"
+[ "$(ls -A "$work/t1" | wc -l)" -eq 18 ] && pass || fail "result set is not the 17 files and their record: $(ls -A "$work/t1")"
+# The set's record of its files (.fogradar-files): their names, sorted bytewise, one a line.
+[ "$(cat "$work/t1/.fogradar-files")" = "$(LC_ALL=C ls "$work/t1")" ] && pass \
+  || fail "the set's record is not its files: $(cat "$work/t1/.fogradar-files")"
 # One table per sensor, then the benchmark: layers to failure (or not reached) per sensor.
 for sensor in radar lidar camera; do
   grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
@@ -69,6 +72,16 @@ printf '[experiment]\nsensors = ["camera"]\n[camera]\nframes_per_step = 2\nwrite
   && [ ! -e "$work/roi/radar_samples.csv" ] && pass || fail "camera ROI set: $(ls "$work/roi")"
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/roi" >/dev/null 2>&1 && ! ls "$work/roi" | grep -q pgm \
   && pass || fail "ROI images not replaced by the next set: $(ls "$work/roi")"
+# A file of the user's under a name the camera's ROI images could have (the set was written with
+# them off, or the camera never writes the name) is not the set's: refused naming it, never deleted.
+for mine in camera_roi_1.pgm camera_roi_01.pgm camera_roi_999.pgm; do
+  echo mine >"$work/roi/$mine"
+  "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/roi" >/dev/null 2>"$work/err"
+  rc=$?
+  [ "$rc" -eq 2 ] && grep -qF -- "--out = '$work/roi'" "$work/err" && grep -qF "'$mine' is not one" "$work/err" \
+    && [ "$(cat "$work/roi/$mine")" = mine ] && pass || fail "user's $mine: exit $rc, $(cat "$work/err")"
+  rm -f "$work/roi/$mine"
+done
 
 # --- the result set is replaced whole or not at all (README, docs/scenario.md Results) ---------------
 # Each case works in a parent of its own so that "no temporary files" means an empty listing besides DIR.
@@ -126,6 +139,11 @@ expect_kept foreign-file "$parent" "$before" $? "$work/err" 2 "--out"
 make_old write-fails
 (ulimit -f 1; trap '' XFSZ; exec "$fogradar" run --scenario "$small" --seed 2 --out "$parent/out" >/dev/null 2>"$work/err")
 expect_kept write-fails "$parent" "$before" $? "$work/err" 2 "--out"
+# A run that fails after measuring leaves no parent of --out it created.
+(ulimit -f 1; trap '' XFSZ; exec "$fogradar" run --scenario "$small" --out "$work/new-parent/deeper/out" >/dev/null 2>"$work/err")
+rc=$?
+[ "$rc" -eq 2 ] && grep -qF -- "--out" "$work/err" && [ ! -e "$work/new-parent" ] && pass \
+  || fail "failed run into a new parent: exit $rc, $(cat "$work/err"), left $(ls -A "$work/new-parent" 2>&1)"
 
 # (c) SIGTERM and SIGINT while measuring: exit 128 + signal, one message, previous set and nothing else.
 # Job control (set -m) keeps bash from starting the background run with SIGINT ignored.
@@ -310,6 +328,27 @@ expect_bad_run camera-frames 'camera-frames.toml:2: camera.frames_per_step = 1.5
   --scenario "$work/camera-frames.toml"
 expect_bad_run two-densities "fog.lwc_g_per_m3 (line 2) and fog.visibility_m (line 3)" "at most one fog density" \
   --scenario "$work/two-densities.toml"
+# Issue 27: the value as typed and the true range, for a value of the wrong type or a sub-table too.
+printf '[experiment]\nmax_active_layers = -1\n' >"$work/active-negative.toml"
+printf '[lidar]\nthreshold_reflectivity = true\n' >"$work/lidar-threshold-type.toml"
+printf '[lidar]\nfog_fluctuation = 3\n' >"$work/fluctuation-value.toml"
+printf '[camera]\nroi = 5\n' >"$work/roi-value.toml"
+printf '[lidar]\nwavelength_m = 3e-7\n' >"$work/typed-wavelength.toml"
+printf '[experiment]\nseed = 1e5\n' >"$work/typed-seed.toml"
+expect_bad_run active-negative "active-negative.toml:2: experiment.max_active_layers = -1" \
+  "must be an integer in [0, chamber.layer_count = 4]" --scenario "$work/active-negative.toml"
+expect_bad_run wrong-type-range "lidar-threshold-type.toml:2: lidar.threshold_reflectivity = true" \
+  "must be a number in (0, 1]" --scenario "$work/lidar-threshold-type.toml"
+expect_bad_run sub-table-value "fluctuation-value.toml:2: lidar.fog_fluctuation = 3" \
+  "must be a table [lidar.fog_fluctuation] with keys correlation_time_s, log_std" \
+  --scenario "$work/fluctuation-value.toml"
+expect_bad_run camera-roi-value "roi-value.toml:2: camera.roi = 5" \
+  "must be a table [camera.roi] with keys background, cell_px, height_px, target" \
+  --scenario "$work/roi-value.toml"
+expect_bad_run typed-wavelength "typed-wavelength.toml:2: lidar.wavelength_m = 3e-7:" "[4e-07, 2e-06]" \
+  --scenario "$work/typed-wavelength.toml"
+expect_bad_run typed-seed "typed-seed.toml:2: experiment.seed = 1e5:" "an integer in [0, 9223372036854775807]" \
+  --scenario "$work/typed-seed.toml"
 expect_bad_run missing-file "--scenario = '$work/does-not-exist.toml'" "a readable regular TOML file" \
   --scenario "$work/does-not-exist.toml"
 expect_bad_run scenario-directory "--scenario = '$work/a-directory'" "it is a directory" --scenario "$work/a-directory"
@@ -344,7 +383,12 @@ expect_bad fog-model --water-model "one of 'segelstein', 'liebe'" fog --water-mo
 expect_bad fog-model-empty "--water-model = ''" "one of 'segelstein', 'liebe'" fog --water-model ""
 expect_bad fog-two-densities --visibility-m "excludes" fog --lwc 1 --visibility-m 3
 expect_bad fog-frequency --frequency-ghz "[0.03, 1000] with --water-model liebe" fog --frequency-ghz 1e9
-expect_bad fog-liebe-frequency "--frequency-ghz = 2000" "[0.03, 1000]" fog --frequency-ghz 2000
+expect_bad fog-liebe-frequency "--frequency-ghz = '2000'" \
+  "[0.03, 1000] with --water-model liebe (Liebe 1991 ends at 1 THz); --water-model segelstein covers [0.03, 2.99e7]" \
+  fog --frequency-ghz 2000
+expect_bad fog-liebe-frequency-typed "--frequency-ghz = '2e3'" "--water-model segelstein covers" fog --frequency-ghz 2e3
+"$fogradar" fog --lwc 1 --frequency-ghz 2000 --water-model segelstein >/dev/null 2>&1 && pass \
+  || fail "fog at 2000 GHz with the table refused"
 expect_bad fog-table-temperature "--temperature-c = 0" "= 25 with --water-model segelstein" \
   fog --water-model segelstein --temperature-c 0
 expect_bad fog-table-temperature-names-liebe "--temperature-c" "liebe takes [-20, 50]" \

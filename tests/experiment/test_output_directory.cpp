@@ -46,10 +46,26 @@ std::map<std::string, std::string> listing(const fs::path& dir) {
   return out;
 }
 
+// A set's listing: its files and its record of their names, sorted.
 std::map<std::string, std::string> as_listing(const Files& files) {
   std::map<std::string, std::string> out;
   for (const sensor::ResultFile& file : files) out[file.name] = file.content;
+  std::string record;
+  for (const auto& [name, content] : out) record += name + '\n';
+  out[std::string(record_file_name)] = record;
   return out;
+}
+
+// The refusal of `dir` as an output directory names --out and, as the reason, `file`.
+void expect_refused_for(const fs::path& dir, const std::string& file) {
+  try {
+    OutputDirectory refused(dir, result_file_names(paper_scenario()));
+    ADD_FAILURE() << "accepted a directory holding the user's " << file;
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), "--out") << file;
+    EXPECT_NE(std::string(e.what()).find("'" + file + "' is not one"), std::string::npos)
+        << e.what();
+  }
 }
 
 class OutputDirectoryTest : public ::testing::Test {
@@ -175,6 +191,97 @@ TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
     fs::remove(dir / foreign);
   }
   expect_only_result_directory();
+}
+
+// A file the user puts beside a set under a name a sensor could have written (the camera's ROI
+// images, camera_roi_<step>.pgm, in a set written with camera.write_roi_images off, or in forms the
+// camera never writes) is not the set's: its record does not list it. The directory is refused
+// naming the file, before the run and again before the swap, and the file stays.
+TEST_F(OutputDirectoryTest, AUsersFileUnderAResultNameIsNeverDeleted) {
+  const fs::path dir = parent_ / "out";
+  ASSERT_TRUE(output_directory(dir).replace(result_set("first")));
+  for (const std::string mine : {"camera_roi_1.pgm", "camera_roi_01.pgm", "camera_roi_999.pgm"}) {
+    std::ofstream(dir / mine) << "mine";
+    expect_refused_for(dir, mine);
+    // Put in while the run measured: the swap is refused.
+    fs::remove(dir / mine);
+    OutputDirectory second(dir, result_file_names(paper_scenario()));
+    std::ofstream(dir / mine) << "mine";
+    EXPECT_THROW(second.replace(result_set("second")), InvalidParameter) << mine;
+    std::map<std::string, std::string> expected = as_listing(result_set("first"));
+    expected[mine] = "mine";
+    EXPECT_EQ(listing(dir), expected) << mine;
+    fs::remove(dir / mine);
+  }
+  // A record that is not a file of the set's is the user's.
+  fs::remove(dir / record_file_name);
+  fs::create_directory(dir / record_file_name);
+  EXPECT_THROW(output_directory(dir), InvalidParameter);
+  EXPECT_TRUE(fs::is_directory(dir / record_file_name));
+}
+
+// The ROI images a previous run wrote are its set's, and go with it: replaced by the next run's,
+// or by none.
+TEST_F(OutputDirectoryTest, APreviousRunsRoiImagesAreReplaced) {
+  const fs::path dir = parent_ / "out";
+  Files with_images = result_set("first");
+  with_images.push_back({"camera_roi_0.pgm", "P5 first 0"});
+  with_images.push_back({"camera_roi_12.pgm", "P5 first 12"});
+  ASSERT_TRUE(output_directory(dir).replace(with_images));
+  Files other_images = result_set("second");
+  other_images.push_back({"camera_roi_1.pgm", "P5 second 1"});
+  EXPECT_TRUE(output_directory(dir).replace(other_images));
+  EXPECT_EQ(listing(dir), as_listing(other_images));
+  EXPECT_TRUE(output_directory(dir).replace(result_set("third")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("third")));
+  expect_only_result_directory();
+}
+
+// A set written before sets were recorded (no record, but the summary.json every run writes) is
+// known by its names, as then: replaced whole. A ROI image's name the camera never writes is still
+// the user's, and so is any file in a directory without a summary.json.
+TEST_F(OutputDirectoryTest, ASetWrittenBeforeTheRecordIsKnownByItsNames) {
+  const fs::path dir = parent_ / "out";
+  fs::create_directories(dir);
+  for (const char* name :
+       {"summary.json", "samples.csv", "radar_summary.csv", "camera_roi_3.pgm"}) {
+    std::ofstream(dir / name) << "earlier";
+  }
+  std::ofstream(dir / "camera_roi_01.pgm") << "mine";
+  expect_refused_for(dir, "camera_roi_01.pgm");
+  fs::remove(dir / "camera_roi_01.pgm");
+  EXPECT_TRUE(output_directory(dir).replace(result_set("new")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("new")));
+
+  const fs::path bare = parent_ / "bare";
+  fs::create_directories(bare);
+  std::ofstream(bare / "camera_roi_1.pgm") << "mine";
+  expect_refused_for(bare, "camera_roi_1.pgm");
+  EXPECT_EQ(listing(bare), (std::map<std::string, std::string>{{"camera_roi_1.pgm", "mine"}}));
+}
+
+// Missing parents of the directory are created for the run (the lock and the staging directory
+// stand in the parent) and removed again unless a set is put in place: an abandoned run, a failed
+// write, a run that never replaces leave no directory of theirs; an existing parent stays.
+TEST_F(OutputDirectoryTest, MissingParentsStayOnlyWithASet) {
+  const fs::path dir = parent_ / "new" / "deeper" / "out";
+  { OutputDirectory unused = output_directory(dir); }
+  EXPECT_FALSE(fs::exists(parent_ / "new"));
+  EXPECT_FALSE(output_directory(dir).replace(result_set("first"), [] { return true; }));
+  EXPECT_FALSE(fs::exists(parent_ / "new"));
+  Files bad = result_set("first");
+  bad.emplace_back("missing/sub.csv", "x");
+  EXPECT_THROW(output_directory(dir).replace(bad), InvalidParameter);
+  EXPECT_FALSE(fs::exists(parent_ / "new"));
+  // The parent existed before: only what the run created goes.
+  fs::create_directories(parent_ / "new");
+  EXPECT_THROW(output_directory(dir).replace(bad), InvalidParameter);
+  EXPECT_EQ(listing(parent_ / "new"), (std::map<std::string, std::string>{}));
+  fs::remove(parent_ / "new");
+
+  EXPECT_TRUE(output_directory(dir).replace(result_set("first")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("first")));
+  EXPECT_EQ(listing(dir.parent_path()), (std::map<std::string, std::string>{{"out", "<dir>"}}));
 }
 
 TEST_F(OutputDirectoryTest, RefusesAFile) {

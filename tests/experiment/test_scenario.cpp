@@ -102,10 +102,21 @@ TEST(Scenario, RetiredCarrierKeyAndUnusedTemperatureAreRefused) {
     EXPECT_EQ(message.rfind("cold.toml:3:", 0), 0u) << message;
     EXPECT_NE(message.find("liebe"), std::string::npos) << message;
   }
-  // The paper scenario's 20 C (an assumption; the study gives none) with the table, the temperature
-  // not given: refused too (the table cannot use it).
-  EXPECT_THROW(parse_scenario("[fog]\nwater_model = \"segelstein\"\n", "table.toml"),
-               InvalidParameter);
+  // The table chosen without a temperature takes its own 25 C, as `fogradar fog` does, not the
+  // paper scenario's assumed 20 C (which it cannot use); the resolved scenario states it.
+  const Scenario table = parse_scenario("[fog]\nwater_model = \"segelstein\"\n", "table.toml");
+  EXPECT_EQ(table.fog.temperature_c, 25.0);
+  EXPECT_EQ(to_toml(parse_scenario(to_toml(table), "resolved.toml")), to_toml(table));
+  // A temperature the file gives is checked as given, the paper's 20 C too.
+  try {
+    parse_scenario("[fog]\nwater_model = \"segelstein\"\ntemperature_c = 20\n", "warm.toml");
+    FAIL() << "accepted segelstein at 20 C";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "warm.toml:3: fog.temperature_c = 20: must be = 25 with fog.water_model = "
+              "\"segelstein\" (a table for about 25 C without temperature dependence); "
+              "fog.water_model = \"liebe\" takes [-20, 50] (fog.water_model at line 2)");
+  }
   // The table at its own temperature, and Liebe at any temperature in its range, are accepted.
   EXPECT_NO_THROW(
       parse_scenario("[fog]\nwater_model = \"segelstein\"\ntemperature_c = 25\n", "ok.toml"));
@@ -311,14 +322,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"droplet_too_big",
                  "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 0.01\n",
                  "fog.droplets.diameter_m", 3, "[1e-08, 0.001]"},
-        // A key of another droplet family than the one chosen takes no effect: refused, saying which.
+        // A key of another droplet family than the one chosen takes no effect: refused, saying
+        // which.
         BadInput{"droplet_key_of_another_family", "[fog.droplets]\ndiameter_m = 1e-5\n",
                  "fog.droplets.diameter_m", 2,
                  "takes effect only with fog.droplets.distribution = \"monodisperse\""},
         // A sub-table given a plain value is named as that sub-table.
         BadInput{"sub_table_as_value", "[lidar]\nfog_fluctuation = 3\n", "lidar.fog_fluctuation", 2,
                  "lidar.fog_fluctuation = 3: must be a table [lidar.fog_fluctuation]"},
-        BadInput{"section_as_value", "radar = 5\n", "radar", 1, "radar = 5: must be a table [radar]"},
+        BadInput{"section_as_value", "radar = 5\n", "radar", 1,
+                 "radar = 5: must be a table [radar] with keys adc_bits, adc_full_scale_dbm"},
+        // The lists of known keys name the sub-tables too.
+        BadInput{"unknown_key_lists_sub_tables", "[camera]\nroix = 1\n", "camera.roix", 2,
+                 " noise roi transfer "},
         BadInput{"unknown_lidar_key", "[lidar]\npulse_width_s = 5e-9\n", "lidar.pulse_width_s", 2,
                  "known keys of [lidar]"},
         BadInput{"unknown_camera_key", "[camera.roi]\nsize_px = 3\n", "camera.roi.size_px", 2,
@@ -333,9 +349,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "lidar.background", 2, "an array of tables [[lidar.background]]"},
         BadInput{"lidar_background_key", "[[lidar.background]]\nx0_m = 1\nz_m = 2\n",
                  "lidar.background[0].z_m", 3, "known keys of [lidar.background[0]]"},
-        BadInput{"lidar_background_reflectivity",
-                 "[[lidar.background]]\nx0_m = 1\nx1_m = 2\nreflectivity = 1.5\n",
-                 "lidar.background[0].reflectivity", 4, "[0, 1]"},
+        BadInput{
+            "lidar_background_reflectivity",
+            "[[lidar.background]]\nx0_m = 1\ny0_m = 0\nx1_m = 2\ny1_m = 0\nreflectivity = 1.5\n",
+            "lidar.background[0].reflectivity", 6, "[0, 1]"},
         BadInput{"camera_band", "[camera]\nband = \"infrared\"\n", "camera.band", 2,
                  "one of photopic, rgb, monochromatic"},
         BadInput{"camera_exposure_mode", "[camera.exposure]\nmode = \"\"\n", "camera.exposure.mode",
@@ -349,6 +366,71 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadInput>& param_info) {
       return std::string(param_info.param.name);
     });
+
+// The exact message for each kind of bad value (issue 27): the key as written, the value as typed
+// (not as a double prints it), and the true range or set, for a value of the wrong type too.
+TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
+  const std::pair<const char*, const char*> cases[] = {
+      // Bounded by chamber.layer_count, not by the field's type (INT64_MAX).
+      {"[experiment]\nmax_active_layers = -1\n",
+       "bad.toml:2: experiment.max_active_layers = -1: must be an integer in [0, "
+       "chamber.layer_count = 4]"},
+      {"[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = -1\n",
+       "bad.toml:4: experiment.max_active_layers = -1: must be an integer in [0, "
+       "chamber.layer_count = 2] (chamber.layer_count at line 2)"},
+      {"[experiment]\nmax_active_layers = 9223372036854775807\n",
+       "bad.toml:2: experiment.max_active_layers = 9223372036854775807: must be an integer in [0, "
+       "chamber.layer_count = 4]"},
+      {"[experiment]\nmax_active_layers = 1.5\n",
+       "bad.toml:2: experiment.max_active_layers = 1.5: must be an integer in [0, "
+       "chamber.layer_count = 4]"},
+      // A value of the wrong type: the range or set its key allows.
+      {"[lidar]\nthreshold_reflectivity = true\n",
+       "bad.toml:2: lidar.threshold_reflectivity = true: must be a number in (0, 1]"},
+      {"[lidar]\nintensity_scale = \"big\"\n",
+       "bad.toml:2: lidar.intensity_scale = 'big': must be a finite number > 0"},
+      {"[radar]\nchirp_interval_s = false\n",
+       "bad.toml:2: radar.chirp_interval_s = false: must be a number in [radar.chirp_duration_s = "
+       "5.12e-05, 1]"},
+      {"[radar]\nsweep_direction = 3\n",
+       "bad.toml:2: radar.sweep_direction = 3: must be a string, one of up, down"},
+      {"[target]\nswerling = \"one\"\n",
+       "bad.toml:2: target.swerling = 'one': must be an integer, one of: 0, 1, 3"},
+      {"[camera]\nframes_per_step = true\n",
+       "bad.toml:2: camera.frames_per_step = true: must be an integer in [1, 100000]"},
+      // A sub-table given a plain value.
+      {"[lidar]\nfog_fluctuation = 3\n",
+       "bad.toml:2: lidar.fog_fluctuation = 3: must be a table [lidar.fog_fluctuation] with keys "
+       "correlation_time_s, log_std"},
+      {"[camera]\nroi = 5\n",
+       "bad.toml:2: camera.roi = 5: must be a table [camera.roi] with keys background, cell_px, "
+       "height_px, target, target_fraction, width_px"},
+      {"fog.droplets = 1.50\n",
+       "bad.toml:1: fog.droplets = 1.50: must be a table [fog.droplets] with keys alpha, "
+       "b_per_um_gamma, diameter_m, distribution, gamma, geometric_std, median_diameter_m"},
+      // Numbers as typed.
+      {"[lidar]\nwavelength_m = 3e-7\n",
+       "bad.toml:2: lidar.wavelength_m = 3e-7: must be in [4e-07, 2e-06]"},
+      {"[chamber]\nsensor_gap_m = 1e5\n",
+       "bad.toml:2: chamber.sensor_gap_m = 1e5: must be in [0, 10000]"},
+      {"[experiment]\nseed = 1e5\n",
+       "bad.toml:2: experiment.seed = 1e5: must be an integer in [0, 9223372036854775807]"},
+      {"[radar] # \xc3\xbc\ntx_power_dbm = 1_000.5 # \xc3\xbc\n",
+       "bad.toml:2: radar.tx_power_dbm = 1_000.5: must be in [-30, 50]"},
+      {"[radar]\nsamples_per_chirp = 0x10_0000\n",
+       "bad.toml:2: radar.samples_per_chirp = 0x10_0000: must be an integer in [16, 65536]"},
+      {"[fog]\nvisibility_m = 1E-4\n",
+       "bad.toml:2: fog.visibility_m = 1E-4: must be in [0.001, 10000000]"},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parse_scenario(text, "bad.toml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(std::string(e.what()), expected) << text;
+    }
+  }
+}
 
 // Documented bounds are accepted exactly (checked in the user's units, before any conversion), and
 // the widest integers the documentation allows are read.

@@ -23,10 +23,15 @@ class PathLock;
 }  // namespace detail
 
 // Whether a file name is one a result set can hold: summary.json, scenario.toml, benchmark.svg, or
-// one of a registered sensor's (sensor::SensorType::owns_file_name). A directory holding only such
-// files is an earlier result set.
+// one of a registered sensor's (sensor::SensorType::owns_file_name). A set's files have such names;
+// a set written before sets were recorded (record_file_name) is known by them alone.
 using ResultFileNames = std::function<bool(std::string_view)>;
 ResultFileNames result_file_names(const Scenario& scenario);
+
+// The record a result set holds of its files (their names, sorted, one a line): only the files it
+// lists are the set's, replaced with it; any other file in the directory is the user's, even one
+// whose name a sensor could have written (camera_roi_<step>.pgm).
+inline constexpr std::string_view record_file_name = ".fogradar-files";
 
 // Every sensor's per-step table under its name, in the order the sensors ran (what `fogradar run`
 // prints).
@@ -47,11 +52,13 @@ std::vector<sensor::ResultFile> result_files(const Scenario& scenario,
 
 // The output directory of one run, held from before the run until its result set is in place.
 // Construction refuses (InvalidParameter naming "--out") a `dir` that is not a directory, that
-// holds anything but result files (`names`, so no file of the user's is ever deleted), or that
-// another run holds; it then takes the lock (`.NAME.lock` beside `dir`, flock) and creates the
-// staging directory `.NAME.tmp-<pid>-<random>` beside `dir`. Destruction removes the staging
-// directory (and the lock file) whatever happened: a failed or interrupted run leaves the previous
-// set untouched.
+// holds anything but an earlier set's files (those its record_file_name lists and `names` allows,
+// or in a set written before sets were recorded, one holding summary.json, those `names` allows;
+// so no file of the user's is ever deleted), or that another run holds; it then creates missing
+// parents, takes the lock (`.NAME.lock` beside `dir`, flock) and creates the staging directory
+// `.NAME.tmp-<pid>-<random>` beside `dir`. Destruction removes the staging directory, the lock
+// file and, unless a set was put in place, the parents it created, whatever happened: a failed or
+// interrupted run leaves the previous set untouched and no directory of its own.
 class OutputDirectory {
  public:
   OutputDirectory(std::filesystem::path dir, ResultFileNames names);
@@ -59,18 +66,22 @@ class OutputDirectory {
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
 
-  // Writes `files` into the staging directory and fsyncs them and it; then, unless `abandon()`
-  // returns true, swaps the staging directory with `dir` in one step (renameat2 RENAME_EXCHANGE; a
-  // plain rename where `dir` does not exist yet), fsyncs the parent and deletes the previous set.
+  // Writes `files` and the record of their names into the staging directory and fsyncs them and
+  // it; then, unless `abandon()` returns true, swaps the staging directory with `dir` in one step
+  // (renameat2 RENAME_EXCHANGE; a plain rename where `dir` does not exist yet), fsyncs the parent
+  // and deletes the previous set (the files found to be its, checked again before the swap).
   // Returns false when abandoned (nothing replaced); throws InvalidParameter naming "--out" when a
   // step before the swap fails, leaving `dir` as it was.
   bool replace(const std::vector<sensor::ResultFile>& files,
                const std::function<bool()>& abandon = {});
 
  private:
+  void release() noexcept;
+
   ResultFileNames names_;
   std::filesystem::path dir_, parent_, staging_;
   std::unique_ptr<detail::PathLock> lock_;
+  std::vector<std::filesystem::path> created_;  // missing parents of `dir`, deepest first
 };
 
 }  // namespace fogradar::experiment
