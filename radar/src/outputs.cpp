@@ -340,30 +340,47 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
   return stats::box_plot_svg(series, options);
 }
 
+// A right-aligned number of `width` characters, or an en dash where it does not exist (a shift
+// against 0 layers at 0 layers, a p-value of one sample): the terminal shows no "nan".
+std::string table_cell(double value, int width, const char* format) {
+  char text[64];
+  if (!std::isfinite(value)) {
+    return std::string(static_cast<std::size_t>(width - 1), ' ') + "\u2013";
+  }
+  std::snprintf(text, sizeof text, format, width, value);
+  return text;
+}
+
 std::string summary_table(const RadarSummary& summary) {
   std::ostringstream out;
   char line[320];
-  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
-  std::snprintf(line, sizeof line, header, "layers", "n", "target", "false", "false", "design",
-                "median", "IQR", "mean", "std", "shift", "95 % interval", "p", "loss");
+  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
+  std::snprintf(line, sizeof line, header, "layers", "n", "target", "false", "fog", "false",
+                "design", "median", "IQR", "mean", "std", "shift", "95 % interval", "p", "loss");
   out << line;
-  std::snprintf(line, sizeof line, header, "", "", "det. %", "assoc %", "alarms/f", "/frame",
-                "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
+  std::snprintf(line, sizeof line, header, "", "", "det. %", "assoc %", "det./f", "alarms/f",
+                "/frame", "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
   out << line;
   for (const StepSummary& s : summary.steps) {
-    std::snprintf(
-        line, sizeof line,
-        "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3g %8.4f\n",
-        s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
-        s.false_alarms_per_frame, summary.expected_false_alarm_cells_per_frame, s.rcs.median,
-        s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev, s.median_shift_db, s.median_shift_ci95.low,
-        s.median_shift_ci95.high, s.p_value, s.two_way_attenuation_db);
+    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f", s.active_layers,
+                  s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
+                  s.fog_detections_per_frame, s.false_alarms_per_frame,
+                  summary.expected_false_alarm_cells_per_frame);
     out << line;
+    for (const double value :
+         {s.rcs.median, s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev, s.median_shift_db,
+          s.median_shift_ci95.low, s.median_shift_ci95.high}) {
+      out << ' ' << table_cell(value, 9, "%*.3f");
+    }
+    out << ' ' << table_cell(s.p_value, 9, "%*.3g") << ' '
+        << table_cell(s.two_way_attenuation_db, 8, "%*.4f") << '\n';
   }
   out << "target det. %: a target-origin detection in the gate; false assoc. %: a fog or noise\n"
-         "detection there instead (a miss); false alarms/f: noise-origin detections per frame;\n"
-         "design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann shift\n"
-         "against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U\n";
+         "detection there instead (a miss; with the fog detections they decide the limit); fog\n"
+         "det./f: fog-origin detections per frame; false alarms/f: noise-origin detections per\n"
+         "frame; design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann\n"
+         "shift against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U;\n"
+         "\u2013: no such value\n";
   out << "sensor limit: ";
   if (summary.sensor_limit_layers)
     out << counted(*summary.sensor_limit_layers, "active layer") << "\n";

@@ -1,10 +1,13 @@
 // The radar's RCS box plot of a run (radar_rcs_boxplot.svg) from a hand-made summary: well-formed
 // XML, scenario text in the title and caption, "n" the measurements per step as in the printed
 // table (detections stated separately), the detection-rate strip, the sensor-limit mark at its
-// step, steps without a target detection marked, legend entries, no "tracked" wording, and labels
-// of a 41-step and a 101-step chamber that do not overlap.
+// step, steps without a target detection marked, legend entries, no "tracked" wording, labels of a
+// 41-step and a 101-step chamber that do not overlap; the printed table's fog detections and
+// dashes.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -102,6 +105,40 @@ TEST(RcsBoxplot, NCountsMeasurementsAndDetectionsAreSeparate) {
   EXPECT_EQ(svg.find("n = 150"), std::string::npos);
   EXPECT_EQ(svg.find("n = 50"), std::string::npos);
   EXPECT_NE(summary_table(losing_summary()).find("     1   200     75.0"), std::string::npos);
+}
+
+// The printed table shows the fog detections per frame (with the false associations they decide
+// the limit) and an en dash, never "nan", for a value that does not exist.
+TEST(RcsBoxplot, TableShowsFogDetectionsAndNoNan) {
+  RadarSummary summary = losing_summary();
+  summary.steps[2].fog_detections_per_frame = 12.5;
+  summary.steps[0].median_shift_ci95 = {std::nan(""), std::nan("")};
+  summary.steps[0].p_value = std::nan("");
+  summary.steps[3].rcs.median = std::nan("");
+  const std::string table = summary_table(summary);
+  EXPECT_EQ(table.find("nan"), std::string::npos) << table;
+  EXPECT_NE(table.find("det./f"), std::string::npos) << table;
+  std::istringstream lines(table);
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) rows.push_back(line);
+  ASSERT_GE(rows.size(), 7u);
+  // Row of step 2: layers, n, target det. %, false assoc. %, fog det./f.
+  std::istringstream step2(rows[4]);
+  std::string layers, n, target, assoc, fog;
+  step2 >> layers >> n >> target >> assoc >> fog;
+  EXPECT_EQ(layers, "2");
+  EXPECT_EQ(fog, "12.500");
+  // Step 0: the shift's interval and p are the last numbers but the loss, each an en dash.
+  EXPECT_NE(rows[2].find("\u2013         \u2013         \u2013"), std::string::npos) << rows[2];
+  // The columns stay aligned: an en dash takes one column, as a digit does.
+  const auto columns = [](const std::string& text) {
+    std::size_t count = 0;
+    for (const unsigned char c : text) count += (c & 0xC0) != 0x80;
+    return count;
+  };
+  EXPECT_EQ(columns(rows[2]), columns(rows[3])) << rows[2] << "\n" << rows[3];
+  EXPECT_EQ(columns(rows[5]), columns(rows[3])) << rows[5] << "\n" << rows[3];
 }
 
 // Rate bars of 56 px full height: 200/200, 150/200, 50/200, 0, 0 -> 56, 42, 14, 0, 0 px.
