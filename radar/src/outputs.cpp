@@ -129,6 +129,10 @@ std::string counted(std::size_t count, std::string_view noun) {
   return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
 }
 
+// A step where fewer than half the measurements detected the target, but some did: its RCS
+// statistics describe the surviving detections only, a sample biased towards strong echoes.
+bool survivors_only(const StepSummary& s) { return s.detections > 0 && s.detection_rate < 0.5; }
+
 std::vector<std::string> plot_caption(const SensorParams& params, const sensor::Context& context,
                                       const RadarSummary& summary) {
   const TargetSpec& t = params.target;
@@ -160,7 +164,7 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
       summary.sensor_limit_layers
           ? counted(*summary.sensor_limit_layers, "active layer")
           : "not reached within " + counted(context.steps - 1, "active layer");
-  const std::vector<std::string> paragraphs = {
+  std::vector<std::string> paragraphs = {
       "Boxes: RCS of each measurement's associated target detection; "
       "detection rate = detections / n.",
       target + ".",
@@ -174,6 +178,17 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
           std::to_string(context.seed) + ".",
       "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
   };
+  std::string survivors;
+  for (const StepSummary& s : summary.steps) {
+    if (!survivors_only(s)) continue;
+    if (!survivors.empty()) survivors += ", ";
+    survivors += std::to_string(s.active_layers);
+  }
+  if (!survivors.empty()) {
+    paragraphs.push_back("Active layers " + survivors +
+                         ": fewer than half the measurements detected the target; the box shows "
+                         "the surviving detections only.");
+  }
   std::vector<std::string> lines;
   for (const std::string& paragraph : paragraphs) {
     const std::vector<std::string> wrapped = wrap(paragraph, caption_line_chars);
@@ -362,8 +377,10 @@ std::string summary_table(const RadarSummary& summary) {
                 "/frame", "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
   out << line;
   for (const StepSummary& s : summary.steps) {
-    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f", s.active_layers,
-                  s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
+    std::snprintf(line, sizeof line,
+                  survivors_only(s) ? "%5zu* %5zu %8.1f %8.1f %9.3f %9.3f %9.3f"
+                                    : "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f",
+                  s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
                   s.fog_detections_per_frame, s.false_alarms_per_frame,
                   summary.expected_false_alarm_cells_per_frame);
     out << line;
@@ -381,6 +398,10 @@ std::string summary_table(const RadarSummary& summary) {
          "frame; design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann\n"
          "shift against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U;\n"
          "\u2013: no such value\n";
+  if (std::any_of(summary.steps.begin(), summary.steps.end(), survivors_only)) {
+    out << "*: fewer than half the measurements detected the target: the RCS statistics are the\n"
+           "surviving detections' only\n";
+  }
   out << "sensor limit: ";
   if (summary.sensor_limit_layers)
     out << counted(*summary.sensor_limit_layers, "active layer") << "\n";

@@ -127,7 +127,7 @@ TEST(RcsBoxplot, TableShowsFogDetectionsAndNoNan) {
   std::istringstream step2(rows[4]);
   std::string layers, n, target, assoc, fog;
   step2 >> layers >> n >> target >> assoc >> fog;
-  EXPECT_EQ(layers, "2");
+  EXPECT_EQ(layers, "2*");  // fewer than half detected (SurvivorsOnlyStepsSaySo)
   EXPECT_EQ(fog, "12.500");
   // Step 0: the shift's interval and p are the last numbers but the loss, each an en dash.
   EXPECT_NE(rows[2].find("\u2013         \u2013         \u2013"), std::string::npos) << rows[2];
@@ -139,6 +139,34 @@ TEST(RcsBoxplot, TableShowsFogDetectionsAndNoNan) {
   };
   EXPECT_EQ(columns(rows[2]), columns(rows[3])) << rows[2] << "\n" << rows[3];
   EXPECT_EQ(columns(rows[5]), columns(rows[3])) << rows[5] << "\n" << rows[3];
+}
+
+// A step where some but fewer than half the measurements detected the target (step 2: 50 of 200)
+// is marked in the table and the box plot's caption as the surviving detections' statistics;
+// steps at 100 % and 75 % (0, 1) and without a detection (3, 4) are not.
+TEST(RcsBoxplot, SurvivorsOnlyStepsSaySo) {
+  const std::string table = summary_table(losing_summary());
+  EXPECT_NE(table.find("\n    2*   200     25.0"), std::string::npos) << table;
+  for (const char* unmarked : {"\n     0   200", "\n     1   200", "\n     3   200"}) {
+    EXPECT_NE(table.find(unmarked), std::string::npos) << unmarked << "\n" << table;
+  }
+  EXPECT_NE(table.find("*: fewer than half the measurements detected the target"),
+            std::string::npos);
+  std::string caption;
+  for (const auto& line :
+       texts_of_class(rcs_boxplot_svg(paper_scenario(), losing_summary()), "caption")) {
+    caption += line.content + " ";
+  }
+  EXPECT_NE(caption.find("Active layers 2: fewer than half the measurements detected the target; "
+                         "the box shows the surviving detections only."),
+            std::string::npos)
+      << caption;
+  RadarSummary all_detected = losing_summary();
+  for (auto& step : all_detected.steps) {
+    step.detections = step.n;
+    step.detection_rate = 1.0;
+  }
+  EXPECT_EQ(summary_table(all_detected).find('*'), std::string::npos);
 }
 
 // Rate bars of 56 px full height: 200/200, 150/200, 50/200, 0, 0 -> 56, 42, 14, 0, 0 px.
