@@ -116,6 +116,13 @@ void run(const RunOptions& options) {
   std::cout << experiment::sensor_tables(summary) << experiment::benchmark_table(summary)
             << "results in " << dir.string() << "/\n";
   if (raw) std::cout << "raw data in " << options.raw_path->c_str() << "\n";
+  // Each sensor's warnings about its numbers (e.g. the radar's ADC clipping), after the tables.
+  std::cout.flush();
+  for (const experiment::SensorOutcome& outcome : summary.sensors) {
+    for (const std::string& warning : outcome.summary->warnings()) {
+      std::cerr << "fogradar: warning: " << warning << '\n';
+    }
+  }
 }
 
 }  // namespace

@@ -254,7 +254,8 @@ std::string summary_csv(const RadarSummary& summary) {
       "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,"
       "q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,"
       "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
-      "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame\n";
+      "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,"
+      "adc_clipped_fraction\n";
   for (const StepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.rcs;
     const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
@@ -263,7 +264,8 @@ std::string summary_csv(const RadarSummary& summary) {
                                      s.median_shift_ci95.low,  s.median_shift_ci95.high,
                                      s.median_snr_db,          s.two_way_attenuation_db,
                                      s.confusion_rate,         s.false_association_rate,
-                                     s.false_alarms_per_frame, s.fog_detections_per_frame};
+                                     s.false_alarms_per_frame, s.fog_detections_per_frame,
+                                     s.adc_clipped_fraction};
     out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
            std::to_string(s.detections);
     for (double v : numbers) out += ',' + exact(v);
@@ -302,7 +304,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          {"confusion_rate", s.confusion_rate},
          {"false_association_rate", s.false_association_rate},
          {"false_alarms_per_frame", s.false_alarms_per_frame},
-         {"fog_detections_per_frame", s.fog_detections_per_frame}});
+         {"fog_detections_per_frame", s.fog_detections_per_frame},
+         {"adc_clipped_fraction", s.adc_clipped_fraction}});
   }
   return {
       {"steps", steps},
@@ -366,6 +369,11 @@ std::string table_cell(double value, int width, const char* format) {
   return text;
 }
 
+std::string percent_of_samples(double fraction) {
+  const std::string text = stats::format_number(100.0 * fraction, 3);
+  return text == "100" && fraction < 1.0 ? ">99.9" : text;
+}
+
 std::string summary_table(const RadarSummary& summary) {
   std::ostringstream out;
   char line[320];
@@ -401,6 +409,20 @@ std::string summary_table(const RadarSummary& summary) {
   if (std::any_of(summary.steps.begin(), summary.steps.end(), survivors_only)) {
     out << "*: fewer than half the measurements detected the target: the RCS statistics are the\n"
            "surviving detections' only\n";
+  }
+  if (std::any_of(summary.steps.begin(), summary.steps.end(),
+                  [](const StepSummary& s) { return s.adc_clipped_fraction > 0.0; })) {
+    // "ADC clipping: 12.3 % of the samples at 0 active layers, 0.5 % at 1 active layer".
+    out << "ADC clipping:";
+    bool first = true;
+    for (const StepSummary& s : summary.steps) {
+      if (s.adc_clipped_fraction <= 0.0) continue;
+      out << (first ? " " : ", ") << percent_of_samples(s.adc_clipped_fraction)
+          << (first ? " % of the samples at " : " % at ")
+          << counted(s.active_layers, "active layer");
+      first = false;
+    }
+    out << '\n';
   }
   out << "sensor limit: ";
   if (summary.sensor_limit_layers)

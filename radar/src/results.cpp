@@ -31,6 +31,8 @@ double fraction(std::size_t count, std::size_t n) {
 
 MeasurementRecord record_of(const Measurement& m, double target_range_m, double gate_m) {
   MeasurementRecord record;
+  record.samples = m.synthesis.samples;
+  record.clipped_samples = m.synthesis.clipped_samples;
   double strongest_fog_w = 0.0;
   record.detections.reserve(m.detections.size());
   for (const Detection& d : m.detections) {
@@ -78,12 +80,15 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.two_way_attenuation_db = step.two_way_attenuation_db;
     std::vector<double> snr;
     std::size_t confused = 0, false_associations = 0, false_alarms = 0, fog_detections = 0;
+    std::size_t samples = 0, clipped_samples = 0;
     for (const MeasurementRecord& r : step.records) {
       if (r.detected) snr.push_back(r.snr_db);
       if (!r.detected || r.fog_rivals_target) ++confused;
       if (r.associated && !r.detected) ++false_associations;
       false_alarms += r.false_alarms;
       fog_detections += r.fog_detections;
+      samples += r.samples;
+      clipped_samples += r.clipped_samples;
     }
     s.detection_rate = fraction(s.detections, s.n);
     s.false_association_rate = fraction(false_associations, s.n);
@@ -91,6 +96,7 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.fog_detections_per_frame = fraction(fog_detections, s.n);
     s.median_snr_db = median_of(snr);
     s.confusion_rate = fraction(confused, s.n);
+    s.adc_clipped_fraction = fraction(clipped_samples, samples);
     if (step.active_layers == 0 || rcs.empty() || baseline.empty()) {
       s.median_shift_db = s.active_layers == 0 && !rcs.empty() ? 0.0 : nan;
       s.p_value = nan;

@@ -94,6 +94,25 @@ class Report : public RadarReport {
     return c;
   }
 
+  // ADC clipping in any frame: the fraction of all the run's samples with a clipped rail (sums of
+  // integers over every measurement), since a clipped echo reads low.
+  std::vector<std::string> warnings() const override {
+    std::size_t samples = 0, clipped = 0;
+    for (const StepResult& step : *steps_) {
+      for (const MeasurementRecord& r : step.records) {
+        samples += r.samples;
+        clipped += r.clipped_samples;
+      }
+    }
+    if (clipped == 0 || samples == 0) return {};
+    std::string w = "the radar's ADC clipped ";
+    w += percent_of_samples(static_cast<double>(clipped) / static_cast<double>(samples));
+    w += " % of the samples (radar.adc_full_scale_dbm = ";
+    w += stats::format_number(params_.radar.adc_full_scale_dbm, 0);
+    w += "): its RCS reads low";
+    return {w};
+  }
+
  private:
   SensorParams params_;
   sensor::Context context_;

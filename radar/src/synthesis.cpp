@@ -199,6 +199,7 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
   const bool window_with_noise =
       window != nullptr && noise_with_copy && !moving_paths && params.adc_bits == 0;
   SynthesisReport report;
+  report.samples = frame.size();
   if (window_with_noise) {
     ComplexNormalGenerator noise(rng);
     const bool by_chirp = transform != nullptr && transform->fft != nullptr &&

@@ -3,7 +3,7 @@
 // table (detections stated separately), the detection-rate strip, the sensor-limit mark at its
 // step, steps without a target detection marked, legend entries, no "tracked" wording, labels of a
 // 41-step and a 101-step chamber that do not overlap; the printed table's fog detections and
-// dashes.
+// dashes; its ADC clipping line.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -167,6 +167,32 @@ TEST(RcsBoxplot, SurvivorsOnlyStepsSaySo) {
     step.detection_rate = 1.0;
   }
   EXPECT_EQ(summary_table(all_detected).find('*'), std::string::npos);
+}
+
+// The table states ADC clipping after its footnotes, only when a step clipped and only for the
+// steps that did (steps 0 and 3 here); without clipping there is no such line.
+TEST(RcsBoxplot, TableStatesAdcClippingOnlyWhenAStepClipped) {
+  EXPECT_EQ(summary_table(losing_summary()).find("ADC clipping"), std::string::npos);
+  RadarSummary summary = losing_summary();
+  summary.steps[0].adc_clipped_fraction = 0.123;
+  summary.steps[3].adc_clipped_fraction = 0.005;
+  const std::string table = summary_table(summary);
+  const std::string line =
+      "\nADC clipping: 12.3 % of the samples at 0 active layers, 0.5 % at 3 active layers\n";
+  EXPECT_NE(table.find(line), std::string::npos) << table;
+  EXPECT_GT(table.find("ADC clipping"), table.find("\u2013: no such value"));
+  EXPECT_GT(table.find("ADC clipping"), table.find("*: fewer than half"));
+  EXPECT_EQ(table.find("at 1 active layer"), std::string::npos) << table;
+  summary.steps[0].adc_clipped_fraction = 0.0;
+  summary.steps[3].adc_clipped_fraction = 0.0;
+  summary.steps[1].adc_clipped_fraction = 1.0;
+  summary.steps[2].adc_clipped_fraction = 0.9999;
+  EXPECT_NE(summary_table(summary).find(">99.9 % at 2 active layers\n"), std::string::npos)
+      << summary_table(summary);
+  summary.steps[2].adc_clipped_fraction = 0.0;
+  const std::string all = summary_table(summary);
+  EXPECT_NE(all.find("\nADC clipping: 100 % of the samples at 1 active layer\n"), std::string::npos)
+      << all;
 }
 
 // Rate bars of 56 px full height: 200/200, 150/200, 50/200, 0, 0 -> 56, 42, 14, 0, 0 px.

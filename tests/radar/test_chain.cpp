@@ -34,8 +34,11 @@
 
 #include "chain_test_support.hpp"
 #include "fogradar/core/random.hpp"
+#include "fogradar/core/units.hpp"
 #include "fogradar/propagation/layer_model.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/outputs.hpp"
+#include "fogradar/radar/results.hpp"
 #include "validation.hpp"
 
 namespace fogradar::radar {
@@ -1608,6 +1611,86 @@ TEST(Adc, ClippingIsCountedExactly) {
   p.adc_full_scale_dbm = noise_dbm + 40.0;
   RandomStream rng_high(23);
   EXPECT_EQ(synthesize_frame({}, p, d, rng_high, frame).clipped_samples, 0u);
+}
+
+// Clipping reaches the summary: with the full scale at -90 dBm, far below the paper target's echo,
+// two measured frames' records sum to a step whose adc_clipped_fraction is exactly the counts
+// quantize returns on the same frames drawn without an ADC (the same stream: the chain's beat
+// before the ADC), over their samples; the CSV's last column carries it. The paper default (an
+// ideal ADC) and a full scale far above the echo report 0.
+TEST(Adc, ClippedFractionReachesTheSummaryExactly) {
+  RadarParams p;
+  p.adc_bits = 12;
+  p.adc_full_scale_dbm = -90.0;
+  RadarParams ideal = p;
+  ideal.adc_bits = 0;
+  const RadarChain chain(p), ideal_chain(ideal);
+  const propagation::Chamber chamber = make_chamber(paper_chamber_spec(), p.centre_frequency_hz);
+  const auto clear = propagation::first_layers_active(0, chamber.layer_count());
+  const Scene scene = evt_rear_scene();
+  chain.check_compatible(scene, chamber);
+  MeasurementWorkspace ws = chain.make_workspace(), ideal_ws = ideal_chain.make_workspace();
+  const double a = std::sqrt(dbm_to_watt(p.adc_full_scale_dbm));
+  ComplexVector raw;
+  FrameTaps taps;
+  taps.beat = [&raw](std::span<const std::complex<double>> beat) {
+    raw.assign(beat.begin(), beat.end());
+  };
+  StepResult step;
+  std::size_t expected = 0, samples = 0;
+  for (std::uint64_t index = 0; index < 2; ++index) {
+    Measurement m, ideal_m;
+    RandomStream rng(5, 0, index), ideal_rng(5, 0, index);
+    chain.measure(scene, chamber, clear, rng, ws, m);
+    ideal_chain.measure(scene, chamber, clear, ideal_rng, ideal_ws, ideal_m, taps);
+    ASSERT_EQ(raw.size(), p.chirps_per_frame * p.samples_per_chirp);
+    const std::size_t count = quantize(raw, p.adc_bits, a);
+    EXPECT_EQ(m.synthesis.clipped_samples, count);
+    EXPECT_EQ(m.synthesis.samples, raw.size());
+    expected += count;
+    samples += raw.size();
+    step.records.push_back(record_of(m, chamber.target_range_m(), p.association_gate_m));
+  }
+  EXPECT_GT(expected, 0u);
+  EXPECT_LT(expected, samples);
+  const RadarSummary summary = summarize({step}, 0.0, 0.0);
+  ASSERT_EQ(summary.steps.size(), 1u);
+  const double fraction = static_cast<double>(expected) / static_cast<double>(samples);
+  std::printf("[ measured ] ADC full scale -90 dBm, paper target: %zu of %zu samples clipped\n",
+              expected, samples);
+  EXPECT_EQ(summary.steps[0].adc_clipped_fraction, fraction);
+
+  const std::string csv = summary_csv(summary);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  const std::string last = ",adc_clipped_fraction";
+  ASSERT_GE(header.size(), last.size());
+  EXPECT_EQ(header.substr(header.size() - last.size()), last) << header;
+  EXPECT_EQ(csv.find("adc_clipped_fraction"), header.size() - last.size() + 1);
+  const std::string row = csv.substr(header.size() + 1, csv.size() - header.size() - 2);
+  EXPECT_EQ(std::stod(row.substr(row.rfind(',') + 1)), fraction) << row;
+  EXPECT_EQ(summary_json(summary)["steps"][0]["adc_clipped_fraction"].get<double>(), fraction);
+
+  // The paper default: an ideal ADC, nothing clipped.
+  const RadarChain paper_chain{RadarParams{}};
+  MeasurementWorkspace paper_ws = paper_chain.make_workspace();
+  Measurement paper_m;
+  RandomStream paper_rng(5, 0, 0);
+  paper_chain.measure(scene, chamber, clear, paper_rng, paper_ws, paper_m);
+  EXPECT_EQ(paper_m.synthesis.clipped_samples, 0u);
+  const StepResult paper_step{
+      .active_layers = 0,
+      .two_way_attenuation_db = 0.0,
+      .records = {record_of(paper_m, chamber.target_range_m(), p.association_gate_m)}};
+  EXPECT_EQ(summarize({paper_step}, 0.0, 0.0).steps[0].adc_clipped_fraction, 0.0);
+  // A 12-bit ADC with its full scale 60 dB above the clipping one: nothing clipped either.
+  RadarParams high = p;
+  high.adc_full_scale_dbm = -30.0;
+  const RadarChain high_chain(high);
+  Measurement high_m;
+  RandomStream high_rng(5, 0, 0);
+  high_chain.measure(scene, chamber, clear, high_rng, paper_ws, high_m);
+  EXPECT_EQ(high_m.synthesis.clipped_samples, 0u);
+  EXPECT_EQ(high_m.synthesis.samples, raw.size());
 }
 
 // ADC through the chain: with q = rail sigma of the thermal noise (8 bits, no clipping), the

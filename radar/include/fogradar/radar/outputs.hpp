@@ -29,6 +29,9 @@ nlohmann::json summary_json(const RadarSummary& summary);
 // CFAR, n, seed).
 std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& context,
                             const RadarSummary& summary);
+// A fraction in [0, 1] as a percentage of 3 significant digits ("12.3", "0.05"): "100" only when
+// it is 1, ">99.9" when it is less but would round to 100.
+std::string percent_of_samples(double fraction);
 // The per-layer table `fogradar run` prints for the radar.
 std::string summary_table(const RadarSummary& summary);
 

@@ -46,6 +46,10 @@ struct MeasurementRecord {
   std::size_t fog_detections = 0;  // fog-origin detections anywhere in the map
   std::size_t false_alarms = 0;    // noise-origin detections anywhere in the map
   std::vector<DetectionRecord> detections;  // every detection of the map, in the chain's order
+  // The frame's samples and those with an I or Q rail clipped by the ADC (SynthesisReport); not
+  // written per measurement, summed per step (StepSummary::adc_clipped_fraction).
+  std::size_t samples = 0;
+  std::size_t clipped_samples = 0;
 };
 
 // The record of one measured frame; the gate is |range - target_range_m| <= gate_m, as
@@ -78,6 +82,9 @@ struct StepSummary {
   double median_snr_db = 0.0;  // of the target detections
   double two_way_attenuation_db = 0.0;
   double confusion_rate = 0.0;  // measurements without a target detection or with fog rivalling it
+  // Samples of the step's frames with an I or Q rail clipped by the ADC, over all their samples
+  // (sums of integers: the same for any thread count); 0 without an ADC (radar.adc_bits = 0).
+  double adc_clipped_fraction = 0.0;
 };
 
 struct RadarSummary {

@@ -17,6 +17,7 @@ namespace fogradar::radar {
 
 struct SynthesisReport {
   std::size_t clipped_samples = 0;  // I or Q rail beyond the ADC full scale
+  std::size_t samples = 0;          // the frame's samples (chirps x samples per chirp)
   bool range_transformed = false;   // every chirp went through the ChirpTransform given
 };
 

@@ -149,6 +149,9 @@ class SensorSummary {
   // Every result file of the sensor's own.
   virtual std::vector<ResultFile> files() const = 0;
   virtual Curve curve() const = 0;
+  // What the user should know about the run's numbers (one sentence each, no prefix): `fogradar
+  // run` prints them on stderr after the tables. None by default.
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 class Worker {
