@@ -1,15 +1,23 @@
 // `fogradar fog`: the fog's water index, attenuation and backscatter at a (radar) frequency,
-// optical extinction and visibility (docs/physics.md), and one layer of it as each sensor of the
-// paper scenario sees it (sensor::SensorType::fog_report).
+// optical extinction and visibility (docs/physics.md), the optical attenuation models of the
+// study's eq. 1, 2 (Kruse, Kim) beside Mie at one wavelength, the virtual layer model of its eq. 3,
+// 4, and one layer of the fog as each sensor of the paper scenario sees it
+// (sensor::SensorType::fog_report).
+#include <algorithm>
+#include <any>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "checks.hpp"
@@ -18,11 +26,29 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/propagation/dsd.hpp"
 #include "fogradar/propagation/fog.hpp"
+#include "fogradar/propagation/layer_model.hpp"
+#include "fogradar/propagation/visibility.hpp"
 #include "fogradar/sensor/sensor.hpp"
 
 namespace fogradar::cli {
 namespace {
+
+// A number of the paper scenario's lidar (its wavelength, its target's reflectivity): the optical
+// options default to the lidar's own values, read through its keys since its parameters are its
+// module's.
+double paper_lidar_number(std::string_view key_name) {
+  const experiment::Scenario paper = experiment::paper_scenario();
+  for (const experiment::SensorSetting& setting : paper.sensors) {
+    for (const Key<std::any>& key : setting.type->keys().keys()) {
+      if (key.name == key_name) return key.get_number(setting.params);
+    }
+  }
+  check_failed("the paper scenario's lidar declares the key", __FILE__, __LINE__);
+}
+
+const std::vector<std::string> optical_model_names = {"mie", "kruse", "kim"};
 
 struct FogOptions {
   double frequency_ghz = 77.0;
@@ -30,27 +56,100 @@ struct FogOptions {
   std::optional<double> lwc_g_per_m3;
   std::optional<double> extinction_per_km;
   std::optional<double> visibility_m;
+  std::string lwc_from = "mie";
+  // Absent: lognormal, or monodisperse where --diameter-um is given.
+  std::optional<std::string> distribution;
   std::optional<double> diameter_um;
+  std::optional<double> median_diameter_um;
+  std::optional<double> geometric_std;
+  std::optional<double> alpha;
+  std::optional<double> gamma;
+  std::optional<double> b_per_um_gamma;
   std::optional<double>
       temperature_c;  // absent: 20 C under Liebe, the table's own under Segelstein
   std::string water_model = "liebe";
   double layer_length_m = 1.0;  // the study's layer f_i
+  std::vector<std::string> optical_models = optical_model_names;
+  double wavelength_nm = paper_lidar_number("lidar.wavelength_m") * 1e9;
+  std::optional<std::int64_t> layer_model;
+  double object_reflectivity = paper_lidar_number("lidar.target_reflectivity");
   bool json = false;
 };
 
-// The fog through one layer of `layer_length_m` as each of the paper scenario's sensors sees it,
-// resolved by the sensor modules themselves (the radar at its sweep centre, the lidar's Mie at its
-// wavelength, the camera's band quadrature), so these are the numbers a run uses.
-std::vector<std::pair<std::string, sensor::FogReport>> sensor_reports(
-    const propagation::FogSpec& spec, double layer_length_m,
-    const propagation::SegelsteinTable& table) {
-  const experiment::Scenario paper = experiment::paper_scenario();
-  std::vector<std::pair<std::string, sensor::FogReport>> reports;
-  for (const experiment::SensorSetting& setting : paper.sensors) {
-    reports.emplace_back(setting.type->name(),
-                         setting.type->fog_report(setting.params, spec, layer_length_m, table));
+// A bound as a message states it, six significant digits rounded inward (down for an upper
+// bound), so that the number shown is itself allowed.
+std::string bound_text(double bound, bool upper) {
+  const double unit = std::pow(10.0, std::floor(std::log10(std::abs(bound))) - 5.0);
+  std::ostringstream text;
+  text << std::setprecision(6)
+       << (upper ? std::floor(bound / unit) : std::ceil(bound / unit)) * unit;
+  return text.str();
+}
+
+// The fogs behind the output. The radar-frequency values follow the LWC, the optical ones the
+// extinction at 550 nm; under --lwc-from mie (the default) both are one fog, the LWC and the
+// extinction tied by Mie over its droplets; under kunkel they are tied by Kunkel's empirical law
+// instead, which no droplet distribution need obey, so the two are resolved as two fogs.
+struct FogSpecs {
+  propagation::FogSpec by_lwc;
+  propagation::FogSpec by_extinction;
+};
+
+// A droplet option and the [fog.droplets] key it sets (dsd.hpp droplet_keys, here under the prefix
+// "--", so that the families, the presets and which key goes with which family are the
+// scenario's). Diameters are typed in um, the keys hold m.
+struct DropletOption {
+  std::string_view option;
+  std::string_view key;
+  double key_per_option_unit;
+  std::optional<double> FogOptions::*value;
+};
+
+const DropletOption droplet_options[] = {
+    {"--diameter-um", "--diameter_m", 1e-6, &FogOptions::diameter_um},
+    {"--median-diameter-um", "--median_diameter_m", 1e-6, &FogOptions::median_diameter_um},
+    {"--geometric-std", "--geometric_std", 1.0, &FogOptions::geometric_std},
+    {"--alpha", "--alpha", 1.0, &FogOptions::alpha},
+    {"--gamma", "--gamma", 1.0, &FogOptions::gamma},
+    {"--b-per-um-gamma", "--b_per_um_gamma", 1.0, &FogOptions::b_per_um_gamma},
+};
+
+// The drop size distribution the options give, as the scenario's [fog.droplets] would: the family
+// first (a preset with its published values), then its own parameters; a parameter of another
+// family is refused, not ignored.
+propagation::DropSizeDistribution droplets_from(const FogOptions& o) {
+  KeyTable<propagation::DropSizeDistribution> keys = propagation::droplet_keys("--");
+  propagation::DropSizeDistribution droplets = propagation::default_fog_droplets();
+  keys.at("--distribution")
+      .set_text(droplets, o.distribution.value_or(o.diameter_um ? "monodisperse" : "lognormal"));
+  const DropletOption* gamma_option = nullptr;  // one given, for the message below
+  for (const DropletOption& option : droplet_options) {
+    const std::optional<double>& value = o.*option.value;
+    if (!value) continue;
+    const Key<propagation::DropSizeDistribution>& key = keys.at(option.key);
+    if (!key.takes_effect(droplets)) {
+      throw_invalid(option.option, *value, "given only " + key.applies_text);
+    }
+    key.set_number(droplets, *value * option.key_per_option_unit);
+    if (std::holds_alternative<propagation::ModifiedGamma>(droplets)) {
+      gamma_option = &option;
+    }
   }
-  return reports;
+  // The one bound that involves several keys (droplet_keys: b_per_um_gamma); a preset meets it, so
+  // a typed parameter broke it.
+  if (const auto* g = std::get_if<propagation::ModifiedGamma>(&droplets)) {
+    const double mode_radius_um =
+        std::pow(g->alpha / (g->b_per_um_gamma * g->gamma), 1.0 / g->gamma);
+    if (!(mode_radius_um <= 500.0)) {
+      std::ostringstream constraint;
+      constraint << "such that the mode radius (alpha / (b gamma))^(1/gamma) <= 500 um (here "
+                 << mode_radius_um << " um with alpha = " << g->alpha << ", gamma = " << g->gamma
+                 << ", b = " << g->b_per_um_gamma << ")";
+      FOGRADAR_CHECK(gamma_option != nullptr);
+      throw_invalid(gamma_option->option, *(o.*gamma_option->value), constraint.str());
+    }
+  }
+  return droplets;
 }
 
 // The argument names the user typed, so errors name them rather than internal fields.
@@ -74,10 +173,7 @@ propagation::FogSpec fog_spec_from(const FogOptions& o) {
     require_in_range("--visibility-m", *o.visibility_m, 1e-3, 1e7);
     spec.density = propagation::Visibility{*o.visibility_m};
   }
-  if (o.diameter_um) {
-    require_in_range("--diameter-um", *o.diameter_um, 0.01, 1000.0);
-    spec.droplets = propagation::Monodisperse{*o.diameter_um * 1e-6};
-  }
+  spec.droplets = droplets_from(o);
   spec.water_model = propagation::parse_water_model(o.water_model, "--water-model");
   if (spec.water_model == propagation::WaterModel::segelstein) {
     spec.temperature_c = propagation::segelstein_table_temperature_c;
@@ -92,6 +188,64 @@ propagation::FogSpec fog_spec_from(const FogOptions& o) {
     spec.temperature_c = *o.temperature_c;
   }
   return spec;
+}
+
+FogSpecs fog_specs_from(const FogOptions& o) {
+  const propagation::FogSpec spec = fog_spec_from(o);
+  if (o.lwc_from == "mie") return {spec, spec};
+  double lwc_g_per_m3 = 0.0;
+  double extinction_per_km = 0.0;
+  if (o.lwc_g_per_m3) {
+    lwc_g_per_m3 = *o.lwc_g_per_m3;
+    extinction_per_km = propagation::kunkel_extinction_per_km(lwc_g_per_m3);
+  } else {
+    // Kunkel's LWC of a dense fog passes the LWC's own bound of 100 g/m^3 long before the
+    // extinction's: the options are held to the extinction that bound allows.
+    const double max_extinction_per_km = propagation::kunkel_extinction_per_km(100.0);
+    std::ostringstream constraint;
+    if (o.visibility_m) {
+      extinction_per_km =
+          per_m_to_per_km(propagation::extinction_per_m_from_visibility(*o.visibility_m));
+      constraint << "in ["
+                 << bound_text(propagation::visibility_m_from_extinction(
+                                   per_km_to_per_m(max_extinction_per_km)),
+                               false)
+                 << ", 1e7] with --lwc-from kunkel (Kunkel's LWC at most 100 g/m^3); "
+                    "--lwc-from mie takes [1e-3, 1e7]";
+    } else {
+      extinction_per_km = std::get<propagation::OpticalExtinction>(spec.density).per_km;
+      constraint << "in [0, " << bound_text(max_extinction_per_km, true)
+                 << "] with --lwc-from kunkel (Kunkel's LWC at most 100 g/m^3); --lwc-from mie "
+                    "takes [0, 1e6]";
+    }
+    if (extinction_per_km > max_extinction_per_km) {
+      if (o.visibility_m) throw_invalid("--visibility-m", *o.visibility_m, constraint.str());
+      throw_invalid("--extinction-per-km", extinction_per_km, constraint.str());
+    }
+    lwc_g_per_m3 = propagation::kunkel_lwc_g_per_m3(extinction_per_km);
+  }
+  FogSpecs specs{spec, spec};
+  specs.by_lwc.density = propagation::LiquidWaterContent{lwc_g_per_m3};
+  specs.by_extinction.density = propagation::OpticalExtinction{extinction_per_km};
+  return specs;
+}
+
+// The fog through one layer of `layer_length_m` as each of the paper scenario's sensors sees it,
+// resolved by the sensor modules themselves (the radar at its sweep centre, the lidar's Mie at its
+// wavelength, the camera's band quadrature), so these are the numbers a run uses. The radar sees
+// the fog of the LWC, the optical sensors the fog of the 550 nm extinction (FogSpecs).
+std::vector<std::pair<std::string, sensor::FogReport>> sensor_reports(
+    const FogSpecs& specs, double layer_length_m, const propagation::SegelsteinTable& table) {
+  const experiment::Scenario paper = experiment::paper_scenario();
+  std::vector<std::pair<std::string, sensor::FogReport>> reports;
+  for (const experiment::SensorSetting& setting : paper.sensors) {
+    const bool radar = setting.type->name() == "radar";
+    reports.emplace_back(
+        setting.type->name(),
+        setting.type->fog_report(setting.params, radar ? specs.by_lwc : specs.by_extinction,
+                                 layer_length_m, table));
+  }
+  return reports;
 }
 
 nlohmann::json number_or_null(double value) {
@@ -109,16 +263,179 @@ std::string water_source(const propagation::FogOptics& optics) {
   return text.str();
 }
 
+// A wavelength in the unit of its band: nm from the far infrared (below 0.1 mm) on, mm for radar.
+std::string wavelength_text(double wavelength_m) {
+  std::ostringstream text;
+  text << std::setprecision(6);
+  if (wavelength_m < 1e-4) {
+    text << wavelength_m * 1e9 << " nm";
+  } else {
+    text << wavelength_m * 1e3 << " mm";
+  }
+  return text.str();
+}
+
+// The distribution's parameters under its [fog.droplets] keys' names, diameters in um as the
+// options take them.
+nlohmann::json droplet_parameters(const propagation::DropSizeDistribution& droplets) {
+  struct Parameters {
+    nlohmann::json operator()(const propagation::Monodisperse& d) const {
+      return {{"diameter_um", d.diameter_m * 1e6}};
+    }
+    nlohmann::json operator()(const propagation::Lognormal& d) const {
+      return {{"median_diameter_um", d.median_diameter_m * 1e6},
+              {"geometric_std", d.geometric_std}};
+    }
+    nlohmann::json operator()(const propagation::ModifiedGamma& d) const {
+      return {{"alpha", d.alpha}, {"gamma", d.gamma}, {"b_per_um_gamma", d.b_per_um_gamma}};
+    }
+  };
+  return std::visit(Parameters{}, droplets);
+}
+
+std::string droplet_parameters_text(const propagation::DropSizeDistribution& droplets) {
+  struct Text {
+    std::string operator()(const propagation::Monodisperse& d) const {
+      std::ostringstream text;
+      text << "diameter " << d.diameter_m * 1e6 << " um";
+      return text.str();
+    }
+    std::string operator()(const propagation::Lognormal& d) const {
+      std::ostringstream text;
+      text << "median " << d.median_diameter_m * 1e6 << " um, sigma_g " << d.geometric_std;
+      return text.str();
+    }
+    std::string operator()(const propagation::ModifiedGamma& d) const {
+      std::ostringstream text;
+      text << "alpha " << d.alpha << ", gamma " << d.gamma << ", b " << d.b_per_um_gamma
+           << " um^-gamma";
+      return text.str();
+    }
+  };
+  return std::visit(Text{}, droplets);
+}
+
+// Specific attenuation at the --wavelength-nm by one optical model.
+struct OpticalModelRow {
+  std::string name;
+  std::string label;
+  double extinction_per_km = 0.0;
+  std::optional<double> q;  // Kruse's and Kim's wavelength exponent
+};
+
+// Mie over the droplets, and the study's eq. 1 with Kruse's q (eq. 2) or Kim's, from the eq. 6
+// visibility: eq. 1's 3.91 is -ln 0.02, the 2 % contrast of eq. 6, and Kruse and Kim define their
+// visibility by that threshold, so at 550 nm their extinction is the fog's own.
+std::vector<OpticalModelRow> optical_model_rows(const std::vector<std::string>& models,
+                                                const propagation::FogOptics& mie,
+                                                double visibility_m, double wavelength_nm) {
+  std::vector<OpticalModelRow> rows = {
+      {"mie", "Mie", per_m_to_per_km(mie.extinction_per_m), std::nullopt}};
+  const auto wanted = [&models](std::string_view name) {
+    return std::find(models.begin(), models.end(), name) != models.end();
+  };
+  // No water: no extinction at any wavelength (eq. 1 as V grows without bound).
+  const bool clear = !std::isfinite(visibility_m);
+  const double visibility_km = visibility_m * 1e-3;
+  if (wanted("kruse")) {
+    rows.push_back(
+        {"kruse", "Kruse (eq. 1, 2)",
+         clear ? 0.0 : propagation::kruse_extinction_per_km(visibility_km, wavelength_nm),
+         clear ? std::nullopt : std::optional(propagation::kruse_q(visibility_km))});
+  }
+  if (wanted("kim")) {
+    rows.push_back({"kim", "Kim (eq. 1)",
+                    clear ? 0.0 : propagation::kim_extinction_per_km(visibility_km, wavelength_nm),
+                    clear ? std::nullopt : std::optional(propagation::kim_q(visibility_km))});
+  }
+  return rows;
+}
+
+// One row of the virtual layer model: an object behind `layers` layers, and the fog's own echo in
+// its delay bin (bin layers + 1, kappa = 2 layers + 1).
+struct LayerModelRow {
+  unsigned layers = 0;
+  unsigned kappa = 1;
+  double fog_intensity_per_i0 = 0.0;
+  double object_intensity_per_i0 = 0.0;
+};
+
+// The longest layer whose virtual layer keeps tau + rho = exp(-alpha d) + eta d <= 1, for
+// eta < alpha: the sum falls from 1 at d = 0 to its minimum at ln(alpha / eta) / alpha and
+// rises through 1 once more before d = 1 / eta; bisection to the last double.
+double longest_layer_m(double extinction_per_m, double eta_m2_per_m3) {
+  double below = std::log(extinction_per_m / eta_m2_per_m3) / extinction_per_m;
+  double above = 1.0 / eta_m2_per_m3;
+  for (int step = 0; step < 200 && std::nextafter(below, above) < above; ++step) {
+    const double middle = 0.5 * (below + above);
+    const double sum = std::exp(-extinction_per_m * middle) + eta_m2_per_m3 * middle;
+    (sum > 1.0 ? above : below) = middle;
+  }
+  return below;
+}
+
+// The study's eq. 3, 4 for a stack of identical virtual layers, each one layer of `length_m` of
+// the fog whose optics at the wavelength are `optics`.
+propagation::VirtualLayer virtual_layer(const propagation::FogOptics& optics, double length_m,
+                                        const FogOptions& o) {
+  const double alpha = optics.extinction_per_m;
+  const double eta = optics.volume_backscatter_m2_per_m3;
+  if (std::exp(-alpha * length_m) + eta * length_m > 1.0) {
+    std::ostringstream why;
+    why << "for this fog at " << o.wavelength_nm << " nm (alpha = " << alpha
+        << " 1/m, eta = " << eta << " m^2/m^3) the virtual layer's tau + rho = exp(-alpha d) + "
+        << "eta d";
+    if (eta >= alpha) {
+      throw_invalid("--layer-model", static_cast<double>(*o.layer_model),
+                    "left out: " + why.str() + " exceeds 1 at every layer length d");
+    }
+    std::ostringstream constraint;
+    constraint << "at most " << bound_text(longest_layer_m(alpha, eta), true)
+               << " with --layer-model: " << why.str() << " must not exceed 1";
+    throw_invalid("--layer-length-m", length_m, constraint.str());
+  }
+  return propagation::virtual_layer_from_fog(alpha, eta, length_m);
+}
+
+std::vector<LayerModelRow> layer_model_rows(const propagation::VirtualLayer& layer,
+                                            unsigned max_layers, double object_reflectivity) {
+  std::vector<LayerModelRow> rows;
+  for (unsigned k = 0; k <= max_layers; ++k) {
+    const unsigned kappa = 2 * k + 1;
+    rows.push_back(
+        {k, kappa,
+         propagation::layer_model_intensity(kappa, layer.transmittance, layer.reflectance),
+         propagation::object_intensity(k, layer.transmittance, object_reflectivity)});
+  }
+  return rows;
+}
+
 void run_fog(const FogOptions& options) {
-  const propagation::FogSpec spec = fog_spec_from(options);
+  const FogSpecs specs = fog_specs_from(options);
   const propagation::SegelsteinTable table;
-  const propagation::Fog fog(spec, table);
+  const propagation::Fog fog(specs.by_lwc, table);
+  const propagation::Fog optical_fog(specs.by_extinction, table);
   const propagation::FogOptics at_frequency = fog.at_frequency(options.frequency_ghz * 1e9);
   const propagation::FogOptics optical =
-      fog.at_optical_wavelength(propagation::visibility_wavelength_m);
-  const double optical_extinction_per_km = fog.optical_extinction_per_km();
-  const double visibility_m = fog.visibility_m();
-  const auto reports = sensor_reports(spec, options.layer_length_m, table);
+      optical_fog.at_optical_wavelength(propagation::visibility_wavelength_m);
+  const double optical_extinction_per_km = optical_fog.optical_extinction_per_km();
+  const double visibility_m = optical_fog.visibility_m();
+  const double meteorological_visibility_m =
+      optical.extinction_per_m > 0.0
+          ? propagation::meteorological_visibility_m(optical.extinction_per_m)
+          : std::numeric_limits<double>::infinity();
+  const propagation::FogOptics at_wavelength =
+      optical_fog.at_optical_wavelength(options.wavelength_nm * 1e-9);
+  const std::vector<OpticalModelRow> models = optical_model_rows(
+      options.optical_models, at_wavelength, visibility_m, options.wavelength_nm);
+  std::optional<propagation::VirtualLayer> layer;
+  std::vector<LayerModelRow> layer_rows;
+  if (options.layer_model) {
+    layer = virtual_layer(at_wavelength, options.layer_length_m, options);
+    layer_rows = layer_model_rows(*layer, static_cast<unsigned>(*options.layer_model),
+                                  options.object_reflectivity);
+  }
+  const auto reports = sensor_reports(specs, options.layer_length_m, table);
 
   if (options.json) {
     nlohmann::json out = {
@@ -130,28 +447,65 @@ void run_fog(const FogOptions& options) {
         {"temperature_c", at_frequency.water_temperature_c},
         {"optical_water_model", propagation::to_string(optical.water_model)},
         {"optical_water_temperature_c", optical.water_temperature_c},
-        {"droplets", propagation::distribution_name(spec.droplets)},
+        {"droplets", propagation::distribution_name(specs.by_lwc.droplets)},
+        {"droplet_parameters", droplet_parameters(specs.by_lwc.droplets)},
+        {"lwc_from", options.lwc_from},
         {"lwc_g_per_m3", fog.lwc_g_per_m3()},
         {"number_concentration_per_cm3", fog.number_concentration_per_m3() * 1e-6},
         {"specific_attenuation_db_per_km", at_frequency.specific_attenuation_db_per_km},
         {"volume_backscatter_m2_per_m3", at_frequency.volume_backscatter_m2_per_m3},
         {"optical_extinction_per_km", optical_extinction_per_km},
         {"visibility_m", number_or_null(visibility_m)},
+        {"meteorological_visibility_m", number_or_null(meteorological_visibility_m)},
+        {"optical_wavelength_nm", options.wavelength_nm},
         {"layer_length_m", options.layer_length_m},
     };
+    nlohmann::json& by_model = out["optical_models"] = nlohmann::json::object();
+    for (const OpticalModelRow& row : models) {
+      nlohmann::json& entry =
+          by_model[row.name] = {{"extinction_per_km", row.extinction_per_km},
+                                {"specific_attenuation_db_per_km",
+                                 propagation::attenuation_db_per_km(row.extinction_per_km)}};
+      if (row.name != "mie") entry["q"] = row.q ? nlohmann::json(*row.q) : nlohmann::json(nullptr);
+    }
+    if (layer) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const LayerModelRow& row : layer_rows) {
+        rows.push_back({{"layers", row.layers},
+                        {"kappa", row.kappa},
+                        {"fog_intensity_per_i0", row.fog_intensity_per_i0},
+                        {"object_intensity_per_i0", row.object_intensity_per_i0}});
+      }
+      out["layer_model"] = {
+          {"wavelength_nm", options.wavelength_nm},
+          {"layer_length_m", options.layer_length_m},
+          {"extinction_per_m", at_wavelength.extinction_per_m},
+          {"volume_backscatter_m2_per_m3", at_wavelength.volume_backscatter_m2_per_m3},
+          {"transmittance_tau", layer->transmittance},
+          {"reflectance_rho", layer->reflectance},
+          {"object_reflectivity", options.object_reflectivity},
+          {"rows", std::move(rows)}};
+    }
     nlohmann::json& sensors = out["sensors"] = nlohmann::json::object();
     for (const auto& [name, report] : reports) sensors[name] = report.json;
     std::cout << out.dump(2) << '\n';
     return;
   }
+  std::string lwc_source;
+  if (options.lwc_from == "kunkel") {
+    lwc_source = options.lwc_g_per_m3
+                     ? " (gives the 550 nm extinction by Kunkel 1984: beta = 144.7 LWC^0.88)"
+                     : " (from the 550 nm extinction by Kunkel 1984: beta = 144.7 LWC^0.88)";
+  }
   std::cout << std::setprecision(6) << "frequency                 "
             << at_frequency.frequency_hz * 1e-9 << " GHz (wavelength "
-            << at_frequency.wavelength_m * 1e3 << " mm)\n"
+            << wavelength_text(at_frequency.wavelength_m) << ")\n"
             << "water index m = n + ik    " << at_frequency.refractive_index.real() << " + "
             << at_frequency.refractive_index.imag() << "i (" << water_source(at_frequency) << ")\n"
-            << "droplets                  " << propagation::distribution_name(spec.droplets) << ", "
+            << "droplets                  " << propagation::distribution_name(specs.by_lwc.droplets)
+            << " (" << droplet_parameters_text(specs.by_lwc.droplets) << "), "
             << fog.number_concentration_per_m3() * 1e-6 << " per cm^3\n"
-            << "liquid water content      " << fog.lwc_g_per_m3() << " g/m^3\n"
+            << "liquid water content      " << fog.lwc_g_per_m3() << " g/m^3" << lwc_source << '\n'
             << "specific attenuation      " << at_frequency.specific_attenuation_db_per_km
             << " dB/km\n"
             << "volume backscatter eta    " << at_frequency.volume_backscatter_m2_per_m3
@@ -159,9 +513,51 @@ void run_fog(const FogOptions& options) {
             << "optical extinction 550 nm " << optical_extinction_per_km << " 1/km (water index "
             << water_source(optical) << ")\n"
             << "visibility (eq. 6, 2 %)   " << visibility_m << " m\n"
-            << "through one layer of " << options.layer_length_m
+            << "CIE visibility (eq. 9)    " << meteorological_visibility_m
+            << " m (meteorological optical range, 5 % contrast)\n"
+            << "at " << options.wavelength_nm
+            << " nm (Kruse and Kim from the eq. 6 visibility), eq. 5 for dB/km:\n";
+  for (const OpticalModelRow& row : models) {
+    std::cout << "  " << std::left << std::setw(24) << row.label << std::right
+              << row.extinction_per_km << " 1/km, "
+              << propagation::attenuation_db_per_km(row.extinction_per_km) << " dB/km";
+    if (row.q) std::cout << " (q = " << *row.q << ")";
+    std::cout << '\n';
+  }
+  if (layer) {
+    std::cout << "virtual layer model (eq. 3, 4) at " << options.wavelength_nm
+              << " nm, one layer = " << options.layer_length_m << " m of this fog:\n"
+              << "  transmittance tau       " << layer->transmittance << " (exp(-alpha d))\n"
+              << "  reflectance rho         " << layer->reflectance << " (eta d)\n"
+              << "  layers k  fog echo I_kappa / I_0     object echo I_obj / I_0\n"
+              << "            (eq. 3, kappa = 2k + 1)    (eq. 4, rho_obj = "
+              << options.object_reflectivity << ")\n";
+    for (const LayerModelRow& row : layer_rows) {
+      std::cout << "  " << std::setw(8) << row.layers << "  " << std::left << std::setw(27)
+                << row.fog_intensity_per_i0 << std::right << row.object_intensity_per_i0 << '\n';
+    }
+  }
+  std::cout << "through one layer of " << options.layer_length_m
             << " m, as the paper scenario's sensors see it:\n";
   for (const auto& [name, report] : reports) std::cout << report.line << '\n';
+}
+
+// A word option that takes one of `names`.
+CLI::Validator one_of(std::string option, std::vector<std::string> names) {
+  return CLI::Validator(
+      [option, names](const std::string& text) {
+        if (std::find(names.begin(), names.end(), text) == names.end()) {
+          std::string allowed;
+          for (const std::string& name : names) {
+            allowed += allowed.empty() ? "one of '" : ", '";
+            allowed += name;
+            allowed += "'";
+          }
+          throw_invalid(option, text, allowed);
+        }
+        return std::string();
+      },
+      "", "");
 }
 
 }  // namespace
@@ -170,8 +566,9 @@ Action add_fog_command(CLI::App& app) {
   auto options = std::make_shared<FogOptions>();
   CLI::App* fog = app.add_subcommand("fog",
                                      "Water index, attenuation and backscatter at a frequency, "
-                                     "optical extinction and visibility of "
-                                     "a fog, and each sensor's view of one layer of it");
+                                     "optical extinction, visibility and attenuation models of "
+                                     "a fog, its virtual layer model, and each sensor's view of "
+                                     "one layer of it");
   fog->add_option("--frequency-ghz", options->frequency_ghz, "Radar frequency in GHz")
       ->capture_default_str()
       ->check(number_in("--frequency-ghz", 0.03, 2.99e7,
@@ -194,11 +591,41 @@ Action add_fog_command(CLI::App& app) {
                   ->check(number_in("--visibility-m", 1e-3, 1e7, "in [1e-3, 1e7]"));
   lwc->excludes(ext)->excludes(vis);
   ext->excludes(vis);
+  fog->add_option("--lwc-from", options->lwc_from,
+                  "What ties the LWC to the 550 nm extinction: mie (over the droplets) | kunkel "
+                  "(Kunkel 1984, beta = 144.7 LWC^0.88; the radar sees the LWC, the optical "
+                  "sensors the extinction)")
+      ->capture_default_str()
+      ->check(one_of("--lwc-from", {"mie", "kunkel"}));
+  // The droplet options are the scenario's [fog.droplets] keys, with their ranges (dsd.hpp
+  // droplet_keys; diameters in um here).
+  fog->add_option("--distribution", options->distribution,
+                  "Drop size distribution: lognormal (default) | monodisperse (default with "
+                  "--diameter-um) | advection | radiation (modified-gamma presets, Shettle & "
+                  "Fenn) | modified_gamma");
   fog->add_option("--diameter-um", options->diameter_um,
-                  "Monodisperse droplets of this diameter in um [0.01, 1000] (default: lognormal, "
-                  "median 1 um, "
-                  "sigma_g 1.5)")
+                  "Monodisperse droplets of this diameter in um [0.01, 1000] (default 1)")
       ->check(number_in("--diameter-um", 0.01, 1000.0, "in [0.01, 1000]"));
+  fog->add_option("--median-diameter-um", options->median_diameter_um,
+                  "Lognormal median diameter in um [0.01, 1000] (default 1)")
+      ->check(number_in("--median-diameter-um", 0.01, 1000.0, "in [0.01, 1000]"));
+  fog->add_option("--geometric-std", options->geometric_std,
+                  "Lognormal geometric standard deviation sigma_g [1.01, 3] (default 1.5)")
+      ->check(number_in("--geometric-std", 1.01, 3.0, "in [1.01, 3]"));
+  fog->add_option("--alpha", options->alpha,
+                  "Modified gamma n(r) = a r^alpha exp(-b r^gamma): alpha [0, 20] (default 3, "
+                  "or the preset's)")
+      ->check(number_in("--alpha", 0.0, 20.0, "in [0, 20]"));
+  fog->add_option("--gamma", options->gamma,
+                  "Modified gamma: gamma [0.25, 4] (default 1, or the preset's)")
+      ->check(number_in("--gamma", 0.25, 4.0, "in [0.25, 4]"));
+  fog->add_option("--b-per-um-gamma", options->b_per_um_gamma,
+                  "Modified gamma: b in um^-gamma, > 0 with the mode radius "
+                  "(alpha / (b gamma))^(1/gamma) <= 500 um (default 0.3, or the preset's)")
+      ->check(number_in("--b-per-um-gamma", std::numeric_limits<double>::denorm_min(),
+                        std::numeric_limits<double>::max(),
+                        "finite and > 0, with the mode radius (alpha / (b gamma))^(1/gamma) <= "
+                        "500 um"));
   fog->add_option(
          "--temperature-c", options->temperature_c,
          "Water temperature in C: [-20, 50] with liebe (default 20); segelstein is a table for "
@@ -210,9 +637,33 @@ Action add_fog_command(CLI::App& app) {
                   "segelstein (25 C table); 550 nm always uses segelstein")
       ->capture_default_str();
   fog->add_option("--layer-length-m", options->layer_length_m,
-                  "Layer length in m for each sensor's loss through one layer [0.001, 10000]")
+                  "Layer length in m for each sensor's loss through one layer and --layer-model's "
+                  "virtual layer [0.001, 10000]")
       ->capture_default_str()
       ->check(number_in("--layer-length-m", 0.001, 1e4, "in [0.001, 10000]"));
+  fog->add_option("--optical-model", options->optical_models,
+                  "Optical attenuation models printed at --wavelength-nm beside Mie, comma "
+                  "separated: mie | kruse (eq. 1, 2) | kim")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(one_of("--optical-model", optical_model_names));
+  // Kruse's and Kim's fits are of visible and near-infrared data; the lidar's key takes the same.
+  fog->add_option("--wavelength-nm", options->wavelength_nm,
+                  "Optical wavelength of --optical-model and --layer-model in nm [400, 2000] "
+                  "(default: the paper lidar's)")
+      ->capture_default_str()
+      ->check(number_in("--wavelength-nm", 400.0, 2000.0, "in [400, 2000]"));
+  auto* layer_model =
+      fog->add_option("--layer-model", options->layer_model,
+                      "Virtual layer model (eq. 3, 4) at --wavelength-nm for objects behind 0 .. "
+                      "N layers of --layer-length-m [1, 1000]")
+          ->check(integer_in("--layer-model", 1, 1000));
+  fog->add_option("--object-reflectivity", options->object_reflectivity,
+                  "Object reflectivity rho_obj of --layer-model's eq. 4 [0, 1] (default: the "
+                  "paper lidar's target)")
+      ->capture_default_str()
+      ->check(number_in("--object-reflectivity", 0.0, 1.0, "in [0, 1]"))
+      ->needs(layer_model);
   fog->add_flag("--json", options->json, "Print one JSON object");
   return [options] { run_fog(*options); };
 }

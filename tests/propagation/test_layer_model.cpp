@@ -329,6 +329,29 @@ TEST(LayerModelIntensity, FirstBinIsTheFirstLayerEcho) {
         Tolerance::absolute);
 }
 
+TEST(LayerModelIntensity, SmallKappaEqualsTheSumWrittenOut) {
+  // Eq. 3 with the Narayana numbers of rows 1..3 written out (OEIS A001263: 1; 1 1; 1 3 1):
+  // I_3 = rho tau^2, I_5 = rho tau^4 + rho^3 tau^2, I_7 = rho tau^6 + 3 rho^3 tau^4 + rho^5 tau^2.
+  for (const auto& [tau, rho] : {std::pair{0.414, 0.0896}, std::pair{0.6, 0.35}}) {
+    const std::string conditions = "tau = " + num(tau) + ", rho = " + num(rho);
+    const double t2 = tau * tau;
+    const double r2 = rho * rho;
+    const std::pair<unsigned, double> written_out[] = {
+        {3, rho * t2},
+        {5, rho * t2 * t2 + rho * r2 * t2},
+        {7, rho * t2 * t2 * t2 + 3.0 * rho * r2 * t2 * t2 + rho * r2 * r2 * t2}};
+    for (const auto& [kappa, expected] : written_out) {
+      check("intensity.written_out.tau" + num(tau) + ".rho" + num(rho) + ".kappa" +
+                std::to_string(kappa),
+            "bin intensity I_kappa / I_0 (eq. 3)",
+            conditions + ", kappa = " + std::to_string(kappa),
+            layer_model_intensity(kappa, tau, rho), expected,
+            "eq. 3 written out with Narayana numbers N(m, i) (OEIS A001263)", kRelTol,
+            Tolerance::relative);
+    }
+  }
+}
+
 // ---- rho = 0: only the object's direct echo, eq. 4 ------------------------------------------
 
 TEST(LayerStackResponse, WithoutReflectionsReducesToEq4) {

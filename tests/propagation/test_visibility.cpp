@@ -87,6 +87,14 @@ TEST(Visibility, Kunkel) {
   for (double lwc : {0.01, 0.2, 3.0}) {
     EXPECT_NEAR(kunkel_lwc_g_per_m3(kunkel_extinction_per_km(lwc)), lwc, 1e-12 * lwc);
   }
+  // The inverse written out: LWC = (beta / 144.7)^(1 / 0.88); the study's 900 1/km needs
+  // 7.98024 g/m^3 by Kunkel (docs/physics.md sec. 5; `fogradar fog --lwc-from kunkel`).
+  check("kunkel.lwc.beta900per_km", "liquid water content", "g/m^3", "beta = 900 1/km",
+        kunkel_lwc_g_per_m3(900.0), std::pow(900.0 / 144.7, 1.0 / 0.88),
+        "Kunkel 1984 inverted: LWC = (beta / 144.7)^(1/0.88)", 1e-12, Tolerance::relative);
+  check("kunkel.lwc.beta900per_km.by_hand", "liquid water content", "g/m^3", "beta = 900 1/km",
+        kunkel_lwc_g_per_m3(900.0), 7.980238747,
+        "Kunkel 1984 inverted: LWC = (beta / 144.7)^(1/0.88), evaluated by hand", 1e-9);
 }
 
 TEST(Visibility, KruseBranchesAtTheirBoundaries) {
@@ -140,6 +148,44 @@ TEST(Visibility, Eq1IsAnExtinctionCoefficient) {
   // Kim below 500 m: wavelength independent.
   check("kim_beta.905nm.v0.2km", "optical extinction beta (Kim)", "1/km", "905 nm, V = 0.2 km",
         kim_extinction_per_km(0.2, 905.0), 3.912023005428146 / 0.2, eq1 + ", Kim q = 0", 1e-12);
+}
+
+TEST(Visibility, Eq1AwayFrom550nmInEachVisibilityBand) {
+  // One visibility per band of q, at the lidar's 905 nm and at 1550 nm (Kim et al. compared 785
+  // and 1550 nm): beta = 3.912 / V (lambda / 550)^-q with q written out per band, not taken from
+  // kruse_q or kim_q.
+  const std::string eq1 = "paper eq. 1 with q written out: beta = 3.912 / V (lambda / 550 nm)^-q";
+  const double koschmieder = 3.912023005428146;
+  struct Case {
+    double visibility_km;
+    double wavelength_nm;
+    double kruse_q;
+    double kim_q;
+  };
+  for (const Case& c : {Case{0.3, 905.0, 0.585 * std::cbrt(0.3), 0.0},
+                        Case{0.8, 1550.0, 0.585 * std::cbrt(0.8), 0.8 - 0.5},
+                        Case{3.0, 905.0, 0.585 * std::cbrt(3.0), 0.16 * 3.0 + 0.34},
+                        Case{10.0, 1550.0, 1.3, 1.3}, Case{60.0, 905.0, 1.6, 1.6}}) {
+    const std::string conditions =
+        num(c.wavelength_nm) + " nm, V = " + num(c.visibility_km) + " km";
+    const std::string id = num(c.wavelength_nm) + "nm.v" + num(c.visibility_km) + "km";
+    const double ratio = c.wavelength_nm / 550.0;
+    check("kruse_beta." + id, "optical extinction beta (Kruse)", "1/km", conditions,
+          kruse_extinction_per_km(c.visibility_km, c.wavelength_nm),
+          koschmieder / c.visibility_km * std::pow(ratio, -c.kruse_q), eq1 + ", Kruse's q", 1e-12,
+          Tolerance::relative);
+    check("kim_beta." + id, "optical extinction beta (Kim)", "1/km", conditions,
+          kim_extinction_per_km(c.visibility_km, c.wavelength_nm),
+          koschmieder / c.visibility_km * std::pow(ratio, -c.kim_q), eq1 + ", Kim's q", 1e-12,
+          Tolerance::relative);
+  }
+  // Two by hand: Kim at V = 3 km, 905 nm (q = 0.82) and Kruse at V = 10 km, 1550 nm (q = 1.3).
+  check("kim_beta.905nm.v3km.by_hand", "optical extinction beta (Kim)", "1/km", "905 nm, V = 3 km",
+        kim_extinction_per_km(3.0, 905.0), 0.8668135983, eq1 + ", q = 0.82, evaluated by hand",
+        1e-9);
+  check("kruse_beta.1550nm.v10km.by_hand", "optical extinction beta (Kruse)", "1/km",
+        "1550 nm, V = 10 km", kruse_extinction_per_km(10.0, 1550.0), 0.1017282770,
+        eq1 + ", q = 1.3, evaluated by hand", 1e-9);
 }
 
 TEST(Visibility, RejectsNonPhysicalInput) {
