@@ -32,9 +32,10 @@ int main(int argc, char** argv) {
   const lidar::Lidar sensor(params, chamber, table);
   const auto t1 = Clock::now();
   std::vector<lidar::LidarStepResult> steps;
+  std::vector<propagation::ActiveLayers> actives;
   for (std::size_t step = 0; step <= chamber.layers.size(); ++step) {
-    const propagation::ActiveLayers active =
-        propagation::first_layers_active(step, chamber.layers.size());
+    const propagation::ActiveLayers& active =
+        actives.emplace_back(propagation::first_layers_active(step, chamber.layers.size()));
     const lidar::FogFluctuationSeries fog = sensor.fog_fluctuation(
         sensor_stream(seed, lidar::stream_key, step, sensor.fog_series_index()));
     lidar::LidarStepResult result{.active_layers = step, .scans = {}};
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
     steps.push_back(std::move(result));
   }
   const auto t2 = Clock::now();
-  const lidar::LidarSummary summary = lidar::summarize(params, steps);
+  const lidar::LidarSummary summary = lidar::summarize(sensor, steps, actives);
   const std::vector<std::pair<std::string, std::string>> files = {
       {"lidar_echoes.csv", lidar::lidar_echoes_csv(sensor, steps)},
       {"lidar_summary.csv", lidar::lidar_summary_csv(summary)},

@@ -20,6 +20,7 @@
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/outputs.hpp"
 #include "fogradar/experiment/raw_file.hpp"
+#include "fogradar/experiment/run_time.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
@@ -34,6 +35,7 @@ struct RunOptions {
   std::optional<std::int64_t> seed;  // signed: CLI11 would wrap "-4" into an unsigned
   int threads = 0;
   std::optional<double> memory_limit_mib;  // default: experiment::default_memory_limit_bytes()
+  std::optional<double> time_limit_s;      // --time-limit: none by default
   std::optional<std::string> raw_path;     // --raw: the raw data out (docs/data-out.md)
   // --raw-select, --raw-steps, --raw-items, --raw-limit-mib
   experiment::RawRequest raw;
@@ -70,6 +72,13 @@ std::function<void(std::size_t, std::size_t)> terminal_progress(std::string item
   };
 }
 
+// "40.2 MiB".
+std::string mib_text(std::size_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / 1048576.0);
+  return text;
+}
+
 void run(const RunOptions& options) {
   experiment::Scenario scenario = options.scenario_path
                                       ? experiment::load_scenario_file(*options.scenario_path)
@@ -77,10 +86,13 @@ void run(const RunOptions& options) {
   // --seed and --threads were checked as typed (checks.hpp) before CLI11 converted them.
   if (options.seed) scenario.experiment.seed = static_cast<std::uint64_t>(*options.seed);
   scenario.validate();
+  const auto threads = static_cast<unsigned>(options.threads);
   experiment::require_memory_within(
-      scenario, static_cast<unsigned>(options.threads),
+      scenario, threads,
       options.memory_limit_mib ? static_cast<std::size_t>(*options.memory_limit_mib * 1048576.0)
                                : experiment::default_memory_limit_bytes());
+  if (options.time_limit_s)
+    experiment::require_time_within(scenario, threads, *options.time_limit_s);
 
   const std::filesystem::path dir(options.out_dir);
   std::optional<experiment::RawPlan> raw_plan;
@@ -90,6 +102,11 @@ void run(const RunOptions& options) {
     request.path = *options.raw_path;
     raw_plan = experiment::resolve_raw(scenario, request);
   }
+  // Flushed: a caller reads it while the run works.
+  std::cout << "estimated time: " << experiment::estimate_run_time(scenario, threads).text()
+            << ", peak memory: "
+            << mib_text(experiment::estimate_peak_memory(scenario, threads).total_bytes())
+            << std::endl;
   // Before the output directory: the directory is released with the signals still held off.
   const SignalWatch signals;
   experiment::OutputDirectory out(dir, experiment::result_file_names(scenario));
@@ -98,7 +115,7 @@ void run(const RunOptions& options) {
   experiment::ExperimentResult result;
   try {
     result = experiment::run_experiment(
-        scenario, {.threads = static_cast<unsigned>(options.threads),
+        scenario, {.threads = threads,
                    .progress = terminal_progress(experiment::item_nouns(scenario)),
                    .stop = &signals.stop(),
                    .raw = raw ? &*raw : nullptr});
@@ -152,6 +169,11 @@ Action add_run_command(CLI::App& app) {
                    "Refuse a run whose estimated peak memory exceeds this many MiB [1, 1e9] "
                    "(default: half the physical memory)")
       ->check(number_in("--memory-limit-mib", 1.0, 1e9, "in [1, 1e9]"));
+  run_app
+      ->add_option("--time-limit", options->time_limit_s,
+                   "Refuse a run whose estimated wall time exceeds this many seconds [0.001, 1e9] "
+                   "(the estimate is printed before every run; default: no limit)")
+      ->check(number_in("--time-limit", 1e-3, 1e9, "in [0.001, 1e9] (seconds)"));
   CLI::Option* raw =
       run_app
           ->add_option("--raw", options->raw_path,

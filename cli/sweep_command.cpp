@@ -28,6 +28,7 @@ struct SweepOptions {
   bool resume = false;
   bool keep_points = false;
   std::optional<double> memory_limit_mib;
+  double time_limit_s = 0.0;  // 0: none
 };
 
 // Points done, their rate and the time left, on a terminal only.
@@ -48,6 +49,7 @@ sweep::SweepOptions run_options(const SweepOptions& options, experiment::SensorC
       .memory_limit_bytes = options.memory_limit_mib
                                 ? static_cast<std::size_t>(*options.memory_limit_mib * 1048576.0)
                                 : 0,
+      .time_limit_seconds = options.time_limit_s,
       .stop = nullptr,
       .progress = print_progress,
       .cache = &cache};
@@ -209,6 +211,11 @@ Action add_sweep_command(CLI::App& app) {
                    "Refuse a point estimated to need more memory [1, 1e9] (default: half the "
                    "physical memory)")
       ->check(number_in("--memory-limit-mib", 1.0, 1e9, "in [1, 1e9]"));
+  sweep_app
+      ->add_option("--time-limit", options->time_limit_s,
+                   "Refuse a sweep whose estimated wall time (each run's cost model, summed) "
+                   "exceeds this many seconds [0.001, 1e9] (default: no limit)")
+      ->check(number_in("--time-limit", 1e-3, 1e9, "in [0.001, 1e9] (seconds)"));
   sweep_app
       ->add_option_function<std::string>(
           "--shard",

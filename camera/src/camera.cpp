@@ -11,6 +11,7 @@
 #include "fogradar/core/complex_normal_generator.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/fog.hpp"
+#include "fogradar/propagation/water_film.hpp"
 
 namespace fogradar::camera {
 namespace {
@@ -79,6 +80,11 @@ Camera::Camera(const CameraParams& params, const propagation::ChamberSpec& chamb
   wavelengths_m_ = quadrature.wavelength_m;
   weights_ = quadrature.weight;
   channel_count_ = weights_.size();
+  // Optical wavelengths take the Segelstein table at its 25 C, as the fog's optics do.
+  for (const double wavelength_m : wavelengths_m_) {
+    window_transmittance_.push_back(propagation::window_film_transmittance(
+        params_.window_water_film_m, table.refractive_index(wavelength_m), wavelength_m));
+  }
 
   // Mie over the band once per distinct fog, never per step, frame or pixel.
   const std::vector<double> mie_wavelengths =
@@ -164,10 +170,12 @@ void Camera::build_scene() {
 Camera Camera::with_scene(const CameraParams& params) const {
   params.validate();
   if (params.band != params_.band || params.wavelength_nm != params_.wavelength_nm ||
-      params.mie_step_nm != params_.mie_step_nm) {
+      params.mie_step_nm != params_.mie_step_nm ||
+      params.window_water_film_m != params_.window_water_film_m) {
     throw InvalidParameter("camera.band",
-                           "with_scene keeps the fog optics: camera.band, camera.wavelength_nm and "
-                           "camera.mie_step_nm must equal the built camera's");
+                           "with_scene keeps the fog optics: camera.band, camera.wavelength_nm, "
+                           "camera.mie_step_nm and camera.window_water_film_m must equal the built "
+                           "camera's");
   }
   Camera copy = *this;
   copy.params_ = params;
@@ -190,9 +198,10 @@ StepOptics Camera::step_optics(const propagation::ActiveLayers& active) const {
   optics.transmittance.assign(channel_count_, 0.0);
   optics.airlight_factor.assign(channel_count_, 0.0);
   for (std::size_t k = 0; k < wavelengths_m_.size(); ++k) {
-    // From the camera outwards: each active layer emits omega_i (1 - t_i) L_a (uniform diffuse
-    // field, single scattering), attenuated by the layers in front of it; air gaps are clear.
-    double transmittance = 1.0;
+    // From the camera's window outwards: each active layer emits omega_i (1 - t_i) L_a (uniform
+    // diffuse field, single scattering), attenuated by the layers in front of it; air gaps are
+    // clear.
+    double transmittance = window_transmittance_[k];
     double airlight = 0.0;
     for (std::size_t i = 0; i < layer_count_; ++i) {
       if (!active[i]) continue;

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "fogradar/core/error.hpp"
+#include "fogradar/propagation/water_film.hpp"
 
 namespace fogradar::camera {
 namespace {
@@ -85,6 +86,13 @@ KeyTable<CameraParams> camera_keys() {
                "the study records continuously; 10 × 19200 px fill the histograms");
   keys.number("contrast_threshold", FOGRADAR_KEY_FIELD(contrast_threshold), closed(1e-3, 0.5),
               "Weber contrast threshold of an edge and of the target: CIE 5 % (paper eq. 9)");
+  keys.number(
+      "window_water_film_m", FOGRADAR_KEY_FIELD(window_water_film_m), "0, or [1e-6, 0.01]",
+      [](const CameraParams& p) {
+        propagation::require_window_film("camera.window_water_film_m", p.window_water_film_m);
+      },
+      "flat water film on the lens window (the study's water-covered sensor): Fresnel and "
+      "absorption, one way, against the dry window; droplets' scattering not modelled");
   keys.boolean("write_roi_images", FOGRADAR_KEY_FIELD(write_roi_images),
                "keep the first frame of each step as camera_roi_<step>.pgm (Fig. 8)");
   keys.choice(

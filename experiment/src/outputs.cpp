@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -20,6 +21,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/files.hpp"
+#include "fogradar/propagation/fog.hpp"
 
 namespace fogradar::experiment {
 namespace {
@@ -135,6 +137,54 @@ std::string benchmark_table(const ExperimentSummary& summary) {
   return out;
 }
 
+namespace {
+
+nlohmann::json finite_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+// The chamber as the run resolved it: each layer's place and fog, and the fog as each running
+// sensor sees it at its own band (SensorType::fog_report, the numbers the run uses).
+nlohmann::json chamber_json(const Scenario& scenario) {
+  const sensor::Context context = scenario.context();
+  const propagation::SegelsteinTable table;
+  nlohmann::json layers = nlohmann::json::array();
+  double start_m = context.chamber.sensor_gap_m;
+  for (std::size_t i = 0; i < context.chamber.layers.size(); ++i) {
+    const propagation::FogLayerSpec& layer = context.chamber.layers[i];
+    // A layer like an earlier one (the study's four) reports what that one did.
+    std::size_t same = 0;
+    while (same < i && context.chamber.layers[same] != layer) ++same;
+    nlohmann::json entry;
+    if (same < i) {
+      entry = layers[same];
+    } else {
+      const propagation::Fog fog(layer.fog, table);
+      entry = {{"length_m", layer.length_m},
+               {"droplets", propagation::distribution_name(layer.fog.droplets)},
+               {"lwc_g_per_m3", fog.lwc_g_per_m3()},
+               {"optical_extinction_per_km", fog.optical_extinction_per_km()},
+               {"visibility_m", finite_or_null(fog.visibility_m())},
+               {"sensors", nlohmann::json::object()}};
+      for (const SensorSetting& setting : scenario.sensors) {
+        if (!scenario.runs(setting.type->name())) continue;
+        entry["sensors"][std::string(setting.type->name())] =
+            setting.type->fog_report(setting.params, layer.fog, layer.length_m, table).json;
+      }
+    }
+    entry["index"] = i;
+    entry["start_m"] = start_m;
+    entry["end_m"] = start_m + layer.length_m;
+    start_m += layer.length_m;
+    layers.push_back(std::move(entry));
+  }
+  return {{"target_range_m", context.chamber.target_range_m()},
+          {"switching_order", context.switching_order},
+          {"layers", std::move(layers)}};
+}
+
+}  // namespace
+
 std::string summary_json(const Scenario& scenario, const ExperimentSummary& summary) {
   std::ostringstream scenario_json;
   scenario_json << toml::json_formatter{toml::parse(to_toml(scenario))};
@@ -149,6 +199,7 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
         {"summary", sensor.summary->json()}};
   }
   const nlohmann::json out = {{"scenario", nlohmann::json::parse(scenario_json.str())},
+                              {"chamber", chamber_json(scenario)},
                               {"sensors", std::move(sensors)}};
   return out.dump(2) + '\n';
 }

@@ -28,12 +28,13 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
   std::atomic<std::size_t> next{0}, done{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  const StopToken stop(options.stop);
 
   const auto worker = [&] {
     try {
       std::vector<std::unique_ptr<sensor::Worker>> measure(sensors.size());
       for (std::size_t item = next++; item < total; item = next++) {
-        if (options.stop != nullptr && options.stop->load()) {
+        if (stop.requested()) {
           next = total;
           break;
         }
@@ -46,7 +47,12 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
         RandomStream stream = sensor_stream(seed, sensors[s].type->stream_key(), step, index);
         const std::unique_ptr<sensor::RawSink> raw =
             options.raw != nullptr ? options.raw->sink(s, step, index) : nullptr;
-        measure[s]->measure(step, index, stream, raw.get());
+        try {
+          measure[s]->measure(step, index, stream, raw.get(), stop);
+        } catch (const Stopped&) {
+          next = total;
+          break;
+        }
         const std::size_t finished = ++done;
         if (options.progress) options.progress(finished, total);
       }
@@ -175,7 +181,7 @@ void ItemRun::measure(std::size_t step, std::size_t index, sensor::RawSink* raw)
   }
   if (!worker_) worker_ = entry_.run->make_worker();
   RandomStream stream = sensor_stream(seed_, entry_.type->stream_key(), step, index);
-  worker_->measure(step, index, stream, raw);
+  worker_->measure(step, index, stream, raw, StopToken());
 }
 
 ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {

@@ -14,6 +14,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -65,9 +66,35 @@ std::string joined(const std::vector<std::string>& items, std::string_view separ
   return text;
 }
 
-// The range experiment.max_active_layers allows in `s`.
-std::string integer_range_of_active(const Scenario& s) {
-  return "an integer in [0, chamber.layer_count = " + std::to_string(s.chamber.layer_count) + "]";
+// The range experiment.max_active_layers allows with `layer_count` layers in the chamber, given by
+// chamber.layer_count or listed by [[chamber.layers]].
+std::string integer_range_of_active(std::size_t layer_count, bool listed) {
+  const std::string count = std::to_string(layer_count);
+  if (!listed) return "an integer in [0, chamber.layer_count = " + count + "]";
+  return "an integer in [0, " + count + "] (the layers [[chamber.layers]] lists)";
+}
+
+// One layer of [[chamber.layers]]: its length and its fog, a table of [fog]'s keys.
+KeyTable<propagation::FogLayerSpec> layer_keys(std::string prefix) {
+  KeyTable<propagation::FogLayerSpec> keys(prefix);
+  const Interval length = open_closed(0.0, propagation::max_chamber_length_m);
+  Key<propagation::FogLayerSpec>& length_m =
+      keys.number("length_m", FOGRADAR_KEY_FIELD(length_m), length, "required; f_i");
+  // A layer read from a file starts without a length (NaN): a missing one is named as missing.
+  length_m.check = [name = length_m.name, length,
+                    in_range = std::move(length_m.check)](const propagation::FogLayerSpec& l) {
+    if (!std::isnan(l.length_m)) return in_range(l);
+    throw InvalidParameter(name, name +
+                                     " is missing: every [[chamber.layers]] layer must give "
+                                     "it, a number " +
+                                     length.constraint());
+  };
+  keys.include(propagation::fog_keys(prefix + "fog."), FOGRADAR_KEY_FIELD(fog));
+  return keys;
+}
+
+std::string_view switching_from_name(SwitchingFrom from) {
+  return from == SwitchingFrom::sensor ? "sensor_first" : "target_first";
 }
 
 // [chamber], [fog] and [experiment]: the keys of the experiment itself.
@@ -76,13 +103,30 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
   keys.number("chamber.sensor_gap_m", FOGRADAR_KEY_FIELD(chamber.sensor_gap_m),
               closed(0.0, propagation::max_chamber_length_m),
               "l_s, sensor to the first layer (0: the first layer touches the sensor)");
+  const auto uniform = [](const Scenario& s) { return s.chamber.layers.empty(); };
+  const std::string uniform_text = "without [[chamber.layers]], which gives each layer's length";
   keys.integer("chamber.layer_count", FOGRADAR_KEY_FIELD(chamber.layer_count), 1,
                static_cast<std::int64_t>(propagation::max_chamber_layers),
-               "switchable layers, all with the `[fog]` below");
+               "switchable layers, all with the `[fog]` below")
+      .when(uniform, uniform_text);
   keys.number("chamber.layer_length_m", FOGRADAR_KEY_FIELD(chamber.layer_length_m),
-              open_closed(0.0, propagation::max_chamber_length_m), "f_i");
+              open_closed(0.0, propagation::max_chamber_length_m), "f_i")
+      .when(uniform, uniform_text);
   keys.number("chamber.target_gap_m", FOGRADAR_KEY_FIELD(chamber.target_gap_m),
               closed(0.0, propagation::max_chamber_length_m), "l_t, last layer to the target");
+  ScenarioKey& layers = keys.table_array(
+      "chamber.layers", FOGRADAR_KEY_FIELD(chamber.layers), &layer_keys,
+      propagation::max_chamber_layers, "tables of `length_m` and `fog`",
+      "the layers from the sensor, each of its own length and fog, in place of `layer_count` "
+      "layers of `layer_length_m` with `[fog]`; a layer's `fog` is a table of `[fog]`'s keys "
+      "(`fog = { lwc_g_per_m3 = 10.0 }`) replacing `[fog]`'s values for that layer");
+  // Each layer starts from [fog] (read before the arrays of tables), so that its own `fog` table
+  // states only where it differs.
+  layers.array_resize = [](Scenario& s, std::size_t n) {
+    s.chamber.layers.resize(
+        n, propagation::FogLayerSpec{.length_m = std::numeric_limits<double>::quiet_NaN(),
+                                     .fog = s.fog});
+  };
   keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
 
   std::vector<std::string> names_quoted;
@@ -121,13 +165,41 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
                    0, static_cast<std::int64_t>(propagation::max_chamber_layers),
                    "steps k = 0 … max_active_layers");
   active.check = [](const Scenario& s) {
-    if (s.experiment.max_active_layers > s.chamber.layer_count) {
+    if (s.experiment.max_active_layers > s.chamber.layers_in_use()) {
       throw_invalid("experiment.max_active_layers",
                     static_cast<double>(s.experiment.max_active_layers),
-                    integer_range_of_active(s));
+                    integer_range_of_active(s.chamber.layers_in_use(), !s.chamber.layers.empty()));
     }
   };
-  active.documented_as("integer [0, layer_count]");
+  active.documented_as("integer [0, the layer count]");
+  keys.order(
+      "experiment.switching_order",
+      [](const Scenario& s) -> std::string {
+        const auto* from = std::get_if<SwitchingFrom>(&s.experiment.switching_order);
+        return from ? std::string(switching_from_name(*from)) : std::string();
+      },
+      [](Scenario& s, std::string_view name) {
+        if (name == "sensor_first") {
+          s.experiment.switching_order = SwitchingFrom::sensor;
+        } else if (name == "target_first") {
+          s.experiment.switching_order = SwitchingFrom::target;
+        } else {
+          throw_invalid("experiment.switching_order", name,
+                        "one of 'sensor_first', 'target_first', or an array naming each layer "
+                        "index 0 … n−1 once");
+        }
+      },
+      [](const Scenario& s) {
+        const auto* listed = std::get_if<std::vector<std::size_t>>(&s.experiment.switching_order);
+        return listed ? *listed : std::vector<std::size_t>{};
+      },
+      [](Scenario& s, const std::vector<std::size_t>& listed) {
+        s.experiment.switching_order = listed;
+      },
+      [](const Scenario& s) { return s.chamber.layers_in_use(); }, {"sensor_first", "target_first"},
+      "`sensor_first`, `target_first`, or an array naming each layer index 0 … n−1 once",
+      "the order the layers are switched on in, step by step: from the sensor (the study's), "
+      "from the target, or the layer indices (0 at the sensor) in the order they come on");
   // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
   keys.integer("experiment.seed", FOGRADAR_KEY_FIELD(experiment.seed), 0,
                std::numeric_limits<std::int64_t>::max(), "overridden by `--seed`");
@@ -259,9 +331,13 @@ struct IntegerRange {
   std::string text;  // after "must be "
 };
 
-IntegerRange integer_range(const ScenarioKey& key, const Scenario& s) {
+// `layers_in_file`: the layer count [[chamber.layers]] gives, read after [experiment].
+IntegerRange integer_range(const ScenarioKey& key, const Scenario& s,
+                           std::optional<std::size_t> layers_in_file) {
   if (key.name == "experiment.max_active_layers") {
-    return {0, static_cast<std::int64_t>(s.chamber.layer_count), integer_range_of_active(s)};
+    const std::size_t count = layers_in_file.value_or(s.chamber.layers_in_use());
+    const bool listed = layers_in_file || !s.chamber.layers.empty();
+    return {0, static_cast<std::int64_t>(count), integer_range_of_active(count, listed)};
   }
   // A key read through functions names its own set (target.swerling: 0, 1, 3).
   if (key.integer_low == std::numeric_limits<std::int64_t>::min()) {
@@ -300,7 +376,7 @@ class Reader {
     const detail::ScenarioKeys& keys = detail::keys_of(scenario_);
     const std::vector<Section>& sections = keys.sections;
     for (const ScenarioKey& key : keys.all.keys()) {
-      if (!key.group.empty()) groups_[key.group].push_back(key.name);
+      if (!key.group.empty()) groups_[key.group].emplace_back(key.short_name());
     }
     std::vector<std::string> top;
     for (const Section& s : sections) {
@@ -326,17 +402,53 @@ class Reader {
       if (table == nullptr) fail_not_table(*node, section.name);
       read_table(*table, section.name, section.keys);
     }
+    // Arrays of tables come after every plain key, so that an element can start from them (a layer
+    // of [[chamber.layers]] from [fog]).
+    take_table_temperature("fog.", scenario_.fog);
+    for (const auto& [key, node] : arrays_) read_array(*key, *node);
+    for (std::size_t i = 0; i < scenario_.chamber.layers.size(); ++i) {
+      take_table_temperature("chamber.layers[" + std::to_string(i) + "].fog.",
+                             scenario_.chamber.layers[i].fog);
+    }
+    // A key read before the arrays may take effect only without them (chamber.layer_count).
+    for (const ScenarioKey& key : keys.all.keys()) {
+      const auto given = lines_.find(key.name);
+      if (given == lines_.end() || !key.group.empty() || key.takes_effect(scenario_)) continue;
+      throw_at(source_, given->second, key.name,
+               key.name + " is given: it takes effect only " + key.applies_text);
+    }
   }
 
   const KeyLines& lines() const { return lines_; }
+
+  // The water table has no temperature dependence: a fog that chooses it without a temperature
+  // takes the table's own, as `fogradar fog --water-model segelstein` does, rather than the
+  // paper scenario's assumed 20 C (which the table cannot use). A temperature the file gives is
+  // checked as given.
+  void take_table_temperature(const std::string& prefix, propagation::FogSpec& fog) const {
+    if (lines_.contains(prefix + "water_model") && !lines_.contains(prefix + "temperature_c") &&
+        fog.water_model == propagation::WaterModel::segelstein) {
+      fog.temperature_c = propagation::segelstein_table_temperature_c;
+    }
+  }
+
+  // The layer count [[chamber.layers]] gives, where the file lists layers (`layers = []` lists
+  // none: the chamber is layer_count layers).
+  std::optional<std::size_t> layers_in_file() const {
+    const toml::array* layers = root_.at_path("chamber.layers").as_array();
+    if (layers == nullptr || layers->empty()) return std::nullopt;
+    return layers->size();
+  }
   // The number each key was given as, as typed ("3e-7", "1e5", "0x10").
   const std::map<std::string, std::string>& typed_numbers() const { return typed_numbers_; }
 
  private:
-  // A value as the file gives it: a number as typed, anything else as TOML writes it.
+  // A value as the file gives it: a number or an array on one line as typed, anything else as
+  // TOML writes it.
   std::string typed(const toml::node& node) const {
     const toml::source_region& at = node.source();
-    if (!node.is_number() || at.begin.line == 0 || at.end.line != at.begin.line) {
+    if (!(node.is_number() || node.is_array()) || at.begin.line == 0 ||
+        at.end.line != at.begin.line) {
       return as_written(node);
     }
     std::string_view rest = text_;
@@ -354,12 +466,15 @@ class Reader {
 
   // What `key` allows as its own message states it, for a value of the wrong type: `set` puts a
   // value no key allows into a copy of the scenario, whose setter or check then refuses it.
+  // With `whole`, the scenario's own checks run too (a sensor's bounds across its keys).
   std::optional<std::string> refusal(const ScenarioKey& key,
-                                     const std::function<void(Scenario&)>& set) const {
+                                     const std::function<void(Scenario&)>& set,
+                                     bool whole = false) const {
     try {
       Scenario probe = scenario_;
       set(probe);
       if (key.check) key.check(probe);
+      if (whole) probe.validate();
     } catch (const InvalidParameter& e) {
       const std::string_view what = e.what(), must = ": must be ";
       const std::size_t at = what.find(must);
@@ -380,6 +495,14 @@ class Reader {
     const std::string allowed = plain(key.allowed);
     const bool interval = allowed.starts_with('[') || allowed.starts_with('(');
     return (interval ? "a number in " : "a number ") + allowed;
+  }
+
+  // A key whose bound involves other keys (processing.cfar.guard_cells) states its true range in
+  // its check; the widest value the reader takes draws it out.
+  std::optional<std::string> bound_by_others(const ScenarioKey& key) const {
+    if (!key.integer_also) return std::nullopt;
+    return refusal(
+        key, [&key](Scenario& probe) { key.set_integer(probe, key.integer_high); }, true);
   }
 
   // The empty name is no choice's: the parser states the set.
@@ -406,6 +529,9 @@ class Reader {
       for (const ScenarioKey* key : s.keys) {
         if (key->type != KeyType::retired) known.emplace(key->short_name());
       }
+    }
+    if (const auto nested = nested_keys_.find(section); nested != nested_keys_.end()) {
+      known.insert(nested->second.begin(), nested->second.end());
     }
     for (const std::string& name : declared_) {
       if (name.size() > section.size() + 1 && name.starts_with(section + ".") &&
@@ -466,7 +592,7 @@ class Reader {
 
   void read_key(const ScenarioKey& key, const toml::node& node) {
     lines_[key.name] = node.source().begin.line;
-    if (node.is_number()) typed_numbers_[key.name] = typed(node);
+    if (node.is_number() || node.is_array()) typed_numbers_[key.name] = typed(node);
     if (key.type == KeyType::retired) {
       fail(node, key.name, "'" + key.name + "' is no longer read: " + key.meaning);
     }
@@ -484,10 +610,12 @@ class Reader {
         return;
       }
       case KeyType::integer: {
-        const IntegerRange range = integer_range(key, scenario_);
+        const IntegerRange range = integer_range(key, scenario_, layers_in_file());
         if (!node.is_integer()) fail(node, key.name, given + integer_text(key, range));
         const std::int64_t value = *node.value<std::int64_t>();
-        if (value < range.low || value > range.high) fail(node, key.name, given + range.text);
+        if (value < range.low || value > range.high) {
+          fail(node, key.name, given + bound_by_others(key).value_or(range.text));
+        }
         key.set_integer(scenario_, value);
         return;
       }
@@ -502,24 +630,49 @@ class Reader {
       case KeyType::name_list:
         key.set_list(scenario_, names_of(key, node, given + key.allowed));
         return;
+      case KeyType::order:
+        read_order(key, node, given + plain(key.allowed));
+        return;
       case KeyType::table_array:
-        read_array(key, node);
+        arrays_.emplace_back(&key, &node);
         return;
       case KeyType::retired:
         return;
     }
   }
 
-  // Two keys of one group are alternatives: the second one given is refused.
+  void read_order(const ScenarioKey& key, const toml::node& node, const std::string& given) {
+    if (node.is_string()) {
+      key.set_text(scenario_, *node.value<std::string>());
+      return;
+    }
+    const toml::array* array = node.as_array();
+    if (array == nullptr || array->empty()) fail(node, key.name, given);
+    std::vector<std::size_t> indices;
+    for (const toml::node& element : *array) {
+      const std::optional<std::int64_t> index =
+          element.is_integer() ? element.value<std::int64_t>() : std::nullopt;
+      if (!index || *index < 0) {
+        fail(node, key.name, given + " (" + as_written(element) + " is no index)");
+      }
+      indices.push_back(static_cast<std::size_t>(*index));
+    }
+    key.set_indices(scenario_, indices);
+  }
+
+  // Two keys of one group in one table are alternatives: the second one given is refused.
   void require_alone_in_group(const ScenarioKey& key, const toml::node& node) {
-    const auto [first, fresh] = given_in_group_.emplace(key.group, key.name);
+    const std::string section(key.section());
+    const auto [first, fresh] = given_in_group_.emplace(section + " " + key.group, key.name);
     if (fresh) return;
-    const std::vector<std::string>& members = groups_.at(key.group);
+    std::vector<std::string> members;
+    for (const std::string& member : groups_.at(key.group))
+      members.push_back(section + "." + member);
     fail(node, key.name,
          first->second + " (line " + std::to_string(lines_.at(first->second)) + ") and " +
              key.name + " (line " + std::to_string(node.source().begin.line) +
              ") are both given: at most one " + key.group + " of " + joined(members, ", ") +
-             " per scenario");
+             " per [" + section + "]");
   }
 
   std::vector<std::string> names_of(const ScenarioKey& key, const toml::node& node,
@@ -542,12 +695,19 @@ class Reader {
     return names;
   }
 
-  // An array of tables replaces the scenario's whole array; each element starts from its defaults.
+  // An array of tables replaces the scenario's whole array; each element starts from its defaults
+  // (a layer of [[chamber.layers]] from [fog]).
   void read_array(const ScenarioKey& key, const toml::node& node) {
     KeyTable<Scenario> first;
     key.array_element(0, first);
     std::vector<std::string> element_keys;
-    for (const ScenarioKey& k : first.keys()) element_keys.emplace_back(k.short_name());
+    const std::size_t prefix = key.name.size() + std::string_view("[0].").size();
+    for (const ScenarioKey& k : first.keys()) {
+      const std::string name = k.name.substr(prefix, k.name.find('.', prefix) - prefix);
+      if (std::find(element_keys.begin(), element_keys.end(), name) == element_keys.end()) {
+        element_keys.push_back(name);
+      }
+    }
     const std::string wanted = key.name + ": must be an array of tables [[" + key.name +
                                "]] with keys " + joined(element_keys, ", ");
     const toml::array* array = node.as_array();
@@ -560,11 +720,57 @@ class Reader {
     for (std::size_t i = 0; i < array->size(); ++i) {
       const toml::table* table = (*array)[i].as_table();
       if (table == nullptr) fail((*array)[i], key.name, wanted);
+      lines_[key.name + "[" + std::to_string(i) + "]"] = (*array)[i].source().begin.line;
       KeyTable<Scenario> element;
       key.array_element(i, element);
       std::vector<const ScenarioKey*> keys;
       for (const ScenarioKey& k : element.keys()) keys.push_back(&k);
-      read_table(*table, key.name + "[" + std::to_string(i) + "]", keys);
+      const std::string section = key.name + "[" + std::to_string(i) + "]";
+      declare_nested(section, keys);
+      read_nested(*table, section, keys);
+    }
+  }
+
+  // An element's keys in `section` and its sub-tables (a layer's `fog`, its `fog.droplets`), each
+  // by the next part of its name after `section`.
+  static std::map<std::string, std::vector<const ScenarioKey*>> by_child(
+      const std::string& section, const std::vector<const ScenarioKey*>& keys) {
+    std::map<std::string, std::vector<const ScenarioKey*>> children;
+    for (const ScenarioKey* key : keys) {
+      const std::string_view rest = std::string_view(key->name).substr(section.size() + 1);
+      const std::size_t dot = rest.find('.');
+      children[dot == std::string_view::npos ? std::string() : std::string(rest.substr(0, dot))]
+          .push_back(key);
+    }
+    return children;
+  }
+
+  // Makes an element's sub-tables known, for the messages that list a table's keys.
+  void declare_nested(const std::string& section, const std::vector<const ScenarioKey*>& keys) {
+    for (const auto& [child, child_keys] : by_child(section, keys)) {
+      if (child.empty()) {
+        for (const ScenarioKey* key : child_keys) {
+          nested_keys_[section].emplace(key->short_name());
+        }
+        continue;
+      }
+      declared_.insert(section + "." + child);
+      declare_nested(section + "." + child, child_keys);
+    }
+  }
+
+  void read_nested(const toml::table& table, const std::string& section,
+                   const std::vector<const ScenarioKey*>& keys) {
+    const auto children = by_child(section, keys);
+    const auto own = children.find("");
+    read_table(table, section,
+               own == children.end() ? std::vector<const ScenarioKey*>{} : own->second);
+    for (const auto& [child, child_keys] : children) {
+      if (child.empty()) continue;
+      const toml::node* node = table.get(child);
+      if (node == nullptr) continue;
+      // read_table refused a sub-table given a plain value.
+      read_nested(*node->as_table(), section + "." + child, child_keys);
     }
   }
 
@@ -575,8 +781,10 @@ class Reader {
   KeyLines lines_;
   std::map<std::string, std::string> typed_numbers_;
   std::set<std::string> declared_;                          // every section and its parents
-  std::map<std::string, std::vector<std::string>> groups_;  // group -> its keys
-  std::map<std::string, std::string> given_in_group_;       // group -> the key given
+  std::map<std::string, std::vector<std::string>> groups_;  // group -> its keys' short names
+  std::map<std::string, std::string> given_in_group_;       // "section group" -> the key given
+  std::map<std::string, std::set<std::string>> nested_keys_;  // an element's table -> its keys
+  std::vector<std::pair<const ScenarioKey*, const toml::node*>> arrays_;  // read last
 };
 
 // A key's value as scenario.toml writes it.
@@ -594,6 +802,13 @@ std::string toml_value(const ScenarioKey& key, const Scenario& s) {
       std::vector<std::string> names;
       for (const std::string& name : key.get_list(s)) names.push_back(in_quotes(name));
       return "[" + joined(names, ", ") + "]";
+    }
+    case KeyType::order: {
+      const std::vector<std::size_t> indices = key.get_indices(s);
+      if (indices.empty()) return in_quotes(key.get_text(s));
+      std::vector<std::string> listed;
+      for (const std::size_t i : indices) listed.push_back(std::to_string(i));
+      return "[" + joined(listed, ", ") + "]";
     }
     case KeyType::table_array:
       return key.array_size(s) == 0 ? "[]" : "";
@@ -628,15 +843,6 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
   Reader reader(root, toml_text, source_name, s);
   try {
     reader.read();
-    // The table has no temperature dependence: a file that chooses it without a temperature
-    // takes the table's own, as `fogradar fog --water-model segelstein` does, rather than the
-    // paper scenario's assumed 20 C (which the table cannot use). A temperature the file gives
-    // is checked as given.
-    const KeyLines& given = reader.lines();
-    if (given.contains("fog.water_model") && !given.contains("fog.temperature_c") &&
-        s.fog.water_model == propagation::WaterModel::segelstein) {
-      s.fog.temperature_c = propagation::segelstein_table_temperature_c;
-    }
     s.validate();
   } catch (const InvalidParameter& e) {
     const KeyLines& lines = reader.lines();
@@ -651,9 +857,17 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     // A key the file does not give keeps its paper value; a check combining it with keys the file
     // gives points at the first of those.
     std::size_t line = 0;
+    std::size_t within = 0;  // the longest table given that holds the key: a layer of an array
+    for (const auto& [table, table_line] : lines) {
+      if (key.size() > table.size() && key.starts_with(table) && key[table.size()] == '.' &&
+          table.size() > within) {
+        within = table.size();
+        line = table_line;
+      }
+    }
     if (const auto given = lines.find(key); given != lines.end()) {
       line = given->second;
-    } else {
+    } else if (line == 0) {
       for (const auto& [other, other_line] : lines) {
         if (!key_positions(e.what(), other).empty() && (line == 0 || other_line < line))
           line = other_line;
@@ -725,16 +939,32 @@ propagation::ChamberSpec Scenario::chamber_spec() const {
   propagation::ChamberSpec spec;
   spec.sensor_gap_m = chamber.sensor_gap_m;
   spec.target_gap_m = chamber.target_gap_m;
-  spec.layers.assign(chamber.layer_count,
-                     propagation::FogLayerSpec{.length_m = chamber.layer_length_m, .fog = fog});
+  if (chamber.layers.empty()) {
+    spec.layers.assign(chamber.layer_count,
+                       propagation::FogLayerSpec{.length_m = chamber.layer_length_m, .fog = fog});
+  } else {
+    spec.layers = chamber.layers;
+  }
   return spec;
 }
 
+std::vector<std::size_t> switching_sequence(const SwitchingOrder& order, std::size_t layer_count) {
+  if (const auto* listed = std::get_if<std::vector<std::size_t>>(&order)) return *listed;
+  std::vector<std::size_t> sequence(layer_count);
+  std::iota(sequence.begin(), sequence.end(), std::size_t{0});
+  if (std::get<SwitchingFrom>(order) == SwitchingFrom::target) {
+    std::reverse(sequence.begin(), sequence.end());
+  }
+  return sequence;
+}
+
 sensor::Context Scenario::context() const {
-  return {.chamber = chamber_spec(),
-          .steps = experiment.max_active_layers + 1,
-          .measurements_per_step = experiment.measurements_per_step,
-          .seed = experiment.seed};
+  return {
+      .chamber = chamber_spec(),
+      .steps = experiment.max_active_layers + 1,
+      .measurements_per_step = experiment.measurements_per_step,
+      .seed = experiment.seed,
+      .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use())};
 }
 
 std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }
@@ -808,8 +1038,11 @@ std::string to_toml(const Scenario& s) {
           KeyTable<Scenario> element;
           key->array_element(e, element);
           std::string table = "[[" + key->name + "]]\n";
+          // A sub-table's keys by their dotted names relative to the element ("fog.lwc_g_per_m3").
+          const std::size_t prefix = key->name.size() + 3 + std::to_string(e).size();
           for (const ScenarioKey& k : element.keys()) {
-            table += std::string(k.short_name()) + " = " + toml_value(k, s) + "\n";
+            if (!k.takes_effect(s)) continue;
+            table += k.name.substr(prefix) + " = " + toml_value(k, s) + "\n";
           }
           arrays.push_back(table);
         }
@@ -844,8 +1077,20 @@ std::string key_table_markdown(const Scenario& defaults, std::string_view top) {
       if (key->type != KeyType::table_array) continue;
       KeyTable<Scenario> element;
       key->array_element(0, element);
+      std::set<std::string> tables;  // an element's sub-tables, one row each
+      const std::size_t from = key->name.size() + std::string_view("[0].").size();
       for (const ScenarioKey& k : element.keys()) {
-        rows += table_row(k, std::string(name) + "[]." + std::string(k.short_name()), "—");
+        const std::string relative = k.name.substr(from);
+        const std::size_t dot = relative.find('.');
+        if (dot == std::string::npos) {
+          rows += table_row(k, std::string(name) + "[]." + relative, "—");
+          continue;
+        }
+        const std::string table = relative.substr(0, dot);
+        if (!tables.insert(table).second) continue;
+        rows += "| `" + std::string(name) + "[]." + table + "` | `[" + table +
+                "]` | a table of `[" + table + "]`'s keys | this element's own `[" + table +
+                "]`: the keys it gives replace `[" + table + "]`'s values |\n";
       }
     }
   }

@@ -12,6 +12,7 @@
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/fog.hpp"
+#include "fogradar/propagation/water_film.hpp"
 
 namespace fogradar::lidar {
 namespace {
@@ -88,6 +89,11 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
     layers_.push_back(layer);
     start_m = layer.end_m;
   }
+  // Optical wavelengths take the Segelstein table at its 25 C, as the fog's optics do.
+  const double window_t = propagation::window_film_transmittance(
+      params_.window_water_film_m, table.refractive_index(params_.wavelength_m),
+      params_.wavelength_m);
+  window_two_way_transmittance_ = window_t * window_t;
   beam_count_ = params_.beam_count();
   const double target_angle_deg = std::atan2(params_.target_offset_m, target_range_m_) / degree_rad;
   double best = std::numeric_limits<double>::infinity();
@@ -191,7 +197,8 @@ Lidar::Hit Lidar::trace(std::size_t beam, const propagation::ActiveLayers& activ
     consider(intersect(ux, uy, s.x0_m, s.y0_m, s.x1_m, s.y1_m), false, s.reflectivity);
   }
   const double end_m = std::min(nearest.range_m, params_.max_range_m);
-  double transmittance = 1.0;
+  // Every echo, the target's, the fog's and the background's, crosses the window twice.
+  double transmittance = window_two_way_transmittance_;
   if (ux > 0.0) {
     const double lateral_m = uy == 0.0 ? std::numeric_limits<double>::infinity()
                                        : 0.5 * params_.fog_width_m / std::abs(uy);
@@ -240,7 +247,7 @@ BeamWaveform Lidar::waveform(std::size_t beam, const propagation::ActiveLayers& 
 
 LidarScan Lidar::measure(const propagation::ActiveLayers& active,
                          std::span<const double> optical_depth_factors, RandomStream& stream,
-                         std::span<double> waveforms) const {
+                         std::span<double> waveforms, const StopToken& stop) const {
   check_inputs(active, optical_depth_factors);
   FOGRADAR_CHECK(waveforms.empty() || waveforms.size() == beam_count_ * samples_);
   LidarScan scan;
@@ -260,6 +267,8 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
     return static_cast<std::size_t>(std::clamp(k, 0.0, static_cast<double>(samples_)));
   };
   for (std::size_t beam = 0; beam < beam_count_; ++beam) {
+    // A beam is at most 1e6 samples, a few ms: a scan stops within one.
+    stop.check();
     const Hit hit = trace(beam, active, optical_depth_factors, stretches);
     std::fill(noise.begin(), noise.end(), std::complex<double>{});
     generator.add(noise, noise_variance);

@@ -70,7 +70,7 @@ std::string lidar_summary_csv(const LidarSummary& summary) {
   std::string out =
       "active_layers,scans,target_detections,target_detection_rate,target_told_rate,"
       "intensity_mean,intensity_std,intensity_min,intensity_q1,intensity_median,intensity_q3,"
-      "intensity_max,intensity_whisker_low,intensity_whisker_high,intensity_outliers,"
+      "intensity_max,intensity_whisker_low,intensity_whisker_high,intensity_outliers,eq4_intensity,"
       "fog_echo_rate,median_first_echo_range_m,beams_through_fog,sensor_limit\n";
   for (const LidarStepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.target_intensity;
@@ -88,9 +88,9 @@ std::string lidar_summary_csv(const LidarSummary& summary) {
     out += std::to_string(s.active_layers) + ',' + std::to_string(s.scans) + ',' +
            std::to_string(s.target_detections);
     for (const double v : numbers) out += ',' + exact(v);
-    out += ',' + joined(b.outliers) + ',' + exact(s.fog_echo_rate) + ',' +
-           exact(s.median_first_echo_range_m) + ',' + std::to_string(s.beams_through_fog) + ',' +
-           (summary.sensor_limit_layers == s.active_layers ? "1" : "0") + '\n';
+    out += ',' + joined(b.outliers) + ',' + exact(s.eq4_intensity) + ',' + exact(s.fog_echo_rate) +
+           ',' + exact(s.median_first_echo_range_m) + ',' + std::to_string(s.beams_through_fog) +
+           ',' + (summary.sensor_limit_layers == s.active_layers ? "1" : "0") + '\n';
   }
   return out;
 }
@@ -117,6 +117,7 @@ nlohmann::json lidar_summary_json(const Lidar& lidar, const LidarSummary& summar
           {"whisker_low", number_or_null(b.whisker_low)},
           {"whisker_high", number_or_null(b.whisker_high)},
           {"outliers", b.outliers}}},
+        {"eq4_intensity", s.eq4_intensity},
         {"fog_echo_rate", number_or_null(s.fog_echo_rate)},
         {"median_first_echo_range_m", number_or_null(s.median_first_echo_range_m)},
         {"beams_through_fog", s.beams_through_fog},
@@ -307,18 +308,18 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
 std::string lidar_summary_table(const LidarSummary& summary) {
   std::ostringstream out;
   char line[256];
-  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %10s\n";
-  std::snprintf(line, sizeof line, header, "layers", "scans", "target", "told", "median", "q1",
-                "q3", "max", "fog echo", "1st echo");
+  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %10s\n";
+  std::snprintf(line, sizeof line, header, "layers", "scans", "target", "told", "median", "eq. 4",
+                "q1", "q3", "max", "fog echo", "1st echo");
   out << line;
   std::snprintf(line, sizeof line, header, "", "", "det. %", "%", "intens.", "intens.", "intens.",
-                "intens.", "rate %", "median m");
+                "intens.", "intens.", "rate %", "median m");
   out << line;
   for (const LidarStepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.target_intensity;
-    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f",
+    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f %9.1f",
                   s.active_layers, s.scans, 100.0 * s.target_detection_rate,
-                  100.0 * s.target_told_rate, b.median, b.q1, b.q3, b.max);
+                  100.0 * s.target_told_rate, b.median, s.eq4_intensity, b.q1, b.q3, b.max);
     out << line;
     // No beam crosses the fog at 0 active layers: its two columns have no value then.
     if (std::isnan(s.fog_echo_rate) || std::isnan(s.median_first_echo_range_m)) {
@@ -331,8 +332,9 @@ std::string lidar_summary_table(const LidarSummary& summary) {
   }
   out << "target det. %: scans with a target-origin echo in the beam through the target's centre;\n"
          "told %: and no fog echo there at least as intense; intensity: that echo's, 0 when\n"
-         "missing (the study's Fig. 6); fog echo rate: beams through the fog with a fog echo;\n"
-         "1st echo: median first-echo range of the beams through the fog\n";
+         "missing (the study's Fig. 6); eq. 4: the study's eq. 4 for that echo, the clear\n"
+         "noise-free echo times tau^2 of each active layer; fog echo rate: beams through the fog\n"
+         "with a fog echo; 1st echo: median first-echo range of the beams through the fog\n";
   out << "lidar sensor limit: ";
   if (summary.sensor_limit_layers)
     out << layers_label(*summary.sensor_limit_layers) << "\n";

@@ -9,6 +9,7 @@
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/propagation/water_film.hpp"
 #include "fogradar/stats/format.hpp"
 
 namespace fogradar::lidar {
@@ -167,6 +168,13 @@ KeyTable<LidarParams> lidar_keys() {
   keys.number("fog_width_m", FOGRADAR_KEY_FIELD(fog_width_m), closed(0.0, max_coordinate_m),
               "lateral width of the fog bank, centred on boresight; assumption: the fog bank "
               "between the barrels of Fig. 2; the study gives no width");
+  keys.number(
+      "window_water_film_m", FOGRADAR_KEY_FIELD(window_water_film_m), "0, or [1e-6, 0.01]",
+      [](const LidarParams& p) {
+        propagation::require_window_film("lidar.window_water_film_m", p.window_water_film_m);
+      },
+      "flat water film on the window (the study's water-covered sensor): Fresnel and "
+      "absorption, out and back, against the dry window; droplets' scattering not modelled");
   keys.table_array("background", FOGRADAR_KEY_FIELD(background), &background_segment_keys, 1000,
                    "≤ 1000 segments",
                    "static reflecting segments `[[lidar.background]]`, each with every key below "

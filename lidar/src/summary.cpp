@@ -1,16 +1,40 @@
 #include "fogradar/lidar/summary.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "fogradar/stats/box_plot.hpp"
 
 namespace fogradar::lidar {
 
-LidarSummary summarize(const LidarParams& params, const std::vector<LidarStepResult>& steps) {
-  (void)params;
+// Eq. 4: I = I_0 rho_obj tau^(2 layers) (paper sec. II-B), one tau per layer.
+double eq4_target_intensity(const Lidar& lidar, const propagation::ActiveLayers& active) {
+  const std::vector<double> no_fluctuation(lidar.layer_count(), 1.0);
+  const std::vector<double> clear =
+      lidar
+          .waveform(lidar.target_beam(), propagation::ActiveLayers(lidar.layer_count(), false),
+                    no_fluctuation)
+          .target;
+  const double clear_peak = clear.empty() ? 0.0 : *std::max_element(clear.begin(), clear.end());
+  double two_way_optical_depth = 0.0;
+  for (std::size_t i = 0; i < lidar.layer_count(); ++i) {
+    if (!active.at(i)) continue;
+    two_way_optical_depth +=
+        2.0 * lidar.layer_extinction_per_m(i) * (lidar.layer_end_m(i) - lidar.layer_start_m(i));
+  }
+  const LidarParams& params = lidar.params();
+  const double clear_intensity = params.intensity_scale * clear_peak / lidar.threshold();
+  return std::min(params.intensity_saturation, clear_intensity * std::exp(-two_way_optical_depth));
+}
+
+LidarSummary summarize(const Lidar& lidar, const std::vector<LidarStepResult>& steps,
+                       std::span<const propagation::ActiveLayers> active) {
   LidarSummary summary;
-  for (const LidarStepResult& step : steps) {
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const LidarStepResult& step = steps[k];
     LidarStepSummary s;
+    s.eq4_intensity = eq4_target_intensity(lidar, active[k]);
     s.active_layers = step.active_layers;
     s.scans = step.scans.size();
     std::vector<double> intensities;

@@ -53,6 +53,23 @@ ActiveLayers first_layers_active(std::size_t count, std::size_t layer_count) {
   return active;
 }
 
+ActiveLayers layers_switched_on(std::span<const std::size_t> order, std::size_t count,
+                                std::size_t layer_count) {
+  if (count > order.size()) {
+    throw_invalid("active_layers", static_cast<double>(count),
+                  "in [0, " + std::to_string(order.size()) + "] (the switching order's length)");
+  }
+  ActiveLayers active(layer_count, false);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (order[k] >= layer_count || active[order[k]]) {
+      throw_invalid("switching_order", static_cast<double>(order[k]),
+                    "a layer index in [0, " + std::to_string(layer_count) + "), each once");
+    }
+    active[order[k]] = true;
+  }
+  return active;
+}
+
 Chamber::Chamber(const ChamberSpec& spec, double frequency_hz, const SegelsteinTable& table)
     : target_range_m_(spec.target_range_m()), frequency_hz_(frequency_hz) {
   spec.validate();

@@ -85,7 +85,59 @@ double film_two_way_loss_db(double film_thickness_m, complex water_index, comple
   require_non_negative("radome_thickness_m", radome_thickness_m);
   const SlabLayer stack[] = {{radome_index, radome_thickness_m}, {water_index, film_thickness_m}};
   const double one_way = slab_response(stack, wavelength_m).transmittance;
-  return -power_ratio_to_db(one_way * one_way);
+  // 10 log10(1 / T^2) rather than -10 log10(T^2): no radome and no film give +0, not -0.
+  return power_ratio_to_db(1.0 / (one_way * one_way));
+}
+
+// Behind a perfect conductor U_l = E = 0 while V_l = H is free: [U_1, V_1] = M [0, V_l], and with
+// U_1 = 1 + r, V_1 = n_in (1 - r) (B&W sec. 1.6) r = (m12 n_in - m22) / (m12 n_in + m22).
+complex conductor_backed_reflection(std::span<const SlabLayer> layers, double wavelength_m,
+                                    complex n_in) {
+  require_positive("wavelength_m", wavelength_m);
+  require_passive_index("n_in", n_in);
+  Eigen::Matrix2cd total = Eigen::Matrix2cd::Identity();
+  for (const SlabLayer& layer : layers) {
+    require_non_negative("thickness_m", layer.thickness_m);
+    require_passive_index("refractive_index", layer.refractive_index);
+    total = total * characteristic_matrix(layer, wavelength_m);
+  }
+  return (total(0, 1) * n_in - total(1, 1)) / (total(0, 1) * n_in + total(1, 1));
+}
+
+double conductor_film_loss_db(double film_thickness_m, complex water_index, double wavelength_m) {
+  require_non_negative("film_thickness_m", film_thickness_m);
+  require_passive_index("water_index", water_index);
+  const SlabLayer film[] = {{water_index, film_thickness_m}};
+  return power_ratio_to_db(1.0 / std::norm(conductor_backed_reflection(film, wavelength_m)));
+}
+
+double window_film_transmittance(double film_thickness_m, complex water_index, double wavelength_m,
+                                 double window_index) {
+  require_non_negative("film_thickness_m", film_thickness_m);
+  require_passive_index("water_index", water_index);
+  require_passive_index("window_index", window_index);
+  require_positive("wavelength_m", wavelength_m);
+  // No film: the dry face itself (the incoherent sum holds for films of a few wavelengths only).
+  if (film_thickness_m == 0.0) return 1.0;
+  const auto reflectance = [](complex a, complex b) { return std::norm((a - b) / (a + b)); };
+  const double r_air_film = reflectance(1.0, water_index);
+  const double r_film_window = reflectance(water_index, window_index);
+  const double r_air_window = reflectance(1.0, window_index);
+  const double tau = std::exp(-4.0 * pi * water_index.imag() * film_thickness_m / wavelength_m);
+  return (1.0 - r_air_film) * (1.0 - r_film_window) * tau /
+         (1.0 - r_air_film * r_film_window * tau * tau) / (1.0 - r_air_window);
+}
+
+void require_window_film(std::string_view field, double film_thickness_m) {
+  if (film_thickness_m == 0.0 ||
+      (film_thickness_m >= min_window_film_m && film_thickness_m <= max_window_film_m)) {
+    return;
+  }
+  std::ostringstream constraint;
+  constraint << "0 (dry) or in [" << min_window_film_m << ", " << max_window_film_m
+             << "] (the window's film model averages out the interference of films of 1 um "
+                "and more)";
+  throw_invalid(field, film_thickness_m, constraint.str());
 }
 
 }  // namespace fogradar::propagation

@@ -549,9 +549,11 @@ void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::com
   dirichlet_weights(nu, table, [&kernel](std::size_t m, std::complex<double> weight) { kernel[m] = weight; });
 }
 
-void estimate_detections(std::span<const std::complex<double>> map, const RangeDopplerProcessor& processor,
-                         const CfarDetector& cfar, const RadarParams& params, const RadarDerived& derived,
-                         EstimationWorkspace& ws, std::vector<Detection>& detections) {
+void estimate_detections(std::span<const std::complex<double>> map,
+                         const RangeDopplerProcessor& processor, const CfarDetector& cfar,
+                         const RadarParams& params, const RadarDerived& derived,
+                         EstimationWorkspace& ws, std::vector<Detection>& detections,
+                         const StopToken& stop) {
   const std::size_t rows = processor.chirps(), columns = processor.samples();
   FOGRADAR_CHECK(map.size() == rows * columns);
   detections.clear();
@@ -570,6 +572,7 @@ void estimate_detections(std::span<const std::complex<double>> map, const RangeD
   std::array<double, interpolation_batch> range_bins{};
   std::size_t next_seed = 0;
   while (true) {
+    stop.check();
     std::size_t count = 0;
     for (; count < interpolation_batch && next_seed < ws.detected_cells.size(); ++next_seed) {
       const std::size_t seed = ws.detected_cells[next_seed];

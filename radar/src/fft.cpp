@@ -260,10 +260,11 @@ std::size_t ColumnBlockFft::default_block_columns(std::size_t rows) noexcept {
   return block;
 }
 
-void ColumnBlockFft::execute(std::span<std::complex<double>> data) const {
+void ColumnBlockFft::execute(std::span<std::complex<double>> data, const StopToken& stop) const {
   FOGRADAR_CHECK(data.size() >= rows_ * columns_);
   ComplexVector buffer(rows_ * block_);
   for (std::size_t first = 0; first < columns_; first += block_) {
+    stop.check();
     const std::size_t width = std::min(block_, columns_ - first);
     const std::size_t bytes = width * sizeof(std::complex<double>);
     for (std::size_t r = 0; r < rows_; ++r)

@@ -60,7 +60,8 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
                                                      const propagation::Chamber& chamber,
                                                      const propagation::ActiveLayers& active,
                                                      RandomStream& rng, MeasurementWorkspace& ws,
-                                                     const FrameTaps* taps) const {
+                                                     const FrameTaps* taps,
+                                                     const StopToken& stop) const {
   scene_tones(scene, chamber, active, params_, derived_, rng, ws.tones);
   const FrameWindow window = processor_.window();
   SynthesisReport report;
@@ -84,7 +85,7 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
     const ChirpTransform by_chirp{.fft = &processor_.range_chirp_fft(), .chirp = ws.chirp};
     report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp);
     if (report.range_transformed) {
-      processor_.doppler_transform(ws.frame);
+      processor_.doppler_transform(ws.frame, stop);
     } else {
       processor_.transform_windowed(ws.frame, ws.chirp);
     }
@@ -112,10 +113,13 @@ void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber
 
 void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber,
                          const propagation::ActiveLayers& active, RandomStream& rng,
-                         MeasurementWorkspace& ws, Measurement& out, const FrameTaps& taps) const {
-  out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws, &taps);
-  estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation,
-                      out.detections);
+                         MeasurementWorkspace& ws, Measurement& out, const FrameTaps& taps,
+                         const StopToken& stop) const {
+  stop.check();
+  out.synthesis = synthesize_and_transform(scene, chamber, active, rng, ws, &taps, stop);
+  stop.check();
+  estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation, out.detections,
+                      stop);
   origin_classifier_.attribute(ws.tones, out.detections);
   out.target.reset();
   for (const Detection& detection : out.detections) {

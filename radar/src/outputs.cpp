@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <sstream>
 #include <string_view>
 #include <variant>
@@ -78,6 +79,55 @@ std::string droplets(const propagation::DropSizeDistribution& dsd) {
   return std::visit(Describe{}, dsd);
 }
 
+bool one_fog(const propagation::ChamberSpec& c) {
+  return std::all_of(c.layers.begin(), c.layers.end(),
+                     [&c](const propagation::FogLayerSpec& l) { return l.fog == c.layers[0].fog; });
+}
+
+// "4 × 1 m fog layers", or each length where they differ.
+std::string layer_lengths(const propagation::ChamberSpec& c) {
+  const bool one_length = std::all_of(
+      c.layers.begin(), c.layers.end(),
+      [&c](const propagation::FogLayerSpec& l) { return l.length_m == c.layers[0].length_m; });
+  if (one_length) {
+    return std::to_string(c.layers.size()) + " \u00d7 " + num(c.layers[0].length_m) +
+           " m fog layers";
+  }
+  std::string lengths;
+  for (const propagation::FogLayerSpec& l : c.layers) {
+    lengths += (lengths.empty() ? "" : ", ") + num(l.length_m);
+  }
+  return std::to_string(c.layers.size()) + " fog layers of " + lengths + " m";
+}
+
+std::string fog_words(const propagation::FogSpec& fog) {
+  return fog_density(fog.density) + "; " + droplets(fog.droplets) + "; " + num(fog.temperature_c) +
+         " \u00b0C";
+}
+
+// The fog of every layer, one sentence per layer where they differ (layer 0 at the radar).
+std::string layer_fogs(const propagation::ChamberSpec& c) {
+  if (one_fog(c)) return "Fog in each active layer: " + fog_words(c.layers[0].fog) + ".";
+  std::string text;
+  for (std::size_t i = 0; i < c.layers.size(); ++i) {
+    text += (text.empty() ? "" : " ") + std::string("Fog in layer ") + std::to_string(i) + ": " +
+            fog_words(c.layers[i].fog) + ".";
+  }
+  return text;
+}
+
+// The switching order where it is not the study's (from the radar).
+std::string switching_words(const sensor::Context& context) {
+  std::vector<std::size_t> study(context.chamber.layers.size());
+  std::iota(study.begin(), study.end(), std::size_t{0});
+  if (context.switching_order.empty() || context.switching_order == study) return "";
+  std::string order;
+  for (const std::size_t i : context.switching_order) {
+    order += (order.empty() ? "" : ", ") + std::to_string(i);
+  }
+  return " Layers switched on in the order " + order + " (layer 0 at the radar).";
+}
+
 std::string upper(std::string_view text) {
   std::string out(text);
   for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -138,7 +188,6 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
   const TargetSpec& t = params.target;
   const propagation::ChamberSpec& c = context.chamber;
   const RadarParams& r = params.radar;
-  const propagation::FogSpec& fog = c.layers.front().fog;
   const double target_range_m = c.target_range_m();
   std::string target = "Target: " + target_name(t);
   if (t.model == TargetModel::evt) {
@@ -150,9 +199,7 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
   target += t.floor_multipath
                 ? ", floor multipath (reflection " + num(t.floor_reflection_coefficient) + ")"
                 : ", no floor multipath";
-  target += "; " + num(target_range_m) + " m from the radar behind " +
-            std::to_string(c.layers.size()) + " \u00d7 " + num(c.layers.front().length_m) +
-            " m fog layers";
+  target += "; " + num(target_range_m) + " m from the radar behind " + layer_lengths(c);
   std::string cfar = "CFAR " + upper(to_string(r.cfar.kind)) + " (" +
                      std::to_string(r.cfar.guard_cells) + " guard + " +
                      std::to_string(r.cfar.training_cells) + " training cells per side";
@@ -168,8 +215,7 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
       "Boxes: RCS of each measurement's associated target detection; "
       "detection rate = detections / n.",
       target + ".",
-      "Fog in each active layer: " + fog_density(fog.density) + "; " + droplets(fog.droplets) +
-          "; " + num(fog.temperature_c) + " \u00b0C.",
+      layer_fogs(c) + switching_words(context),
       "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
           std::string(to_string(r.sweep_direction)) + "-sweep centred on " +
           num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
@@ -254,6 +300,7 @@ std::string summary_csv(const RadarSummary& summary) {
       "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,"
       "q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,"
       "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
+      "radome_two_way_loss_db,target_film_loss_db,"
       "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,"
       "adc_clipped_fraction\n";
   for (const StepSummary& s : summary.steps) {
@@ -263,6 +310,7 @@ std::string summary_csv(const RadarSummary& summary) {
     const double after_outliers[] = {s.median_shift_db,        s.p_value,
                                      s.median_shift_ci95.low,  s.median_shift_ci95.high,
                                      s.median_snr_db,          s.two_way_attenuation_db,
+                                     s.radome_two_way_loss_db, s.target_film_loss_db,
                                      s.confusion_rate,         s.false_association_rate,
                                      s.false_alarms_per_frame, s.fog_detections_per_frame,
                                      s.adc_clipped_fraction};
@@ -301,6 +349,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          {"p_value", number_or_null(s.p_value)},
          {"median_snr_db", number_or_null(s.median_snr_db)},
          {"two_way_attenuation_db", s.two_way_attenuation_db},
+         {"radome_two_way_loss_db", s.radome_two_way_loss_db},
+         {"target_film_loss_db", s.target_film_loss_db},
          {"confusion_rate", s.confusion_rate},
          {"false_association_rate", s.false_association_rate},
          {"false_alarms_per_frame", s.false_alarms_per_frame},
@@ -344,7 +394,8 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
     if (summary.sensor_limit_layers == s.active_layers) options.marked_category = i;
   }
   options.title = "Target RCS against active fog layers: " + target_name(params.target) + ", fog " +
-                  fog_density(context.chamber.layers.front().fog.density);
+                  (one_fog(context.chamber) ? fog_density(context.chamber.layers[0].fog.density)
+                                            : "per layer (caption)");
   options.caption = plot_caption(params, context, summary);
   options.x_label = "active fog layers";
   options.y_label = "RCS of the associated target detection (dBsm)";
@@ -377,35 +428,49 @@ std::string percent_of_samples(double fraction) {
 std::string summary_table(const RadarSummary& summary) {
   std::ostringstream out;
   char line[320];
-  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
-  std::snprintf(line, sizeof line, header, "layers", "n", "target", "false", "fog", "false",
-                "design", "median", "IQR", "mean", "std", "shift", "95 % interval", "p", "loss");
+  constexpr const char* header =
+      "%6s %5s %8s %8s %8s %9s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
+  std::snprintf(line, sizeof line, header, "layers", "n", "target", "confused", "false", "fog",
+                "false", "design", "median", "IQR", "mean", "std", "shift", "95 % interval", "p",
+                "loss");
   out << line;
-  std::snprintf(line, sizeof line, header, "", "", "det. %", "assoc %", "det./f", "alarms/f",
+  std::snprintf(line, sizeof line, header, "", "", "det. %", "%", "assoc %", "det./f", "alarms/f",
                 "/frame", "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
   out << line;
   for (const StepSummary& s : summary.steps) {
     std::snprintf(line, sizeof line,
-                  survivors_only(s) ? "%5zu* %5zu %8.1f %8.1f %9.3f %9.3f %9.3f"
-                                    : "%6zu %5zu %8.1f %8.1f %9.3f %9.3f %9.3f",
-                  s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.false_association_rate,
-                  s.fog_detections_per_frame, s.false_alarms_per_frame,
-                  summary.expected_false_alarm_cells_per_frame);
+                  survivors_only(s) ? "%5zu* %5zu %8.1f %8.1f %8.1f %9.3f %9.3f %9.3f"
+                                    : "%6zu %5zu %8.1f %8.1f %8.1f %9.3f %9.3f %9.3f",
+                  s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.confusion_rate,
+                  100.0 * s.false_association_rate, s.fog_detections_per_frame,
+                  s.false_alarms_per_frame, summary.expected_false_alarm_cells_per_frame);
     out << line;
     for (const double value :
          {s.rcs.median, s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev, s.median_shift_db,
           s.median_shift_ci95.low, s.median_shift_ci95.high}) {
       out << ' ' << table_cell(value, 9, "%*.3f");
     }
-    out << ' ' << table_cell(s.p_value, 9, "%*.3g") << ' '
-        << table_cell(s.two_way_attenuation_db, 8, "%*.4f") << '\n';
+    const double loss_db =
+        s.two_way_attenuation_db + s.radome_two_way_loss_db + s.target_film_loss_db;
+    out << ' ' << table_cell(s.p_value, 9, "%*.3g") << ' ' << table_cell(loss_db, 8, "%*.4f")
+        << '\n';
   }
-  out << "target det. %: a target-origin detection in the gate; false assoc. %: a fog or noise\n"
-         "detection there instead (a miss; with the fog detections they decide the limit); fog\n"
+  out << "target det. %: a target-origin detection in the gate; confused %: no target detection\n"
+         "or a fog detection at least as strong (the limit: the first step above 50 %); false\n"
+         "assoc. %: a fog or noise detection in the gate instead of the target (a miss); fog\n"
          "det./f: fog-origin detections per frame; false alarms/f: noise-origin detections per\n"
          "frame; design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann\n"
          "shift against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U;\n"
          "\u2013: no such value\n";
+  if (!summary.steps.empty() && (summary.steps.front().radome_two_way_loss_db != 0.0 ||
+                                 summary.steps.front().target_film_loss_db != 0.0)) {
+    std::snprintf(line, sizeof line,
+                  "loss: the fog's, plus %.4f dB of the radome with its water film and %.4f dB "
+                  "of the target's water film\n",
+                  summary.steps.front().radome_two_way_loss_db,
+                  summary.steps.front().target_film_loss_db);
+    out << line;
+  }
   if (std::any_of(summary.steps.begin(), summary.steps.end(), survivors_only)) {
     out << "*: fewer than half the measurements detected the target: the RCS statistics are the\n"
            "surviving detections' only\n";

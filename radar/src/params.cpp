@@ -118,6 +118,17 @@ KeyTable<RadarParams> radar_param_keys() {
   keys.number("radar.phase_noise_rms_rad", FOGRADAR_KEY_FIELD(phase_noise_rms_rad), closed(0.0, pi),
               "white phase noise per sample")
       .documented_as("[0, π]");
+  keys.number("radar.radome.thickness_m", FOGRADAR_KEY_FIELD(radome.thickness_m), closed(0.0, 0.05),
+              "flat radome in front of the antenna; 0: none");
+  keys.number("radar.radome.relative_permittivity",
+              FOGRADAR_KEY_FIELD(radome.relative_permittivity), closed(1.0, 100.0),
+              "ε_r′ of the radome (2.9: of the order of polycarbonate at W band)");
+  keys.number("radar.radome.loss_tangent", FOGRADAR_KEY_FIELD(radome.loss_tangent),
+              closed(0.0, 1.0), "tan δ = ε_r″/ε_r′ of the radome");
+  keys.number("radar.radome.water_film_m", FOGRADAR_KEY_FIELD(radome.water_film_m),
+              closed(0.0, 0.01),
+              "water film on the radome's outer face (the study's water-covered sensor), with the "
+              "water model and temperature of the first layer's fog; also without a radome");
   keys.choice(
       "processing.window", FOGRADAR_KEY_FIELD(window),
       {"rectangular", "hann", "hamming", "blackman_harris", "chebyshev"}, parse_window_type,

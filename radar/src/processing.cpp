@@ -87,9 +87,10 @@ void RangeDopplerProcessor::transform_windowed(std::span<std::complex<double>> f
   doppler_fft_.execute(frame);
 }
 
-void RangeDopplerProcessor::doppler_transform(std::span<std::complex<double>> frame) const {
+void RangeDopplerProcessor::doppler_transform(std::span<std::complex<double>> frame,
+                                              const StopToken& stop) const {
   FOGRADAR_CHECK(frame.size() == chirps_ * samples_);
-  doppler_fft_.execute(frame);
+  doppler_fft_.execute(frame, stop);
 }
 
 }  // namespace fogradar::radar

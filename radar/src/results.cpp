@@ -78,6 +78,8 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.detections = rcs.size();
     s.rcs = stats::box_plot(rcs);
     s.two_way_attenuation_db = step.two_way_attenuation_db;
+    s.radome_two_way_loss_db = step.radome_two_way_loss_db;
+    s.target_film_loss_db = step.target_film_loss_db;
     std::vector<double> snr;
     std::size_t confused = 0, false_associations = 0, false_alarms = 0, fog_detections = 0;
     std::size_t samples = 0, clipped_samples = 0;

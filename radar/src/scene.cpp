@@ -80,7 +80,8 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
                                             geometric_mean_range_m);
     const double pattern = path.out.pattern_amplitude * path.back.pattern_amplitude;
     const double length_m = path.out.length_m + path.back.length_m;
-    const double transmittance = chamber.two_way_transmittance(0.5 * length_m, active);
+    const double transmittance = chamber.two_way_transmittance(0.5 * length_m, active) *
+                                 scene.radome_two_way_transmittance * scene.target_film_reflectance;
     tones.push_back({length_m,
                      path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
                      centre.radial_velocity_m_per_s, Origin::target});
@@ -104,9 +105,10 @@ void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
       const double sigma_m2 = chamber.backscatter_cross_section_m2(a, b, d.beam_solid_angle_sr, active);
       for (unsigned s = 0; s < per_bin; ++s) {
         const double range_m = a + (b - a) * rng.uniform();
-        const double mean_power_w =
-            received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, sigma_m2 / per_bin, range_m) *
-            chamber.two_way_transmittance(range_m, active);
+        const double mean_power_w = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain,
+                                                     d.wavelength_m, sigma_m2 / per_bin, range_m) *
+                                    chamber.two_way_transmittance(range_m, active) *
+                                    scene.radome_two_way_transmittance;
         // The phase of a random scatterer is uniform anyway: the complex normal carries it.
         tones.push_back({2.0 * range_m, rng.complex_normal(mean_power_w), 0.0, Origin::fog});
       }
@@ -152,6 +154,8 @@ void Scene::validate() const {
   require_in_range("target.floor_reflection_coefficient", floor.reflection_coefficient, -1.0, 1.0);
   require_in_range("target.micro_motion_std_m", micro_motion_std_m, 0.0, 0.1);
   require_in_range("target.clutter_scatterers_per_bin", clutter_scatterers_per_bin, 1.0, 64.0);
+  require_in_range("radome_two_way_transmittance", radome_two_way_transmittance, 0.0, 1.0);
+  require_in_range("target_film_reflectance", target_film_reflectance, 0.0, 1.0);
 }
 
 Scene point_target_scene(double rcs_dbsm) {

@@ -10,6 +10,8 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
+#include "fogradar/propagation/water.hpp"
+#include "fogradar/propagation/water_film.hpp"
 #include "fogradar/radar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
 #include "fogradar/stats/format.hpp"
@@ -23,6 +25,15 @@ constexpr std::size_t double_bytes = sizeof(double);
 constexpr std::size_t doppler_block_columns = 32;
 // Objects whose rows the estimator interpolates in one pass (estimation.cpp).
 constexpr std::size_t interpolation_batch = 4;
+
+// The CPU time of a frame, fitted to `fogradar run --threads 1` of one-sensor radar scenarios of
+// 65536 samples x 256 and x 1024 chirps on the project's 2-core VM (release build). Synthesis,
+// transforms and CFAR cost about the same per cell; each object's peak search (the scene's few
+// plus about P_fa x cells false alarms) sums over the whole map, so a frame grows as cells squared
+// once P_fa x cells passes a few. docs/scenario.md ("Time limit") compares it with measured times.
+constexpr double frame_seconds_per_cell = 6.7e-9;
+constexpr double frame_seconds_per_cell_and_object = 5.6e-10;
+constexpr double scene_objects_per_frame = 3.0;
 
 double mib(std::size_t bytes) {
   return static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 20);
@@ -178,6 +189,25 @@ class Type : public sensor::SensorType {
             .key = "radar.samples_per_chirp"};
   }
 
+  sensor::TimePart item_time(const std::any& params, const sensor::Context&) const override {
+    const RadarParams& p = sensor::params_of<SensorParams>(params).radar;
+    const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
+    const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << "radar.samples_per_chirp = " << p.samples_per_chirp
+           << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
+           << " objects (" << scene_objects_per_frame
+           << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
+           << " x cells)";
+    return {.item_seconds =
+                cells * (frame_seconds_per_cell + objects * frame_seconds_per_cell_and_object),
+            .detail = detail.str(),
+            .key = p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
+                                                             : "radar.chirps_per_frame",
+            .items_key = "experiment.measurements_per_step"};
+  }
+
   std::vector<sensor::RawKind> raw_kinds(const std::any& params,
                                          const sensor::Context&) const override {
     return radar_raw_kinds(sensor::params_of<SensorParams>(params));
@@ -225,8 +255,8 @@ class RadarWorker : public sensor::Worker {
   explicit RadarWorker(const RadarRun& run)
       : run_(run), workspace_(run.sensor().chain().make_workspace()) {}
 
-  void measure(std::size_t step, std::size_t index, RandomStream& stream,
-               sensor::RawSink* raw) override;
+  void measure(std::size_t step, std::size_t index, RandomStream& stream, sensor::RawSink* raw,
+               const StopToken& stop) override;
 
  private:
   const RadarRun& run_;
@@ -398,6 +428,20 @@ RadarSensor::RadarSensor(const SensorParams& params, const sensor::Context& cont
       chain_(params.radar) {
   chain_.check_compatible(scene_, chamber_);
   for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
+  // The films take the water index of the fog next to them, at the sweep centre: its model and
+  // temperature.
+  const double wavelength_m = derive(params.radar).wavelength_m;
+  const Radome& radome = params.radar.radome;
+  const std::complex<double> radome_index = propagation::refractive_index_from_permittivity(
+      {radome.relative_permittivity, radome.relative_permittivity * radome.loss_tangent});
+  radome_two_way_loss_db_ = propagation::film_two_way_loss_db(
+      radome.water_film_m, chamber_.layer(0).optics.refractive_index, radome_index,
+      radome.thickness_m, wavelength_m);
+  target_film_loss_db_ = propagation::conductor_film_loss_db(
+      params.target.water_film_m,
+      chamber_.layer(chamber_.layer_count() - 1).optics.refractive_index, wavelength_m);
+  scene_.radome_two_way_transmittance = db_to_power_ratio(-radome_two_way_loss_db_);
+  scene_.target_film_reflectance = db_to_power_ratio(-target_film_loss_db_);
 }
 
 std::unique_ptr<sensor::SensorRun> RadarSensor::begin_run() const {
@@ -422,6 +466,8 @@ RadarRun::RadarRun(std::shared_ptr<const RadarSensor> sensor)
     step.active_layers = k;
     step.two_way_attenuation_db =
         chamber.two_way_attenuation_db(chamber.target_range_m(), sensor_->active(k));
+    step.radome_two_way_loss_db = sensor_->radome_two_way_loss_db();
+    step.target_film_loss_db = sensor_->target_film_loss_db();
     step.records.resize(sensor_->items_per_step());
   }
 }
@@ -431,7 +477,7 @@ std::unique_ptr<sensor::Worker> RadarRun::make_worker() const {
 }
 
 void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& stream,
-                          sensor::RawSink* raw) {
+                          sensor::RawSink* raw, const StopToken& stop) {
   FrameTaps taps;
   if (raw != nullptr && raw->wants(raw_beat)) {
     taps.beat = [raw](std::span<const std::complex<double>> beat) { raw->write(raw_beat, beat); };
@@ -451,7 +497,7 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
   }
   const RadarSensor& sensor = *run_.sensor_;
   sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(step), stream, workspace_,
-                         measurement_, taps);
+                         measurement_, taps, stop);
   MeasurementRecord& record = (*run_.steps_)[step].records[index];
   record = record_of(measurement_, sensor.chamber().target_range_m(),
                      sensor.params().radar.association_gate_m);

@@ -16,6 +16,11 @@ TargetModel parse_target_model(std::string_view text, std::string_view field) {
 
 KeyTable<TargetSpec> target_keys() {
   KeyTable<TargetSpec> keys("target.");
+  // The EVT's five centres have heights of their own and a steady RCS: these keys would do nothing.
+  const auto is_point = [](const TargetSpec& t) { return t.model == TargetModel::point; };
+  const std::string point_only =
+      "with target.model = \"point\" (the EVT's five centres have heights of their own and a "
+      "steady RCS)";
   keys.choice(
       "model", FOGRADAR_KEY_FIELD(model), {"evt", "point"}, parse_target_model,
       [](TargetModel m) { return to_string(m); },
@@ -24,13 +29,15 @@ KeyTable<TargetSpec> target_keys() {
               "mean RCS (sum over the EVT's centres)");
   // Any integer reaches the parser, which names the allowed set (0, 1, 3).
   keys.integer(
-      "swerling", [](const TargetSpec& t) { return static_cast<std::int64_t>(t.swerling); },
-      [](TargetSpec& t, std::int64_t v) {
-        t.swerling = parse_swerling(std::to_string(v), "target.swerling");
-      },
-      "integer 0, 1, 3", "point target fluctuation from measurement to measurement");
+          "swerling", [](const TargetSpec& t) { return static_cast<std::int64_t>(t.swerling); },
+          [](TargetSpec& t, std::int64_t v) {
+            t.swerling = parse_swerling(std::to_string(v), "target.swerling");
+          },
+          "integer 0, 1, 3", "point target fluctuation from measurement to measurement")
+      .when(is_point, point_only);
   keys.number("height_m", FOGRADAR_KEY_FIELD(height_m), closed(0.0, 100.0),
-              "point target height above the floor");
+              "point target height above the floor")
+      .when(is_point, point_only);
   keys.number("sensor_height_m", FOGRADAR_KEY_FIELD(sensor_height_m), closed(0.0, 100.0),
               "radar height; boresight is horizontal");
   keys.boolean("floor_multipath", FOGRADAR_KEY_FIELD(floor_multipath), "two-ray floor reflection");
@@ -42,6 +49,9 @@ KeyTable<TargetSpec> target_keys() {
               closed(-300.0, 300.0),
               "the whole target's radial velocity, + receding; beyond the radar's unambiguous "
               "velocity λ/(4 T_i) (19.0 m/s for the paper radar) the estimate folds into it");
+  keys.number("water_film_m", FOGRADAR_KEY_FIELD(water_film_m), closed(0.0, 0.01),
+              "water film on the target's metal surfaces (the study's water-covered target), with "
+              "the water model and temperature of the last layer's fog");
   return keys;
 }
 

@@ -6,7 +6,8 @@
 namespace fogradar::sensor {
 
 propagation::ActiveLayers Context::active(std::size_t step) const {
-  return propagation::first_layers_active(step, chamber.layers.size());
+  if (switching_order.empty()) return propagation::first_layers_active(step, chamber.layers.size());
+  return propagation::layers_switched_on(switching_order, step, chamber.layers.size());
 }
 
 std::size_t RawKind::item_values() const {

@@ -17,6 +17,7 @@
 #include "fogradar/experiment/files.hpp"
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/outputs.hpp"
+#include "fogradar/experiment/run_time.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/propagation/water.hpp"
@@ -785,6 +786,40 @@ std::string SweepEstimate::text() const {
   return out.str();
 }
 
+namespace {
+
+// Before anything is timed: the run that alone exceeds the limit is refused as `run` refuses it,
+// else the sum of every run's cost-model estimate against the limit.
+void require_sweep_time_within(const SweepSpec& spec, const std::vector<Point>& points,
+                               const SweepOptions& options) {
+  double total_seconds = 0.0;
+  std::size_t runs = 0;
+  for (const Point& p : points) {
+    runs += spec.replications + p.setups.size();
+    for (std::size_t s = 0; s <= p.setups.size(); ++s) {
+      const experiment::Scenario& scenario = s == 0 ? p.scenario : p.setups[s - 1];
+      experiment::require_time_within(scenario, options.threads, options.time_limit_seconds);
+      total_seconds += experiment::estimate_run_time(scenario, options.threads).wall_seconds() *
+                       static_cast<double>(s == 0 ? spec.replications : 1);
+    }
+  }
+  if (total_seconds <= options.time_limit_seconds) return;
+  std::string message = "the sweep needs an estimated ";
+  message += seconds_text(total_seconds);
+  message += " for its ";
+  message += std::to_string(runs);
+  message += " runs (";
+  message += std::to_string(points.size());
+  message += " points) with --threads ";
+  message += std::to_string(options.threads);
+  message += ", each within --time-limit = ";
+  message += seconds_text(options.time_limit_seconds);
+  message += " but not all together; shard it (--shard i/N) or raise --time-limit";
+  throw InvalidParameter("--time-limit", message);
+}
+
+}  // namespace
+
 SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
                        const SweepOptions& options) {
   const std::size_t limit = options.memory_limit_bytes ? options.memory_limit_bytes
@@ -812,6 +847,7 @@ SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
     e.runs += spec.replications - 1;
   }
   if (largest != nullptr) experiment::require_memory_within(*largest, options.threads, limit);
+  if (options.time_limit_seconds > 0.0) require_sweep_time_within(spec, points, options);
   // One sensor set-up and one item of each sensor of the first point, timed.
   const propagation::SegelsteinTable water;
   const auto now = [] { return std::chrono::steady_clock::now(); };

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -194,6 +195,47 @@ SimpsonBand reference_band(const propagation::Fog& fog) {
     band.beta_per_m.push_back(fog.at_optical_wavelength(nm * 1e-9).extinction_per_m);
   }
   return band;
+}
+
+// A flat water film on the lens window (camera.window_water_film_m) passes the scene's radiance
+// once: target and airlight alike are the dry camera's times the film's one-way transmittance,
+// written out here as the incoherent sum of the film on glass n = 1.5 against the dry face
+// (Harbecke 1986, Appl. Phys. B 39, 165), Segelstein's water at 550 nm; to rounding.
+TEST(CameraOptics, WindowFilmScalesTargetAndAirlightByItsTransmittance) {
+  CameraParams dry;
+  dry.band = Band::monochromatic;
+  dry.wavelength_nm = 550.0;
+  CameraParams wet = dry;
+  wet.window_water_film_m = 0.5e-3;
+  const Camera dry_camera(dry, paper_chamber(), table());
+  const Camera wet_camera(wet, paper_chamber(), table());
+  const std::complex<double> m = table().refractive_index(550e-9);
+  const auto reflectance = [](std::complex<double> a, std::complex<double> b) {
+    return std::norm((a - b) / (a + b));
+  };
+  const double r_af = reflectance(1.0, m), r_fg = reflectance(m, 1.5), r_ag = reflectance(1.0, 1.5);
+  const double tau = std::exp(-4.0 * pi * m.imag() * wet.window_water_film_m / 550e-9);
+  const double one_way =
+      (1.0 - r_af) * (1.0 - r_fg) * tau / (1.0 - r_af * r_fg * tau * tau) / (1.0 - r_ag);
+  for (const propagation::ActiveLayers& active :
+       {propagation::ActiveLayers{false, false, false, false},
+        propagation::ActiveLayers{true, true, false, false}}) {
+    const StepOptics d = dry_camera.step_optics(active);
+    const StepOptics w = wet_camera.step_optics(active);
+    validate({.id = "camera.window_film.transmittance." + std::to_string(d.active_layer_count) +
+                    "layers",
+              .group = "camera",
+              .quantity = "transmittance through the fog and the window's water film",
+              .unit = "1",
+              .conditions = "0.5 mm flat water film on glass n = 1.5, 550 nm, " +
+                            std::to_string(d.active_layer_count) + " active layers",
+              .reference = one_way * d.transmittance[0],
+              .source = "incoherent film sum (Harbecke 1986), written out in this test",
+              .value = w.transmittance[0],
+              .tolerance = 1e-12,
+              .kind = Tolerance::relative});
+    EXPECT_NEAR(w.airlight_factor[0], one_way * d.airlight_factor[0], 1e-12 * d.airlight_factor[0]);
+  }
 }
 
 TEST(CameraOptics, PhotopicBandAgainstAnIndependentIntegration) {

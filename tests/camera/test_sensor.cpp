@@ -294,6 +294,11 @@ TEST(Params, EveryInvalidKeyIsRefusedByName) {
   EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.auto_target_grey = 255.0; }),
             "camera.exposure.auto_target_grey");
   EXPECT_EQ(rejected([](CameraParams& p) { p.gamma = 0.5; }), "camera.gamma");
+  for (const double bad : {-1e-4, 0.5e-6, 0.011, std::nan("")}) {
+    EXPECT_EQ(rejected([&](CameraParams& p) { p.window_water_film_m = bad; }),
+              "camera.window_water_film_m")
+        << bad;
+  }
   EXPECT_EQ(rejected([](CameraParams& p) { p.noise.full_well_electrons = 10.0; }),
             "camera.noise.full_well_electrons");
   EXPECT_EQ(rejected([](CameraParams& p) { p.noise.read_noise_electrons = -1.0; }),

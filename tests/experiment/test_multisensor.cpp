@@ -102,16 +102,17 @@ TEST(MultiSensor, AddingASensorLeavesTheOthersFilesUnchanged) {
             nlohmann::json::parse(all.at("summary.json")).at("sensors").at("radar"));
 }
 
-// summary.json (docs/scenario.md, Results): the resolved scenario and one entry per sensor that ran
-// with its limit, criterion, margin and summary, each summary as the sensor's own
+// summary.json (docs/scenario.md, Results): the resolved scenario, the chamber, and one entry per
+// sensor that ran with its limit, criterion, margin and summary, each summary as the sensor's own
 // <name>_summary.json holds it.
 TEST(MultiSensor, SummaryJsonCarriesEverySensorsLimitAndSummary) {
   const Scenario s = small_three_sensors();
   const ExperimentSummary summary = summarize(run_experiment(s));
   const Files files = files_of(s, 2);
   const nlohmann::json json = nlohmann::json::parse(files.at("summary.json"));
-  EXPECT_EQ(json.size(), 2u);
+  EXPECT_EQ(json.size(), 3u);
   EXPECT_TRUE(json.contains("scenario"));
+  EXPECT_TRUE(json.contains("chamber"));  // each layer's fog: test_layers.cpp
   ASSERT_TRUE(json.contains("sensors"));
   const nlohmann::json& sensors = json.at("sensors");
   EXPECT_EQ(sensors.size(), 3u);

@@ -107,27 +107,30 @@ TEST(RcsBoxplot, NCountsMeasurementsAndDetectionsAreSeparate) {
   EXPECT_NE(summary_table(losing_summary()).find("     1   200     75.0"), std::string::npos);
 }
 
-// The printed table shows the fog detections per frame (with the false associations they decide
-// the limit) and an en dash, never "nan", for a value that does not exist.
-TEST(RcsBoxplot, TableShowsFogDetectionsAndNoNan) {
+// The printed table shows the confusion rate (the limit's criterion) and the fog detections per
+// frame, and an en dash, never "nan", for a value that does not exist.
+TEST(RcsBoxplot, TableShowsConfusionFogDetectionsAndNoNan) {
   RadarSummary summary = losing_summary();
   summary.steps[2].fog_detections_per_frame = 12.5;
+  summary.steps[2].confusion_rate = 0.805;
   summary.steps[0].median_shift_ci95 = {std::nan(""), std::nan("")};
   summary.steps[0].p_value = std::nan("");
   summary.steps[3].rcs.median = std::nan("");
   const std::string table = summary_table(summary);
   EXPECT_EQ(table.find("nan"), std::string::npos) << table;
   EXPECT_NE(table.find("det./f"), std::string::npos) << table;
+  EXPECT_NE(table.find("confused %: no target detection"), std::string::npos) << table;
   std::istringstream lines(table);
   std::string line;
   std::vector<std::string> rows;
   while (std::getline(lines, line)) rows.push_back(line);
   ASSERT_GE(rows.size(), 7u);
-  // Row of step 2: layers, n, target det. %, false assoc. %, fog det./f.
+  // Row of step 2: layers, n, target det. %, confused %, false assoc. %, fog det./f.
   std::istringstream step2(rows[4]);
-  std::string layers, n, target, assoc, fog;
-  step2 >> layers >> n >> target >> assoc >> fog;
+  std::string layers, n, target, confused, assoc, fog;
+  step2 >> layers >> n >> target >> confused >> assoc >> fog;
   EXPECT_EQ(layers, "2*");  // fewer than half detected (SurvivorsOnlyStepsSaySo)
+  EXPECT_EQ(confused, "80.5");
   EXPECT_EQ(fog, "12.500");
   // Step 0: the shift's interval and p are the last numbers but the loss, each an en dash.
   EXPECT_NE(rows[2].find("\u2013         \u2013         \u2013"), std::string::npos) << rows[2];

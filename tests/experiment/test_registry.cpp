@@ -169,8 +169,8 @@ class RangeFinderRun : public sensor::SensorRun {
   class ShotWorker : public sensor::Worker {
    public:
     explicit ShotWorker(const RangeFinderRun& run) : run_(run) {}
-    void measure(std::size_t step, std::size_t index, RandomStream& stream,
-                 sensor::RawSink*) override {
+    void measure(std::size_t step, std::size_t index, RandomStream& stream, sensor::RawSink*,
+                 const StopToken&) override {
       const RangeFinder& sensor = *run_.sensor_;
       StepShots& s = (*run_.steps_)[step];
       s.shots[index] = {.detected = s.transmittance >= sensor.params.min_transmittance,
@@ -210,6 +210,12 @@ class RangeFinderType : public sensor::SensorType {
                      sizeof(Shot),
             .detail = "rangefinder.shots_per_step",
             .key = "rangefinder.shots_per_step"};
+  }
+  sensor::TimePart item_time(const std::any&, const sensor::Context&) const override {
+    return {.item_seconds = 1e-7,
+            .detail = "one shot",
+            .key = "rangefinder.shots_per_step",
+            .items_key = "rangefinder.shots_per_step"};
   }
   std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
     return {};

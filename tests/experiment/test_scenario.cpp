@@ -212,11 +212,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "radar.samples_per_chirp at line 2"},
         BadInput{"huge_guard_cells", "[processing.cfar]\nguard_cells = 4294967296\n",
                  "processing.cfar.guard_cells", 2,
-                 "an integer in [0, 32766] with 2 (processing.cfar.guard_cells + "
-                 "processing.cfar.training_cells) + 1 <= radar.samples_per_chirp = 512"},
+                 "in [0, 247] with processing.cfar.training_cells = 8 and a profile of "
+                 "radar.samples_per_chirp = 512 cells"},
         BadInput{"huge_os_rank", "[processing.cfar]\ntraining_cells = 4\nos_rank = 70000\n",
                  "processing.cfar.os_rank", 3,
-                 "an integer in [0, 65534] and 0 or at most 2 x processing.cfar.training_cells = 8",
+                 "0 (default round(3N/4)) or in [1, 8] (N = 2 x processing.cfar.training_cells)",
                  "processing.cfar.training_cells at line 2"},
         BadInput{"os_rank_beyond_training", "[processing.cfar]\ntraining_cells = 4\nos_rank = 9\n",
                  "processing.cfar.os_rank", 3, "[1, 8]",
@@ -311,10 +311,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "<= radar.chirp_duration_s x radar.sample_rate_hz = 512"},
         BadInput{"bad_reflection", "[target]\nfloor_reflection_coefficient = -1.5\n",
                  "target.floor_reflection_coefficient", 2, "[-1, 1]"},
-        BadInput{"bad_swerling", "[target]\nswerling = 2\n", "target.swerling", 2,
-                 "one of: 0, 1, 3"},
-        BadInput{"negative_swerling", "[target]\nswerling = -1\n", "target.swerling", 2,
-                 "'-1': must be one of: 0, 1, 3"},
+        BadInput{"bad_swerling", "[target]\nmodel = \"point\"\nswerling = 2\n", "target.swerling",
+                 3, "one of: 0, 1, 3"},
+        BadInput{"negative_swerling", "[target]\nmodel = \"point\"\nswerling = -1\n",
+                 "target.swerling", 3, "'-1': must be one of: 0, 1, 3"},
         BadInput{"bad_target_model", "[target]\nmodel = \"truck\"\n", "target.model", 2,
                  "one of 'evt', 'point'"},
         BadInput{"bool_as_number", "[target]\nfloor_multipath = 1\n", "target.floor_multipath", 2,
@@ -362,7 +362,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"camera_frames", "[camera]\nframes_per_step = 0\n", "camera.frames_per_step", 2,
                  "an integer in [1, 100000]"},
         BadInput{"camera_noise_type", "[camera.noise]\nenabled = \"yes\"\n", "camera.noise.enabled",
-                 2, "must be true or false"}),
+                 2, "must be true or false"},
+        // The water-covered sensor and target: a permittivity below vacuum's, a negative film, a
+        // window film too thin for its incoherent model.
+        BadInput{"radome_permittivity", "[radar.radome]\nrelative_permittivity = 0.5\n",
+                 "radar.radome.relative_permittivity", 2, "[1, 100]"},
+        BadInput{"target_water_film", "[target]\nwater_film_m = -1e-4\n", "target.water_film_m", 2,
+                 "[0, 0.01]"},
+        BadInput{"lidar_window_film", "[lidar]\nwindow_water_film_m = 5e-7\n",
+                 "lidar.window_water_film_m", 2, "0 (dry) or in [1e-06, 0.01]"}),
     [](const ::testing::TestParamInfo<BadInput>& param_info) {
       return std::string(param_info.param.name);
     });
@@ -394,8 +402,16 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
        "5.12e-05, 1]"},
       {"[radar]\nsweep_direction = 3\n",
        "bad.toml:2: radar.sweep_direction = 3: must be a string, one of up, down"},
-      {"[target]\nswerling = \"one\"\n",
-       "bad.toml:2: target.swerling = 'one': must be an integer, one of: 0, 1, 3"},
+      {"[target]\nmodel = \"point\"\nswerling = \"one\"\n",
+       "bad.toml:3: target.swerling = 'one': must be an integer, one of: 0, 1, 3"},
+      // Keys that would do nothing are refused, naming what makes them work.
+      {"[target]\nswerling = 1\n",
+       "bad.toml:2: target.swerling = 1: takes effect only with target.model = \"point\" (the "
+       "EVT's "
+       "five centres have heights of their own and a steady RCS)"},
+      {"[target]\nheight_m = 1.1\n",
+       "bad.toml:2: target.height_m = 1.1: takes effect only with target.model = \"point\" (the "
+       "EVT's five centres have heights of their own and a steady RCS)"},
       {"[camera]\nframes_per_step = true\n",
        "bad.toml:2: camera.frames_per_step = true: must be an integer in [1, 100000]"},
       // A sub-table given a plain value.
@@ -481,6 +497,11 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
       "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-8\n",
       "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-3\n",
       "[experiment]\nmeasurements_per_step = 1000000\nmax_active_layers = 0\n",
+      "[radar.radome]\nthickness_m = 0.05\nrelative_permittivity = 100\nloss_tangent = 1\n"
+      "water_film_m = 0.01\n",
+      "[radar.radome]\nthickness_m = 0\nrelative_permittivity = 1\nloss_tangent = 0\n",
+      "[target]\nwater_film_m = 0.01\n",
+      "[lidar]\nwindow_water_film_m = 1e-6\n[camera]\nwindow_water_film_m = 0.01\n",
   };
   for (const char* text : bounds) {
     try {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <string>
@@ -197,6 +199,57 @@ TEST(LidarSensor, ScansAreDeterministicForAnyThreadCount) {
   EXPECT_FALSE(one[0].scans[0].echoes.empty());
 }
 
+// A flat water film on the window (lidar.window_water_film_m): every echo of a beam, the target's,
+// the fog's and the background's, is the dry lidar's times the film's two-way transmittance,
+// written out here as the incoherent sum of the film on glass n = 1.5 against the dry face
+// (Harbecke 1986, Appl. Phys. B 39, 165): T = (1 - R_af)(1 - R_fg) tau / (1 - R_af R_fg tau^2) /
+// (1 - R_ag), tau = exp(-4 pi k t / lambda), with Segelstein's water at 905 nm; to rounding.
+TEST(LidarSensor, WindowFilmScalesEveryEchoByItsTwoWayTransmittance) {
+  LidarParams wet;
+  wet.window_water_film_m = 0.2e-3;
+  const Lidar dry_lidar(LidarParams{}, propagation::ChamberSpec{}, table());
+  const Lidar wet_lidar(wet, propagation::ChamberSpec{}, table());
+  const std::complex<double> m = table().refractive_index(wet.wavelength_m);
+  const auto reflectance = [](std::complex<double> a, std::complex<double> b) {
+    return std::norm((a - b) / (a + b));
+  };
+  const double r_af = reflectance(1.0, m), r_fg = reflectance(m, 1.5), r_ag = reflectance(1.0, 1.5);
+  const double tau = std::exp(-4.0 * 3.14159265358979323846 * m.imag() * wet.window_water_film_m /
+                              wet.wavelength_m);
+  const double one_way =
+      (1.0 - r_af) * (1.0 - r_fg) * tau / (1.0 - r_af * r_fg * tau * tau) / (1.0 - r_ag);
+  std::printf("[ measured ] lidar window film 0.2 mm at 905 nm: one-way T = %.6f (wet / dry)\n",
+              one_way);
+  EXPECT_EQ(dry_lidar.window_two_way_transmittance(), 1.0);
+  fogradar::testing::validate(
+      {.id = "lidar.window_film.two_way_transmittance",
+       .group = "lidar: optics",
+       .quantity = "two-way transmittance of the window's water film against the dry window",
+       .unit = "1",
+       .conditions = "0.2 mm flat water film on glass n = 1.5, 905 nm, Segelstein water",
+       .reference = one_way * one_way,
+       .source = "incoherent film sum (Harbecke 1986), written out in this test",
+       .value = wet_lidar.window_two_way_transmittance(),
+       .tolerance = 1e-12,
+       .kind = Tolerance::relative});
+  const propagation::ActiveLayers all_on(4, true);
+  const std::vector<double> factors(4, 1.0);
+  for (std::size_t beam : {dry_lidar.target_beam(), std::size_t{0}}) {
+    const BeamWaveform d = dry_lidar.waveform(beam, all_on, factors);
+    const BeamWaveform w = wet_lidar.waveform(beam, all_on, factors);
+    double compared = 0.0;
+    for (const auto& [dry_part, wet_part] :
+         {std::pair{&d.target, &w.target}, {&d.fog, &w.fog}, {&d.background, &w.background}}) {
+      for (std::size_t k = 0; k < dry_part->size(); ++k) {
+        EXPECT_NEAR((*wet_part)[k], one_way * one_way * (*dry_part)[k],
+                    1e-12 * std::abs((*dry_part)[k]));
+        compared += (*dry_part)[k];
+      }
+    }
+    EXPECT_GT(compared, 0.0) << "beam " << beam;
+  }
+}
+
 TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
   using test_support::rejected_field;
   const auto rejects = [](auto change) {
@@ -241,6 +294,11 @@ TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
               p.background[1] = {1.0, 1.0, 1.0, 1.0, 0.5};
             }),
             "lidar.background[1].x1_m");
+  for (const double bad : {-1e-4, 0.5e-6, 0.011, std::nan("")}) {
+    EXPECT_EQ(rejects([&](LidarParams& p) { p.window_water_film_m = bad; }),
+              "lidar.window_water_film_m")
+        << bad;
+  }
   EXPECT_EQ(rejects([](LidarParams& p) { p.fog_fluctuation.log_std = -0.1; }),
             "lidar.fog_fluctuation.log_std");
   EXPECT_EQ(rejects([](LidarParams& p) { p.fog_fluctuation.correlation_time_s = 0.0; }),
@@ -280,7 +338,11 @@ const PaperRun& paper_run() {
     for (std::size_t step = 0; step <= 4; ++step) {
       r.steps.push_back({step, scans_of_step(*r.lidar, step, 2)});
     }
-    r.summary = summarize(r.params, r.steps);
+    std::vector<propagation::ActiveLayers> active;
+    for (std::size_t step = 0; step <= 4; ++step) {
+      active.push_back(propagation::first_layers_active(step, 4));
+    }
+    r.summary = summarize(*r.lidar, r.steps, active);
     return r;
   }();
   return run;

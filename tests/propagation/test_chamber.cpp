@@ -208,7 +208,7 @@ TEST(Chamber, RejectsInvalidGeometryAndStates) {
   spec.layers[1].fog.density = LiquidWaterContent{-1.0};
   EXPECT_EQ(field_of(spec), "fog.lwc_g_per_m3");
   spec = ChamberSpec{};
-  spec.sensor_gap_m = 0.0;  // the study's water-covered-sensor case is a valid chamber
+  spec.sensor_gap_m = 0.0;  // fog up to the sensor and the target is a valid chamber
   spec.target_gap_m = 0.0;
   EXPECT_EQ(field_of(spec), "accepted");
 

@@ -16,12 +16,14 @@
 #include "fogradar/propagation/droplet.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/visibility.hpp"
+#include "itu_p840.hpp"
 #include "rejected_field.hpp"
 #include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
 
+using fogradar::testing::p840_k_l;
 using fogradar::testing::Tolerance;
 using fogradar::testing::validate;
 
@@ -43,8 +45,7 @@ FogSpec lwc_fog(double lwc, DropSizeDistribution droplets,
 // Issue criterion: the Liebe model's specific attenuation within 3 % of ITU-R P.840 at several
 // frequencies and temperatures. P.840's K_l is Rayleigh absorption; fog droplets of a few um are
 // deep in the Rayleigh regime at these frequencies (x < 0.01), so the full Mie sum must agree.
-// The reference is P.840 as written out in this file (p840_k_l, below), not water.cpp's.
-double p840_k_l(double frequency_ghz, double temperature_c);
+// The reference is P.840 as written out in support/itu_p840.hpp, not water.cpp's.
 
 TEST_F(FogTest, LiebeAttenuationMatchesItuP840) {
   for (double f_ghz : {10.0, 35.0, 77.0, 94.0, 150.0}) {
@@ -70,25 +71,6 @@ TEST_F(FogTest, LiebeAttenuationMatchesItuP840) {
                 .x_label = "frequency (GHz)"});
     }
   }
-}
-
-// P.840's K_l written out here from ITU-R P.840-8 eqs. (2)-(9) (theta = 300/T; eps0 = 77.66 +
-// 103.3 (theta - 1), eps1 = 0.0671 eps0, eps2 = 3.52; f_p = 20.20 - 146 (theta - 1) + 316 (theta -
-// 1)^2, f_s = 39.8 f_p; eps', eps'' of the double Debye sum; eta = (2 + eps')/eps'';
-// K_l = 0.819 f / (eps'' (1 + eta^2))), independently of water.cpp. At 77 GHz it gives
-// 3.5374 (dB/km)/(g/m^3) at 0 C and 2.7130 at 20 C (evaluated in Python from the same formulas).
-double p840_k_l(double frequency_ghz, double temperature_c) {
-  const double theta = 300.0 / (temperature_c + 273.15);
-  const double eps0 = 77.66 + 103.3 * (theta - 1.0), eps1 = 0.0671 * eps0, eps2 = 3.52;
-  const double fp = 20.20 - 146.0 * (theta - 1.0) + 316.0 * (theta - 1.0) * (theta - 1.0),
-               fs = 39.8 * fp;
-  const double f = frequency_ghz;
-  const double eps_im = f * (eps0 - eps1) / (fp * (1.0 + (f / fp) * (f / fp))) +
-                        f * (eps1 - eps2) / (fs * (1.0 + (f / fs) * (f / fs)));
-  const double eps_re = (eps0 - eps1) / (1.0 + (f / fp) * (f / fp)) +
-                        (eps1 - eps2) / (1.0 + (f / fs) * (f / fs)) + eps2;
-  const double eta = (2.0 + eps_re) / eps_im;
-  return 0.819 * f / (eps_im * (1.0 + eta * eta));
 }
 
 // The water temperature reaches the radar attenuation: the study's fog droplets at 1 g/m^3 under

@@ -272,6 +272,131 @@ TEST(Film, ThickFilmLossGrowsAtTheBeerLambertRate) {
         Tolerance::relative);
 }
 
+// ---- Single film in air: Airy's closed form --------------------------------------------------
+
+// Airy's single-film amplitudes at normal incidence, exp(-i omega t) convention (Born & Wolf sec.
+// 7.6.1; Orfanidis, Electromagnetic Waves and Antennas, sec. 5.4): with delta = 2 pi m t / lambda,
+//   r = (r01 + r12 e^{2 i delta}) / (1 + r01 r12 e^{2 i delta}),
+//   t = t01 t12 e^{i delta} / (1 + r01 r12 e^{2 i delta}).
+// A perfect conductor behind the film is r12 = -1 (Orfanidis sec. 5.4, a PEC-backed slab).
+complex airy_r(complex m, double thickness_m, double wavelength_m, complex r12) {
+  const complex r01 = fresnel_r(1.0, m);
+  const complex round_trip =
+      std::exp(complex{0.0, 2.0} * 2.0 * pi * m * thickness_m / wavelength_m);
+  return (r01 + r12 * round_trip) / (1.0 + r01 * r12 * round_trip);
+}
+
+double airy_film_in_air_transmittance(complex m, double thickness_m, double wavelength_m) {
+  const complex phase = complex{0.0, 1.0} * 2.0 * pi * m * thickness_m / wavelength_m;
+  const complex r01 = fresnel_r(1.0, m), r12 = fresnel_r(m, 1.0);
+  const complex t = fresnel_t(1.0, m) * fresnel_t(m, 1.0) * std::exp(phase) /
+                    (1.0 + r01 * r12 * std::exp(2.0 * phase));
+  return std::norm(t);
+}
+
+// The radome's film without a radome: the transfer matrix's two-way loss against Airy's T, to
+// rounding (1e-9 dB).
+TEST(Film, FilmInAirMatchesAiry) {
+  const double lambda = kWavelength77Ghz_m;
+  for (double t_m : {0.02e-3, 0.1e-3, 0.26e-3, 0.5e-3}) {
+    const double expected_db =
+        -20.0 * std::log10(airy_film_in_air_transmittance(kWater77Ghz, t_m, lambda));
+    check("film_in_air.two_way_loss." + num(t_m * 1e3) + "mm", "two-way loss", "dB",
+          "water film m = 3.76 + 2.32i, " + num(t_m * 1e3) + " mm, no radome, 77 GHz",
+          film_two_way_loss_db(t_m, kWater77Ghz, 1.0, 0.0, lambda), expected_db,
+          "Airy single film: t = t01 t12 e^{i delta} / (1 + r01 r12 e^{2 i delta}) (Born & Wolf "
+          "sec. 7.6.1)",
+          1e-9, Tolerance::absolute);
+  }
+}
+
+// A film on a perfect conductor: the transfer matrix's PEC limit against Airy with r12 = -1, to
+// rounding; bare metal reflects r = -1 (0 dB); a lossless film keeps |r| = 1; a film many skin
+// depths thick reflects as the water surface, r01.
+TEST(Film, ConductorBackedFilmMatchesAiryWithR12MinusOne) {
+  const double lambda = kWavelength77Ghz_m;
+  EXPECT_NEAR(std::abs(conductor_backed_reflection({}, lambda) - complex{-1.0, 0.0}), 0.0, kTol);
+  EXPECT_EQ(conductor_film_loss_db(0.0, kWater77Ghz, lambda), 0.0);
+  const double quarter_wave_m = lambda / (4.0 * kWater77Ghz.real());
+  for (double t_m : {0.05e-3, 0.1e-3, quarter_wave_m, 0.5e-3, 1e-3}) {
+    const std::vector<SlabLayer> film = {{kWater77Ghz, t_m}};
+    const complex expected = airy_r(kWater77Ghz, t_m, lambda, -1.0);
+    const std::string conditions =
+        "water film m = 3.76 + 2.32i, " + num(t_m * 1e3) + " mm, on a perfect conductor, 77 GHz";
+    const std::string source =
+        "Airy with r12 = -1: r = (r01 - e^{2 i delta}) / (1 - r01 e^{2 i delta}) (Orfanidis, EWA "
+        "sec. 5.4; Born & Wolf sec. 7.6.1)";
+    check("on_conductor.r." + num(t_m * 1e3) + "mm", "|r - r_Airy|", "1", conditions,
+          std::abs(conductor_backed_reflection(film, lambda) - expected), 0.0, source, kTol,
+          Tolerance::absolute);
+    check("on_conductor.loss." + num(t_m * 1e3) + "mm", "echo loss against bare metal", "dB",
+          conditions, conductor_film_loss_db(t_m, kWater77Ghz, lambda),
+          -10.0 * std::log10(std::norm(expected)), source, 1e-9, Tolerance::absolute);
+  }
+  const std::vector<SlabLayer> lossless = {{{1.7, 0.0}, 0.7e-3}};
+  EXPECT_NEAR(std::abs(conductor_backed_reflection(lossless, lambda)), 1.0, kTol);
+  const std::vector<SlabLayer> thick = {{kWater77Ghz, 20.0 * lambda}};
+  EXPECT_NEAR(std::abs(conductor_backed_reflection(thick, lambda) - fresnel_r(1.0, kWater77Ghz)),
+              0.0, 1e-12);
+  // The n_out -> infinity limit of slab_response.
+  const std::vector<SlabLayer> film = {{kWater77Ghz, 0.1e-3}};
+  EXPECT_NEAR(std::abs(conductor_backed_reflection(film, lambda) -
+                       slab_response(film, lambda, 1.0, complex{1e9, 0.0}).reflection_amplitude),
+              0.0, 1e-8);
+}
+
+// ---- Window film at optical wavelengths -------------------------------------------------------
+
+// Water at 905 nm (Segelstein 1981, 1.3235 + 5.15e-7i at 905.7 nm): absorption
+// exp(-4 pi k t / lambda) is 0.07 % over 0.1 mm, so the film's Fresnel terms dominate.
+constexpr complex kWater905Nm{1.3235, 5.15e-7};
+
+// The incoherent sum written out here (Harbecke 1986, Appl. Phys. B 39, 165; Heavens, Optical
+// Properties of Thin Solid Films, sec. 4.10): a film's multiple reflections added in power,
+//   T_wet = (1 - R_af)(1 - R_fg) tau / (1 - R_af R_fg tau^2),  T_dry = 1 - R_ag.
+double incoherent_wet_over_dry(complex m, double n_glass, double thickness_m, double lambda_m) {
+  const double r_af = std::norm(fresnel_r(1.0, m));
+  const double r_fg = std::norm(fresnel_r(m, n_glass));
+  const double r_ag = std::norm(fresnel_r(1.0, n_glass));
+  const double tau = std::exp(-4.0 * pi * m.imag() * thickness_m / lambda_m);
+  return (1.0 - r_af) * (1.0 - r_fg) * tau / (1.0 - r_af * r_fg * tau * tau) / (1.0 - r_ag);
+}
+
+// The window film against the closed form (to rounding), and against the coherent transfer matrix
+// of the film on glass averaged over one fringe period lambda / (2 n) of thickness, over the dry
+// face's transfer-matrix transmittance: the average of Airy's T over the round-trip phase is the
+// incoherent sum (Harbecke 1986, sec. 3), up to the absorption across one period (3e-6 here);
+// tolerance 1e-5 relative.
+TEST(WindowFilm, IncoherentSumMatchesTheFringeAveragedTransferMatrix) {
+  const double lambda = 905e-9;
+  const double glass = optical_window_index;
+  const double period_m = lambda / (2.0 * kWater905Nm.real());
+  const double dry = slab_response({}, lambda, 1.0, glass).transmittance;
+  for (double t_m : {2e-6, 0.1e-3, 1e-3}) {
+    const double closed = incoherent_wet_over_dry(kWater905Nm, glass, t_m, lambda);
+    EXPECT_NEAR(window_film_transmittance(t_m, kWater905Nm, lambda), closed, 1e-14) << t_m;
+    constexpr int samples = 256;  // the midpoint rule on a periodic integrand converges fast
+    double sum = 0.0;
+    for (int i = 0; i < samples; ++i) {
+      const std::vector<SlabLayer> film = {{kWater905Nm, t_m + (i + 0.5) / samples * period_m}};
+      sum += slab_response(film, lambda, 1.0, glass).transmittance;
+    }
+    check("window.fringe_average." + num(t_m * 1e3) + "mm", "wet over dry window transmittance",
+          "1", "water m = 1.3235 + 5.15e-7i on glass n = 1.5, " + num(t_m * 1e3) + " mm, 905 nm",
+          window_film_transmittance(t_m, kWater905Nm, lambda), sum / samples / dry,
+          "transfer matrix (Born & Wolf sec. 1.6) averaged over one fringe period (Harbecke 1986)",
+          1e-5, Tolerance::relative);
+  }
+  // A clear film index-matches the window: the wet face transmits more than the dry one.
+  EXPECT_GT(window_film_transmittance(0.1e-3, kWater905Nm, lambda), 1.0);
+  EXPECT_EQ(window_film_transmittance(0.0, kWater905Nm, lambda), 1.0);
+  // Beer-Lambert: each extra millimetre multiplies by exp(-4 pi k / lambda 1 mm), to the 1e-6 by
+  // which it moves the multiple-reflection term R_af R_fg tau^2 (7e-5).
+  const double ratio = window_film_transmittance(3e-3, kWater905Nm, lambda) /
+                       window_film_transmittance(2e-3, kWater905Nm, lambda);
+  EXPECT_NEAR(ratio, std::exp(-4.0 * pi * kWater905Nm.imag() / lambda * 1e-3), 1e-5);
+}
+
 // ---- Rejected inputs --------------------------------------------------------------------------
 
 TEST(FilmConfig, RejectsEveryInvalidField) {
@@ -302,6 +427,25 @@ TEST(FilmConfig, RejectsEveryInvalidField) {
   expect_invalid([&] { film_two_way_loss_db(1e-4, kWater77Ghz, 1.7, -3e-3, lambda); },
                  "radome_thickness_m");
   expect_invalid([&] { film_two_way_loss_db(1e-4, kWater77Ghz, 1.7, 3e-3, 0.0); }, "wavelength_m");
+
+  expect_invalid([&] { conductor_film_loss_db(-1e-4, kWater77Ghz, lambda); }, "film_thickness_m");
+  expect_invalid([&] { conductor_film_loss_db(1e-4, {3.76, -2.32}, lambda); }, "water_index");
+  expect_invalid([&] { conductor_film_loss_db(1e-4, kWater77Ghz, 0.0); }, "wavelength_m");
+  expect_invalid([&] { conductor_backed_reflection(negative_thickness, lambda); }, "thickness_m");
+  expect_invalid([&] { conductor_backed_reflection(good, lambda, {1.0, -0.1}); }, "n_in");
+  expect_invalid([&] { window_film_transmittance(-1e-4, kWater905Nm, 905e-9); },
+                 "film_thickness_m");
+  expect_invalid([&] { window_film_transmittance(1e-4, {0.0, 0.0}, 905e-9); }, "water_index");
+  expect_invalid([&] { window_film_transmittance(1e-4, kWater905Nm, 905e-9, 0.0); },
+                 "window_index");
+  expect_invalid([&] { window_film_transmittance(1e-4, kWater905Nm, -905e-9); }, "wavelength_m");
+  for (double bad : {-1e-6, 0.5e-6, 0.011, std::nan("")}) {
+    expect_invalid([&] { require_window_film("lidar.window_water_film_m", bad); },
+                   "lidar.window_water_film_m");
+  }
+  for (double fine : {0.0, min_window_film_m, 1e-4, max_window_film_m}) {
+    EXPECT_NO_THROW(require_window_film("camera.window_water_film_m", fine)) << fine;
+  }
 }
 
 }  // namespace

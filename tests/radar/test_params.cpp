@@ -18,6 +18,7 @@
 #include "chain_test_support.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/target.hpp"
 #include "rejected_field.hpp"
 #include "validation.hpp"
 
@@ -120,6 +121,24 @@ TEST(RadarParams, RejectsEveryInvalidField) {
         p.cfar.os_rank = 17;
       },
       "processing.cfar.os_rank");
+  // The radome, [radar.radome]: a thickness or film below 0, a permittivity below 1 (vacuum), a
+  // negative loss tangent, each beyond its range, and NaN.
+  for (const double bad : {-1e-3, 0.06, kNaN}) {
+    expect_rejected([&](RadarParams& p) { p.radome.thickness_m = bad; },
+                    "radar.radome.thickness_m");
+  }
+  for (const double bad : {0.5, 101.0, kNaN}) {
+    expect_rejected([&](RadarParams& p) { p.radome.relative_permittivity = bad; },
+                    "radar.radome.relative_permittivity");
+  }
+  for (const double bad : {-0.01, 1.5, kNaN}) {
+    expect_rejected([&](RadarParams& p) { p.radome.loss_tangent = bad; },
+                    "radar.radome.loss_tangent");
+  }
+  for (const double bad : {-1e-4, 0.02, kNaN}) {
+    expect_rejected([&](RadarParams& p) { p.radome.water_film_m = bad; },
+                    "radar.radome.water_film_m");
+  }
   // A CFAR window (2 (g + n) + 1 = 21 cells) longer than the range profile (16 samples).
   expect_rejected(
       [](RadarParams& p) {
@@ -338,6 +357,23 @@ TEST(Scene, RejectsEveryInvalidField) {
                         "target.clutter_scatterers_per_bin");
   expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 65; },
                         "target.clutter_scatterers_per_bin");
+  for (const double bad : {-0.1, 1.1, kNaN}) {
+    expect_scene_rejected([&](Scene& s) { s.radome_two_way_transmittance = bad; },
+                          "radome_two_way_transmittance");
+    expect_scene_rejected([&](Scene& s) { s.target_film_reflectance = bad; },
+                          "target_film_reflectance");
+  }
+}
+
+// [target] water_film_m: a film below 0, beyond 10 mm, or NaN is refused by its key's name.
+TEST(TargetKeys, RejectsAnInvalidWaterFilm) {
+  const KeyTable<TargetSpec> keys = target_keys();
+  EXPECT_NO_THROW(keys.check(TargetSpec{.water_film_m = 0.01}));
+  for (const double bad : {-1e-4, 0.011, kNaN}) {
+    EXPECT_EQ(test_support::rejected_field([&] { keys.check(TargetSpec{.water_film_m = bad}); }),
+              "target.water_film_m")
+        << bad;
+  }
 }
 
 TEST(Scene, SwerlingNamesRoundTrip) {

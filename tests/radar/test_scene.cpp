@@ -441,6 +441,41 @@ TEST(SceneTones, FogClutterPowerIsTheVolumeIntegral) {
        .kind = Tolerance::relative});
 }
 
+// The water films: with the same draws, every target path's power is the dry one's times the
+// radome's two-way transmittance and the target film's reflectance, every fog clutter path's times
+// the radome's alone (the clutter is in front of the target), to rounding.
+TEST(SceneTones, WaterFilmsScaleTargetPathsAndClutterThroughTheRadome) {
+  Fixture f;
+  propagation::FogSpec fog;
+  fog.density = propagation::LiquidWaterContent{20.0};
+  fog.droplets = propagation::Monodisperse{50e-6};
+  const propagation::Chamber chamber =
+      make_chamber(paper_chamber_spec(fog), f.params.centre_frequency_hz);
+  const auto all_on = propagation::first_layers_active(4, 4);
+  Scene dry = evt_rear_scene();
+  dry.floor.enabled = true;
+  Scene wet = dry;
+  wet.radome_two_way_transmittance = 0.03;
+  wet.target_film_reflectance = 0.7;
+  std::vector<Tone> wet_tones;
+  RandomStream dry_rng(4), wet_rng(4);
+  scene_tones(dry, chamber, all_on, f.params, f.derived, dry_rng, f.tones);
+  scene_tones(wet, chamber, all_on, f.params, f.derived, wet_rng, wet_tones);
+  ASSERT_EQ(wet_tones.size(), f.tones.size());
+  std::size_t target_paths = 0, clutter_paths = 0;
+  for (std::size_t t = 0; t < f.tones.size(); ++t) {
+    const bool target = f.tones[t].origin == Origin::target;
+    (target ? target_paths : clutter_paths) += 1;
+    const double expected = target ? 0.03 * 0.7 : 0.03;
+    EXPECT_NEAR(std::norm(wet_tones[t].amplitude) / std::norm(f.tones[t].amplitude), expected,
+                1e-12 * expected)
+        << "tone " << t;
+    EXPECT_EQ(wet_tones[t].path_length_m, f.tones[t].path_length_m);
+  }
+  EXPECT_EQ(target_paths, 15u);  // five centres, three paths each with the floor
+  EXPECT_GT(clutter_paths, 0u);
+}
+
 // The tone list is cleared and refilled: calling twice does not accumulate.
 TEST(SceneTones, RefillsTheList) {
   Fixture f;

@@ -128,7 +128,8 @@ with tempfile.TemporaryDirectory() as work:
                         command = f.read()
                 except OSError:
                     continue
-                if b"OMPI_COMM_WORLD_RANK=1" in environ and b"sweep" in command:
+                # This job's rank 1 alone: another test (or user) may run a sweep beside it.
+                if b"OMPI_COMM_WORLD_RANK=1" in environ and killed.encode() in command:
                     return int(pid)
             return None
 

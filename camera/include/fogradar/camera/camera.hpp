@@ -140,6 +140,7 @@ class Camera {
   std::vector<std::size_t> layer_fog_;           // layer -> distinct fog index
   std::vector<std::vector<double>> extinction_;  // [fog][node], 1/m
   std::vector<std::vector<double>> albedo_;      // [fog][node]
+  std::vector<double> window_transmittance_;     // [node], the window's water film, one way
   std::vector<Cell> cells_;
   std::size_t cells_x_ = 0;
   std::size_t cells_y_ = 0;

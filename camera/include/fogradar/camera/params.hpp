@@ -82,6 +82,9 @@ struct CameraParams {
   // Weber contrast threshold of an edge and of the target (CIE 5 %, paper eq. 9).
   double contrast_threshold = 0.05;
   bool write_roi_images = false;  // keep the first frame of each step (camera_roi_<step>.pgm)
+  // Water film on the lens window (the study's water-covered sensor): the scene's radiance, target
+  // and airlight alike, crosses it once (propagation::window_film_transmittance per wavelength).
+  double window_water_film_m = 0.0;
 
   // Throws InvalidParameter naming "camera.<key>" (nested keys dotted, e.g.
   // "camera.roi.target.log_sigma") with the value and the allowed range (camera_keys).

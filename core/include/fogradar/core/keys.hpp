@@ -40,6 +40,7 @@ enum class KeyType {
   choice,       // one name of a closed set (an enum)
   name_list,    // an array of names
   table_array,  // an array of tables, each with the keys of its element table
+  order,        // one name of a closed set, or an array naming each of n indices once
   retired,      // no longer read: refused with what replaced it
 };
 
@@ -96,6 +97,10 @@ struct Key {
   std::vector<std::string> choices;
   std::function<std::vector<std::string>(const P&)> get_list;
   std::function<void(P&, const std::vector<std::string>&)> set_list;
+  // order: the indices when the value is a list (get_text then returns ""), and n.
+  std::function<std::vector<std::size_t>(const P&)> get_indices;
+  std::function<void(P&, const std::vector<std::size_t>&)> set_indices;
+  std::function<std::size_t(const P&)> index_count;
   // table_array: element count, resizing, and element i's keys (named "<name>[i].<key>").
   std::function<std::size_t(const P&)> array_size;
   std::function<void(P&, std::size_t)> array_resize;
@@ -278,6 +283,44 @@ class KeyTable {
     return key;
   }
 
+  // An order of `count(p)` things: one of `names` (get_text/set_text), or an array naming each
+  // index 0 .. count - 1 once (get_indices/set_indices, which take or give an empty list for a
+  // name).
+  Key<P>& order(std::string_view name, std::function<std::string(const P&)> get_name,
+                std::function<void(P&, std::string_view)> set_name,
+                std::function<std::vector<std::size_t>(const P&)> get_list,
+                std::function<void(P&, const std::vector<std::size_t>&)> set_list,
+                std::function<std::size_t(const P&)> count, std::vector<std::string> names,
+                std::string allowed, std::string meaning) {
+    Key<P>& key = add(name, KeyType::order, std::move(allowed), std::move(meaning));
+    key.choices = std::move(names);
+    key.get_text = std::move(get_name);
+    key.set_text = std::move(set_name);
+    key.get_indices = std::move(get_list);
+    key.set_indices = std::move(set_list);
+    key.index_count = std::move(count);
+    key.check = [full = key.name, get = key.get_indices, n = key.index_count](const P& p) {
+      const std::vector<std::size_t> indices = get(p);
+      if (indices.empty()) return;
+      std::vector<bool> seen(n(p), false);
+      bool each_once = indices.size() == seen.size();
+      for (const std::size_t i : indices) {
+        if (!each_once) break;
+        each_once = i < seen.size() && !seen[i];
+        if (each_once) seen[i] = true;
+      }
+      if (!each_once) {
+        std::string listed;
+        for (const std::size_t i : indices)
+          listed += (listed.empty() ? "[" : ", ") + std::to_string(i);
+        throw InvalidParameter(full, full + " = " + listed +
+                                         "]: must be an array naming each of 0 … " +
+                                         std::to_string(seen.size() - 1) + " once");
+      }
+    };
+    return key;
+  }
+
   // An array of tables [[name]] whose field is a std::vector<Element>; `element_keys(prefix)`
   // declares one element's keys under `prefix` ("lidar.background[2]."). At most `max_count`.
   template <class Field, class Element>
@@ -385,6 +428,9 @@ class KeyTable {
     }
     if (sub.get_list) key.get_list = reading(std::move(sub.get_list));
     if (sub.set_list) key.set_list = writing(std::move(sub.set_list));
+    if (sub.get_indices) key.get_indices = reading(std::move(sub.get_indices));
+    if (sub.set_indices) key.set_indices = writing(std::move(sub.set_indices));
+    if (sub.index_count) key.index_count = reading(std::move(sub.index_count));
     if (sub.array_size) key.array_size = reading(std::move(sub.array_size));
     if (sub.array_resize) {
       key.array_resize = [project, f = std::move(sub.array_resize)](P& p, std::size_t n) {

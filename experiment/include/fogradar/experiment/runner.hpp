@@ -43,7 +43,8 @@ struct RunOptions {
   // empty.
   std::function<void(std::size_t, std::size_t)> progress;
   // When set (by another thread, e.g. one that waits for signals), the workers stop at their next
-  // item and run_experiment throws Interrupted. May be null.
+  // item or inside a long one (StopToken), dropping it, and run_experiment throws
+  // Interrupted. May be null.
   const std::atomic<bool>* stop = nullptr;
   // Where the items' raw data goes (its plan resolved for this scenario), or null for none.
   RawSinks* raw = nullptr;

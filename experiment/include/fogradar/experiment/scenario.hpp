@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "fogradar/core/keys.hpp"
@@ -22,13 +23,27 @@
 
 namespace fogradar::experiment {
 
-// The chamber as the scenario file gives it: n identical layers, all with the scenario's fog.
+// The chamber as the scenario file gives it: n identical layers, all with the scenario's fog, or
+// the layers [[chamber.layers]] lists, each of its own length and fog.
 struct ChamberLayout {
   double sensor_gap_m = 2.0;
-  std::size_t layer_count = 4;
-  double layer_length_m = 1.0;
+  std::size_t layer_count = 4;  // without [[chamber.layers]]
+  double layer_length_m = 1.0;  // without [[chamber.layers]]
   double target_gap_m = 4.0;
+  // [[chamber.layers]], from the sensor: each layer's length and fog ([fog] with the keys of the
+  // layer's own `fog` table replacing its values). Empty: layer_count layers of layer_length_m.
+  std::vector<propagation::FogLayerSpec> layers;
+
+  std::size_t layers_in_use() const { return layers.empty() ? layer_count : layers.size(); }
 };
+
+// The order the layers are switched on in (experiment.switching_order): the study's, from the
+// sensor; from the target; or the layer indices (0 at the sensor) in the order they come on.
+enum class SwitchingFrom { sensor, target };
+using SwitchingOrder = std::variant<SwitchingFrom, std::vector<std::size_t>>;
+
+// The layer indices in the order they are switched on, for `layer_count` layers.
+std::vector<std::size_t> switching_sequence(const SwitchingOrder& order, std::size_t layer_count);
 
 struct ExperimentSpec {
   // Which sensors run, by name (experiment.sensors): non-empty, no repeats, each registered; each
@@ -37,6 +52,7 @@ struct ExperimentSpec {
   std::vector<std::string> sensors;
   std::size_t measurements_per_step = 200;
   std::size_t max_active_layers = 4;  // steps k = 0 .. max_active_layers
+  SwitchingOrder switching_order = SwitchingFrom::sensor;
   std::uint64_t seed = 1;
 };
 

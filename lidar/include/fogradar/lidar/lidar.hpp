@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "fogradar/core/random.hpp"
+#include "fogradar/core/stop.hpp"
 #include "fogradar/lidar/params.hpp"
 #include "fogradar/lidar/waveform.hpp"
 #include "fogradar/propagation/chamber.hpp"
@@ -98,6 +99,8 @@ class Lidar {
   double target_range_m() const { return target_range_m_; }
   double threshold() const { return detector_.threshold; }  // waveform units
   double noise_std() const { return noise_std_; }
+  // The window's water film out and back (lidar.window_water_film_m): every echo's factor.
+  double window_two_way_transmittance() const { return window_two_way_transmittance_; }
   std::size_t samples_per_beam() const { return samples_; }
 
   // The stream index of the step's fog series: scans_per_step (scans use 0 .. scans_per_step - 1).
@@ -113,10 +116,11 @@ class Lidar {
   // `stream`, echoes extracted, origins attributed. Beams that cross no active layer and hit
   // nothing get noise only. Given `waveforms` (beam_count() x samples_per_beam(), row-major), each
   // beam's received waveform, noise included, as the echo extraction sees it, goes into its row.
-  // Throws InvalidParameter when `active` or the factors do not have one entry per layer.
+  // Throws InvalidParameter when `active` or the factors do not have one entry per layer, and
+  // Stopped, before a beam, when `stop` says stop.
   LidarScan measure(const propagation::ActiveLayers& active,
                     std::span<const double> optical_depth_factors, RandomStream& stream,
-                    std::span<double> waveforms = {}) const;
+                    std::span<double> waveforms = {}, const StopToken& stop = {}) const;
 
  private:
   struct Layer {
@@ -148,6 +152,7 @@ class Lidar {
   WaveformGrid grid_;
   EchoDetector detector_;
   double noise_std_ = 0.0;
+  double window_two_way_transmittance_ = 1.0;  // the window's water film, out and back
 };
 
 }  // namespace fogradar::lidar

@@ -74,6 +74,9 @@ struct LidarParams {
   double target_offset_m = 0.0;      // lateral (y) position of the EVT's centre
   double target_reflectivity = 0.3;  // 905 nm, Lambertian (assumption)
   double fog_width_m = 3.0;          // lateral width of the fog bank, centred on boresight
+  // Water film on the window (the study's water-covered sensor): the pulse and its echoes cross
+  // it, propagation::window_film_transmittance at the wavelength, out and back.
+  double window_water_film_m = 0.0;
   std::vector<BackgroundSegment> background = default_background();
   FogFluctuation fog_fluctuation;
 

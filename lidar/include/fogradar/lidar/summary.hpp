@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "fogradar/lidar/lidar.hpp"
@@ -27,6 +28,7 @@ struct LidarStepSummary {
   double fog_echo_rate = 0.0;       // beams through the fog with a fog echo / beams through it
   double median_first_echo_range_m = 0.0;  // of beams through the fog; NaN when none has an echo
   std::size_t beams_through_fog = 0;       // summed over the step's scans
+  double eq4_intensity = 0.0;  // the study's eq. 4 for the target echo (eq4_target_intensity)
 };
 
 struct LidarSummary {
@@ -36,6 +38,14 @@ struct LidarSummary {
 
 inline constexpr double lidar_sensor_limit_fraction = 0.5;
 
-LidarSummary summarize(const LidarParams& params, const std::vector<LidarStepResult>& steps);
+// The study's eq. 4 for the target echo behind the `active` layers, I = I_0 rho_obj prod_i tau_i^2
+// with tau_i = exp(-alpha_i f_i) of each active layer, I_0 rho_obj the clear-weather target echo's
+// noise-free intensity in the beam through the target's centre; the sensor's saturation applies
+// (a saturated clear echo makes the prediction a lower bound).
+double eq4_target_intensity(const Lidar& lidar, const propagation::ActiveLayers& active);
+
+// Step k's statistics; its layers `active[k]`.
+LidarSummary summarize(const Lidar& lidar, const std::vector<LidarStepResult>& steps,
+                       std::span<const propagation::ActiveLayers> active);
 
 }  // namespace fogradar::lidar

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "fogradar/propagation/fog.hpp"
@@ -18,6 +19,7 @@ inline constexpr double max_chamber_length_m = 1e4;
 struct FogLayerSpec {
   double length_m = 1.0;
   FogSpec fog;
+  bool operator==(const FogLayerSpec&) const = default;
 };
 
 struct ChamberSpec {
@@ -32,6 +34,9 @@ struct ChamberSpec {
 using ActiveLayers = std::vector<bool>;
 // The study's methodology: the first `count` layers (from the sensor) on, the rest off.
 ActiveLayers first_layers_active(std::size_t count, std::size_t layer_count);
+// The first `count` layers of `order` (layer indices, each at most once) on, the rest off.
+ActiveLayers layers_switched_on(std::span<const std::size_t> order, std::size_t count,
+                                std::size_t layer_count);
 
 struct LayerOptics {
   double start_m;

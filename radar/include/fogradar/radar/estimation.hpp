@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "fogradar/core/stop.hpp"
 #include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/origin.hpp"
@@ -95,9 +96,13 @@ void rows_times_interleaved_kernels(const double* map, std::size_t rows, std::si
 
 // Detections of one processed frame (map = the complex range-Doppler map of
 // RangeDopplerProcessor; the CFAR runs on |map|^2, formed one Doppler row at a time).
-// `detections` is cleared and refilled.
-void estimate_detections(std::span<const std::complex<double>> map, const RangeDopplerProcessor& processor,
-                         const CfarDetector& cfar, const RadarParams& params, const RadarDerived& derived,
-                         EstimationWorkspace& workspace, std::vector<Detection>& detections);
+// `detections` is cleared and refilled. Throws Stopped, before a batch of objects, when
+// `stop` says stop: each batch is a pass over the whole map, and a large noisy frame has hundreds
+// of false alarms (65536 x 4096 cells: about 270, 45 s).
+void estimate_detections(std::span<const std::complex<double>> map,
+                         const RangeDopplerProcessor& processor, const CfarDetector& cfar,
+                         const RadarParams& params, const RadarDerived& derived,
+                         EstimationWorkspace& workspace, std::vector<Detection>& detections,
+                         const StopToken& stop = {});
 
 }  // namespace fogradar::radar

@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/core/stop.hpp"
+
 struct fftw_plan_s;  // FFTW's opaque plan type (fftw_plan is fftw_plan_s*).
 
 namespace fogradar::radar {
@@ -198,8 +200,9 @@ class ColumnBlockFft {
   static std::size_t default_block_columns(std::size_t rows) noexcept;
 
   // Transforms the columns of `data` (rows * columns values, row-major; any alignment, since only
-  // the block buffer is handed to FFTW) in place.
-  void execute(std::span<std::complex<double>> data) const;
+  // the block buffer is handed to FFTW) in place. Throws Stopped, `data` part transformed, before a
+  // block when `stop` says stop (a 65536 x 4096 frame's blocks take seconds in all).
+  void execute(std::span<std::complex<double>> data, const StopToken& stop = {}) const;
 
   std::size_t rows() const noexcept { return rows_; }
   std::size_t columns() const noexcept { return columns_; }

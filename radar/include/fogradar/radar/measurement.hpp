@@ -75,10 +75,13 @@ class RadarChain {
   void measure(const Scene& scene, const propagation::Chamber& chamber,
                const propagation::ActiveLayers& active, RandomStream& rng,
                MeasurementWorkspace& workspace, Measurement& out) const;
-  // The same, showing the frame to `taps` on its way.
+  // The same, showing the frame to `taps` on its way; throws Stopped, `out` part written, when
+  // `stop` says stop: looked at before the frame, between the Doppler FFT's column blocks and
+  // between the estimator's objects.
   void measure(const Scene& scene, const propagation::Chamber& chamber,
                const propagation::ActiveLayers& active, RandomStream& rng,
-               MeasurementWorkspace& workspace, Measurement& out, const FrameTaps& taps) const;
+               MeasurementWorkspace& workspace, Measurement& out, const FrameTaps& taps,
+               const StopToken& stop = {}) const;
 
   // Only the synthesis and processing stages: leaves the range-Doppler map in workspace.frame and
   // its power in workspace.power (for tests and benchmarks of the map itself).
@@ -91,7 +94,7 @@ class RadarChain {
   SynthesisReport synthesize_and_transform(const Scene& scene, const propagation::Chamber& chamber,
                                            const propagation::ActiveLayers& active,
                                            RandomStream& rng, MeasurementWorkspace& workspace,
-                                           const FrameTaps* taps) const;
+                                           const FrameTaps* taps, const StopToken& stop = {}) const;
 
   RadarParams params_;
   RadarDerived derived_;

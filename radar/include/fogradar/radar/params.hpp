@@ -20,6 +20,18 @@ std::string_view to_string(SweepDirection direction) noexcept;
 SweepDirection parse_sweep_direction(std::string_view text,
                                      std::string_view field = "radar.sweep_direction");
 
+// The radar's radome and the water film on its outer face (the study's water-covered sensor): flat
+// slabs at normal incidence in the transfer-matrix model (propagation/water_film.hpp). Thickness 0:
+// no radome. The permittivity defaults are an assumption of the order of polycarbonate's at W band,
+// a common radome plastic (TI application note SWRA705, 2021; J. W. Lamb 1996, Int. J. IR MM Waves
+// 17, 1997, tabulates mm-wave plastics): a user gives the radome's datasheet values.
+struct Radome {
+  double thickness_m = 0.0;
+  double relative_permittivity = 2.9;  // real part eps_r'
+  double loss_tangent = 0.01;          // eps_r'' / eps_r'
+  double water_film_m = 0.0;           // on the outer face; the first layer's fog's water index
+};
+
 struct RadarParams {
   // Centre f_c of the swept band: lambda = c / f_c in the radar equation (paper eq. 7) and the
   // Doppler scale, and the phase with which echoes in one range cell interfere (docs/radar.md).
@@ -47,6 +59,7 @@ struct RadarParams {
   CfarConfig cfar{.kind = CfarKind::ca, .guard_cells = 2, .training_cells = 8,
                   .false_alarm_probability = 1e-6, .os_rank = 0};
   double association_gate_m = 0.5;  // |R_detected - R_expected| for the tracked target
+  Radome radome;
 
   // Throws InvalidParameter naming the scenario key (radar_param_keys: "radar.<field>",
   // "processing.window", "processing.association_gate_m", "processing.cfar.<field>") and the
@@ -54,8 +67,8 @@ struct RadarParams {
   void validate() const;
 };
 
-// The scenario keys of the radar and its processing chain: [radar], [processing] and
-// [processing.cfar] (docs/scenario.md). thermal_noise is no key (tests switch it off).
+// The scenario keys of the radar and its processing chain: [radar], [radar.radome], [processing]
+// and [processing.cfar] (docs/scenario.md). thermal_noise is no key (tests switch it off).
 KeyTable<RadarParams> radar_param_keys();
 
 // Everything the chain derives from RadarParams.

@@ -46,8 +46,9 @@ class RangeDopplerProcessor {
   void transform_windowed(std::span<std::complex<double>> frame,
                           std::span<std::complex<double>> chirp) const;
   // The Doppler FFT of transform_windowed alone, for a frame whose chirps are already range
-  // transformed (by range_chirp_fft, as synthesize_frame does given it).
-  void doppler_transform(std::span<std::complex<double>> frame) const;
+  // transformed (by range_chirp_fft, as synthesize_frame does given it); throws Stopped part way
+  // when `stop` says stop (ColumnBlockFft::execute).
+  void doppler_transform(std::span<std::complex<double>> frame, const StopToken& stop = {}) const;
   // The range FFT of one chirp, out of place (from a one-chirp buffer into the frame's row; both
   // FFTW-aligned): transform_windowed applies it to every chirp, the synthesis to each chirp as it
   // finishes it, so both paths give the same bits.

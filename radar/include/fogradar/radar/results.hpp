@@ -59,6 +59,8 @@ MeasurementRecord record_of(const Measurement& measurement, double target_range_
 struct StepResult {
   std::size_t active_layers = 0;
   double two_way_attenuation_db = 0.0;  // to the target through the active layers
+  double radome_two_way_loss_db = 0.0;  // the radome and its water film, out and back
+  double target_film_loss_db = 0.0;     // the water film on the target
   std::vector<MeasurementRecord> records;
 };
 
@@ -81,6 +83,8 @@ struct StepSummary {
   double p_value = 0.0;
   double median_snr_db = 0.0;  // of the target detections
   double two_way_attenuation_db = 0.0;
+  double radome_two_way_loss_db = 0.0;
+  double target_film_loss_db = 0.0;
   double confusion_rate = 0.0;  // measurements without a target detection or with fog rivalling it
   // Samples of the step's frames with an I or Q rail clipped by the ADC, over all their samples
   // (sums of integers: the same for any thread count); 0 without an ADC (radar.adc_bits = 0).

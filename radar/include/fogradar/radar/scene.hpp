@@ -54,6 +54,12 @@ struct Scene {
   // one range bin to the radar is left out: the far-field radar equation (R^-4) does not hold there
   // (a 25 dBi antenna's far field starts at about 1 m at 77 GHz) and the radar cannot resolve it.
   unsigned clutter_scatterers_per_bin = 4;
+  // The water-covered sensor and target (RadarSensor makes them from [radar.radome] and
+  // [target] water_film_m): the power through the radome and its film, out and back, on every
+  // path, fog clutter included; and the reflectance of the target's film on metal, on the target's
+  // paths. 1: dry, no radome.
+  double radome_two_way_transmittance = 1.0;
+  double target_film_reflectance = 1.0;
 
   void validate() const;  // names "target.<field>" / "target.centres[i].<field>"
 };
@@ -78,9 +84,9 @@ struct Tone {
 
 // The paths of one measurement: every scattering centre (direct, and with the floor the
 // direct-floor, floor-direct and floor-floor paths), each weighted by the radar equation, the
-// antenna pattern and the chamber's two-way transmittance; plus the fog clutter of the active
-// layers. Random draws (RCS fluctuation, micro-motion, clutter) come from `rng`. `tones` is
-// cleared and refilled (no allocation once it has the capacity).
+// antenna pattern, the chamber's two-way transmittance and the water films; plus the fog clutter
+// of the active layers, through the radome. Random draws (RCS fluctuation, micro-motion, clutter)
+// come from `rng`. `tones` is cleared and refilled (no allocation once it has the capacity).
 void scene_tones(const Scene& scene, const propagation::Chamber& chamber,
                  const propagation::ActiveLayers& active, const RadarParams& params,
                  const RadarDerived& derived, RandomStream& rng, std::vector<Tone>& tones);

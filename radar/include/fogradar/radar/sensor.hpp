@@ -83,6 +83,10 @@ class RadarSensor : public sensor::Sensor, public std::enable_shared_from_this<R
   // 10 log10(alpha): a detection needs about this SNR.
   double cfar_threshold_db() const;
   double expected_false_alarm_cells_per_frame() const;
+  // The water-covered sensor and target at the sweep centre (propagation/water_film.hpp): the
+  // radome with its film out and back, and the target's film on metal, each in dB.
+  double radome_two_way_loss_db() const { return radome_two_way_loss_db_; }
+  double target_film_loss_db() const { return target_film_loss_db_; }
 
  private:
   SensorParams params_;
@@ -91,6 +95,8 @@ class RadarSensor : public sensor::Sensor, public std::enable_shared_from_this<R
   propagation::Chamber chamber_;
   RadarChain chain_;
   std::vector<propagation::ActiveLayers> active_;
+  double radome_two_way_loss_db_ = 0.0;
+  double target_film_loss_db_ = 0.0;
 };
 
 // One run of the radar: one record per measurement.

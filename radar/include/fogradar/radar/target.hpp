@@ -29,6 +29,10 @@ struct TargetSpec {
   // measurement starts with the target at the chamber's target range (a frame of 3.3 ms moves it
   // 6.6 cm at 20 m/s, under the 15 cm range resolution, which the synthesis does not model).
   double radial_velocity_m_per_s = 0.0;
+  // A water film on the target's metal surfaces (the study's water-covered target), with the water
+  // model and temperature of the fog nearest the target: every centre's RCS times the reflectance
+  // of the film on a perfect conductor (propagation::conductor_film_loss_db).
+  double water_film_m = 0.0;
 };
 
 // The keys of [target].

@@ -3,8 +3,8 @@
 // (pbrt-v4's Medium: a small interface, one factory that names the types). A sensor folder
 // (radar/, lidar/, camera/) provides:
 //
-//   SensorType     its name, scenario keys, validation, memory estimate, raw data kinds, result
-//                  file names and its view of a fog (`fogradar fog`); it makes
+//   SensorType     its name, scenario keys, validation, memory and time estimates, raw data kinds,
+//                  result file names and its view of a fog (`fogradar fog`); it makes
 //   Sensor         the sensor for one scenario: what every run shares (chamber, plans, tables,
 //                  optics), made once, immutable, safe to share between threads; it begins
 //   SensorRun      one run: per-step state, then the items measured by
@@ -32,20 +32,24 @@
 
 #include "fogradar/core/keys.hpp"
 #include "fogradar/core/random.hpp"
+#include "fogradar/core/stop.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
 
 namespace fogradar::sensor {
 
 // What a scenario gives every sensor besides its own keys: the chamber, the methodology's steps
-// (k = 0 .. steps - 1 active layers, switched on from the sensor) and the seed.
+// (k = 0 .. steps - 1 active layers, switched on in the switching order) and the seed.
 struct Context {
   propagation::ChamberSpec chamber;
   std::size_t steps = 5;
   std::size_t measurements_per_step = 200;  // experiment.measurements_per_step: the study's series
   std::uint64_t seed = 1;
+  // The layer indices (0 at the sensor) in the order they are switched on; empty: from the sensor,
+  // the study's order.
+  std::vector<std::size_t> switching_order;
 
-  // The layers switched on at `step` (propagation::first_layers_active).
+  // The layers switched on at `step`: the first `step` of the switching order.
   propagation::ActiveLayers active(std::size_t step) const;
 };
 
@@ -76,6 +80,15 @@ struct MemoryPart {
   std::size_t bytes = 0;
   std::string detail;  // "radar.samples_per_chirp = 512 x radar.chirps_per_frame = 64: ..."
   std::string key;     // the key the refusal names when this part is the largest
+};
+
+// The CPU time of one item on one thread, estimated from the sensor's parameters with a cost model
+// whose constants the sensor states with how they were measured, and what it is made of.
+struct TimePart {
+  double item_seconds = 0.0;
+  std::string detail;     // "36001 beams (lidar.field_of_view_deg = ...) x 667129 samples (...)"
+  std::string key;        // the key that sizes an item most ("lidar.sample_interval_ns")
+  std::string items_key;  // the key that counts its items ("lidar.scans_per_step")
 };
 
 // The fog of one layer as the sensor sees it (`fogradar fog`): one JSON object and one line of
@@ -158,8 +171,10 @@ class Worker {
  public:
   virtual ~Worker() = default;
   // Measures item `index` of step `step`, every random draw from `stream`, and stores its record at
-  // its index; writes its raw data into `raw` when given.
-  virtual void measure(std::size_t step, std::size_t index, RandomStream& stream, RawSink* raw) = 0;
+  // its index; writes its raw data into `raw` when given. Throws Stopped (core/stop.hpp), its
+  // record not stored, when `stop` says stop part way through.
+  virtual void measure(std::size_t step, std::size_t index, RandomStream& stream, RawSink* raw,
+                       const StopToken& stop) = 0;
 };
 
 // One run of a sensor: its steps prepared, its items measured by workers on any thread (each item
@@ -209,6 +224,8 @@ class SensorType {
   virtual std::size_t items_per_step(const std::any& params, const Context& context) const = 0;
   virtual MemoryPart memory(const std::any& params, const Context& context,
                             unsigned threads) const = 0;
+  // The CPU time of one of its items (valid params and context).
+  virtual TimePart item_time(const std::any& params, const Context& context) const = 0;
   virtual std::vector<RawKind> raw_kinds(const std::any& params, const Context& context) const = 0;
   // Whether a file of this name in a result directory is one of the sensor's result files.
   virtual bool owns_file_name(std::string_view file_name) const = 0;

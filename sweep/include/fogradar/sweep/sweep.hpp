@@ -38,6 +38,9 @@ struct SweepOptions {
   // merge_sweep() writes them once every shard is in.
   std::optional<Shard> shard;
   std::size_t memory_limit_bytes = 0;  // 0: experiment::default_memory_limit_bytes()
+  // Refuse a sweep whose runs' cost-model estimate (experiment::estimate_run_time) exceeds this
+  // many seconds; 0: no limit.
+  double time_limit_seconds = 0.0;
   // Set by another thread (a signal): the sweep stops at its next item; experiment::Interrupted.
   const std::atomic<bool>* stop = nullptr;
   // After each point: (points committed, points in all, seconds so far of this invocation's
@@ -59,7 +62,9 @@ struct SweepEstimate {
 };
 
 // Refuses (InvalidParameter naming "--memory-limit-mib") a point whose run would exceed the memory
-// limit, then times one item of each sensor of the first point to estimate the sweep's time.
+// limit, and one over the time limit (experiment::require_time_within: filed under the key that
+// dominates it) or a sweep whose runs together exceed it ("--time-limit"); then times one item of
+// each sensor of the first point to estimate the sweep's time.
 SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
                        const SweepOptions& options);
 

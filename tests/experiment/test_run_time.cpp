@@ -1,0 +1,156 @@
+// The run-time estimate (experiment/run_time.hpp, each sensor's item_time): how it scales with an
+// item's size and count, how threads share it, and the refusal over a limit naming the key that
+// dominates; and a stop honoured inside one long item (a lidar scan, a radar frame).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/run_time.hpp"
+#include "fogradar/radar/measurement.hpp"
+#include "sensors.hpp"
+
+namespace fogradar::experiment {
+namespace {
+
+Scenario lidar_only() {
+  Scenario s = paper_scenario();
+  s.experiment.sensors = {"lidar"};
+  return s;
+}
+
+// The scan: 36001 beams x 667129 samples, about 33 s on the project's 2-core VM.
+Scenario huge_scan() {
+  Scenario s = lidar_only();
+  s.experiment.max_active_layers = 0;
+  lidar::LidarParams& p = lidar_of(s);
+  p.scans_per_step = 1;
+  p.field_of_view_deg = 360.0;
+  p.angular_step_deg = 0.01;
+  p.max_range_m = 1000.0;
+  p.sample_interval_ns = 0.01;
+  return s;
+}
+
+double item_seconds(const Scenario& s) {
+  return estimate_run_time(s, 1).sensors.front().time.item_seconds;
+}
+
+TEST(RunTimeEstimate, ALidarScanScalesWithItsBeamsAndTheRunWithItsScans) {
+  Scenario s = lidar_only();
+  const double one = item_seconds(s);
+  const std::size_t beams = lidar_of(s).beam_count();
+  lidar_of(s).field_of_view_deg *= 2.0;  // 90 -> 180 degrees: 361 -> 721 beams
+  const double wider = item_seconds(s);
+  EXPECT_NEAR(wider / one,
+              static_cast<double>(lidar_of(s).beam_count()) / static_cast<double>(beams), 1e-12);
+  const double run = estimate_run_time(s, 1).cpu_seconds();
+  lidar_of(s).scans_per_step *= 2;
+  EXPECT_DOUBLE_EQ(estimate_run_time(s, 1).cpu_seconds(), 2.0 * run);
+  EXPECT_EQ(estimate_run_time(s, 1).sensors.front().items, 5u * lidar_of(s).scans_per_step);
+}
+
+TEST(RunTimeEstimate, ARadarFrameAndACameraFrameScaleWithTheirCells) {
+  Scenario s = paper_scenario();
+  s.experiment.sensors = {"radar"};
+  const double frame = item_seconds(s);
+  radar_of(s).radar.chirps_per_frame *= 2;
+  // Twice the cells, and each object's peak search over twice the map.
+  EXPECT_GE(item_seconds(s), 2.0 * frame);
+  EXPECT_LT(item_seconds(s), 2.1 * frame);
+  s.experiment.sensors = {"camera"};
+  const double image = item_seconds(s);
+  camera_of(s).roi.width_px *= 2;
+  EXPECT_DOUBLE_EQ(item_seconds(s), 2.0 * image);
+}
+
+TEST(RunTimeEstimate, ThreadsShareTheItemsButNotOneItem) {
+  const Scenario paper = paper_scenario();
+  const TimeEstimate one = estimate_run_time(paper, 1), two = estimate_run_time(paper, 2);
+  EXPECT_EQ(one.threads, 1u);
+  EXPECT_EQ(two.threads, 2u);
+  EXPECT_DOUBLE_EQ(one.wall_seconds(), one.cpu_seconds());
+  EXPECT_DOUBLE_EQ(two.wall_seconds(), one.cpu_seconds() / 2.0);
+  // One scan runs on one thread, however many there are.
+  const TimeEstimate huge = estimate_run_time(huge_scan(), 8);
+  EXPECT_EQ(huge.threads, 1u);  // one item: one worker
+  EXPECT_DOUBLE_EQ(huge.wall_seconds(), huge.sensors.front().time.item_seconds);
+  EXPECT_GT(huge.wall_seconds(), 10.0);
+  EXPECT_NE(huge.text().find("lidar 1 x "), std::string::npos) << huge.text();
+}
+
+// The refusal names the key of the item's size when one item alone exceeds the limit, else the key
+// of the item count.
+TEST(RunTimeEstimate, RefusesOverTheLimitNamingTheKeyThatDominates) {
+  EXPECT_NO_THROW(require_time_within(paper_scenario(), 0, 600.0));
+  try {
+    require_time_within(huge_scan(), 0, 1.0);
+    FAIL() << "the huge scan was not refused";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), "lidar.sample_interval_ns");
+    const std::string message = e.what();
+    EXPECT_NE(message.find("--time-limit"), std::string::npos) << message;
+    EXPECT_NE(message.find("36001 beams"), std::string::npos) << message;
+  }
+  Scenario many = lidar_only();
+  lidar_of(many).scans_per_step = 100000;
+  const double limit = 0.5 * estimate_run_time(many, 1).wall_seconds();
+  try {
+    require_time_within(many, 1, limit);
+    FAIL() << "500000 scans were not refused";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.field(), "lidar.scans_per_step") << e.what();
+  }
+}
+
+// A stop set while the scan runs ends the run within a few beams: well before the scan's 33 s
+// (the sanitizer build's beams are ~10 x slower, still a fraction of a second each).
+TEST(StopInsideAnItem, ALongLidarScanStopsWithinASecond) {
+  const Simulation simulation(huge_scan());
+  std::atomic<bool> stop{false};
+  std::atomic<long long> stopped_at_ns{0};
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    stopped_at_ns = std::chrono::steady_clock::now().time_since_epoch().count();
+    stop = true;
+  });
+  EXPECT_THROW(simulation.run({.threads = 1, .progress = {}, .stop = &stop, .raw = nullptr}),
+               Interrupted);
+  const long long ended_ns = std::chrono::steady_clock::now().time_since_epoch().count();
+  stopper.join();
+  EXPECT_LT(static_cast<double>(ended_ns - stopped_at_ns.load()) * 1e-9, 5.0);
+}
+
+// A radar frame looks before it starts: a stop already set throws Stopped, nothing measured; and
+// a frame whose stop never comes is the frame measured without one.
+TEST(StopInsideAnItem, ARadarFrameSeesTheStop) {
+  Scenario s = paper_scenario();
+  radar_of(s).radar.chirps_per_frame = 16;
+  const Simulation simulation(s);
+  const SensorRunEntry entry = simulation.begin_run("radar");
+  const radar::RadarRun& run = dynamic_cast<const radar::RadarRun&>(*entry.run);
+  const radar::RadarSensor& sensor = run.sensor();
+  radar::MeasurementWorkspace ws = sensor.chain().make_workspace();
+  radar::Measurement with_token, without;
+  std::atomic<bool> stop{true};
+  RandomStream first(7);
+  EXPECT_THROW(sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), first, ws,
+                                      with_token, radar::FrameTaps{}, StopToken(&stop)),
+               Stopped);
+  stop = false;
+  RandomStream a(7), b(7);
+  sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), a, ws, with_token,
+                         radar::FrameTaps{}, StopToken(&stop));
+  sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), b, ws, without);
+  ASSERT_EQ(with_token.detections.size(), without.detections.size());
+  for (std::size_t d = 0; d < without.detections.size(); ++d) {
+    EXPECT_EQ(with_token.detections[d].range_m, without.detections[d].range_m);
+    EXPECT_EQ(with_token.detections[d].received_power_w, without.detections[d].received_power_w);
+  }
+}
+
+}  // namespace
+}  // namespace fogradar::experiment
