@@ -1,4 +1,5 @@
 // benchmark.svg: the study's sensor comparison in one figure (DESIGN §10).
+#include <algorithm>
 #include <cctype>
 #include <string>
 #include <vector>
@@ -20,6 +21,31 @@ std::string metrics_caption(const Scenario& scenario) {
   }
   if (!text.empty()) text.front() = static_cast<char>(std::toupper(text.front()));
   return text + ".";
+}
+
+// "Chamber: 4 fog layers of 1 m each; seed 1.", each length where they differ, and the switching
+// order where it is not the study's.
+std::string chamber_caption(const Scenario& scenario) {
+  const propagation::ChamberSpec chamber = scenario.chamber_spec();
+  const std::vector<propagation::FogLayerSpec>& layers = chamber.layers;
+  std::string lengths;
+  bool one_length = true;
+  bool one_fog = true;
+  for (const propagation::FogLayerSpec& layer : layers) {
+    lengths += (lengths.empty() ? "" : ", ") + stats::format_number(layer.length_m, 3);
+    one_length = one_length && layer.length_m == layers.front().length_m;
+    one_fog = one_fog && layer.fog == layers.front().fog;
+  }
+  std::string text = "Chamber: " + std::to_string(layers.size()) + " fog layers of ";
+  text += one_length ? stats::format_number(layers.front().length_m, 3) + " m each" : lengths + " m";
+  if (!one_fog) text += " whose fogs differ (summary.json 'chamber')";
+  const std::vector<std::size_t> order = scenario.context().switching_order;
+  if (!std::is_sorted(order.begin(), order.end())) {
+    std::string listed;
+    for (const std::size_t i : order) listed += (listed.empty() ? "" : ", ") + std::to_string(i);
+    text += ", switched on in the order " + listed + " (0 at the sensors)";
+  }
+  return text + "; seed " + std::to_string(scenario.experiment.seed) + ".";
 }
 
 }  // namespace
@@ -53,10 +79,7 @@ std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& sum
       "Dashed line: the sensor's limit (layers to failure by its own criterion, summary.json "
       "'sensors'); none: not "
       "reached.",
-      metrics_caption(scenario),
-      "Chamber: " + std::to_string(scenario.chamber.layer_count) + " fog layers of " +
-          stats::format_number(scenario.chamber.layer_length_m, 3) + " m each; seed " +
-          std::to_string(scenario.experiment.seed) + "."};
+      metrics_caption(scenario), chamber_caption(scenario)};
   return stats::line_plot_svg(series, options);
 }
 

@@ -599,7 +599,9 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
                             "] (N = 2 x " + training_key + ")");
         }
       })
-      .documented_as("integer 0 or [1, 2·training]");
+      .documented_as("integer 0 or [1, 2·training]")
+      .when([](const CfarConfig& c) { return c.kind == CfarKind::os; },
+            "with " + prefix + "kind = \"os\" (the other kinds average their cells)");
   keys.choice(
       "threshold_design", FOGRADAR_KEY_FIELD(threshold_design), {"correlated", "independent"},
       parse_cfar_threshold_design, [](CfarThresholdDesign d) { return to_string(d); },

@@ -1,5 +1,6 @@
 #include "fogradar/radar/measurement.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -49,9 +50,16 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
   }
 }
 
-MeasurementWorkspace RadarChain::make_workspace() const {
+MeasurementWorkspace RadarChain::make_workspace(const StopToken& stop) const {
   MeasurementWorkspace ws;
-  ws.frame.resize(params_.chirps_per_frame * params_.samples_per_chirp);
+  // Zeroed in parts of 64 MiB within one allocation, so that a stop is seen between them.
+  constexpr std::size_t part = std::size_t{1} << 22;
+  const std::size_t values = params_.chirps_per_frame * params_.samples_per_chirp;
+  ws.frame.reserve(values);
+  while (ws.frame.size() < values) {
+    stop.check();
+    ws.frame.resize(std::min(values, ws.frame.size() + part));
+  }
   ws.chirp.resize(params_.samples_per_chirp);
   return ws;
 }
@@ -75,7 +83,8 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
       ws.noise.resize(ws.frame.size());
       parts.noise = ws.noise;
     }
-    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, nullptr, nullptr, &parts);
+    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, nullptr, nullptr, &parts,
+                              stop);
     if (taps->beat) taps->beat(ws.frame);
     if (taps->signal) taps->signal(ws.signal);
     if (taps->noise) taps->noise(ws.noise);
@@ -83,7 +92,8 @@ SynthesisReport RadarChain::synthesize_and_transform(const Scene& scene,
     processor_.transform_windowed(ws.frame, ws.chirp);
   } else {
     const ChirpTransform by_chirp{.fft = &processor_.range_chirp_fft(), .chirp = ws.chirp};
-    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp);
+    report = synthesize_frame(ws.tones, params_, derived_, rng, ws.frame, &window, &by_chirp,
+                              nullptr, stop);
     if (report.range_transformed) {
       processor_.doppler_transform(ws.frame, stop);
     } else {

@@ -1,5 +1,6 @@
 #include "fogradar/radar/params.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -87,10 +88,15 @@ KeyTable<RadarParams> radar_param_keys() {
         // The samples must fit inside the chirp: N / fs <= T_c.
         const double sampling_time_s = static_cast<double>(p.samples_per_chirp) / p.sample_rate_hz;
         if (sampling_time_s > p.chirp_duration_s * (1.0 + 1e-12)) {
+          const double fitting = p.chirp_duration_s * p.sample_rate_hz;
+          std::ostringstream range;
+          range.precision(10);
+          range << "an integer in [16, " << std::min(65536.0, std::floor(fitting * (1.0 + 1e-12)))
+                << "]: the samples fit in the chirp, radar.chirp_duration_s x "
+                   "radar.sample_rate_hz = "
+                << fitting;
           throw_invalid("radar.samples_per_chirp", static_cast<double>(p.samples_per_chirp),
-                        "an integer <= radar.chirp_duration_s x radar.sample_rate_hz = " +
-                            std::to_string(p.chirp_duration_s * p.sample_rate_hz) +
-                            " (samples fit in the chirp)");
+                        range.str());
         }
       })
       .documented_as("integer [16, 65536], ≤ chirp_duration_s · sample_rate_hz");
@@ -114,7 +120,9 @@ KeyTable<RadarParams> radar_param_keys() {
   keys.integer("radar.adc_bits", FOGRADAR_KEY_FIELD(adc_bits), 0, 24,
                "0: ideal ADC; else mid-rise quantiser per I/Q rail");
   keys.number("radar.adc_full_scale_dbm", FOGRADAR_KEY_FIELD(adc_full_scale_dbm),
-              closed(-100.0, 30.0), "power of a full-scale complex tone");
+              closed(-100.0, 30.0), "power of a full-scale complex tone")
+      .when([](const RadarParams& p) { return p.adc_bits > 0; },
+            "with radar.adc_bits > 0 (0: an ideal ADC, which neither quantises nor clips)");
   keys.number("radar.phase_noise_rms_rad", FOGRADAR_KEY_FIELD(phase_noise_rms_rad), closed(0.0, pi),
               "white phase noise per sample")
       .documented_as("[0, π]");

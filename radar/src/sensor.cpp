@@ -252,8 +252,7 @@ class Type : public sensor::SensorType {
 
 class RadarWorker : public sensor::Worker {
  public:
-  explicit RadarWorker(const RadarRun& run)
-      : run_(run), workspace_(run.sensor().chain().make_workspace()) {}
+  explicit RadarWorker(const RadarRun& run) : run_(run) {}
 
   void measure(std::size_t step, std::size_t index, RandomStream& stream, sensor::RawSink* raw,
                const StopToken& stop) override;
@@ -496,6 +495,8 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
     };
   }
   const RadarSensor& sensor = *run_.sensor_;
+  // Made by the first item, which can stop while it is made.
+  if (workspace_.frame.empty()) workspace_ = sensor.chain().make_workspace(stop);
   sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(step), stream, workspace_,
                          measurement_, taps, stop);
   MeasurementRecord& record = (*run_.steps_)[step].records[index];

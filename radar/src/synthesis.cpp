@@ -155,7 +155,8 @@ std::size_t quantize(std::span<std::complex<double>> samples, unsigned bits,
 SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams& params,
                                  const RadarDerived& derived, RandomStream& rng,
                                  std::span<std::complex<double>> frame, const FrameWindow* window,
-                                 const ChirpTransform* transform, const FrameParts* parts) {
+                                 const ChirpTransform* transform, const FrameParts* parts,
+                                 const StopToken& stop) {
   const std::size_t columns = params.samples_per_chirp;
   const std::size_t rows = params.chirps_per_frame;
   FOGRADAR_CHECK(frame.size() == rows * columns);
@@ -217,7 +218,11 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
                            window->range_pairs);
       }
     };
-    for (std::size_t c = 1; c < rows; ++c) finish(c);
+    // A 65536 x 4096 frame takes about a second here: a stop is seen chirp by chirp.
+    for (std::size_t c = 1; c < rows; ++c) {
+      stop.check();
+      finish(c);
+    }
     finish(0);
     report.range_transformed = by_chirp;
   } else if (noise_with_copy) {
@@ -226,7 +231,10 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
     }
     ComplexNormalGenerator noise(rng);
     if (kept_noise.empty()) {
-      for (std::size_t c = 1; c < rows; ++c) noise.add(row(0), row(c), derived.noise_power_w);
+      for (std::size_t c = 1; c < rows; ++c) {
+        stop.check();
+        noise.add(row(0), row(c), derived.noise_power_w);
+      }
       noise.add(row(0), derived.noise_power_w);
     } else {
       // The same draws onto zero (each value as it would be added), then the same sums.

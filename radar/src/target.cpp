@@ -42,7 +42,9 @@ KeyTable<TargetSpec> target_keys() {
               "radar height; boresight is horizontal");
   keys.boolean("floor_multipath", FOGRADAR_KEY_FIELD(floor_multipath), "two-ray floor reflection");
   keys.number("floor_reflection_coefficient", FOGRADAR_KEY_FIELD(floor_reflection_coefficient),
-              closed(-1.0, 1.0), "real amplitude reflection coefficient of the floor");
+              closed(-1.0, 1.0), "real amplitude reflection coefficient of the floor")
+      .when([](const TargetSpec& t) { return t.floor_multipath; },
+            "with target.floor_multipath = true");
   keys.number("micro_motion_std_m", FOGRADAR_KEY_FIELD(micro_motion_std_m), closed(0.0, 0.1),
               "rms line-of-sight jitter of each centre per measurement");
   keys.number("radial_velocity_m_per_s", FOGRADAR_KEY_FIELD(radial_velocity_m_per_s),

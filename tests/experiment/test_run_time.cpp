@@ -124,8 +124,8 @@ TEST(StopInsideAnItem, ALongLidarScanStopsWithinASecond) {
   EXPECT_LT(static_cast<double>(ended_ns - stopped_at_ns.load()) * 1e-9, 5.0);
 }
 
-// A radar frame looks before it starts: a stop already set throws Stopped, nothing measured; and
-// a frame whose stop never comes is the frame measured without one.
+// A radar frame looks before it starts and while its workspace is zeroed: a stop already set throws
+// Stopped, nothing measured; and a frame whose stop never comes is the frame measured without one.
 TEST(StopInsideAnItem, ARadarFrameSeesTheStop) {
   Scenario s = paper_scenario();
   radar_of(s).radar.chirps_per_frame = 16;
@@ -136,6 +136,7 @@ TEST(StopInsideAnItem, ARadarFrameSeesTheStop) {
   radar::MeasurementWorkspace ws = sensor.chain().make_workspace();
   radar::Measurement with_token, without;
   std::atomic<bool> stop{true};
+  EXPECT_THROW((void)sensor.chain().make_workspace(StopToken(&stop)), Stopped);
   RandomStream first(7);
   EXPECT_THROW(sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), first, ws,
                                       with_token, radar::FrameTaps{}, StopToken(&stop)),

@@ -92,7 +92,6 @@ TEST(RadarParams, RejectsEveryInvalidField) {
       {"radar.elevation_beamwidth_deg", &RadarParams::elevation_beamwidth_deg, 0.0, 200.0},
       {"radar.noise_figure_db", &RadarParams::noise_figure_db, -1.0, 50.0},
       {"radar.reference_temperature_k", &RadarParams::reference_temperature_k, 0.0, 2000.0},
-      {"radar.adc_full_scale_dbm", &RadarParams::adc_full_scale_dbm, -200.0, 40.0},
       {"radar.phase_noise_rms_rad", &RadarParams::phase_noise_rms_rad, -0.1, 4.0},
       {"processing.association_gate_m", &RadarParams::association_gate_m, -1.0, 2e3},
   };
@@ -100,6 +99,15 @@ TEST(RadarParams, RejectsEveryInvalidField) {
     for (const double bad : {f.too_low, f.too_high, kNaN, -kInf, kInf}) {
       expect_rejected([&](RadarParams& p) { p.*(f.member) = bad; }, f.name);
     }
+  }
+  // The full scale counts only with an ADC (adc_bits > 0): without one it is no parameter at all.
+  for (const double bad : {-200.0, 40.0, kNaN, -kInf, kInf}) {
+    expect_rejected(
+        [&](RadarParams& p) {
+          p.adc_bits = 12;
+          p.adc_full_scale_dbm = bad;
+        },
+        "radar.adc_full_scale_dbm");
   }
   // Counts.
   expect_rejected([](RadarParams& p) { p.samples_per_chirp = 8; }, "radar.samples_per_chirp");

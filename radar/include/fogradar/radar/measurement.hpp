@@ -68,7 +68,9 @@ class RadarChain {
   // unambiguous range minus 1 m ("chamber.target_range_m").
   void check_compatible(const Scene& scene, const propagation::Chamber& chamber) const;
 
-  MeasurementWorkspace make_workspace() const;
+  // Throws Stopped, nothing kept, when `stop` says stop while the frame's buffer is zeroed (a
+  // 65536 x 4096 frame's 4 GiB take seconds).
+  MeasurementWorkspace make_workspace(const StopToken& stop = {}) const;
 
   // Synthesise, process and estimate one frame, and attribute each detection to its origin from the
   // frame's tones (OriginClassifier); `out` is overwritten (its buffers reused).

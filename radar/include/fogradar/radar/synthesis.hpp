@@ -8,6 +8,7 @@
 #include <span>
 
 #include "fogradar/core/random.hpp"
+#include "fogradar/core/stop.hpp"
 #include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/params.hpp"
 #include "fogradar/radar/scene.hpp"
@@ -60,7 +61,7 @@ SynthesisReport synthesize_frame(std::span<const Tone> tones, const RadarParams&
                                  std::span<std::complex<double>> frame,
                                  const FrameWindow* window = nullptr,
                                  const ChirpTransform* transform = nullptr,
-                                 const FrameParts* parts = nullptr);
+                                 const FrameParts* parts = nullptr, const StopToken& stop = {});
 
 // ADC model: I and Q each quantised mid-rise with 2^bits levels over [-A, A], A = sqrt(P_fs) the
 // amplitude of a full-scale complex tone; values beyond A clip to the outermost level. Returns the
