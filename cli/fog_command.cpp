@@ -232,17 +232,17 @@ FogSpecs fog_specs_from(const FogOptions& o) {
 
 // The fog through one layer of `layer_length_m` as each of the paper scenario's sensors sees it,
 // resolved by the sensor modules themselves (the radar at its sweep centre, the lidar's Mie at its
-// wavelength, the camera's band quadrature), so these are the numbers a run uses. The radar sees
-// the fog of the LWC, the optical sensors the fog of the 550 nm extinction (FogSpecs).
+// wavelength, the camera's band quadrature), so these are the numbers a run uses. A radio sensor
+// sees the fog of the LWC, an optical one the fog of the 550 nm extinction (FogSpecs).
 std::vector<std::pair<std::string, sensor::FogReport>> sensor_reports(
     const FogSpecs& specs, double layer_length_m, const propagation::SegelsteinTable& table) {
   const experiment::Scenario paper = experiment::paper_scenario();
   std::vector<std::pair<std::string, sensor::FogReport>> reports;
   for (const experiment::SensorSetting& setting : paper.sensors) {
-    const bool radar = setting.type->name() == "radar";
+    const bool radio = setting.type->band() == sensor::Band::radio;
     reports.emplace_back(
         setting.type->name(),
-        setting.type->fog_report(setting.params, radar ? specs.by_lwc : specs.by_extinction,
+        setting.type->fog_report(setting.params, radio ? specs.by_lwc : specs.by_extinction,
                                  layer_length_m, table));
   }
   return reports;

@@ -247,6 +247,8 @@ class Type : public sensor::SensorType {
 
   // The layer's band-weighted transmittance t (the camera's own band quadrature), the band's
   // effective extinction -ln t / L and the one-way loss -10 log10 t.
+  sensor::Band band() const override { return sensor::Band::optical; }
+
   sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
                                double layer_length_m,
                                const propagation::SegelsteinTable& water) const override {

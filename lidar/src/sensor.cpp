@@ -238,6 +238,8 @@ class Type : public sensor::SensorType {
 
   // The layer's extinction alpha and backscatter beta_pi at the lidar's wavelength (Mie, resolved
   // by the Lidar itself), their ratio, and the two-way Beer-Lambert loss 10 log10(e) 2 alpha L.
+  sensor::Band band() const override { return sensor::Band::optical; }
+
   sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
                                double layer_length_m,
                                const propagation::SegelsteinTable& water) const override {

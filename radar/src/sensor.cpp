@@ -222,6 +222,8 @@ class Type : public sensor::SensorType {
 
   // The fog at the radar's sweep centre: specific attenuation, backscatter, and the two-way loss
   // through one layer, 2 A L.
+  sensor::Band band() const override { return sensor::Band::radio; }
+
   sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
                                double layer_length_m,
                                const propagation::SegelsteinTable& water) const override {

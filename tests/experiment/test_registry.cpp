@@ -223,6 +223,7 @@ class RangeFinderType : public sensor::SensorType {
   bool owns_file_name(std::string_view name) const override {
     return name == "rangefinder_shots.csv" || name == "rangefinder_summary.json";
   }
+  sensor::Band band() const override { return sensor::Band::optical; }
   sensor::FogReport fog_report(const std::any&, const propagation::FogSpec& fog, double length_m,
                                const propagation::SegelsteinTable& water) const override {
     const double t =

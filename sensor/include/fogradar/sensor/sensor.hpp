@@ -91,6 +91,8 @@ struct TimePart {
   std::string items_key;  // the key that counts its items ("lidar.scans_per_step")
 };
 
+enum class Band { radio, optical };
+
 // The fog of one layer as the sensor sees it (`fogradar fog`): one JSON object and one line of
 // text.
 struct FogReport {
@@ -229,6 +231,10 @@ class SensorType {
   virtual std::vector<RawKind> raw_kinds(const std::any& params, const Context& context) const = 0;
   // Whether a file of this name in a result directory is one of the sensor's result files.
   virtual bool owns_file_name(std::string_view file_name) const = 0;
+  // Where in the spectrum it works: a radio sensor sees a fog through its liquid water, an optical
+  // one through its droplets' extinction (`fogradar fog --lwc-from kunkel` ties the two by an
+  // empirical law instead of one droplet distribution, so they are two fogs there).
+  virtual Band band() const = 0;
   virtual FogReport fog_report(const std::any& params, const propagation::FogSpec& fog,
                                double layer_length_m,
                                const propagation::SegelsteinTable& water) const = 0;
