@@ -141,6 +141,7 @@ nlohmann::json lidar_summary_json(const Lidar& lidar, const LidarSummary& summar
       {"target_beam_angle_deg", lidar.beam_angle_deg(lidar.target_beam())},
       {"threshold", lidar.threshold()},
       {"noise_std", lidar.noise_std()},
+      {"window_two_way_transmittance", lidar.window_two_way_transmittance()},
       {"clear_weather_margin", clear_margin(lidar)},
       {"layers", layers},
       {"steps", steps},
