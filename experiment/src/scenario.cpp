@@ -43,8 +43,26 @@ using KeyLines = std::map<std::string, std::size_t>;
   throw InvalidParameter(key, out.str());
 }
 
-// A value as TOML writes it, for messages about a value of the wrong type.
+// A value as TOML writes it, for messages about a value of the wrong type. Arrays and tables are
+// written here element by element: toml++ 3.3's formatter of a container holding 0.0 casts
+// log10(0) to an integer (undefined behaviour; the fuzzer found it).
 std::string as_written(const toml::node& node) {
+  if (const toml::array* array = node.as_array()) {
+    std::string text = "[";
+    for (const toml::node& element : *array) {
+      if (text.size() > 1) text += ", ";
+      text += as_written(element);
+    }
+    return text + "]";
+  }
+  if (const toml::table* table = node.as_table()) {
+    std::string text = "{";
+    for (const auto& [key, value] : *table) {
+      text += text.size() > 1 ? ", " : " ";
+      text += std::string(key.str()) + " = " + as_written(value);
+    }
+    return text + " }";
+  }
   std::ostringstream text;
   node.visit([&text](const auto& value) { text << value; });
   return text.str();
@@ -592,7 +610,7 @@ class Reader {
 
   void read_key(const ScenarioKey& key, const toml::node& node) {
     lines_[key.name] = node.source().begin.line;
-    if (node.is_number() || node.is_array()) typed_numbers_[key.name] = typed(node);
+    if (node.is_number() || key.type == KeyType::order) typed_numbers_[key.name] = typed(node);
     if (key.type == KeyType::retired) {
       fail(node, key.name, "'" + key.name + "' is no longer read: " + key.meaning);
     }
@@ -600,6 +618,10 @@ class Reader {
     if (key.group.empty() && !key.takes_effect(scenario_)) {
       fail(node, key.name,
            key.name + " = " + typed(node) + ": takes effect only " + key.applies_text);
+    }
+    if (key.type == KeyType::table_array) {
+      arrays_.emplace_back(&key, &node);
+      return;
     }
     const std::string given = key.name + " = " + typed(node) + ": must be ";
     switch (key.type) {
@@ -633,8 +655,7 @@ class Reader {
       case KeyType::order:
         read_order(key, node, given + plain(key.allowed));
         return;
-      case KeyType::table_array:
-        arrays_.emplace_back(&key, &node);
+      case KeyType::table_array:  // read last, above
         return;
       case KeyType::retired:
         return;

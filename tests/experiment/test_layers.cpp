@@ -225,6 +225,13 @@ TEST(Layers, BadLayersAndOrdersAreRefusedWithTheTrueRange) {
       {"[experiment]\nswitching_order = [0, -1]\n",
        "bad.toml:2: experiment.switching_order = [0, -1]: must be sensor_first, "
        "target_first, or an array naming each layer index 0 … n−1 once (-1 is no index)"},
+      // Over several lines the array is written out by fogradar, a 0.0 in it too.
+      {"[experiment]\nswitching_order = [\n  0,\n  0.0,\n]\n",
+       "bad.toml:2: experiment.switching_order = [0, 0.0]: must be sensor_first, target_first, or "
+       "an array naming each layer index 0 … n−1 once (0.0 is no index)"},
+      {"[chamber]\nlayers = [\n  0.0,\n]\n",
+       "bad.toml:3: chamber.layers: must be an array of tables [[chamber.layers]] with keys "
+       "length_m, fog"},
       {"[experiment]\nswitching_order = \"random\"\n",
        "bad.toml:2: experiment.switching_order = 'random': must be one of 'sensor_first', "
        "'target_first', or an array naming each layer index 0 … n−1 once"},
