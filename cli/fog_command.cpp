@@ -4,7 +4,6 @@
 // 4, and one layer of the fog as each sensor of the paper scenario sees it
 // (sensor::SensorType::fog_report).
 #include <algorithm>
-#include <any>
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -35,18 +34,11 @@
 namespace fogradar::cli {
 namespace {
 
-// A number of the paper scenario's lidar (its wavelength, its target's reflectivity): the optical
-// options default to the lidar's own values, read through its keys since its parameters are its
-// module's.
-double paper_lidar_number(std::string_view key_name) {
-  const experiment::Scenario paper = experiment::paper_scenario();
-  for (const experiment::SensorSetting& setting : paper.sensors) {
-    for (const Key<std::any>& key : setting.type->keys().keys()) {
-      if (key.name == key_name) return key.get_number(setting.params);
-    }
-  }
-  check_failed("the paper scenario's lidar declares the key", __FILE__, __LINE__);
-}
+// The optical options' defaults, the command's own (it names no sensor): 905 nm, the band of the
+// study's scanning lidar, and an object of unit reflectivity, so that eq. 4's column is the
+// layers' two-way transmittance tau^(2k) itself.
+constexpr double default_wavelength_nm = 905.0;
+constexpr double default_object_reflectivity = 1.0;
 
 const std::vector<std::string> optical_model_names = {"mie", "kruse", "kim"};
 
@@ -70,9 +62,9 @@ struct FogOptions {
   std::string water_model = "liebe";
   double layer_length_m = 1.0;  // the study's layer f_i
   std::vector<std::string> optical_models = optical_model_names;
-  double wavelength_nm = paper_lidar_number("lidar.wavelength_m") * 1e9;
+  double wavelength_nm = default_wavelength_nm;
   std::optional<std::int64_t> layer_model;
-  double object_reflectivity = paper_lidar_number("lidar.target_reflectivity");
+  double object_reflectivity = default_object_reflectivity;
   bool json = false;
 };
 
@@ -650,7 +642,7 @@ Action add_fog_command(CLI::App& app) {
   // Kruse's and Kim's fits are of visible and near-infrared data; the lidar's key takes the same.
   fog->add_option("--wavelength-nm", options->wavelength_nm,
                   "Optical wavelength of --optical-model and --layer-model in nm [400, 2000] "
-                  "(default: the paper lidar's)")
+                  "(default 905, the study's lidar band)")
       ->capture_default_str()
       ->check(number_in("--wavelength-nm", 400.0, 2000.0, "in [400, 2000]"));
   auto* layer_model =
@@ -659,8 +651,8 @@ Action add_fog_command(CLI::App& app) {
                       "N layers of --layer-length-m [1, 1000]")
           ->check(integer_in("--layer-model", 1, 1000));
   fog->add_option("--object-reflectivity", options->object_reflectivity,
-                  "Object reflectivity rho_obj of --layer-model's eq. 4 [0, 1] (default: the "
-                  "paper lidar's target)")
+                  "Object reflectivity rho_obj of --layer-model's eq. 4 [0, 1] (default 1: the "
+                  "object echo is the layers' two-way transmittance)")
       ->capture_default_str()
       ->check(number_in("--object-reflectivity", 0.0, 1.0, "in [0, 1]"))
       ->needs(layer_model);

@@ -518,7 +518,7 @@ assert abs(alpha - j["optical_models"]["mie"]["extinction_per_km"] / 1e3) <= 1e-
 if lm["wavelength_nm"] == 905:
     eta_lidar = 4 * math.pi * j["sensors"]["lidar"]["backscatter_per_m_sr"]
     assert abs(eta - eta_lidar) <= 1e-12 * eta, (eta, eta_lidar)
-    assert rho_obj == 0.3 or "--object-reflectivity" in sys.argv[1], lm
+    assert rho_obj == 1.0 or "--object-reflectivity" in sys.argv[1], lm
 assert abs(tau - math.exp(-alpha * d)) <= 1e-15 and abs(rho - eta * d) <= 1e-15 * rho, lm
 def narayana(m, i):
     return math.comb(m, i) * math.comb(m, i - 1) // m
