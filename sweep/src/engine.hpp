@@ -22,31 +22,38 @@ namespace fogradar::sweep::detail {
 // The directory a sweep grows in (the result set's rules, for a directory that grows): holding
 // nothing but a sweep's files, locked for one sweep at a time (for a shard, for one run of that
 // shard). Fresh: an earlier sweep's files are removed; resume, shard and merge: committed points
-// stay.
+// stay. A committed piece is filed under its point's definition (definition_of), not the point's
+// index, so that a point keeps its piece when values added to an axis move it in the grid.
 class SweepDirectory {
  public:
   enum class Mode { fresh, resume, shard, merge };
-  // `points`: how many the sweep has (with resume, committed points beyond them are removed).
-  SweepDirectory(const std::filesystem::path& dir, Mode mode, std::size_t points,
-                 std::size_t shard = 0);
+  // `definitions`: the sweep's points' (with resume, the pieces of any other are removed).
+  SweepDirectory(const std::filesystem::path& dir, Mode mode,
+                 const std::vector<std::string>& definitions, std::size_t shard = 0);
   ~SweepDirectory();
 
   const std::filesystem::path& path() const { return dir_; }
-  // The committed piece of point `index` when it was made for `definition`.
-  std::optional<nlohmann::json> committed(std::size_t index, const std::string& definition) const;
-  void commit(std::size_t index, const nlohmann::json& piece) const;
+  // The piece committed for `definition`, wherever in the grid it was computed.
+  std::optional<nlohmann::json> committed(const std::string& definition) const;
+  // Files `piece` under its "definition".
+  void commit(const nlohmann::json& piece) const;
   void write_table(std::string_view name, std::string_view content) const;
   // Point `index`'s result set into points/<index>/, as `fogradar run --out` writes it.
   void keep(std::size_t index, const experiment::Scenario& scenario,
             const std::vector<sensor::ResultFile>& files) const;
+  // Whether points/<index>/ holds the result set of `point` (its scenario.toml is the point's).
+  bool holds_kept(const Point& point) const;
 
  private:
   std::filesystem::path dir_;
   std::unique_ptr<experiment::detail::PathLock> lock_;
 };
 
-// A hash of everything point `point`'s numbers depend on: its scenarios, resolved, and its runs.
+// A hash of everything point `point`'s numbers depend on: its scenarios, resolved (seed
+// included), and its runs; 16 hexadecimal digits, never its index.
 std::string definition_of(const Point& point, std::size_t replications);
+// Every point's definition, in point order.
+std::vector<std::string> definitions_of(const std::vector<Point>& points, std::size_t replications);
 
 struct Computed {
   nlohmann::json piece;                  // what DIR/.sweep/<index>.json holds

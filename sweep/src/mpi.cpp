@@ -185,13 +185,14 @@ SweepOutcome run_sweep(MpiJob& job, const SweepSpec& spec, const std::vector<Poi
   job.settle([&] {
     using Mode = detail::SweepDirectory::Mode;
     out = std::make_unique<detail::SweepDirectory>(dir, options.resume ? Mode::resume : Mode::fresh,
-                                                   points.size());
+                                                   detail::definitions_of(points, spec.replications));
     out->write_table("sweep.toml", spec.text);
     detail::write_origin(*out, spec.directory);
     if (!options.resume) return;
     for (const Point& point : points) {
-      pieces[point.index] =
-          out->committed(point.index, detail::definition_of(point, spec.replications));
+      pieces[point.index] = out->committed(detail::definition_of(point, spec.replications));
+      // points/<index>/ of another point (before values were added to an axis): made again.
+      if (options.keep_points && !out->holds_kept(point)) pieces[point.index].reset();
     }
   });
   SweepOutcome outcome;
@@ -235,7 +236,7 @@ SweepOutcome run_sweep(MpiJob& job, const SweepSpec& spec, const std::vector<Poi
   };
   const auto store = [&](std::size_t index, detail::Computed computed) {
     if (options.keep_points) out->keep(index, points[index].scenario, computed.kept);
-    out->commit(index, computed.piece);
+    out->commit(computed.piece);
     const std::lock_guard<std::mutex> lock(mutex);
     pieces[index] = std::move(computed.piece);
     ++done;

@@ -574,8 +574,8 @@ Computed compute_point(const SweepSpec& spec, const Point& point, const std::str
   return computed;
 }
 
-SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode, std::size_t points,
-                               std::size_t shard) {
+SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode,
+                               const std::vector<std::string>& definitions, std::size_t shard) {
   const std::string given = dir.string();
   const std::string option = mode == Mode::merge ? "--merge" : "--out";
   std::error_code error;
@@ -619,11 +619,12 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode, std::size_t point
     if (!fs::is_directory(dir_ / sub)) continue;
     for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / sub)) {
       const std::string name = entry.path().filename().string();
+      // points/<index>/, and .sweep/<definition>.json (an earlier version's .sweep/<index>.json).
       const std::string stem = name.substr(0, name.find('.'));
-      const bool numbered = !stem.empty() && std::all_of(stem.begin(), stem.end(), [](char c) {
-        return c >= '0' && c <= '9';
+      const bool ours = !stem.empty() && std::all_of(stem.begin(), stem.end(), [](char c) {
+        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
       });
-      if (numbered || name.starts_with(".") || name == origin_file) continue;
+      if (ours || name.starts_with(".") || name == origin_file) continue;
       refuse(entry.path());
     }
   }
@@ -636,8 +637,9 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode, std::size_t point
     lock_ = std::make_unique<experiment::detail::PathLock>(
         dir_ / state_dir / ("shard-" + std::to_string(shard)), option, given, "a sweep directory");
   }
-  // A crash's temporary files go; without --resume an earlier sweep's files, with it the points
-  // beyond this sweep's. A shard removes nothing (the others write beside it), nor does a merge.
+  // A crash's temporary files go; without --resume an earlier sweep's files, with it the pieces of
+  // points this sweep does not have. A shard removes nothing (the others write beside it), nor
+  // does a merge.
   if (mode == Mode::shard || mode == Mode::merge) return;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir_)) {
     const std::string name = entry.path().filename().string();
@@ -647,20 +649,20 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode, std::size_t point
     }
   }
   if (mode == Mode::fresh) fs::remove_all(dir_ / points_dir, error);
+  const std::set<std::string, std::less<>> own(definitions.begin(), definitions.end());
   for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / state_dir)) {
     const std::string name = entry.path().filename().string();
-    std::size_t index = 0;
-    const auto [end, parsed] = std::from_chars(name.data(), name.data() + name.size(), index);
-    const bool stale = name.starts_with(".") || (parsed == std::errc() && index >= points);
+    const bool piece = name.ends_with(".json") && !name.starts_with(".");
+    const bool stale =
+        name.starts_with(".") || (piece && !own.contains(name.substr(0, name.size() - 5)));
     if (mode == Mode::fresh || stale) fs::remove(entry.path(), error);
   }
 }
 
 SweepDirectory::~SweepDirectory() = default;
 
-std::optional<json> SweepDirectory::committed(std::size_t index,
-                                              const std::string& definition) const {
-  std::ifstream in(dir_ / state_dir / (std::to_string(index) + ".json"));
+std::optional<json> SweepDirectory::committed(const std::string& definition) const {
+  std::ifstream in(dir_ / state_dir / (definition + ".json"));
   if (!in) return std::nullopt;
   try {
     json piece = json::parse(in);
@@ -670,8 +672,9 @@ std::optional<json> SweepDirectory::committed(std::size_t index,
   return std::nullopt;
 }
 
-void SweepDirectory::commit(std::size_t index, const json& piece) const {
-  write_table(std::string(state_dir) + "/" + std::to_string(index) + ".json", piece.dump() + "\n");
+void SweepDirectory::commit(const json& piece) const {
+  write_table(std::string(state_dir) + "/" + piece.at("definition").get<std::string>() + ".json",
+              piece.dump() + "\n");
 }
 
 void SweepDirectory::write_table(std::string_view name, std::string_view content) const {
@@ -692,6 +695,15 @@ void SweepDirectory::keep(std::size_t index, const experiment::Scenario& scenari
   out.replace(files);
 }
 
+bool SweepDirectory::holds_kept(const Point& point) const {
+  std::ifstream in(dir_ / points_dir / std::to_string(point.index) / "scenario.toml",
+                   std::ios::binary);
+  if (!in) return false;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str() == experiment::to_toml(with_seed(point.scenario, point.seed));
+}
+
 std::string definition_of(const Point& point, std::size_t replications) {
   std::string text =
       experiment::to_toml(point.scenario) + "\nreplications " + std::to_string(replications);
@@ -699,6 +711,13 @@ std::string definition_of(const Point& point, std::size_t replications) {
     text += "\nsetup\n" + experiment::to_toml(setup);
   }
   return fnv_hex(text);
+}
+
+std::vector<std::string> definitions_of(const std::vector<Point>& points,
+                                        std::size_t replications) {
+  std::vector<std::string> definitions;
+  for (const Point& point : points) definitions.push_back(definition_of(point, replications));
+  return definitions;
 }
 
 std::vector<std::size_t> cost_order(const SweepSpec& spec, const std::vector<Point>& points) {
@@ -875,7 +894,8 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
   using Mode = detail::SweepDirectory::Mode;
   const std::optional<Shard>& shard = options.shard;
   const Mode mode = shard ? Mode::shard : options.resume ? Mode::resume : Mode::fresh;
-  const detail::SweepDirectory out(dir, mode, points.size(), shard ? shard->index : 0);
+  const std::vector<std::string> definitions = detail::definitions_of(points, spec.replications);
+  const detail::SweepDirectory out(dir, mode, definitions, shard ? shard->index : 0);
   out.write_table("sweep.toml", spec.text);
   detail::write_origin(out, spec.directory);
   // A shard's points: every count-th of the cost order, so that each share has as many costly ones.
@@ -896,16 +916,18 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
   const auto start = std::chrono::steady_clock::now();
   for (const std::size_t index : mine) {
     const Point& point = points[index];
-    const std::string definition = detail::definition_of(point, spec.replications);
-    std::optional<json> piece =
-        mode != Mode::fresh ? out.committed(index, definition) : std::nullopt;
+    const std::string& definition = definitions[index];
+    std::optional<json> piece = mode != Mode::fresh ? out.committed(definition) : std::nullopt;
+    // --keep-points wants point `index`'s result set in points/<index>/: one made for another
+    // point there (before values were added to an axis) is made again.
+    if (piece && options.keep_points && !out.holds_kept(point)) piece.reset();
     if (piece) {
       ++outcome.reused;
     } else {
       detail::Computed computed =
           detail::compute_point(spec, point, definition, water, cache, options);
       if (options.keep_points) out.keep(index, point.scenario, computed.kept);
-      out.commit(index, computed.piece);
+      out.commit(computed.piece);
       piece = std::move(computed.piece);
       ++outcome.computed;
     }
@@ -924,14 +946,13 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
 }
 
 SweepOutcome merge_sweep(const fs::path& dir) {
-  const detail::SweepDirectory out(dir, detail::SweepDirectory::Mode::merge, 0);
+  const detail::SweepDirectory out(dir, detail::SweepDirectory::Mode::merge, {});
   const SweepSpec spec = detail::read_spec(out.path());
   const std::vector<Point> points = expand(spec);
   std::vector<json> pieces;
   std::vector<std::size_t> missing;
   for (const Point& point : points) {
-    std::optional<json> piece =
-        out.committed(point.index, detail::definition_of(point, spec.replications));
+    std::optional<json> piece = out.committed(detail::definition_of(point, spec.replications));
     if (piece) {
       pieces.push_back(std::move(*piece));
     } else {

@@ -14,7 +14,9 @@
 #include <sstream>
 
 #include "fogradar/core/error.hpp"
+#include "fogradar/core/keys.hpp"
 #include "fogradar/core/random.hpp"
+#include "fogradar/propagation/water.hpp"
 
 namespace fogradar::sweep {
 namespace {
@@ -128,7 +130,8 @@ class Reader {
     return value;
   }
 
-  // A value a scenario key takes: a number, a boolean or a string.
+  // A value a scenario key takes: a number, a boolean, a string, an array of them
+  // (experiment.switching_order = [3, 1, 2, 0]) or of inline tables (chamber.layers).
   Value value(const toml::node& node, const std::string& name) const {
     if (node.is_integer()) return integer_value(*node.value<std::int64_t>());
     if (node.is_floating_point()) return number_value(number(node, name));
@@ -140,12 +143,39 @@ class Reader {
       const std::string text = *node.value<std::string>();
       return {toml_string(text), text, std::nullopt};
     }
-    fail_at(node, name, name + ": must be a number, a boolean or a string (a key's value)");
+    if (node.is_array() || node.is_table()) {
+      const std::string text = written(node, name);
+      return {text, text, std::nullopt};
+    }
+    fail_at(node, name, name + ": must be a key's value (a number, a boolean, a string or an array)");
   }
 
   std::string_view source() const { return source_; }
 
  private:
+  // An array or inline table as one line of TOML, its numbers as value() writes them.
+  std::string written(const toml::node& node, const std::string& name) const {
+    if (const toml::array* array = node.as_array()) {
+      std::string text = "[";
+      for (const toml::node& element : *array)
+        text += (text.size() > 1 ? ", " : "") + written(element, name);
+      return text + "]";
+    }
+    if (const toml::table* table = node.as_table()) {
+      std::string text = "{";
+      for (const auto& [key, element] : *table) {
+        const std::string_view k = key.str();
+        const bool bare = !k.empty() && std::all_of(k.begin(), k.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+        });
+        text += (text.size() > 1 ? ", " : " ") + (bare ? std::string(k) : toml_string(k)) +
+                " = " + written(element, name);
+      }
+      return text + (text.size() > 1 ? " }" : "}");
+    }
+    return value(node, name).toml;
+  }
+
   std::string_view source_;
 };
 
@@ -427,10 +457,165 @@ std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
   return values;
 }
 
+using ScenarioKey = Key<experiment::Scenario>;
+
+// A key of one element of an array of tables, "chamber.layers[2].fog.lwc_g_per_m3": the element's
+// keys (the table keeps them) and the one named.
+struct ElementKey {
+  KeyTable<experiment::Scenario> element;
+  std::size_t at = 0;
+  const ScenarioKey& key() const { return element.keys()[at]; }
+};
+
+bool is_element_key(const std::string& key) { return key.find('[') != std::string::npos; }
+
+// `key` in the base scenario's key table; throws InvalidParameter naming `key` with what the base
+// has where it is not one of them. An element key needs its element in the base (the array's
+// other elements and keys are the base's).
+ElementKey element_key(const experiment::Scenario& base, const std::string& key) {
+  const std::size_t open = key.find('['), close = key.find(']', open);
+  const std::string array = key.substr(0, open);
+  const ScenarioKey* table = nullptr;
+  for (const ScenarioKey& k : base.keys().keys()) {
+    if (k.name == array && k.type == KeyType::table_array) table = &k;
+  }
+  if (table == nullptr || close == std::string::npos || key.size() < close + 2 ||
+      key[close + 1] != '.') {
+    throw InvalidParameter(key, "'" + key +
+                                    "' is no scenario key (an element's key is written "
+                                    "array[i].key, e.g. chamber.layers[2].fog.lwc_g_per_m3)");
+  }
+  const std::string digits = key.substr(open + 1, close - open - 1);
+  std::size_t index = 0;
+  const auto [end, parsed] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+  const std::size_t count = table->array_size(base);
+  if (parsed != std::errc() || end != digits.data() + digits.size() ||
+      std::to_string(index) != digits || index >= count) {
+    throw InvalidParameter(
+        key, "'" + key + "': the base scenario's " + array + " has " +
+                 (count == 0 ? std::string("no elements")
+                             : "elements 0 … " + std::to_string(count - 1)) +
+                 "; a key of one element needs that element in the base");
+  }
+  ElementKey found;
+  table->array_element(index, found.element);
+  const std::vector<ScenarioKey>& keys = found.element.keys();
+  found.at = static_cast<std::size_t>(
+      std::find_if(keys.begin(), keys.end(),
+                   [&](const ScenarioKey& k) {
+                     return k.name == key && k.type != KeyType::retired &&
+                            k.type != KeyType::table_array;
+                   }) -
+      keys.begin());
+  if (found.at == keys.size()) {
+    std::string known;
+    const std::string prefix = array + "[" + digits + "].";
+    for (const ScenarioKey& k : found.element.keys()) {
+      known += ' ';
+      known.append(k.name, prefix.size());
+    }
+    throw InvalidParameter(key, "'" + key + "' is no scenario key (keys of an element of " + array +
+                                    ":" + known + ")");
+  }
+  return found;
+}
+
+// Refuses a key the base scenario does not take (InvalidParameter naming it), as the scenario
+// reader would, but before any point is read.
+void require_scenario_key(const experiment::Scenario& base, const std::string& key) {
+  if (is_element_key(key)) {
+    element_key(base, key);
+    return;
+  }
+  std::string known;
+  const std::string section = key.substr(0, key.rfind('.'));
+  for (const ScenarioKey& k : base.keys().keys()) {
+    if (k.name != key) {
+      if (k.section() == section && k.type != KeyType::retired)
+        known += " " + std::string(k.short_name());
+      continue;
+    }
+    if (k.type == KeyType::retired)
+      throw InvalidParameter(key, "'" + key + "' is no longer read: " + k.meaning);
+    return;
+  }
+  std::string sections;
+  for (const std::string& top : experiment::top_level_sections(base))
+    sections += (sections.empty() ? "" : ", ") + top;
+  throw InvalidParameter(key, "'" + key + "' is no scenario key (" +
+                                  (known.empty() ? "sections: " + sections
+                                                 : "keys of [" + section + "]:" + known) +
+                                  ")");
+}
+
+// Sets `value` (TOML text) into `scenario` through `key`'s setter, as the scenario reader sets a
+// key a file gives; a value of the wrong type is refused naming the key and what it takes.
+void set_through_key(experiment::Scenario& scenario, const ScenarioKey& key, const Value& value) {
+  const toml::table parsed = toml::parse("v = " + value.toml);
+  const toml::node& node = *parsed.get("v");
+  const std::string given = key.name + " = " + value.toml + ": must be ";
+  switch (key.type) {
+    case KeyType::number:
+      if (!node.is_number()) throw InvalidParameter(key.name, given + "a number " + key.allowed);
+      key.set_number(scenario, *node.value<double>());
+      return;
+    case KeyType::integer: {
+      const std::string range = "an integer in [" + std::to_string(key.integer_low) + ", " +
+                                std::to_string(key.integer_high) + "]";
+      if (!node.is_integer()) throw InvalidParameter(key.name, given + range);
+      const std::int64_t v = *node.value<std::int64_t>();
+      if (v < key.integer_low || v > key.integer_high)
+        throw InvalidParameter(key.name, given + range);
+      key.set_integer(scenario, v);
+      return;
+    }
+    case KeyType::boolean:
+      if (!node.is_boolean()) throw InvalidParameter(key.name, given + "true or false");
+      key.set_boolean(scenario, *node.value<bool>());
+      return;
+    case KeyType::choice:
+      if (!node.is_string()) throw InvalidParameter(key.name, given + "one of " + key.allowed);
+      key.set_text(scenario, *node.value<std::string>());
+      return;
+    case KeyType::order:
+      if (node.is_string()) {
+        key.set_text(scenario, *node.value<std::string>());
+        return;
+      }
+      if (const toml::array* array = node.as_array(); array != nullptr && !array->empty()) {
+        std::vector<std::size_t> indices;
+        for (const toml::node& element : *array) {
+          const std::optional<std::int64_t> index = element.value<std::int64_t>();
+          if (!element.is_integer() || *index < 0) throw InvalidParameter(key.name, given + key.allowed);
+          indices.push_back(static_cast<std::size_t>(*index));
+        }
+        key.set_indices(scenario, indices);
+        return;
+      }
+      throw InvalidParameter(key.name, given + key.allowed);
+    case KeyType::name_list:
+      if (const toml::array* array = node.as_array(); array != nullptr && !array->empty()) {
+        std::vector<std::string> names;
+        for (const toml::node& element : *array) {
+          if (!element.is_string()) throw InvalidParameter(key.name, given + key.allowed);
+          names.push_back(*element.value<std::string>());
+        }
+        key.set_list(scenario, names);
+        return;
+      }
+      throw InvalidParameter(key.name, given + key.allowed);
+    case KeyType::table_array:
+    case KeyType::retired:
+      break;
+  }
+  throw InvalidParameter(key.name, "'" + key.name + "' is no key an axis can set");
+}
+
 // The TOML text that sets `values` over a scenario: each key in its section.
 std::string overrides_text(const std::vector<std::pair<std::string, Value>>& values) {
   std::vector<std::pair<std::string, std::string>> sections;  // section, its lines
   for (const auto& [key, value] : values) {
+    if (is_element_key(key)) continue;  // set through the key table (element_values)
     const std::size_t dot = key.rfind('.');
     const std::string section = key.substr(0, dot);
     auto it = std::find_if(sections.begin(), sections.end(),
@@ -441,6 +626,39 @@ std::string overrides_text(const std::vector<std::pair<std::string, Value>>& val
   std::string text;
   for (const auto& [section, lines] : sections) text += "[" + section + "]\n" + lines;
   return text;
+}
+
+// Sets the element keys among `values` over `scenario` (read from the file's keys) through the
+// element's key table: a scenario file can only replace an array of tables whole. As the scenario
+// reader does, a key is refused where it takes no effect, and a fog that chooses the water table
+// without a temperature takes the table's own. Validates the result.
+void set_element_values(experiment::Scenario& scenario,
+                        const std::vector<std::pair<std::string, Value>>& values) {
+  std::vector<std::pair<ElementKey, const Value*>> given;
+  for (const auto& [key, value] : values) {
+    if (!is_element_key(key)) continue;
+    given.emplace_back(element_key(scenario, key), &value);
+    set_through_key(scenario, given.back().first.key(), value);
+  }
+  if (given.empty()) return;
+  const auto named = [&](const std::string& name) {
+    return std::any_of(values.begin(), values.end(), [&](const auto& v) { return v.first == name; });
+  };
+  for (const auto& [element, value] : given) {
+    const ScenarioKey& key = element.key();
+    if (key.group.empty() && !key.takes_effect(scenario)) {
+      throw InvalidParameter(key.name, key.name + " = " + value->toml + ": takes effect only " +
+                                           key.applies_text);
+    }
+    if (key.short_name() != "water_model" || value->text != "segelstein") continue;
+    const std::string temperature = std::string(key.section()) + ".temperature_c";
+    if (named(temperature)) continue;
+    for (const ScenarioKey& k : element.element.keys()) {
+      if (k.name == temperature)
+        k.set_number(scenario, propagation::segelstein_table_temperature_c);
+    }
+  }
+  scenario.validate();
 }
 
 // The scenario message without its "<source>:<line>: " (the sweep's own location replaces it).
@@ -519,8 +737,15 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
     if (list == nullptr) r.fail_at(*axes, "axis", "axis: must be an array of tables [[axis]]");
     for (std::size_t i = 0; i < list->size(); ++i) {
       const std::string name = "axis[" + std::to_string(i) + "]";
-      Axis axis = read_axis(r, r.table((*list)[i], name), name);
+      const toml::table& t = r.table((*list)[i], name);
+      Axis axis = read_axis(r, t, name);
+      const toml::node& named = t.get("key") ? *t.get("key") : *t.get("keys");
       for (const std::string& k : axis.keys) {
+        try {
+          require_scenario_key(spec.base, k);
+        } catch (const InvalidParameter& e) {
+          r.fail_at(named, name + ".key", name + ": " + e.what());
+        }
         if (!swept.insert(k).second)
           r.fail_at((*list)[i], name + ".key", name + ": '" + k + "' is swept by another axis too");
       }
@@ -548,6 +773,11 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
       if (swept.contains(k)) r.fail_at(node, name, name + ": swept by an axis too");
       if (k == "experiment.seed" || k.find('.') == std::string::npos)
         r.fail_at(node, name, name + ": must be a scenario key other than experiment.seed");
+      try {
+        require_scenario_key(spec.base, k);
+      } catch (const InvalidParameter& e) {
+        r.fail_at(node, name, name + ": " + e.what());
+      }
       u.keys.push_back({k, read_distribution(r, r.table(node, name), name)});
     }
     if (u.keys.empty()) r.fail_at(*keys, "uncertain.keys", "uncertain.keys: name at least one key");
@@ -562,6 +792,27 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
       }
     }
     spec.uncertain = std::move(u);
+  }
+  // An array of tables swept whole and a key of one of its elements: the element would be set
+  // twice, once by each.
+  const auto fail_keys = [&](const std::string& key, const std::string& message) {
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+      const Axis& axis = spec.axes[a];
+      if (std::find(axis.keys.begin(), axis.keys.end(), key) != axis.keys.end())
+        fail(source, axis.line, "axis[" + std::to_string(a) + "].key",
+             "axis[" + std::to_string(a) + "]: " + message);
+    }
+    fail(source, 1, "uncertain.keys." + key, "uncertain.keys." + key + ": " + message);
+  };
+  std::vector<std::string> all(swept.begin(), swept.end());
+  if (spec.uncertain) {
+    for (const UncertainKey& u : spec.uncertain->keys) all.push_back(u.key);
+  }
+  for (const std::string& key : all) {
+    if (!is_element_key(key)) continue;
+    const std::string array = key.substr(0, key.find('['));
+    if (std::find(all.begin(), all.end(), array) != all.end())
+      fail_keys(key, "'" + key + "' is an element of " + array + ", which is swept whole too");
   }
   return spec;
 }
@@ -630,7 +881,10 @@ std::vector<Point> expand(const SweepSpec& spec) {
     const auto read = [&](const std::vector<std::pair<std::string, Value>>& values,
                           const std::string& what) {
       try {
-        return experiment::parse_scenario_over(spec.base, overrides_text(values), label);
+        experiment::Scenario scenario =
+            experiment::parse_scenario_over(spec.base, overrides_text(values), label);
+        set_element_values(scenario, values);
+        return scenario;
       } catch (const InvalidParameter& e) {
         const std::string message = without_location(e.what(), label);
         for (std::size_t a = 0; a < spec.axes.size(); ++a) {

@@ -6,7 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/sweep/spec.hpp"
@@ -116,8 +120,16 @@ TEST(SweepFile, EveryBadSweepFileIsRefusedNamingItsKeyAndLine) {
   const auto [field, message] =
       refusal("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0, 2e6]\n");
   EXPECT_NE(message.find("must be in [0, 1000000]"), std::string::npos) << message;
-  expect("[[axis]]\nkey = \"radar.no_such_key\"\nvalues = [1.0]\n", "radar.no_such_key",
-         "unknown key 'radar.no_such_key'");
+  // An unknown key is refused when the file is read, at the axis's key, with the section's keys.
+  expect("[[axis]]\nkey = \"radar.no_such_key\"\nvalues = [1.0]\n", "axis[0].key",
+         "s.toml:2: axis[0]: 'radar.no_such_key' is no scenario key (keys of [radar]: ");
+  expect(
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.no_such_key\"]\n"
+      "distribution = \"uniform\"\nlow = 0.4\nhigh = 0.6\n",
+      "uncertain.keys.target.no_such_key", "'target.no_such_key' is no scenario key");
+  // A key of an element the base does not have (the paper chamber lists no layers).
+  expect("[[axis]]\nkey = \"chamber.layers[2].fog.lwc_g_per_m3\"\nvalues = [0.1, 0.2]\n",
+         "axis[0].key", "the base scenario's chamber.layers has no elements");
   expect("[[axis]]\nkey = \"experiment.seed\"\nvalues = [1, 2]\n", "axis[0].key",
          "set by the sweep");
   expect(
@@ -142,6 +154,92 @@ TEST(SweepFile, EveryBadSweepFileIsRefusedNamingItsKeyAndLine) {
       "distribution = \"uniform\"\nlow = -5.0\nhigh = -4.0\n",
       "uncertain.keys.target.sensor_height_m", "drew -");
   expect("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0\n", "toml", "malformed TOML");
+}
+
+// The layered example's chamber as a base, with the third layer's fog written as `lwc`.
+std::string layered_chamber(const std::string& lwc) {
+  return "[chamber]\nsensor_gap_m = 2.0\ntarget_gap_m = 4.0\n"
+         "[[chamber.layers]]\nlength_m = 1.0\n"
+         "[[chamber.layers]]\nlength_m = 1.0\nfog = { lwc_g_per_m3 = 0.0 }\n"
+         "[[chamber.layers]]\nlength_m = 1.0\nfog = { lwc_g_per_m3 = " +
+         lwc +
+         ", droplets = { median_diameter_m = 4e-6 } }\n"
+         "[[chamber.layers]]\nlength_m = 1.0\n"
+         "[experiment]\nswitching_order = \"target_first\"\n";
+}
+
+// Any key a scenario file takes is an axis: an array (a listed switching order) and a key of one
+// element of an array of tables (a layer's fog), each point the scenario a file giving that value
+// reads to (the scenario reader as the reference).
+TEST(SweepFile, ArraysAndElementKeysAreAxesAsAScenarioFileGivesThem) {
+  const std::vector<Point> orders = expand(parse(
+      "[[axis]]\nkey = \"experiment.switching_order\"\nvalues = [[3, 1, 2, 0], \"target_first\"]\n"));
+  ASSERT_EQ(orders.size(), 2u);
+  EXPECT_EQ(orders[0].values[0].second.text, "[3, 1, 2, 0]");  // text after '[' sorts first
+  const auto over_paper = [](const std::string& text) {
+    return experiment::to_toml(
+        experiment::parse_scenario_over(experiment::paper_scenario(), text, "reference.toml"));
+  };
+  EXPECT_EQ(experiment::to_toml(orders[0].scenario),
+            over_paper("[experiment]\nswitching_order = [3, 1, 2, 0]\n"));
+  EXPECT_EQ(experiment::to_toml(orders[1].scenario),
+            over_paper("[experiment]\nswitching_order = \"target_first\"\n"));
+
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "fogradar_sweep_element_keys";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir / "layered.toml") << layered_chamber("1.2");
+  }
+  const SweepSpec spec = parse_sweep(
+      "[sweep]\nbase = \"layered.toml\"\n[[axis]]\nkey = \"chamber.layers[2].fog.lwc_g_per_m3\"\n"
+      "values = [0.5, 0.1]\n[[axis]]\nkey = \"chamber.layers[0].length_m\"\nvalues = [0.5]\n",
+      "s.toml", dir);
+  const std::vector<Point> layers = expand(spec);
+  ASSERT_EQ(layers.size(), 2u);
+  for (const auto& [point, lwc] : {std::pair{0, "0.1"}, std::pair{1, "0.5"}}) {
+    std::string file = layered_chamber(lwc);
+    file.replace(file.find("length_m = 1.0"), 14, "length_m = 0.5");
+    EXPECT_EQ(experiment::to_toml(layers[point].scenario),
+              experiment::to_toml(experiment::parse_scenario(file, "reference.toml")))
+        << "point " << point;
+  }
+
+  // Refusals name the axis, the value and the element's key with its range or what it takes.
+  const auto refused = [&](const std::string& axis) -> std::pair<std::string, std::string> {
+    try {
+      expand(parse_sweep("[sweep]\nbase = \"layered.toml\"\n[[axis]]\n" + axis, "s.toml", dir));
+    } catch (const InvalidParameter& e) {
+      return {e.field(), e.what()};
+    }
+    return {"none", ""};
+  };
+  auto [field, message] =
+      refused("key = \"chamber.layers[2].fog.lwc_g_per_m3\"\nvalues = [0.5, 200.0]\n");
+  EXPECT_EQ(field, "chamber.layers[2].fog.lwc_g_per_m3");
+  EXPECT_NE(message.find("s.toml:3: axis[0] value 200.0 of chamber.layers[2].fog.lwc_g_per_m3: "
+                         "chamber.layers[2].fog.lwc_g_per_m3 = 200: must be in [0, 100]"),
+            std::string::npos)
+      << message;
+  std::tie(field, message) =
+      refused("key = \"chamber.layers[2].fog.lwc_g_per_m3\"\nvalues = [\"wet\"]\n");
+  EXPECT_NE(message.find("chamber.layers[2].fog.lwc_g_per_m3 = \"wet\": must be a number"),
+            std::string::npos)
+      << message;
+  std::tie(field, message) = refused("key = \"chamber.layers[4].length_m\"\nvalues = [1.0]\n");
+  EXPECT_EQ(field, "axis[0].key");
+  EXPECT_NE(message.find("s.toml:4: axis[0]: 'chamber.layers[4].length_m': the base scenario's "
+                         "chamber.layers has elements 0 … 3"),
+            std::string::npos)
+      << message;
+  std::tie(field, message) = refused("key = \"chamber.layers[1].fog.wetness\"\nvalues = [1.0]\n");
+  EXPECT_NE(message.find("'chamber.layers[1].fog.wetness' is no scenario key"), std::string::npos)
+      << message;
+  std::tie(field, message) = refused(
+      "key = \"chamber.layers[1].length_m\"\nvalues = [1.0]\n[[axis]]\nkey = \"chamber.layers\"\n"
+      "values = [[{ length_m = 2.0 }]]\n");
+  EXPECT_NE(message.find("which is swept whole too"), std::string::npos) << message;
+  std::filesystem::remove_all(dir);
 }
 
 // Latin hypercube: each key's N draws fall one in each of its N equiprobable strata, exactly; a

@@ -152,6 +152,36 @@ base = "radar_only.toml"
           f"{resumed.stdout.strip().splitlines()[-1]}")
     same_tables(one, killed, f"resumed after SIGKILL at {delay:.2f} s")
 
+    # A value added to an axis moves the points after it in the grid; resumed, every point computed
+    # before is reused (committed by its resolved scenario, not its index) and the tables are a
+    # fresh sweep's byte for byte.
+    grid = ("[sweep]\nbase = \"small.toml\"\n[[axis]]\nkey = \"fog.extinction_per_km\"\n"
+            "values = {}\n[[axis]]\nkey = \"processing.cfar.training_cells\"\nvalues = [8, 16]\n")
+    before = write("before.toml", grid.format("[300.0, 900.0]"))
+    extended = write("extended.toml", grid.format("[300.0, 600.0, 900.0]"))
+    grown, kept = os.path.join(work, "grown"), os.path.join(work, "kept")
+    sweep(before, grown)
+    sweep(before, kept, "--keep-points")
+    resumed = sweep(extended, grown, "--resume").stdout
+    check("2 points computed, 4 committed before" in resumed,
+          f"a value added to an axis: {resumed.strip().splitlines()[-1]}")
+    fresh = os.path.join(work, "fresh")
+    sweep(extended, fresh)
+    same_tables(fresh, grown, "a value added to an axis, resumed")
+    check(sorted(os.listdir(os.path.join(grown, ".sweep"))) ==
+          sorted(os.listdir(os.path.join(fresh, ".sweep"))), "the committed pieces of 6 points")
+    # With --keep-points, points/<i>/ must be point i's: the two points that moved are made again.
+    resumed = sweep(extended, kept, "--resume", "--keep-points").stdout
+    check("4 points computed, 2 committed before" in resumed,
+          f"a value added to an axis, --keep-points: {resumed.strip().splitlines()[-1]}")
+    same_tables(fresh, kept, "a value added to an axis, resumed with --keep-points")
+    for point in rows(os.path.join(kept, "points.csv")):
+        with open(os.path.join(kept, "points", point["point"], "scenario.toml")) as f:
+            text = f.read()
+        check(f"extinction_per_km = {point['fog.extinction_per_km']}\n" in text and
+              f"training_cells = {point['processing.cfar.training_cells']}\n" in text,
+              f"points/{point['point']}/scenario.toml is another point's")
+
     # [uncertain] collapsed to the base's own values: the envelope is the single run.
     collapsed = write("collapsed.toml", """
 [sweep]
