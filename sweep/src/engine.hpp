@@ -43,6 +43,10 @@ class SweepDirectory {
             const std::vector<sensor::ResultFile>& files) const;
   // Whether points/<index>/ holds the result set of `point` (its scenario.toml is the point's).
   bool holds_kept(const Point& point) const;
+  // Removes points/<index>/ of each of `indices` that holds another point's result set (one that
+  // moved in the grid since), and with `all` the sweep's indices, every points/<i>/ beyond them.
+  void remove_stale_kept(const std::vector<Point>& points, const std::vector<std::size_t>& indices,
+                         bool all) const;
 
  private:
   std::filesystem::path dir_;

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <thread>
 
 #include "engine.hpp"
@@ -181,16 +182,21 @@ SweepOutcome run_sweep(MpiJob& job, const SweepSpec& spec, const std::vector<Poi
                                  cache, options);
   };
   std::unique_ptr<detail::SweepDirectory> out;
+  std::vector<std::string> definitions;  // rank 0's
   std::vector<std::optional<json> > pieces(points.size());
   job.settle([&] {
     using Mode = detail::SweepDirectory::Mode;
+    definitions = detail::definitions_of(points, spec.replications);
     out = std::make_unique<detail::SweepDirectory>(dir, options.resume ? Mode::resume : Mode::fresh,
-                                                   detail::definitions_of(points, spec.replications));
+                                                   definitions);
     out->write_table("sweep.toml", spec.text);
     detail::write_origin(*out, spec.directory);
     if (!options.resume) return;
+    std::vector<std::size_t> all(points.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    out->remove_stale_kept(points, all, true);
     for (const Point& point : points) {
-      pieces[point.index] = out->committed(detail::definition_of(point, spec.replications));
+      pieces[point.index] = out->committed(definitions[point.index]);
       // points/<index>/ of another point (before values were added to an axis): made again.
       if (options.keep_points && !out->holds_kept(point)) pieces[point.index].reset();
     }

@@ -426,8 +426,10 @@ std::string envelope_csv(const std::vector<json>& pieces) {
           out += std::to_string(p) + "," + csv_field(sensor) + "," +
                  s0["rows"][row][layers].get<std::string>() + "," + csv_field(columns[c]) + "," +
                  std::to_string(values.size());
-          for (const double level : envelope_levels)
-            out += "," + (values.empty() ? std::string() : shortest(quantile(values, level)));
+          for (const double level : envelope_levels) {
+            out += ',';
+            if (!values.empty()) out += shortest(quantile(values, level));
+          }
           out += "\n";
         }
       }
@@ -713,6 +715,24 @@ std::string definition_of(const Point& point, std::size_t replications) {
   return fnv_hex(text);
 }
 
+void SweepDirectory::remove_stale_kept(const std::vector<Point>& points,
+                                       const std::vector<std::size_t>& indices, bool all) const {
+  std::error_code error;
+  if (!fs::is_directory(dir_ / points_dir, error)) return;
+  for (const std::size_t index : indices) {
+    const fs::path kept = dir_ / points_dir / std::to_string(index);
+    if (fs::exists(kept, error) && !holds_kept(points[index])) fs::remove_all(kept, error);
+  }
+  if (!all) return;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_ / points_dir, error)) {
+    const std::string name = entry.path().filename().string();
+    std::size_t index = 0;
+    const auto [end, parsed] = std::from_chars(name.data(), name.data() + name.size(), index);
+    if (parsed == std::errc() && end == name.data() + name.size() && index >= points.size())
+      fs::remove_all(entry.path(), error);
+  }
+}
+
 std::vector<std::string> definitions_of(const std::vector<Point>& points,
                                         std::size_t replications) {
   std::vector<std::string> definitions;
@@ -911,6 +931,7 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
   const propagation::SegelsteinTable water;
   experiment::SensorCache own_cache;
   experiment::SensorCache& cache = options.cache ? *options.cache : own_cache;
+  if (mode != Mode::fresh) out.remove_stale_kept(points, mine, mode == Mode::resume);
   SweepOutcome outcome;
   std::vector<json> pieces;
   const auto start = std::chrono::steady_clock::now();
@@ -919,7 +940,7 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
     const std::string& definition = definitions[index];
     std::optional<json> piece = mode != Mode::fresh ? out.committed(definition) : std::nullopt;
     // --keep-points wants point `index`'s result set in points/<index>/: one made for another
-    // point there (before values were added to an axis) is made again.
+    // point there (before values were added to an axis) was removed, and the point is made again.
     if (piece && options.keep_points && !out.holds_kept(point)) piece.reset();
     if (piece) {
       ++outcome.reused;

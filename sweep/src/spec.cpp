@@ -147,7 +147,8 @@ class Reader {
       const std::string text = written(node, name);
       return {text, text, std::nullopt};
     }
-    fail_at(node, name, name + ": must be a key's value (a number, a boolean, a string or an array)");
+    fail_at(node, name,
+            name + ": must be a key's value (a number, a boolean, a string or an array)");
   }
 
   std::string_view source() const { return source_; }
@@ -168,8 +169,8 @@ class Reader {
         const bool bare = !k.empty() && std::all_of(k.begin(), k.end(), [](char c) {
           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
         });
-        text += (text.size() > 1 ? ", " : " ") + (bare ? std::string(k) : toml_string(k)) +
-                " = " + written(element, name);
+        text += (text.size() > 1 ? ", " : " ") + (bare ? std::string(k) : toml_string(k)) + " = " +
+                written(element, name);
       }
       return text + (text.size() > 1 ? " }" : "}");
     }
@@ -491,22 +492,21 @@ ElementKey element_key(const experiment::Scenario& base, const std::string& key)
   const std::size_t count = table->array_size(base);
   if (parsed != std::errc() || end != digits.data() + digits.size() ||
       std::to_string(index) != digits || index >= count) {
-    throw InvalidParameter(
-        key, "'" + key + "': the base scenario's " + array + " has " +
-                 (count == 0 ? std::string("no elements")
-                             : "elements 0 … " + std::to_string(count - 1)) +
-                 "; a key of one element needs that element in the base");
+    throw InvalidParameter(key, "'" + key + "': the base scenario's " + array + " has " +
+                                    (count == 0 ? std::string("no elements")
+                                                : "elements 0 … " + std::to_string(count - 1)) +
+                                    "; a key of one element needs that element in the base");
   }
   ElementKey found;
   table->array_element(index, found.element);
   const std::vector<ScenarioKey>& keys = found.element.keys();
-  found.at = static_cast<std::size_t>(
-      std::find_if(keys.begin(), keys.end(),
-                   [&](const ScenarioKey& k) {
-                     return k.name == key && k.type != KeyType::retired &&
-                            k.type != KeyType::table_array;
-                   }) -
-      keys.begin());
+  found.at = static_cast<std::size_t>(std::find_if(keys.begin(), keys.end(),
+                                                   [&](const ScenarioKey& k) {
+                                                     return k.name == key &&
+                                                            k.type != KeyType::retired &&
+                                                            k.type != KeyType::table_array;
+                                                   }) -
+                                      keys.begin());
   if (found.at == keys.size()) {
     std::string known;
     const std::string prefix = array + "[" + digits + "].";
@@ -542,10 +542,10 @@ void require_scenario_key(const experiment::Scenario& base, const std::string& k
   std::string sections;
   for (const std::string& top : experiment::top_level_sections(base))
     sections += (sections.empty() ? "" : ", ") + top;
-  throw InvalidParameter(key, "'" + key + "' is no scenario key (" +
-                                  (known.empty() ? "sections: " + sections
-                                                 : "keys of [" + section + "]:" + known) +
-                                  ")");
+  throw InvalidParameter(
+      key, "'" + key + "' is no scenario key (" +
+               (known.empty() ? "sections: " + sections : "keys of [" + section + "]:" + known) +
+               ")");
 }
 
 // Sets `value` (TOML text) into `scenario` through `key`'s setter, as the scenario reader sets a
@@ -586,7 +586,8 @@ void set_through_key(experiment::Scenario& scenario, const ScenarioKey& key, con
         std::vector<std::size_t> indices;
         for (const toml::node& element : *array) {
           const std::optional<std::int64_t> index = element.value<std::int64_t>();
-          if (!element.is_integer() || *index < 0) throw InvalidParameter(key.name, given + key.allowed);
+          if (!element.is_integer() || *index < 0)
+            throw InvalidParameter(key.name, given + key.allowed);
           indices.push_back(static_cast<std::size_t>(*index));
         }
         key.set_indices(scenario, indices);
@@ -642,13 +643,14 @@ void set_element_values(experiment::Scenario& scenario,
   }
   if (given.empty()) return;
   const auto named = [&](const std::string& name) {
-    return std::any_of(values.begin(), values.end(), [&](const auto& v) { return v.first == name; });
+    return std::any_of(values.begin(), values.end(),
+                       [&](const auto& v) { return v.first == name; });
   };
   for (const auto& [element, value] : given) {
     const ScenarioKey& key = element.key();
     if (key.group.empty() && !key.takes_effect(scenario)) {
-      throw InvalidParameter(key.name, key.name + " = " + value->toml + ": takes effect only " +
-                                           key.applies_text);
+      throw InvalidParameter(
+          key.name, key.name + " = " + value->toml + ": takes effect only " + key.applies_text);
     }
     if (key.short_name() != "water_model" || value->text != "segelstein") continue;
     const std::string temperature = std::string(key.section()) + ".temperature_c";

@@ -1,6 +1,6 @@
-// Sweep files and their grid (sweep/spec.hpp): axes and ranges, ordering by value, seeds, every
-// bad sweep file refused with its key and line, and the [uncertain] draws against their
-// distributions' known quantiles.
+// Sweep files and their grid (sweep/spec.hpp): axes and ranges, ordering by value, seeds, arrays
+// and element keys as axes against the scenario reader, every bad sweep file refused with its key
+// and line, and the [uncertain] draws against their distributions' known quantiles.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -172,8 +172,9 @@ std::string layered_chamber(const std::string& lwc) {
 // element of an array of tables (a layer's fog), each point the scenario a file giving that value
 // reads to (the scenario reader as the reference).
 TEST(SweepFile, ArraysAndElementKeysAreAxesAsAScenarioFileGivesThem) {
-  const std::vector<Point> orders = expand(parse(
-      "[[axis]]\nkey = \"experiment.switching_order\"\nvalues = [[3, 1, 2, 0], \"target_first\"]\n"));
+  const std::vector<Point> orders =
+      expand(parse("[[axis]]\nkey = \"experiment.switching_order\"\nvalues = [[3, 1, 2, 0], "
+                   "\"target_first\"]\n"));
   ASSERT_EQ(orders.size(), 2u);
   EXPECT_EQ(orders[0].values[0].second.text, "[3, 1, 2, 0]");  // text after '[' sorts first
   const auto over_paper = [](const std::string& text) {
@@ -188,9 +189,7 @@ TEST(SweepFile, ArraysAndElementKeysAreAxesAsAScenarioFileGivesThem) {
   const std::filesystem::path dir =
       std::filesystem::path(::testing::TempDir()) / "fogradar_sweep_element_keys";
   std::filesystem::create_directories(dir);
-  {
-    std::ofstream(dir / "layered.toml") << layered_chamber("1.2");
-  }
+  { std::ofstream(dir / "layered.toml") << layered_chamber("1.2"); }
   const SweepSpec spec = parse_sweep(
       "[sweep]\nbase = \"layered.toml\"\n[[axis]]\nkey = \"chamber.layers[2].fog.lwc_g_per_m3\"\n"
       "values = [0.5, 0.1]\n[[axis]]\nkey = \"chamber.layers[0].length_m\"\nvalues = [0.5]\n",

@@ -9,7 +9,9 @@
   its double-Debye permittivity of water (written out below), within 1 % (the fog's 1 um droplets
   are Rayleigh scatterers at these frequencies: absorption dominates and is K_l x LWC);
 - results.csv, limits.csv and points.csv byte-identical for threads 1 and 2, for a sweep killed by
-  SIGKILL at a random instant and resumed, and for the values listed in reverse order;
+  SIGKILL at a random instant and resumed, and for the values listed in reverse order; after a
+  value is added to an axis and the sweep resumed, every point computed before is reused and the
+  tables equal a fresh sweep's;
 - with every [uncertain] key collapsed to one value (the base's own), the envelope's quantiles are
   the single run's values exactly; with the fog's extinction drawn uniformly (Latin hypercube), the
   quantiles of the radar's loss lie within the bounds the strata give (`fogradar fog` at the edges);
@@ -181,6 +183,13 @@ base = "radar_only.toml"
         check(f"extinction_per_km = {point['fog.extinction_per_km']}\n" in text and
               f"training_cells = {point['processing.cfar.training_cells']}\n" in text,
               f"points/{point['point']}/scenario.toml is another point's")
+    # Resumed without --keep-points: the result sets of points that moved are removed, not left
+    # under another point's index (points 0 and 1 stayed where they were).
+    unkept = os.path.join(work, "unkept")
+    sweep(before, unkept, "--keep-points")
+    sweep(extended, unkept, "--resume")
+    left = sorted(os.listdir(os.path.join(unkept, "points")))
+    check(left == ["0", "1"], f"points/ after a resume that moved points 2 and 3: {left}")
 
     # [uncertain] collapsed to the base's own values: the envelope is the single run.
     collapsed = write("collapsed.toml", """

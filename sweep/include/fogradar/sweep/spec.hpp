@@ -17,8 +17,8 @@
 
 namespace fogradar::sweep {
 
-// A value of a swept or drawn key, as TOML writes it ("900.0", "\"os\"", "true") and as a table
-// writes it ("900.0", "os", "true").
+// A value of a swept or drawn key, as TOML writes it ("900.0", "\"os\"", "true", "[3, 1, 2, 0]")
+// and as a table writes it ("900.0", "os", "true", "[3, 1, 2, 0]").
 struct Value {
   std::string toml;
   std::string text;
@@ -77,8 +77,8 @@ struct Uncertain {
 };
 
 struct SweepSpec {
-  std::string source;  // the sweep file's path as given (messages)
-  std::string text;    // the file, verbatim (written into DIR as sweep.toml)
+  std::string source;               // the sweep file's path as given (messages)
+  std::string text;                 // the file, verbatim (written into DIR as sweep.toml)
   std::filesystem::path directory;  // a relative base path's directory (the sweep file's)
   experiment::Scenario base;
   std::string base_name;  // "paper" or the path as the file gives it
@@ -90,7 +90,9 @@ struct SweepSpec {
 
 // Reads a sweep file. Throws InvalidParameter naming the sweep key ("axis[1].values",
 // "uncertain.keys.target.sensor_height_m.std") with "<source>:<line>: " as the scenario reader
-// does; a base path is relative to the sweep file's directory.
+// does; a base path is relative to the sweep file's directory. Every axis and [uncertain] key must
+// be one of the base scenario's keys, or a key of an element the base's array of tables has
+// ("chamber.layers[2].fog.lwc_g_per_m3").
 SweepSpec load_sweep_file(const std::string& path);
 SweepSpec parse_sweep(std::string_view text, std::string_view source,
                       const std::filesystem::path& directory);
@@ -111,8 +113,9 @@ struct Point {
 
 // The grid: the product of the axes, each axis's positions ordered by value (numbers by size, then
 // text), the first axis outermost; every point's scenario (and every setup's) read over the base
-// and validated. A bad point throws InvalidParameter naming the axis, the value and the key with
-// the scenario's own message (its allowed range).
+// and validated: its keys as a scenario file giving them, an element key set through its
+// element's key table. A bad point throws InvalidParameter naming the axis, the value and the key
+// with the scenario's own message (its allowed range).
 std::vector<Point> expand(const SweepSpec& spec);
 
 }  // namespace fogradar::sweep

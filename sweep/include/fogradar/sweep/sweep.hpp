@@ -5,7 +5,9 @@
 // DIR holds sweep.toml (the sweep file), points.csv, results.csv, limits.csv, comparison.svg,
 // limits.svg (with an axis), with [uncertain] envelope.csv, envelope_limits.csv and envelope.svg,
 // with --keep-points each point's result set in points/<index>/, and the committed points in
-// .sweep/<index>.json. The tables are written when every point is committed.
+// .sweep/<definition>.json, each filed by a hash of its resolved scenarios (never its index, so a
+// resumed sweep whose axes gained values reuses every point it has). The tables are written when
+// every point is committed.
 #pragma once
 
 #include <atomic>
@@ -84,8 +86,9 @@ struct SweepOutcome {
 // Runs every point not yet committed into `dir` and writes the tables. Refuses (InvalidParameter
 // naming "--out") a `dir` that holds anything but a sweep's files (so no file of the user's is ever
 // deleted) or that another sweep holds. Without `resume` the files of an earlier sweep there are
-// replaced; with it, points committed for the same point definition are kept. Throws
-// experiment::Interrupted when stopped: the points committed so far stay.
+// replaced; with it, points committed for the same point definition are kept, wherever in the
+// grid they were computed. Throws experiment::Interrupted when stopped: the points committed so
+// far stay.
 SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points,
                        const std::filesystem::path& dir, const SweepOptions& options);
 
