@@ -4,7 +4,9 @@ process without MPI: points.csv, results.csv and limits.csv must be the same byt
 
 - `mpirun -n 1`, `-n 2` and `-n 4` (one thread each; the ranks take the points from rank 0's queue
   in whatever order they finish);
-- `--shard 0/3`, `1/3`, `2/3` run as separate processes into one directory, then `--merge`;
+- `--shard 0/3`, `1/3`, `2/3` run as separate processes into one directory, then `--merge`; then
+  with a value added to an axis, the shards rerun and merged (and on MPI resumed): only the new
+  points computed, the tables a single process's;
 - a job whose worker rank is killed (SIGKILL) once a point is committed, then resumed on MPI
   (against the single process's run of the same, slower points).
 
@@ -90,6 +92,23 @@ with tempfile.TemporaryDirectory() as work:
     done = run([fogradar, "sweep", "--merge", sharded, "--out", sharded], expect=2)
     check("--merge" in done.stderr, f"--merge with --out: {done.stderr!r}")
 
+    # A value added to an axis: the shards rerun into the same directory compute only the two new
+    # points (each point is committed by its resolved scenario, wherever it sits in the grid), and
+    # the merge equals a single process's run of the extended sweep.
+    with open(sweep_file) as f:
+        extended_file = write("extended.toml", f.read().replace("[150.0, ", "[150.0, 450.0, "))
+    extended = os.path.join(work, "extended")
+    run([fogradar, "sweep", "--sweep", extended_file, "--out", extended, "--threads", "1"])
+    computed = 0
+    for i in range(3):
+        done = run([fogradar, "sweep", "--sweep", extended_file, "--out", sharded, "--shard",
+                    f"{i}/3", "--threads", "1"])
+        computed += sum(int(line.split(" point")[0].split()[-1])
+                        for line in done.stdout.splitlines() if " computed, " in line)
+    check(computed == 2, f"shards of the sweep with a value added computed {computed} points, not 2")
+    run([fogradar, "sweep", "--merge", sharded])
+    same_tables(extended, sharded, "a value added, --shard 0/3, 1/3, 2/3 and --merge")
+
     if not launcher:
         env = dict(os.environ, OMPI_COMM_WORLD_RANK="0", OMPI_COMM_WORLD_SIZE="2")
         done = run([fogradar, "sweep", "--sweep", sweep_file, "--out", os.path.join(work, "no")],
@@ -104,6 +123,13 @@ with tempfile.TemporaryDirectory() as work:
             check(f"on {ranks} MPI rank" in done.stdout and done.stdout.count("sweep: ") == 1,
                   f"-n {ranks} output: {done.stdout!r}")
             same_tables(reference, out, f"mpirun -n {ranks}")
+        # A value added to an axis, resumed on 2 ranks: only the 2 new points are computed.
+        out = os.path.join(work, "n2")
+        done = run(launcher + ["-n", "2", fogradar, "sweep", "--sweep", extended_file, "--out",
+                               out, "--threads", "1", "--resume"])
+        check("2 points computed, 16 committed before" in done.stdout,
+              f"a value added, --resume on 2 ranks: {done.stdout!r}")
+        same_tables(extended, out, "a value added, --resume on 2 ranks")
 
         # A worker killed once a point is committed: the job ends (the launcher takes about a
         # second to stop rank 0, so these points are slower); --resume on MPI finishes it.
