@@ -623,8 +623,9 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode,
       const std::string name = entry.path().filename().string();
       // points/<index>/, and .sweep/<definition>.json (an earlier version's .sweep/<index>.json).
       const std::string stem = name.substr(0, name.find('.'));
-      const bool ours = !stem.empty() && std::all_of(stem.begin(), stem.end(), [](char c) {
-        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+      const bool hex = sub == state_dir;
+      const bool ours = !stem.empty() && std::all_of(stem.begin(), stem.end(), [hex](char c) {
+        return (c >= '0' && c <= '9') || (hex && c >= 'a' && c <= 'f');
       });
       if (ours || name.starts_with(".") || name == origin_file) continue;
       refuse(entry.path());
