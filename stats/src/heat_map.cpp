@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/stats/format.hpp"
@@ -14,7 +17,7 @@ namespace {
 
 using detail::escape_xml;
 
-constexpr double margin_left = 150.0;
+constexpr double min_margin_left = 150.0;
 constexpr double margin_right = 150.0;
 constexpr double plot_top = 56.0;
 constexpr double cell_height = 36.0;
@@ -56,8 +59,15 @@ std::string heat_map_svg(const HeatMap& map) {
                   "rows x columns of the labels (" + std::to_string(rows) + " x " +
                       std::to_string(columns) + ", at least one cell)");
   }
+  if (map.value_range) {
+    const auto [range_low, range_high] = *map.value_range;
+    if (!(std::isfinite(range_low) && std::isfinite(range_high) && range_low < range_high)) {
+      throw_invalid("value_range", range_low,
+                    "finite and below its high end (" + format_number(range_high) + ")");
+    }
+  }
   double low = 0.0, high = 0.0;
-  bool any = false;
+  bool any = false, any_missing = false;
   for (std::size_t r = 0; r < rows; ++r) {
     if (map.values[r].size() != columns) {
       throw_invalid("values", static_cast<double>(map.values[r].size()),
@@ -65,18 +75,48 @@ std::string heat_map_svg(const HeatMap& map) {
     }
     for (std::size_t c = 0; c < columns; ++c) {
       const std::optional<double>& v = map.values[r][c];
-      if (!v) continue;
-      require_finite("values[" + std::to_string(r) + "][" + std::to_string(c) + "]", *v);
+      if (!v) {
+        any_missing = true;
+        continue;
+      }
+      const std::string field = "values[" + std::to_string(r) + "][" + std::to_string(c) + "]";
+      require_finite(field, *v);
+      if (map.value_range && (*v < map.value_range->first || *v > map.value_range->second)) {
+        throw_invalid(field, *v,
+                      "inside value_range [" + format_number(map.value_range->first) + ", " +
+                          format_number(map.value_range->second) + "]");
+      }
       low = any ? std::min(low, *v) : *v;
       high = any ? std::max(high, *v) : *v;
       any = true;
     }
   }
+  if (map.value_range) std::tie(low, high) = *map.value_range;
+  // Room left of the cells for the longest row label, and for the y label written above them
+  // (level: a few rows leave no height for it turned).
+  std::size_t longest = 0;
+  for (const std::string& label : map.row_labels) longest = std::max(longest, label.size());
+  const double margin_left = std::max({min_margin_left, 24.0 + 7.5 * static_cast<double>(longest),
+                                       24.0 + 8.5 * static_cast<double>(map.y_label.size())});
   const double cell_width = std::max(min_cell_width, 640.0 / static_cast<double>(columns));
   const double width = margin_left + cell_width * static_cast<double>(columns) + margin_right;
   const double plot_bottom = plot_top + cell_height * static_cast<double>(rows);
-  const double height =
-      plot_bottom + below_plot + caption_line * static_cast<double>(map.caption.size()) + 8.0;
+  std::vector<std::pair<double, std::string>> swatches;  // value, label; from the low end
+  const bool scale_shown = any || map.value_range.has_value();
+  if (scale_shown && map.integer_values) {
+    const double first = std::ceil(low), last = std::floor(high);
+    const double step = std::max(1.0, std::ceil((last - first) / 10.0));
+    for (double v = first; v <= last; v += step) swatches.emplace_back(v, format_fixed(v, 0));
+  } else if (scale_shown) {
+    for (int i = 0; i < 5; ++i) {
+      const double v = low + static_cast<double>(i) / 4.0 * (high - low);
+      swatches.emplace_back(v, format_fixed(v, map.decimals + 1));
+    }
+  }
+  const double key_rows = static_cast<double>(swatches.size() + (any_missing ? 1 : 0));
+  const double height = std::max(
+      plot_bottom + below_plot + caption_line * static_cast<double>(map.caption.size()) + 8.0,
+      plot_top + 22.0 * key_rows + 8.0);
   const auto scale = [&](double v) { return high > low ? (v - low) / (high - low) : 0.5; };
 
   std::string svg;
@@ -110,23 +150,23 @@ std::string heat_map_svg(const HeatMap& map) {
   const double plot_right = margin_left + cell_width * static_cast<double>(columns);
   text(svg, 0.5 * (margin_left + plot_right), plot_bottom + 40.0, "middle",
        "class=\"x-label\" font-size=\"14\"", map.x_label);
-  const double mid_y = 0.5 * (plot_top + plot_bottom);
-  svg += "<text x=\"22\" y=\"" + px(mid_y) +
-         "\" text-anchor=\"middle\" transform=\"rotate(-90 22 " + px(mid_y) +
-         ")\" class=\"y-label\" font-size=\"14\">" + escape_xml(map.y_label) + "</text>\n";
-  // The colour key: five steps from the lowest value to the highest.
+  text(svg, margin_left - 8.0, plot_top - 8.0, "end", "class=\"y-label\" font-size=\"14\"",
+       map.y_label);
+  // The colour key, darkest on top: five steps from the scale's low end to its high end, or a
+  // swatch per whole number; then the missing cells' grey.
   const double key_x = plot_right + 24.0;
   text(svg, key_x, plot_top - 8.0, "start", "class=\"key-title\"", map.value_label);
-  for (int i = 0; i < (any ? 5 : 0); ++i) {
-    const double t = static_cast<double>(i) / 4.0;
-    const double y = plot_top + 22.0 * (4 - i);
-    rect(svg, key_x, y, 18.0, 18.0, "class=\"key\" fill=\"" + colour(t) + "\"");
-    text(svg, key_x + 26.0, y + 13.0, "start", "class=\"key-text\"",
-         format_fixed(low + t * (high - low), map.decimals + 1));
+  double key_y = plot_top;
+  for (std::size_t i = swatches.size(); i-- > 0;) {
+    rect(svg, key_x, key_y, 18.0, 18.0,
+         "class=\"key\" fill=\"" + colour(scale(swatches[i].first)) + "\"");
+    text(svg, key_x + 26.0, key_y + 13.0, "start", "class=\"key-text\"", swatches[i].second);
+    key_y += 22.0;
   }
-  if (!any) {
-    rect(svg, key_x, plot_top, 18.0, 18.0, "class=\"key\" fill=\"#d9d9d9\"");
-    text(svg, key_x + 26.0, plot_top + 13.0, "start", "class=\"key-text\"", map.missing_text);
+  if (any_missing) {
+    rect(svg, key_x, key_y, 18.0, 18.0, "class=\"key\" fill=\"#d9d9d9\"");
+    text(svg, key_x + 26.0, key_y + 13.0, "start", "class=\"key-text\"", map.missing_text);
+    key_y += 22.0;
   }
   for (std::size_t i = 0; i < map.caption.size(); ++i) {
     text(svg, margin_left, plot_bottom + below_plot + caption_line * static_cast<double>(i) + 4.0,

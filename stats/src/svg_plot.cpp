@@ -88,6 +88,7 @@ constexpr std::string_view mark_style =
 constexpr std::string_view rate_fill = "fill=\"#8fb3d9\"";
 constexpr std::string_view band_style = "fill=\"#f5cba7\" fill-opacity=\"0.7\"";
 constexpr std::string_view inner_band_style = "fill=\"#e59866\" fill-opacity=\"0.7\"";
+constexpr std::string_view value_style = "stroke=\"#1f4e79\" stroke-width=\"4\"";
 constexpr std::string_view reference_style = "stroke=\"#c0392b\" stroke-width=\"2.5\"";
 
 // Coordinates with two decimals: 0.01 px is far below any rendering resolution.
@@ -223,21 +224,24 @@ void draw_series(std::string& svg, const BoxPlotSeries& s, double cx, const Layo
          "</title>\n";
   const BoxPlot& b = s.box;
   const double half_width = at.half_width;
-  if (has_band(s.band_low, s.band_high)) {
-    rect(svg, cx - 0.42 * at.band, to_y(s.band_high), 0.84 * at.band,
-         to_y(s.band_low) - to_y(s.band_high), with_class("band", band_style));
-  }
-  if (has_band(s.inner_band_low, s.inner_band_high)) {
-    rect(svg, cx - 0.42 * at.band, to_y(s.inner_band_high), 0.84 * at.band,
-         to_y(s.inner_band_low) - to_y(s.inner_band_high),
-         with_class("inner-band", inner_band_style));
-  }
+  // A band is at least 2 px tall, so that one of no width (every setup alike) stays visible.
+  const auto band = [&](double low, double high, std::string_view cls, std::string_view style) {
+    const double top = std::min(to_y(high), 0.5 * (to_y(low) + to_y(high)) - 1.0);
+    const double bottom = std::max(to_y(low), 0.5 * (to_y(low) + to_y(high)) + 1.0);
+    rect(svg, cx - 0.42 * at.band, top, 0.84 * at.band, bottom - top, with_class(cls, style));
+  };
+  if (has_band(s.band_low, s.band_high)) band(s.band_low, s.band_high, "band", band_style);
+  if (has_band(s.inner_band_low, s.inner_band_high))
+    band(s.inner_band_low, s.inner_band_high, "inner-band", inner_band_style);
   if (b.n == 0) {
     cross(svg, cx, at.plot_bottom - 14.0, std::min(5.0, 0.4 * at.band), "no-values");
     if (at.band >= band_for_empty_text) {
       text(svg, cx, 0.5 * (plot_top + at.plot_bottom), "middle",
            "class=\"no-values-text\" font-style=\"italic\" fill=\"#666666\"", options.empty_label);
     }
+  } else if (!options.value_label.empty()) {
+    line(svg, cx - half_width, to_y(b.median), cx + half_width, to_y(b.median),
+         with_class("value", value_style));
   } else {
     const std::string whisker = with_class("whisker", whisker_style);
     const double cap = 0.5 * half_width;
@@ -274,24 +278,31 @@ void draw_series(std::string& svg, const BoxPlotSeries& s, double cx, const Layo
 
 // One row per symbol drawn: its sample on the left, its meaning on the right.
 void draw_legend(std::string& svg, const Layout& at, const SvgPlotOptions& options, bool any_data,
-                 bool any_empty, bool any_band, bool any_inner_band, bool any_reference) {
+                 bool any_outlier, bool any_empty, bool any_band, bool any_inner_band,
+                 bool any_reference) {
   const double left = at.plot_right + 16.0;
   const double right = at.width - 12.0;
   const double sx = left + 18.0;  // symbol centre
   const double tx = left + 36.0;  // text start
   double y = plot_top + 18.0;     // row centre
   svg += "<g class=\"legend\">\n";
-  const std::size_t rows = (any_data ? 4u + (options.show_mean ? 1u : 0u) : 0u) +
-                           (any_empty ? 1u : 0u) + (options.marked_category ? 1u : 0u) +
-                           (has_strip(options) ? 1u : 0u) + (any_band ? 1u : 0u) +
-                           (any_inner_band ? 1u : 0u) + (any_reference ? 1u : 0u);
+  const bool values_only = !options.value_label.empty();
+  const std::size_t data_rows =
+      values_only ? 1u : 3u + (any_outlier ? 1u : 0u) + (options.show_mean ? 1u : 0u);
+  const std::size_t rows = (any_data ? data_rows : 0u) + (any_empty ? 1u : 0u) +
+                           (options.marked_category ? 1u : 0u) + (has_strip(options) ? 1u : 0u) +
+                           (any_band ? 1u : 0u) + (any_inner_band ? 1u : 0u) +
+                           (any_reference ? 1u : 0u);
   rect(svg, left, plot_top, right - left, 8.0 + legend_row * static_cast<double>(rows),
        "class=\"legend-frame\" fill=\"#ffffff\" stroke=\"#bbbbbb\" stroke-width=\"1\"");
   const auto label = [&](std::string_view content) {
     text(svg, tx, y + 4.0, "start", "class=\"legend-text\"", content);
     y += legend_row;
   };
-  if (any_data) {
+  if (any_data && values_only) {
+    line(svg, sx - 8.0, y, sx + 8.0, y, with_class("legend-value", value_style));
+    label(options.value_label);
+  } else if (any_data) {
     rect(svg, sx - 8.0, y - 6.0, 16.0, 12.0, with_class("legend-box", box_style));
     label("box: quartiles Q1 to Q3");
     line(svg, sx - 8.0, y, sx + 8.0, y, with_class("legend-median", median_style));
@@ -301,8 +312,10 @@ void draw_legend(std::string& svg, const Layout& at, const SvgPlotOptions& optio
     line(svg, sx - 4.0, y - 8.0, sx + 4.0, y - 8.0, whisker);
     line(svg, sx - 4.0, y + 8.0, sx + 4.0, y + 8.0, whisker);
     label("whiskers: Tukey, 1.5 IQR");
-    circle(svg, sx, y, "legend-outlier");
-    label("outlier beyond a whisker");
+    if (any_outlier) {
+      circle(svg, sx, y, "legend-outlier");
+      label("outlier beyond a whisker");
+    }
     if (options.show_mean) {
       diamond(svg, sx, y, "legend-mean");
       label("mean");
@@ -339,6 +352,9 @@ void draw_legend(std::string& svg, const Layout& at, const SvgPlotOptions& optio
 }  // namespace
 
 void SvgPlotOptions::validate() const {
+  if (!(std::isfinite(axis_padding) && axis_padding >= 0.0 && axis_padding <= 1.0)) {
+    throw_invalid("svg.axis_padding", axis_padding, "in [0, 1]");
+  }
   if (!(std::isfinite(width_px) && width_px >= 480.0)) {
     throw_invalid("svg.width_px", width_px, "finite and >= 480");
   }
@@ -434,6 +450,7 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
   double high = 1.0;
   bool any_data = false;
   bool any_empty = false;
+  bool any_outlier = false;
   bool any_value = false, any_band = false, any_inner_band = false, any_reference = false;
   const auto cover = [&](double v) {
     low = any_value ? std::min(low, v) : v;
@@ -460,8 +477,10 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
     cover(s.box.min);
     cover(s.box.max);
     any_data = true;
+    any_outlier = any_outlier || !s.box.outliers.empty();
   }
-  const AxisTicks ticks = nice_axis_ticks(low, high);
+  const double pad = options.axis_padding * (high - low);
+  const AxisTicks ticks = nice_axis_ticks(low - pad, high + pad);
 
   Layout at{};
   at.width = options.width_px;
@@ -560,7 +579,8 @@ std::string box_plot_svg(std::span<const BoxPlotSeries> series, const SvgPlotOpt
         at.axis_bottom + x_label_baseline + caption_gap + caption_line * static_cast<double>(i + 1),
         "start", "class=\"caption\" fill=\"#333333\"", options.caption[i]);
   }
-  draw_legend(svg, at, options, any_data, any_empty, any_band, any_inner_band, any_reference);
+  draw_legend(svg, at, options, any_data, any_outlier, any_empty, any_band, any_inner_band,
+              any_reference);
   svg += "</svg>\n";
   return svg;
 }

@@ -1,4 +1,5 @@
-// The sweep's parts that its serial, sharded, merged and MPI runs share (run.cpp, mpi.cpp).
+// The sweep's parts that its serial, sharded, merged and MPI runs share (run.cpp, mpi.cpp), and
+// the reading of the pieces and the plots (pieces.cpp, plots.cpp).
 #pragma once
 
 #include <cstddef>
@@ -74,6 +75,23 @@ std::vector<std::size_t> cost_order(const SweepSpec& spec, const std::vector<Poi
 // The tables from every point's piece (in point order), written into `out`.
 SweepOutcome write_tables(const SweepSpec& spec, const std::vector<Point>& points,
                           const std::vector<nlohmann::json>& pieces, const SweepDirectory& out);
+
+// A summary cell's number (nullopt: empty or not a number).
+std::optional<double> number_of(const std::string& text);
+// The sensors of the pieces' runs, in order of first appearance.
+std::vector<std::string> sensor_order(const std::vector<nlohmann::json>& pieces);
+// The entry of sensor `name` in a run's "sensors" (nullptr: it did not run).
+const nlohmann::json* sensor_of(const nlohmann::json& sensors, const std::string& name);
+// Type-7 quantile of any finite, non-empty sample.
+double quantile(std::vector<double> values, double p);
+
+// The plots (docs/sweep.md), from every point's piece in point order.
+std::string comparison_svg(const std::vector<Point>& points,
+                           const std::vector<nlohmann::json>& pieces);
+std::string limits_svg(const SweepSpec& spec, const std::vector<Point>& points,
+                       const std::vector<nlohmann::json>& pieces);
+std::string envelope_svg(const SweepSpec& spec, const std::vector<Point>& points,
+                         const std::vector<nlohmann::json>& pieces);
 
 // The sweep file's directory, kept in DIR so that `--merge DIR` reads its base as the sweep did.
 void write_origin(const SweepDirectory& out, const std::filesystem::path& sweep_directory);

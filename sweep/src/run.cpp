@@ -21,17 +21,16 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/propagation/water.hpp"
-#include "fogradar/stats/box_plot.hpp"
-#include "fogradar/stats/format.hpp"
-#include "fogradar/stats/heat_map.hpp"
-#include "fogradar/stats/line_plot.hpp"
-#include "fogradar/stats/svg_plot.hpp"
 #include "fogradar/sweep/sweep.hpp"
 
 namespace fogradar::sweep {
 namespace {
 
 namespace fs = std::filesystem;
+using detail::number_of;
+using detail::quantile;
+using detail::sensor_of;
+using detail::sensor_order;
 using nlohmann::json;
 
 const std::set<std::string, std::less<>> table_names = {
@@ -67,14 +66,6 @@ std::string fnv_hex(std::string_view text) {
   char out[17];
   std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(hash));
   return out;
-}
-
-std::optional<double> number_of(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  return value;
 }
 
 // A sensor's summary CSV (no quoted fields: the sensors write none).
@@ -141,19 +132,6 @@ json run_once(const experiment::Scenario& scenario, const propagation::Segelstei
 experiment::Scenario with_seed(experiment::Scenario scenario, std::uint64_t seed) {
   scenario.experiment.seed = seed & 0x7fffffffffffffffULL;  // TOML integers are signed 64-bit
   return scenario;
-}
-
-std::vector<std::string> sensor_order(const std::vector<json>& pieces) {
-  std::vector<std::string> order;
-  for (const json& piece : pieces) {
-    for (const json& run : piece["runs"]) {
-      for (const json& s : run["sensors"]) {
-        const std::string name = s["sensor"];
-        if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
-      }
-    }
-  }
-  return order;
 }
 
 bool is_step_column(const std::string& column) {
@@ -232,172 +210,6 @@ std::string limits_csv(const std::vector<json>& pieces) {
   return out;
 }
 
-// Several SVG documents one under the other in one document (nested <svg> elements).
-std::string stacked(const std::vector<std::string>& documents) {
-  double width = 0.0, height = 0.0;
-  std::string body;
-  for (const std::string& doc : documents) {
-    const auto attribute = [&](std::string_view name) {
-      const std::size_t at = doc.find(std::string(name) + "=\"", doc.find("<svg"));
-      return std::stod(doc.substr(at + name.size() + 2));
-    };
-    const double w = attribute("width"), h = attribute("height");
-    std::string inner = doc.substr(doc.find("<svg"));
-    inner.insert(4, " x=\"0\" y=\"" + stats::format_fixed(height, 2) + "\"");
-    body += inner;
-    width = std::max(width, w);
-    height += h;
-  }
-  return "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n"
-         "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
-         stats::format_fixed(width, 2) + "\" height=\"" + stats::format_fixed(height, 2) +
-         "\" viewBox=\"0 0 " + stats::format_fixed(width, 2) + " " +
-         stats::format_fixed(height, 2) + "\">\n" + body + "</svg>\n";
-}
-
-const json* sensor_of(const json& sensors, const std::string& name) {
-  for (const json& s : sensors) {
-    if (s["sensor"] == name) return &s;
-  }
-  return nullptr;
-}
-
-// A point's values alone ("300.0, hann"), its keys named in the caption.
-std::string values_label(const Point& point) {
-  std::string text;
-  for (const auto& [key, value] : point.values) text += (text.empty() ? "" : ", ") + value.text;
-  return text.empty() ? "the base scenario" : text;
-}
-
-std::string keys_caption(const Point& point) {
-  std::string text;
-  for (const auto& [key, value] : point.values) text += (text.empty() ? "" : ", ") + key;
-  return text.empty() ? "" : "lines: " + text;
-}
-
-std::string comparison_svg(const std::vector<Point>& points, const std::vector<json>& pieces) {
-  std::vector<std::string> panels;
-  for (const std::string& sensor : sensor_order(pieces)) {
-    std::vector<stats::LineSeries> series;
-    std::string metric;
-    for (std::size_t p = 0; p < pieces.size(); ++p) {
-      const json* s = sensor_of(pieces[p]["runs"][0]["sensors"], sensor);
-      if (s == nullptr) continue;
-      metric = (*s)["curve"]["metric"];
-      series.push_back({.label = values_label(points[p]),
-                        .x = (*s)["curve"]["x"],
-                        .y = (*s)["curve"]["y"],
-                        .marker_x = {},
-                        .marker_label = {}});
-    }
-    stats::LinePlotOptions options;
-    options.title = sensor + ": " + metric + " relative to clear weather, one line per point";
-    options.caption = {
-        keys_caption(points.front()),
-        "replication 0 of each point; the metric of the sensor's benchmark curve (benchmark.svg)"};
-    options.x_label = "active fog layers";
-    options.y_label = metric + " / clear weather";
-    options.x_integer_ticks = true;
-    options.height_px = std::max(640.0, 420.0 + 22.0 * static_cast<double>(series.size()));
-    panels.push_back(stats::line_plot_svg(series, options));
-  }
-  return stacked(panels);
-}
-
-// Layers to failure against the first swept key (a line per sensor), or over the first two keys (a
-// heat map per sensor); a limit not reached is drawn one step beyond the last.
-std::string limits_svg(const SweepSpec& spec, const std::vector<Point>& points,
-                       const std::vector<json>& pieces) {
-  const std::vector<std::string> sensors = sensor_order(pieces);
-  const std::size_t steps = points.front().scenario.experiment.max_active_layers + 1;
-  const auto limit_of = [&](std::size_t p, const std::string& sensor) -> std::optional<double> {
-    const json* s = sensor_of(pieces[p]["runs"][0]["sensors"], sensor);
-    if (s == nullptr || (*s)["limit"].is_null()) return std::nullopt;
-    return (*s)["limit"].get<double>();
-  };
-  const Axis& first = spec.axes.front();
-  // Positions in the grid's order (expand's): read back from the points.
-  const auto positions_of = [&](std::size_t a) {
-    std::vector<std::string> labels;
-    for (const Point& p : points) {
-      std::string text;
-      std::size_t offset = 0;
-      for (std::size_t b = 0; b < a; ++b) offset += spec.axes[b].keys.size();
-      for (std::size_t k = 0; k < spec.axes[a].keys.size(); ++k)
-        text += (k ? " / " : "") + p.values[offset + k].second.text;
-      if (std::find(labels.begin(), labels.end(), text) == labels.end()) labels.push_back(text);
-    }
-    return labels;
-  };
-  std::vector<std::string> panels;
-  if (spec.axes.size() == 1) {
-    const std::vector<std::string> labels = positions_of(0);
-    const bool numeric = std::all_of(points.begin(), points.end(), [](const Point& p) {
-      return p.values.front().second.number.has_value();
-    });
-    std::vector<stats::LineSeries> series;
-    for (const std::string& sensor : sensors) {
-      stats::LineSeries s;
-      s.label = sensor;
-      for (std::size_t p = 0; p < points.size(); ++p) {
-        s.x.push_back(numeric ? *points[p].values.front().second.number : static_cast<double>(p));
-        s.y.push_back(limit_of(p, sensor).value_or(static_cast<double>(steps)));
-      }
-      series.push_back(std::move(s));
-    }
-    stats::LinePlotOptions options;
-    options.title = "Layers to failure against " + first.keys.front();
-    options.caption = {"a limit not reached is drawn at " + std::to_string(steps) +
-                       " (one step beyond the last)"};
-    if (!numeric) {
-      std::string legend;
-      for (std::size_t i = 0; i < labels.size(); ++i)
-        legend += (i ? ", " : "") + std::to_string(i) + " = " + labels[i];
-      options.caption.push_back(first.keys.front() + ": " + legend);
-    }
-    options.x_label = first.keys.front();
-    options.y_label = "layers to failure";
-    panels.push_back(stats::line_plot_svg(series, options));
-    return stacked(panels);
-  }
-  const std::vector<std::string> columns = positions_of(0), rows = positions_of(1);
-  for (const std::string& sensor : sensors) {
-    stats::HeatMap map;
-    map.column_labels = columns;
-    map.row_labels = rows;
-    map.values.assign(rows.size(), std::vector<std::optional<double>>(columns.size()));
-    std::vector<std::vector<bool>> seen(rows.size(), std::vector<bool>(columns.size(), false));
-    const std::size_t second = spec.axes[0].keys.size();
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      std::string c, r;
-      for (std::size_t k = 0; k < spec.axes[0].keys.size(); ++k)
-        c += (k ? " / " : "") + points[p].values[k].second.text;
-      for (std::size_t k = 0; k < spec.axes[1].keys.size(); ++k)
-        r += (k ? " / " : "") + points[p].values[second + k].second.text;
-      const std::size_t ci =
-          static_cast<std::size_t>(std::find(columns.begin(), columns.end(), c) - columns.begin());
-      const std::size_t ri =
-          static_cast<std::size_t>(std::find(rows.begin(), rows.end(), r) - rows.begin());
-      if (seen[ri][ci]) continue;  // the other axes at their first position
-      seen[ri][ci] = true;
-      map.values[ri][ci] = limit_of(p, sensor);
-    }
-    map.title = sensor + ": layers to failure";
-    map.x_label = spec.axes[0].keys.front();
-    map.y_label = spec.axes[1].keys.front();
-    map.value_label = "layers";
-    map.missing_text = "not reached";
-    if (spec.axes.size() > 2) map.caption = {"the other swept keys at their first value"};
-    panels.push_back(stats::heat_map_svg(map));
-  }
-  return stacked(panels);
-}
-
-double quantile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  return stats::quantile_type7(values, p);
-}
-
 // Per point x sensor x step x statistic: how many setups gave a value and its quantiles.
 std::string envelope_csv(const std::vector<json>& pieces) {
   std::string out =
@@ -462,82 +274,6 @@ std::string envelope_limits_csv(const std::vector<json>& pieces) {
     }
   }
   return out;
-}
-
-std::string envelope_svg(const SweepSpec& spec, const std::vector<Point>& points,
-                         const std::vector<json>& pieces) {
-  std::vector<std::string> panels;
-  for (std::size_t p = 0; p < pieces.size(); ++p) {
-    const json& setups = pieces[p]["setups"];
-    for (const EnvelopePlot& plot : spec.uncertain->plots) {
-      const json* nominal = sensor_of(pieces[p]["runs"][0]["sensors"], plot.sensor);
-      if (nominal == nullptr) {
-        throw_invalid("uncertain.plot.sensor", plot.sensor, "a sensor that runs in the sweep");
-      }
-      const std::vector<std::string> columns = (*nominal)["columns"];
-      const auto column = [&](const std::string& name) {
-        const auto it = std::find(columns.begin(), columns.end(), name);
-        if (it == columns.end()) {
-          throw_invalid("uncertain.plot.statistic", name,
-                        "a column of " + plot.sensor + "_summary.csv");
-        }
-        return static_cast<std::size_t>(it - columns.begin());
-      };
-      const std::size_t layers = column("active_layers"), statistic = column(plot.statistic);
-      std::vector<stats::BoxPlotSeries> series;
-      for (std::size_t row = 0; row < (*nominal)["rows"].size(); ++row) {
-        const json& cells = (*nominal)["rows"][row];
-        stats::BoxPlotSeries s;
-        s.label = cells[layers];
-        std::vector<std::optional<double>> box;
-        if (plot.box.empty()) {
-          box.assign(5, number_of(cells[statistic]));
-        } else {
-          for (const std::string& name : plot.box) box.push_back(number_of(cells[column(name)]));
-        }
-        if (std::all_of(box.begin(), box.end(),
-                        [](const auto& v) { return v && std::isfinite(*v); })) {
-          s.box.n = 1;
-          s.box.whisker_low = s.box.min = *box[0];
-          s.box.q1 = *box[1];
-          s.box.median = s.box.mean = *box[2];
-          s.box.q3 = *box[3];
-          s.box.whisker_high = s.box.max = *box[4];
-        }
-        std::vector<double> values;
-        for (const json& setup : setups) {
-          const std::optional<double> v =
-              number_of((*sensor_of(setup["sensors"], plot.sensor))["rows"][row][statistic]);
-          if (v && std::isfinite(*v)) values.push_back(*v);
-        }
-        if (!values.empty()) {
-          s.band_low = quantile(values, 0.05);
-          s.band_high = quantile(values, 0.95);
-          s.inner_band_low = quantile(values, 0.25);
-          s.inner_band_high = quantile(values, 0.75);
-        }
-        const std::size_t k = std::stoul(cells[layers].get<std::string>());
-        for (const EnvelopePlot::Reference& ref : plot.references) {
-          if (ref.active_layers == k) s.references.push_back(ref.value);
-        }
-        series.push_back(std::move(s));
-      }
-      stats::SvgPlotOptions options;
-      options.title = plot.sensor + ": " + plot.statistic + " across " +
-                      std::to_string(setups.size()) + " setups";
-      options.caption = {
-          points[p].label() + "; boxes: the nominal run" + (plot.box.empty() ? " (its value)" : ""),
-          "bands: " + plot.statistic + " across the setups of [uncertain]"};
-      options.x_label = "active fog layers";
-      options.y_label = plot.y_label;
-      options.show_mean = false;
-      options.band_label = "5-95 % of setups";
-      options.inner_band_label = "25-75 % of setups";
-      options.reference_label = plot.reference_label;
-      panels.push_back(stats::box_plot_svg(series, options));
-    }
-  }
-  return stacked(panels);
 }
 
 std::string seconds_text(double seconds) {

@@ -242,10 +242,13 @@ TEST(RcsBoxplot, StepsWithoutDetectionAreMarked) {
   }
   EXPECT_EQ(count(svg, "class=\"box\""), 3u);
   EXPECT_EQ(count(svg, ">no target detection</text>"), 3u);  // two wide bands and the legend
-  for (const char* symbol : {"legend-box", "legend-median", "legend-whisker", "legend-outlier",
-                             "legend-empty", "legend-mark", "legend-rate"}) {
+  for (const char* symbol : {"legend-box", "legend-median", "legend-whisker", "legend-empty",
+                             "legend-mark", "legend-rate"}) {
     EXPECT_NE(svg.find(symbol), std::string::npos) << symbol;
   }
+  // The legend names only symbols drawn: these boxes have no outliers.
+  EXPECT_EQ(count(svg, "class=\"outlier\""), 0u);
+  EXPECT_EQ(svg.find("legend-outlier"), std::string::npos);
 }
 
 TEST(RcsBoxplot, LongChambersKeepLabelsApart) {

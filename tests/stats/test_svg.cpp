@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -477,8 +478,8 @@ TEST(HeatMapSvg, DrawsEveryCellAndRefusesAGridOfAnotherShape) {
   map.title = "lidar: layers to failure";
   const std::string svg = heat_map_svg(map);
   EXPECT_EQ(count(svg, "class=\"cell\""), 6u);
-  EXPECT_EQ(count(svg, ">not reached<"), 1u);
-  EXPECT_EQ(count(svg, "fill=\"#d9d9d9\""), 1u);  // the missing cell
+  EXPECT_EQ(count(svg, ">not reached<"), 2u);     // the missing cell and the key
+  EXPECT_EQ(count(svg, "fill=\"#d9d9d9\""), 2u);  // the missing cell and its key swatch
   EXPECT_EQ(count(svg, "fill=\"#08519c\""), 2u);  // the largest value's cell and its key swatch
   EXPECT_NE(svg.find(">lidar: layers to failure<"), std::string::npos);
   HeatMap ragged = map;
@@ -487,6 +488,234 @@ TEST(HeatMapSvg, DrawsEveryCellAndRefusesAGridOfAnotherShape) {
   HeatMap endless = map;
   endless.values[0][1] = std::numeric_limits<double>::infinity();
   EXPECT_EQ(test_support::rejected_field([&] { heat_map_svg(endless); }), "values[0][1]");
+}
+
+// The number in the first `attribute="..."` of the element starting at `tag`.
+double number_at(std::string_view svg, std::size_t tag, std::string_view attribute) {
+  return std::stod(test_support::attribute(svg, tag, attribute));
+}
+
+// Start positions of the <path> elements whose class attribute begins with `prefix`.
+std::vector<std::size_t> elements_with_class_prefix(std::string_view svg, std::string_view prefix) {
+  std::vector<std::size_t> found;
+  for (auto tag = svg.find("<path "); tag != std::string_view::npos;
+       tag = svg.find("<path ", tag + 1)) {
+    if (test_support::attribute(svg, tag, "class").starts_with(prefix)) found.push_back(tag);
+  }
+  return found;
+}
+
+// Lines that lie on top of each other stay visible: with point markers, each of 28 identical series
+// has its own pair of mark shape and dash pattern (7 shapes and 4 dashes, cycled), every point is
+// marked, the legend shows both and its title; without the option nothing changes.
+TEST(LinePlotSvg, CoincidingLinesEachHaveTheirOwnMarkAndDash) {
+  std::vector<LineSeries> series(28);
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    series[i].label = std::to_string(i);
+    series[i].x = {0, 1, 2, 3, 4};
+    series[i].y = {1.0, 0.96, 0.96, 0.87, 0.9};
+  }
+  LinePlotOptions options;
+  options.point_markers = true;
+  options.legend_title = {"fog.extinction_per_km"};
+  options.height_px = 1100;
+  const std::string svg = line_plot_svg(series, options);
+  EXPECT_EQ(xml_error(svg), "");
+  const auto lines = elements_of_class(svg, "polyline", "series");
+  ASSERT_EQ(lines.size(), series.size());
+  std::vector<std::pair<std::string, std::string>> styles;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    // The series' marks follow its line; the first names its shape.
+    const std::size_t mark = svg.find("<path class=\"point-", lines[i]);
+    ASSERT_NE(mark, std::string::npos);
+    styles.emplace_back(test_support::attribute(svg, mark, "class"),
+                        test_support::attribute(svg, lines[i], "stroke-dasharray"));
+  }
+  for (std::size_t i = 0; i < styles.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_NE(styles[i], styles[j]) << "series " << i << " and " << j;
+    }
+  }
+  EXPECT_EQ(elements_with_class_prefix(svg, "point-").size(), 28u * 5u);
+  EXPECT_EQ(elements_with_class_prefix(svg, "legend-point-").size(), 28u);
+  EXPECT_EQ(texts_of_class(svg, "legend-title").at(0).content, "fog.extinction_per_km");
+  options.point_markers = false;
+  options.legend_title.clear();
+  const std::string plain = line_plot_svg(series, options);
+  EXPECT_EQ(elements_with_class_prefix(plain, "point-").size(), 0u);
+  EXPECT_EQ(count(plain, "stroke-dasharray"), 0u);
+}
+
+// Limits as the integers they are: steps that change halfway between points (no slopes), a mark at
+// each point, whole-number ticks up to the last step, and a value beyond the axis ("not reached")
+// as the series' mark in a row above the last step, named in the legend, breaking the line.
+TEST(LinePlotSvg, StepsAndPointsBeyondTheAxisInTheirOwnRow) {
+  std::vector<LineSeries> series(2);
+  series[0] = {.label = "lidar",
+               .x = {300, 900, 2000},
+               .y = {3, 1, 1},
+               .marker_x = {},
+               .marker_label = {},
+               .beyond_x = {100}};
+  series[1] = {.label = "radar",
+               .x = {},
+               .y = {},
+               .marker_x = {},
+               .marker_label = {},
+               .beyond_x = {100, 300, 900, 2000}};
+  LinePlotOptions options;
+  options.point_markers = true;
+  options.steps = true;
+  options.y_integer_ticks = true;
+  options.y_reach = 4.0;
+  options.beyond_label = "not reached";
+  const std::string svg = line_plot_svg(series, options);
+  EXPECT_EQ(xml_error(svg), "");
+  // Whole-number ticks 0..4, the last step at the top of the frame.
+  std::vector<std::string> ticks;
+  double last_step_y = 0.0;
+  for (const auto& t : texts_of_class(svg, "tick")) {
+    if (t.x < 84.0) {  // the y axis's, left of the plot
+      ticks.push_back(t.content);
+      if (t.content == "4") last_step_y = t.y - 4.0;
+    }
+  }
+  EXPECT_EQ(ticks, (std::vector<std::string>{"0", "1", "2", "3", "4"}));
+  // Five marks beyond, each above the last step's gridline and the frame.
+  const auto beyond = elements_with_class_prefix(svg, "beyond-");
+  ASSERT_EQ(beyond.size(), 5u);
+  const double frame_top = number_at(svg, elements_of_class(svg, "rect", "frame").at(0), "y");
+  EXPECT_NEAR(frame_top, last_step_y, 0.01);
+  for (const std::size_t tag : beyond) {
+    const std::string d = test_support::attribute(svg, tag, "d");
+    double lowest = 0.0;  // the mark's largest y in px (its bottom)
+    for (std::size_t comma = d.find(','); comma != std::string::npos;
+         comma = d.find(',', comma + 1))
+      lowest = std::max(lowest, std::stod(d.substr(comma + 1)));
+    EXPECT_LT(lowest, frame_top) << d;
+  }
+  EXPECT_EQ(texts_of_class(svg, "beyond-label").at(0).content, "not reached");
+  EXPECT_EQ(texts_of_class(svg, "legend-beyond").at(0).content, "top row: not reached");
+  // One line for the lidar (the radar has no point on the axis), horizontal and vertical pieces.
+  const auto lines = elements_of_class(svg, "polyline", "series");
+  ASSERT_EQ(lines.size(), 1u);
+  std::vector<std::pair<double, double>> vertices;
+  std::istringstream points(test_support::attribute(svg, lines[0], "points"));
+  for (std::string pair; points >> pair;) {
+    const std::size_t comma = pair.find(',');
+    vertices.emplace_back(std::stod(pair.substr(0, comma)), std::stod(pair.substr(comma + 1)));
+  }
+  ASSERT_EQ(vertices.size(), 6u);  // three steps
+  for (std::size_t k = 1; k < vertices.size(); ++k) {
+    EXPECT_TRUE(vertices[k].first == vertices[k - 1].first ||
+                vertices[k].second == vertices[k - 1].second)
+        << "a slope from vertex " << k - 1 << " to " << k;
+  }
+  // The line starts halfway between the point beyond (100) and the first on the axis (300).
+  const auto x_of = [&](double v) { return 84.0 + (v - 0.0) / 2000.0 * (960.0 - 220.0 - 84.0); };
+  EXPECT_NEAR(vertices.front().first, x_of(200.0), 0.01);
+  EXPECT_NEAR(vertices.back().first, x_of(2000.0), 0.01);
+}
+
+// Panels compared side by side share one colour scale: a value has the same colour in each, the
+// key is the same, with whole numbers for counts, and names the missing cells' grey.
+TEST(HeatMapSvg, PanelsOnOneColourScaleWithWholeNumbersForCounts) {
+  HeatMap a;
+  a.column_labels = {"100", "900"};
+  a.row_labels = {"24 GHz", "77 GHz"};
+  a.values = {{std::nullopt, 1.0}, {std::nullopt, 1.0}};
+  a.missing_text = "not reached";
+  a.value_range = {{0.0, 4.0}};
+  a.integer_values = true;
+  HeatMap b = a;
+  b.values = {{std::nullopt, 3.0}, {1.0, 1.0}};
+  const std::string sa = heat_map_svg(a), sb = heat_map_svg(b);
+  EXPECT_EQ(xml_error(sa), "");
+  const auto fill_of_value = [](const std::string& svg, std::string_view value) {
+    for (const std::size_t cell : elements_of_class(svg, "rect", "cell")) {
+      const std::size_t label = svg.find("class=\"cell-text\"", cell);
+      const std::size_t open = svg.find('>', label) + 1;
+      if (svg.substr(open, svg.find('<', open) - open) == value)
+        return test_support::attribute(svg, cell, "fill");
+    }
+    return std::string();
+  };
+  EXPECT_EQ(fill_of_value(sa, "1"), fill_of_value(sb, "1"));
+  EXPECT_NE(fill_of_value(sb, "3"), fill_of_value(sb, "1"));
+  // Without the shared range, each panel would stretch its own values over the whole scale.
+  HeatMap own = a;
+  own.value_range.reset();
+  EXPECT_NE(fill_of_value(heat_map_svg(own), "1"), fill_of_value(sb, "1"));
+  const auto keys = [](const std::string& svg) {
+    std::vector<std::string> out;
+    for (const auto& t : texts_of_class(svg, "key-text")) out.push_back(t.content);
+    return out;
+  };
+  EXPECT_EQ(keys(sa), (std::vector<std::string>{"4", "3", "2", "1", "0", "not reached"}));
+  EXPECT_EQ(keys(sa), keys(sb));
+  HeatMap outside = a;
+  outside.values[0][0] = 5.0;
+  EXPECT_EQ(test_support::rejected_field([&] { heat_map_svg(outside); }), "values[0][0]");
+  HeatMap reversed = a;
+  reversed.value_range = {{4.0, 0.0}};
+  EXPECT_EQ(test_support::rejected_field([&] { heat_map_svg(reversed); }), "value_range");
+}
+
+// One statistic on one axis: single values drawn as bars and named alone in the legend (no box,
+// whisker or outlier symbols); a band of no width still drawn; the axis padded so that a reference
+// next to a 1-2-5 tick (the study's 14.97 dBsm) does not sit on the frame.
+TEST(SvgPlot, SingleValuesBandsAndAPaddedAxis) {
+  std::vector<BoxPlotSeries> series(2);
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    BoxPlotSeries& s = series[i];
+    s.label = std::to_string(i);
+    const double v = 11.0 - static_cast<double>(i);
+    s.box.n = 1;
+    s.box.min = s.box.q1 = s.box.median = s.box.mean = s.box.q3 = s.box.max = v;
+    s.box.whisker_low = s.box.whisker_high = v;
+    s.band_low = 10.2;
+    s.band_high = 13.4;
+  }
+  series[0].references = {14.97};
+  series[1].band_low = series[1].band_high = 10.0;  // every setup alike
+  SvgPlotOptions options;
+  options.show_mean = false;
+  options.value_label = "the nominal run";
+  options.band_label = "5-95 % of the setups";
+  options.reference_label = "the study";
+  const auto top_gap = [](const std::string& svg) {
+    // Distance of the reference from the frame's top, as a fraction of the frame's height.
+    const std::size_t frame = elements_of_class(svg, "rect", "frame").at(0);
+    const double top = number_at(svg, frame, "y"), height = number_at(svg, frame, "height");
+    const auto crosses = elements_of_class(svg, "line", "reference");
+    const double y =
+        0.5 * (number_at(svg, crosses.at(0), "y1") + number_at(svg, crosses.at(0), "y2"));
+    return (y - top) / height;
+  };
+  const std::string unpadded = box_plot_svg(series, options);
+  EXPECT_LT(top_gap(unpadded), 0.01);  // the case to avoid: ticks end at 15
+  options.axis_padding = 0.06;
+  const std::string svg = box_plot_svg(series, options);
+  EXPECT_EQ(xml_error(svg), "");
+  EXPECT_GT(top_gap(svg), 0.05);
+  std::vector<std::string> legend;
+  for (const auto& t : texts_of_class(svg, "legend-text")) legend.push_back(t.content);
+  EXPECT_EQ(legend,
+            (std::vector<std::string>{"the nominal run", "5-95 % of the setups", "the study"}));
+  EXPECT_EQ(elements_of_class(svg, "line", "value").size(), 2u);
+  EXPECT_EQ(elements_of_class(svg, "rect", "box").size(), 0u);
+  const auto bands = elements_of_class(svg, "rect", "band");
+  ASSERT_EQ(bands.size(), 2u);
+  EXPECT_GE(number_at(svg, bands[1], "height"), 2.0);
+  // Box plots without outliers do not list the outlier symbol.
+  options.value_label.clear();
+  EXPECT_EQ(box_plot_svg(series, options).find("outlier beyond a whisker"), std::string::npos);
+  series[0].box.outliers = {9.0};
+  series[0].box.whisker_low = 10.0;
+  EXPECT_NE(box_plot_svg(series, options).find("outlier beyond a whisker"), std::string::npos);
+  options.axis_padding = -0.1;
+  EXPECT_EQ(test_support::rejected_field([&] { box_plot_svg(series, options); }),
+            "svg.axis_padding");
 }
 
 }  // namespace

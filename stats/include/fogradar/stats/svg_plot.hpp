@@ -50,9 +50,16 @@ struct SvgPlotOptions {
   std::string band_label;                      // legend text of the bands (BoxPlotSeries::band_*)
   std::string inner_band_label;
   std::string reference_label;  // legend text of the reference crosses
+  // Non-empty: every category holds one value (min = max, e.g. one run's statistic), drawn as a
+  // bar and named in the legend by this text instead of the box plot's symbols.
+  std::string value_label;
+  // The y axis reaches beyond the values by this fraction of their range at both ends (in [0, 1]),
+  // so that none lies on the frame.
+  double axis_padding = 0.0;
 
-  // Throws InvalidParameter naming "svg.width_px" (finite, >= 480) or "svg.height_px" (finite and
-  // tall enough for a 100 px plot area besides title, strip, labels and caption).
+  // Throws InvalidParameter naming "svg.width_px" (finite, >= 480), "svg.height_px" (finite and
+  // tall enough for a 100 px plot area besides title, strip, labels and caption) or
+  // "svg.axis_padding".
   void validate() const;
 };
 
