@@ -1,0 +1,406 @@
+#include "scenario_generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numeric>
+#include <random>
+#include <string_view>
+
+#include "fogradar/core/constants.hpp"
+
+namespace fogradar::property {
+namespace {
+
+// Draws with the case's own generator; numbers are rounded to four significant digits so that a
+// failing scenario reads easily (every range below lies inside its key's declared range with room
+// for that rounding).
+class Draw {
+ public:
+  explicit Draw(std::uint64_t seed) : rng_(seed) {}
+
+  double uniform(double low, double high) {
+    return round4(std::uniform_real_distribution<double>(low, high)(rng_));
+  }
+  double log_uniform(double low, double high) {
+    return round4(
+        std::exp(std::uniform_real_distribution<double>(std::log(low), std::log(high))(rng_)));
+  }
+  std::int64_t integer(std::int64_t low, std::int64_t high) {
+    return std::uniform_int_distribution<std::int64_t>(low, high)(rng_);
+  }
+  bool chance(double p) { return std::bernoulli_distribution(p)(rng_); }
+  template <class T>
+  const T& pick(const std::vector<T>& options) {
+    return options[static_cast<std::size_t>(
+        integer(0, static_cast<std::int64_t>(options.size()) - 1))];
+  }
+  template <class T>
+  void shuffle(std::vector<T>& v) {
+    std::shuffle(v.begin(), v.end(), rng_);
+  }
+
+ private:
+  static double round4(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", x);
+    return std::strtod(text, nullptr);
+  }
+  std::mt19937_64 rng_;
+};
+
+std::string number(double x) {
+  char text[32];
+  for (int digits = 1; digits <= 17; ++digits) {  // shortest text that reads back to x
+    std::snprintf(text, sizeof text, "%.*g", digits, x);
+    if (std::strtod(text, nullptr) == x) break;
+  }
+  std::string s = text;
+  if (s.find_first_of(".en") == std::string::npos) s += ".0";
+  return s;
+}
+std::string quoted(std::string_view s) {
+  std::string out;
+  out.reserve(s.size() + 2);
+  out.push_back('"');
+  out.append(s);
+  out.push_back('"');
+  return out;
+}
+
+// TOML text section by section, in the order the sections are first named.
+class Toml {
+ public:
+  void set(const std::string& section, const std::string& key, const std::string& value) {
+    if (!lines_.contains(section)) order_.push_back(section);
+    lines_[section] += key + " = " + value + "\n";
+  }
+  void set(const std::string& section, const std::string& key, double value) {
+    set(section, key, number(value));
+  }
+  void set_integer(const std::string& section, const std::string& key, std::int64_t value) {
+    set(section, key, std::to_string(value));
+  }
+  void set_boolean(const std::string& section, const std::string& key, bool value) {
+    set(section, key, std::string(value ? "true" : "false"));
+  }
+  void append_table(const std::string& array, const std::string& body) {
+    tables_ += "\n[[" + array + "]]\n" + body;
+  }
+  std::string text() const {
+    std::string out;
+    for (const std::string& section : order_)
+      out += "[" + section + "]\n" + lines_.at(section) + "\n";
+    return out + tables_;
+  }
+
+ private:
+  std::vector<std::string> order_;
+  std::map<std::string, std::string> lines_;
+  std::string tables_;
+};
+
+// A fog's keys as an inline table's entries or as [fog] lines: one density key (the group's
+// alternatives), the droplets, and the water model with a temperature it allows.
+std::vector<std::pair<std::string, std::string>> draw_fog(Draw& d) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  switch (d.integer(0, 3)) {
+    case 0:
+      keys.emplace_back("lwc_g_per_m3", number(d.uniform(0.0, 3.0)));
+      break;
+    case 1:
+      keys.emplace_back("extinction_per_km", number(d.uniform(0.0, 3000.0)));
+      break;
+    case 2:
+      keys.emplace_back("visibility_m", number(d.log_uniform(1.0, 1000.0)));
+      break;
+    default:
+      keys.emplace_back("lwc_g_per_m3", number(0.0));
+      break;  // an air gap
+  }
+  if (d.chance(0.5)) {
+    keys.emplace_back("water_model", quoted("segelstein"));
+    keys.emplace_back("temperature_c", number(25.0));
+  } else {
+    keys.emplace_back("water_model", quoted("liebe"));
+    keys.emplace_back("temperature_c", number(d.uniform(-20.0, 50.0)));
+  }
+  std::string droplets;
+  switch (d.integer(0, 4)) {
+    case 0:
+      droplets = "distribution = \"lognormal\", median_diameter_m = " +
+                 number(d.log_uniform(0.5e-6, 20e-6)) +
+                 ", geometric_std = " + number(d.uniform(1.1, 2.5));
+      break;
+    case 1:
+      droplets =
+          "distribution = \"monodisperse\", diameter_m = " + number(d.log_uniform(1e-6, 50e-6));
+      break;
+    case 2:
+      droplets = "distribution = \"advection\"";
+      break;
+    case 3:
+      droplets = "distribution = \"radiation\"";
+      break;
+    default: {
+      // Mode radius (alpha / (b gamma))^(1/gamma) of 1-10 um, within the key's 500 um.
+      const double alpha = d.uniform(1.0, 6.0);
+      const double gamma = d.uniform(0.5, 2.0);
+      const double mode_um = d.uniform(1.0, 10.0);
+      const double b = alpha / (gamma * std::pow(mode_um, gamma));
+      droplets = "distribution = \"modified_gamma\", alpha = " + number(alpha) +
+                 ", gamma = " + number(gamma) + ", b_per_um_gamma = " + number(b);
+    }
+  }
+  keys.emplace_back("droplets", "{ " + droplets + " }");
+  return keys;
+}
+
+double mainlobe_half_width_bins(std::string_view window) {
+  // First null of the window's spectrum: rectangular 1 bin, Hann and Hamming 2, the four-term
+  // Blackman-Harris 4; the Dolph-Chebyshev window at its deep sidelobe level about as wide.
+  if (window == "rectangular") return 1.0;
+  if (window == "hann" || window == "hamming") return 2.0;
+  return 4.0;
+}
+
+}  // namespace
+
+DrawnScenario draw_scenario(std::uint64_t seed) {
+  Draw d(seed);
+  Toml t;
+  DrawnScenario out;
+  out.seed = seed;
+
+  // Sensors: a non-empty subset in a random order.
+  std::vector<std::string> all{"radar", "lidar", "camera"};
+  d.shuffle(all);
+  const auto sensor_count = static_cast<std::size_t>(d.integer(1, 3));
+  out.sensors.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(sensor_count));
+
+  // Radar frame: the samples fill the chirp, so the range bin is c / (2 B) and the unambiguous
+  // range c N / (2 B).
+  const double centre_hz = d.uniform(20e9, 100e9);
+  const double chirp_s = d.uniform(20e-6, 60e-6);
+  const double interval_s = chirp_s * d.uniform(1.0, 1.5);
+  const std::int64_t samples = d.pick(std::vector<std::int64_t>{64, 128, 256, 512});
+  const double sample_rate_hz = static_cast<double>(samples) / chirp_s * 1.001;
+
+  // Chamber: n identical layers or [[chamber.layers]] of their own lengths and fogs.
+  const auto layer_count = static_cast<std::size_t>(d.integer(1, 6));
+  const bool listed = d.chance(0.5);
+  const double sensor_gap_m = d.uniform(0.0, 4.0);
+  const double target_gap_m = d.uniform(0.0, 4.0);
+  std::vector<double> lengths(layer_count);
+  const double uniform_length_m = d.uniform(0.2, 3.0);
+  for (double& l : lengths) l = listed ? d.uniform(0.2, 3.0) : uniform_length_m;
+  double at_m = sensor_gap_m;
+  for (const double l : lengths) {
+    out.layers.push_back({at_m, at_m + l});
+    at_m += l;
+  }
+  out.target_range_m = at_m + target_gap_m;
+  t.set("chamber", "sensor_gap_m", sensor_gap_m);
+  t.set("chamber", "target_gap_m", target_gap_m);
+  if (!listed) {
+    t.set_integer("chamber", "layer_count", static_cast<std::int64_t>(layer_count));
+    t.set("chamber", "layer_length_m", uniform_length_m);
+  }
+  for (const auto& [key, value] : draw_fog(d)) t.set("fog", key, value);
+  t.set_integer("fog", "clutter_scatterers_per_bin", d.integer(1, 8));
+  std::string layer_tables;
+  if (listed) {
+    for (const double l : lengths) {
+      std::string body = "length_m = " + number(l) + "\n";
+      if (d.chance(0.7)) {
+        std::string fog;
+        for (const auto& [key, value] : draw_fog(d))
+          fog += (fog.empty() ? "" : ", ") + key + " = " + value;
+        body += "fog = { " + fog + " }\n";
+      }
+      layer_tables += "\n[[chamber.layers]]\n" + body;
+    }
+  }
+
+  // The radar's bandwidth keeps the chamber within 2/3 of its unambiguous range.
+  const double max_bandwidth_hz =
+      std::min(2e9, speed_of_light_m_per_s * static_cast<double>(samples) /
+                        (2.0 * 1.5 * out.target_range_m * 1.01));
+  const double bandwidth_hz =
+      d.log_uniform(std::min(0.2e9, max_bandwidth_hz) * 0.5, max_bandwidth_hz);
+  out.range_bin_m = speed_of_light_m_per_s / (2.0 * bandwidth_hz);
+  t.set("radar", "centre_frequency_hz", centre_hz);
+  t.set("radar", "sweep_direction", quoted(d.chance(0.5) ? "up" : "down"));
+  t.set("radar", "sweep_bandwidth_hz", bandwidth_hz);
+  t.set("radar", "chirp_duration_s", chirp_s);
+  t.set("radar", "chirp_interval_s", interval_s);
+  t.set_integer("radar", "samples_per_chirp", samples);
+  t.set("radar", "sample_rate_hz", sample_rate_hz);
+  t.set_integer("radar", "chirps_per_frame", d.integer(4, 16));
+  t.set("radar", "tx_power_dbm", d.uniform(-10.0, 30.0));
+  t.set("radar", "noise_figure_db", d.uniform(5.0, 20.0));
+  out.ideal_adc = d.chance(0.5);
+  if (!out.ideal_adc) {
+    t.set_integer("radar", "adc_bits", d.integer(6, 16));
+    t.set("radar", "adc_full_scale_dbm", d.uniform(-60.0, -10.0));
+  }
+  out.phase_noise = d.chance(0.25);
+  if (out.phase_noise) t.set("radar", "phase_noise_rms_rad", d.uniform(0.001, 0.05));
+  if (d.chance(0.5)) {
+    t.set("radar.radome", "thickness_m", d.uniform(0.5e-3, 5e-3));
+    t.set("radar.radome", "relative_permittivity", d.uniform(2.0, 5.0));
+    t.set("radar.radome", "loss_tangent", d.uniform(0.0, 0.05));
+  }
+  if (d.chance(0.3)) t.set("radar.radome", "water_film_m", d.uniform(0.0, 1e-4));
+
+  const std::string window = d.pick(
+      std::vector<std::string>{"rectangular", "hann", "hamming", "blackman_harris", "chebyshev"});
+  out.window = window;
+  out.window_mainlobe_half_width_bins = mainlobe_half_width_bins(window);
+  t.set("processing", "window", quoted(window));
+  t.set("processing", "association_gate_m", d.uniform(0.2, 1.0));
+  const std::string kind = d.pick(std::vector<std::string>{"ca", "go", "so", "os"});
+  const std::int64_t guard = d.integer(0, 4);
+  const std::int64_t training = d.integer(2, std::min<std::int64_t>(12, (samples - 1) / 2 - guard));
+  t.set("processing.cfar", "kind", quoted(kind));
+  t.set_integer("processing.cfar", "guard_cells", guard);
+  t.set_integer("processing.cfar", "training_cells", training);
+  t.set("processing.cfar", "false_alarm_probability", d.log_uniform(1e-7, 1e-3));
+  if (kind == "os" && d.chance(0.5))
+    t.set_integer("processing.cfar", "os_rank", d.integer(1, 2 * training));
+  const bool correlated = kind == "ca" || window == "rectangular" ? d.chance(0.5) : false;
+  t.set("processing.cfar", "threshold_design", quoted(correlated ? "correlated" : "independent"));
+
+  const bool point = d.chance(0.5);
+  const double sensor_height_m = d.uniform(0.2, 1.5);
+  double centre_height_m = 0.85;  // the EVT's highest centre
+  t.set("target", "model", quoted(point ? "point" : "evt"));
+  if (point) {
+    t.set_integer("target", "swerling", d.pick(std::vector<std::int64_t>{0, 1, 3}));
+    centre_height_m = d.uniform(0.0, 1.5);
+    t.set("target", "height_m", centre_height_m);
+  }
+  out.target_depth_m = point ? 0.0 : 0.30;  // the EVT's rear light centres, 30 cm behind
+  out.target_height_span_m = sensor_height_m + centre_height_m;
+  t.set("target", "rcs_dbsm", d.uniform(-10.0, 20.0));
+  t.set("target", "sensor_height_m", sensor_height_m);
+  const bool multipath = d.chance(0.5);
+  t.set_boolean("target", "floor_multipath", multipath);
+  if (multipath) t.set("target", "floor_reflection_coefficient", d.uniform(-1.0, 1.0));
+  t.set("target", "micro_motion_std_m", d.uniform(0.0, 1e-3));
+  const double wavelength_m = speed_of_light_m_per_s / centre_hz;
+  const double unambiguous_m_per_s = wavelength_m / (4.0 * interval_s);
+  t.set("target", "radial_velocity_m_per_s",
+        d.chance(0.3) ? 0.0 : d.uniform(-0.9 * unambiguous_m_per_s, 0.9 * unambiguous_m_per_s));
+  if (d.chance(0.3)) t.set("target", "water_film_m", d.uniform(0.0, 1e-4));
+
+  // Experiment.
+  std::string sensors;
+  for (const std::string& s : out.sensors) sensors += (sensors.empty() ? "" : ", ") + quoted(s);
+  t.set("experiment", "sensors", "[" + sensors + "]");
+  t.set_integer("experiment", "measurements_per_step", d.integer(1, 6));
+  out.max_active_layers =
+      static_cast<std::size_t>(d.integer(0, static_cast<std::int64_t>(layer_count)));
+  t.set_integer("experiment", "max_active_layers",
+                static_cast<std::int64_t>(out.max_active_layers));
+  out.switching.resize(layer_count);
+  std::iota(out.switching.begin(), out.switching.end(), std::size_t{0});
+  switch (d.integer(0, 2)) {
+    case 0:
+      t.set("experiment", "switching_order", quoted("sensor_first"));
+      break;
+    case 1:
+      std::reverse(out.switching.begin(), out.switching.end());
+      t.set("experiment", "switching_order", quoted("target_first"));
+      break;
+    default: {
+      d.shuffle(out.switching);
+      std::string list;
+      for (const std::size_t i : out.switching)
+        list += (list.empty() ? "" : ", ") + std::to_string(i);
+      t.set("experiment", "switching_order", "[" + list + "]");
+    }
+  }
+  t.set_integer("experiment", "seed", d.integer(0, std::int64_t{1} << 40));
+
+  // Lidar: a few beams around boresight, a few scans.
+  t.set("lidar", "wavelength_m", d.uniform(0.8e-6, 1.6e-6));
+  t.set("lidar", "field_of_view_deg", d.uniform(0.0, 20.0));
+  t.set("lidar", "angular_step_deg", d.uniform(0.25, 2.0));
+  t.set("lidar", "scan_rate_hz", d.uniform(10.0, 100.0));
+  t.set_integer("lidar", "scans_per_step", d.integer(1, 3));
+  t.set("lidar", "max_range_m", std::ceil(out.target_range_m) + d.uniform(2.0, 10.0));
+  const double pulse_ns = d.uniform(2.0, 10.0);
+  const double sample_ns = d.uniform(0.2, 0.5 * pulse_ns);
+  out.lidar_pulse_width_s = pulse_ns * 1e-9;
+  out.lidar_sample_interval_s = sample_ns * 1e-9;
+  t.set("lidar", "pulse_width_ns", pulse_ns);
+  t.set("lidar", "sample_interval_ns", sample_ns);
+  t.set("lidar", "threshold_range_m", d.uniform(10.0, 50.0));
+  t.set("lidar", "false_alarm_probability", d.log_uniform(1e-7, 1e-3));
+  t.set_integer("lidar", "max_echoes", d.integer(1, 8));
+  out.lidar_min_echo_separation_m = d.uniform(0.2, 2.0);
+  t.set("lidar", "min_echo_separation_m", out.lidar_min_echo_separation_m);
+  out.lidar_target_width_m = d.uniform(0.5, 3.0);
+  out.lidar_target_offset_m = d.uniform(-1.0, 1.0);
+  out.lidar_fog_width_m = d.uniform(0.5, 10.0);
+  t.set("lidar", "target_width_m", out.lidar_target_width_m);
+  t.set("lidar", "target_offset_m", out.lidar_target_offset_m);
+  t.set("lidar", "target_reflectivity", d.uniform(0.05, 0.9));
+  t.set("lidar", "fog_width_m", out.lidar_fog_width_m);
+  if (d.chance(0.3)) t.set("lidar", "window_water_film_m", d.uniform(1e-6, 1e-4));
+  t.set("lidar.fog_fluctuation", "log_std", d.uniform(0.0, 0.5));
+  t.set("lidar.fog_fluctuation", "correlation_time_s", d.uniform(0.1, 2.0));
+  std::string background;
+  for (std::int64_t i = d.integer(1, 3); i > 0; --i) {
+    const double x0 = d.uniform(0.5, out.target_range_m + 2.0);
+    const double y0 = d.uniform(-5.0, 5.0);
+    const double x1 = x0 + d.uniform(-3.0, 3.0);
+    const double y1 = y0 + (d.chance(0.5) ? 0.6 : d.uniform(-3.0, 3.0));
+    out.lidar_background.push_back({x0, y0, x1, y1});
+    background += "\n[[lidar.background]]\nx0_m = " + number(x0) + "\ny0_m = " + number(y0) +
+                  "\nx1_m = " + number(x1) + "\ny1_m = " + number(y1) +
+                  "\nreflectivity = " + number(d.uniform(0.0, 1.0)) + "\n";
+  }
+
+  // Camera: small frames.
+  const std::string band = d.pick(std::vector<std::string>{"photopic", "rgb", "monochromatic"});
+  t.set("camera", "band", quoted(band));
+  if (band == "monochromatic") t.set("camera", "wavelength_nm", d.uniform(400.0, 1000.0));
+  t.set("camera", "mie_step_nm", d.uniform(40.0, 160.0));
+  const bool gamma = d.chance(0.5);
+  t.set("camera", "transfer", quoted(gamma ? "gamma" : "srgb"));
+  if (gamma) t.set("camera", "gamma", d.uniform(1.0, 4.0));
+  t.set_integer("camera", "frames_per_step", d.integer(1, 2));
+  t.set("camera", "contrast_threshold", d.uniform(0.01, 0.2));
+  if (d.chance(0.3)) t.set("camera", "window_water_film_m", d.uniform(1e-6, 1e-4));
+  t.set_boolean("camera", "write_roi_images", d.chance(0.3));
+  const bool automatic = d.chance(0.5);
+  t.set("camera.exposure", "mode", quoted(automatic ? "auto" : "fixed"));
+  if (automatic) {
+    t.set("camera.exposure", "auto_target_grey", d.uniform(20.0, 200.0));
+  } else {
+    t.set("camera.exposure", "ambient_level", d.uniform(0.01, 0.2));
+  }
+  t.set_boolean("camera.noise", "enabled", d.chance(0.7));
+  t.set("camera.noise", "full_well_electrons", d.log_uniform(1e3, 1e5));
+  t.set("camera.noise", "read_noise_electrons", d.uniform(0.0, 20.0));
+  const std::int64_t width = d.integer(16, 64);
+  const std::int64_t height = d.integer(16, 64);
+  t.set_integer("camera.roi", "width_px", width);
+  t.set_integer("camera.roi", "height_px", height);
+  t.set_integer("camera.roi", "cell_px", d.integer(2, std::min(width, height) / 2));
+  t.set("camera.roi", "target_fraction", d.uniform(0.2, 0.9));
+  t.set("camera.roi.target", "median_reflectance", d.uniform(0.05, 1.0));
+  t.set("camera.roi.target", "log_sigma", d.uniform(0.0, 1.0));
+  t.set("camera.roi.background", "median_reflectance", d.uniform(0.05, 1.0));
+  t.set("camera.roi.background", "log_sigma", d.uniform(0.0, 1.0));
+
+  out.toml = "# property checker, seed " + std::to_string(seed) + "\n" + t.text() + layer_tables +
+             background;
+  return out;
+}
+
+}  // namespace fogradar::property
