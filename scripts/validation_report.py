@@ -2,8 +2,9 @@
 """The validation report (docs/validation.md) from GoogleTest's JSON output: every check a test
 recorded through tests/support/validation.hpp ("validation:<id>" properties) into validation.json
 (one object per check, with the suite and test that made it) and validation.html (one
-self-contained page: a table per group, reference against value against tolerance, and the plots
-the checks name, drawn inline as SVG by matplotlib).
+self-contained page: the paper comparison first, then a table per group, reference against value
+against tolerance, the checks of one loop folded into one row, and the plots the checks name, drawn
+inline as SVG by matplotlib).
 
 Usage: validation_report.py OUT_DIR GTEST_JSON...
 Exit status 1 when a check fails, a test failed or no check was found."""
@@ -13,8 +14,10 @@ import io
 import json
 import math
 import os
+import re
 import subprocess
 import sys
+import textwrap
 
 import matplotlib
 
@@ -23,10 +26,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 matplotlib.rcParams.update({"svg.fonttype": "path", "font.size": 10, "svg.hashsalt": "fogradar"})
 
-GROUP_ORDER = ["physics: water", "physics: droplets", "physics: fog", "physics: chamber",
+PAPER = "paper comparison"
+GROUP_ORDER = [PAPER, "physics: water", "physics: droplets", "physics: fog", "physics: chamber",
                "radar: SNR", "radar: CFAR", "radar: detection", "radar: RCS", "radar: Doppler",
-               "radar: signal processing", "lidar", "camera", "experiment: paper comparison",
-               "experiment: geometry and Doppler", "experiment: statistics"]
+               "radar: signal processing", "lidar", "lidar: optics", "camera",
+               "experiment: geometry and Doppler", "experiment: layers", "experiment: statistics"]
 COLUMNS = ('<colgroup><col class="id"><col class="q"><col class="c"><col class="r">'
            '<col class="s"><col class="v"><col class="t"><col class="p"></colgroup>')
 PLOTS = {
@@ -40,9 +44,13 @@ PLOTS = {
                      "linear"),
     "swerling1_pd": ("Detection probability, Swerling 1: closed form and fogradar", "linear",
                      "linear"),
-    "paper_comparison": ("The paper scenario against the study's published numbers", "linear",
-                         "linear"),
+    "paper_comparison": ("The study's numbers against the paper scenario: Fig. 4 (radar), "
+                         "Fig. 6 (lidar), Fig. 7 (camera)", "linear", "linear"),
 }
+# The paper comparison's abscissa: the study's steps, 0 to 4 active fog layers.
+PAPER_LAYERS = range(0, 5)
+# Beyond this many checks a loop's row lists them in validation.json only, not on the page.
+LISTED_MEMBERS = 20
 
 
 def read_checks(paths):
@@ -66,22 +74,36 @@ def read_checks(paths):
 
 
 def number(value, digits=6):
+    """A value as a reader would write it: 6 significant digits, an exponent only where needed."""
     if value is None:
         return "—"
-    if value == 0 or (1e-3 <= abs(value) < 1e6):
-        return f"{value:.{digits}g}"
-    return f"{value:.{digits - 1}e}"
+    return f"{value:.{digits}g}"
 
 
 def tolerance_text(check):
     kind = check["tolerance_kind"]
-    if kind == "statistical":
+    if kind in ("statistical", "disagreement"):
         low, high = check.get("interval", [None, None])
-        return (f"in [{number(low)}, {number(high)}] ({html.escape(check.get('confidence', ''))}"
-                f", n = {check.get('samples', 0)})")
-    symbol = {"relative": "± rel.", "absolute": "±", "at_most": "≤ ref. +",
-              "at_least": "≥ ref. −"}
-    return f"{symbol[kind]} {number(check['tolerance'], 3)}"
+        what = (f"({html.escape(check.get('confidence', ''))}, n = {check.get('samples', 0)})")
+        if kind == "disagreement":
+            return f"outside fogradar's band [{number(low)}, {number(high)}] {what}"
+        return f"in [{number(low)}, {number(high)}] {what}"
+    tolerance = check["tolerance"]
+    bound = {"at_most": ("≤ ref.", "+"), "at_least": ("≥ ref.", "−"), "above": ("> ref.", "+")}
+    if kind in bound:
+        relation, sign = bound[kind]
+        return relation if tolerance == 0 else f"{relation} {sign} {number(tolerance, 3)}"
+    symbol = {"relative": "± rel.", "absolute": "±"}
+    return f"{symbol[kind]} {number(tolerance, 3)}"
+
+
+def verdict(check):
+    """The result cell's class and text: a known disagreement is neither a pass nor a failure while
+    it holds as documented."""
+    if check["tolerance_kind"] == "disagreement":
+        return ("disagree", "known disagreement") if check["pass"] else \
+            ("fail", "fail: inside the band")
+    return ("pass", "pass") if check["pass"] else ("fail", "fail")
 
 
 def svg_of(figure):
@@ -92,41 +114,82 @@ def svg_of(figure):
     return text[text.index("<svg"):]
 
 
+def padded_limits(values, log):
+    """Axis limits that show `values` with a margin, and a span a reader can see where they are
+    (nearly) one value: ±10 % of it, or ±0.5 around 0."""
+    low, high = min(values), max(values)
+    if log:
+        return low / 1.6, high * 1.6
+    span = high - low
+    if span <= 1e-9 * max(abs(low), abs(high), 1.0):
+        half = 0.1 * abs(low) if low != 0 else 0.5
+        return low - half, high + half
+    return low - 0.08 * span, high + 0.08 * span
+
+
 def plot(name, checks):
-    """The checks of one plot against their abscissa (bounds only in the tables): the reference
-    as squares on a line (or bars where several share an x), fogradar's values as circles,
-    statistical intervals as whiskers, failures as red crosses; one panel per quantity where the
-    quantities differ (the paper comparison)."""
+    """plot_figure() as inline SVG, or "" where no check of the plot has an abscissa."""
+    figure = plot_figure(name, checks)
+    return "" if figure is None else svg_of(figure)
+
+
+def plot_figure(name, checks):
+    """The checks of one plot against their abscissa, a panel per unit: the reference as squares on
+    a line (bars where several share an x; points alone in the paper comparison, whose abscissa
+    counts layers), fogradar's values as circles, statistical intervals as
+    whiskers, a bound as a triangle pointing where the value may lie, a known disagreement as
+    fogradar's band (a bar) beside the reference (a star), failures as red crosses. Legends stand
+    beside the axes, never over the data; an axis with one value is padded to a visible span."""
     title, x_scale, y_scale = PLOTS.get(name, (name, "linear", "linear"))
+    paper = name == "paper_comparison"
+    reference = "the study" if paper else "reference"
     series = {}
     for c in checks:
-        if c.get("x") is None or c["value"] is None or c["reference"] is None or \
-                c["tolerance_kind"] in ("at_most", "at_least"):
-            continue  # a bound is a row of its table, not a point on a curve
-        series.setdefault((c["quantity"], c["unit"]), []).append(c)
-    panels = [[key] for key in sorted(series)] if name == "paper_comparison" else [sorted(series)]
-    if not panels or not panels[0]:
-        return ""
-    figure, axes_list = plt.subplots(len(panels), 1, figsize=(12.0, 1.0 + 3.4 * len(panels)),
+        if c.get("x") is None or c["value"] is None or c["reference"] is None:
+            continue
+        series.setdefault(c["unit"], {}).setdefault(c["quantity"], []).append(c)
+    if not series:
+        return None
+
+    def figure_of(unit):  # the study's figure a panel of the paper comparison shows
+        found = [re.search(r"Fig\. (\d+)", c["source"]) for q in series[unit].values() for c in q]
+        return min((int(m.group(1)) for m in found if m), default=99)
+    units = sorted(series, key=lambda u: (figure_of(u), u) if paper else (0, u))
+    figure, axes_list = plt.subplots(len(units), 1, figsize=(9.0, 0.8 + 3.0 * len(units)),
                                      squeeze=False)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for axes, keys in zip(axes_list[:, 0], panels):
-        members_all = []
-        for i, key in enumerate(keys):
-            quantity, unit = key
-            members = sorted(series[key], key=lambda c: c["x"])
-            members_all += members
+    bound_marker = {"at_least": "^", "above": "^", "at_most": "v"}
+    for axes, unit in zip(axes_list[:, 0], units):
+        xs_all, ys_all = [], []
+        for i, quantity in enumerate(sorted(series[unit])):
+            members = sorted(series[unit][quantity], key=lambda c: c["x"])
             colour = colours[i % len(colours)]
-            xs = [c["x"] for c in members]
-            label = quantity if unit in ("", "1") else f"{quantity} ({unit})"
+            label = textwrap.fill(quantity, 48)
+            curve = [c for c in members if c["tolerance_kind"] not in bound_marker]
+            xs = [c["x"] for c in curve]
             unique = len(set(xs)) == len(xs)
-            axes.plot(xs, [c["reference"] for c in members], "-s" if unique else "_",
-                      color=colour, alpha=0.45, linewidth=2.0, markersize=6 if unique else 14,
-                      label=f"{label}: reference")
-            axes.plot(xs, [c["value"] for c in members], "o", color=colour, markersize=4.5,
-                      markerfacecolor="none", label=f"{label}: fogradar")
+            if curve and not any(c["tolerance_kind"] == "disagreement" for c in curve):
+                # The study's steps are counts of layers: its numbers are points, not a curve.
+                style = ("s" if paper else "-s") if unique else "_"
+                axes.plot(xs, [c["reference"] for c in curve], style,
+                          color=colour, alpha=0.45, linewidth=2.0, markersize=6 if unique else 14,
+                          label=f"{label}: {reference}")
+            for kind, marker in bound_marker.items():
+                bounds = [c for c in members if c["tolerance_kind"] == kind]
+                if bounds:
+                    axes.plot([c["x"] for c in bounds], [c["reference"] for c in bounds], marker,
+                              color=colour, alpha=0.6, markersize=8,
+                              label=f"{label}: {reference}, a bound ({kind.replace('_', ' ')})")
             for c in members:
-                if c["tolerance_kind"] == "statistical" and c.get("interval"):
+                if c["tolerance_kind"] == "disagreement":
+                    low, high = c["interval"]
+                    axes.plot([c["x"], c["x"]], [low, high], "-", color=colour, linewidth=6,
+                              alpha=0.5, solid_capstyle="butt",
+                              label=f"{label}: fogradar, {c.get('confidence', 'band')}")
+                    axes.plot([c["x"]], [c["reference"]], "*", color="#d07000", markersize=13,
+                              label=f"{label}: the study (known disagreement)")
+                    ys_all += [low, high]
+                elif c["tolerance_kind"] == "statistical" and c.get("interval"):
                     low, high = c["interval"]
                     if low is not None and high is not None:
                         axes.plot([c["x"], c["x"]], [low, high], "-", color=colour,
@@ -134,15 +197,35 @@ def plot(name, checks):
                 if not c["pass"]:
                     axes.plot([c["x"]], [c["value"]], "x", color="#c00000", markersize=10,
                               markeredgewidth=2)
-        positive = all(v > 0 for c in members_all for v in (c["x"], c["value"], c["reference"]))
-        axes.set_xscale(x_scale if positive else "linear")
-        axes.set_yscale(y_scale if positive else "linear")
+            axes.plot([c["x"] for c in members], [c["value"] for c in members], "o",
+                      color=colour, markersize=4.5, markerfacecolor="none",
+                      label=f"{label}: fogradar")
+            xs_all += [c["x"] for c in members]
+            ys_all += [v for c in members for v in (c["value"], c["reference"])]
+        log_x = x_scale == "log" and all(x > 0 for x in xs_all)
+        log_y = y_scale == "log" and all(y > 0 for y in ys_all)
+        axes.set_xscale("log" if log_x else "linear")
+        axes.set_yscale("log" if log_y else "linear")
+        layers = (min(PAPER_LAYERS) - 0.5, max(PAPER_LAYERS) + 0.5)
+        if paper:
+            axes.set_xlim(*layers)
+            axes.set_xticks(list(PAPER_LAYERS))
+            axes.set_title(f"the study's Fig. {figure_of(unit)}", fontsize=9, loc="left")
+        else:
+            axes.set_xlim(*padded_limits(xs_all, log_x))
+        if paper and unit == "layers":
+            axes.set_ylim(*layers)
+            axes.set_yticks(list(PAPER_LAYERS))
+        else:
+            axes.set_ylim(*padded_limits(ys_all, log_y))
         axes.set_xlabel(checks[0].get("x_label", "") or "x")
+        if unit not in ("", "1"):
+            axes.set_ylabel(unit)
         axes.grid(True, which="both", alpha=0.3)
-        axes.legend(fontsize=8, loc="best")
-    axes_list[0, 0].set_title(title)
+        axes.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+    figure.suptitle(title, y=1.0 + 0.03 / len(units))
     figure.tight_layout()
-    return svg_of(figure)
+    return figure
 
 
 def margin_used(c):
@@ -151,6 +234,10 @@ def margin_used(c):
         return math.inf
     error = abs(c["value"] - c["reference"])
     kind, tolerance = c["tolerance_kind"], c["tolerance"]
+    if kind == "disagreement":
+        return 0.0
+    if kind == "above":
+        kind = "at_least"
     if kind == "relative":
         allowed = tolerance * abs(c["reference"])
     elif kind == "statistical":
@@ -167,21 +254,107 @@ def margin_used(c):
     return error / allowed if allowed else (0.0 if error == 0 else math.inf)
 
 
+def with_unit(c):
+    quantity = html.escape(c["quantity"])
+    return quantity if c["unit"] in ("", "1") else f"{quantity} ({html.escape(c['unit'])})"
+
+
 def row(c):
-    unit = "" if c["unit"] in ("", "1") else " " + html.escape(c["unit"])
-    result = "pass" if c["pass"] else "fail"
+    result, text = verdict(c)
     return (f"<tr class=\"{result}\" id=\"{html.escape(c['id'])}\">"
             f"<td title=\"{html.escape(c['test'])}\">{html.escape(c['id'])}</td>"
-            f"<td>{html.escape(c['quantity'])}{unit}</td>"
+            f"<td>{with_unit(c)}</td>"
             f"<td>{html.escape(c['conditions'])}</td>"
             f"<td class=\"n\">{number(c['reference'])}</td>"
             f"<td>{html.escape(c['source'])}</td>"
             f"<td class=\"n\">{number(c['value'])}</td>"
-            f"<td>{tolerance_text(c)}</td><td class=\"{result}\">{result}</td></tr>")
+            f"<td>{tolerance_text(c)}</td><td class=\"{result}\">{text}</td></tr>")
+
+
+def loops(checks):
+    """The checks of one loop: one test's (over all its parameters) checks of one quantity against
+    one source with one kind of tolerance, in the order recorded."""
+    families = {}
+    for c in checks:
+        # A parameterised test ("Instance/Suite.Test/param") is one loop over its parameters.
+        test = re.sub(r"^[^/.]+/", "", re.sub(r"/[^/.]+$", "", c["test"]))
+        key = (test, c["quantity"], c["unit"], c["source"], c["tolerance_kind"])
+        families.setdefault(key, []).append(c)
+    return list(families.values())
+
+
+def id_pattern(ids):
+    """What the ids of a loop share, up to the last separator, with a wildcard for the rest."""
+    prefix = os.path.commonprefix(ids)
+    cut = max(prefix.rfind("."), prefix.rfind("/"))
+    return (prefix[:cut + 1] if cut >= 0 else prefix) + "*"
+
+
+def folded_row(members):
+    """A loop's checks as one row: how many, the case closest to its tolerance (reference, value and
+    tolerance), and how many failed; the failing cases follow as rows of their own, and a short
+    loop's cases are a click away."""
+    worst = max(members, key=lambda c: (not c["pass"], margin_used(c)))
+    bad = [c for c in members if not c["pass"]]
+    result = "fail" if bad else "pass"
+    tolerances = {tolerance_text(c) for c in members}
+    tolerance = tolerance_text(worst) + ("" if len(tolerances) == 1 else
+                                         " (this case's; each case has its own)")
+    listed = len(members) <= LISTED_MEMBERS
+    ids = id_pattern([c["id"] for c in members])
+    passed = f"{result}, {len(members) - len(bad)} of {len(members)}"
+    out = [f"<tr class=\"{result} loop\">"
+           f"<td title=\"{html.escape(worst['test'])}\">{html.escape(ids)}"
+           f" ({len(members)} checks)</td>"
+           f"<td>{with_unit(worst)}</td>"
+           f"<td>{len(members)} cases{'' if listed else ' (each in validation.json)'}; the closest "
+           f"to its tolerance: {html.escape(worst['conditions'])}</td>"
+           f"<td class=\"n\">{number(worst['reference'])}</td>"
+           f"<td>{html.escape(worst['source'])}</td>"
+           f"<td class=\"n\">{number(worst['value'])}</td>"
+           f"<td>{tolerance}</td>"
+           f"<td class=\"{result}\">{passed}</td></tr>"]
+    out.extend(row(c) for c in bad)
+    if listed:
+        out.append(f"<tr class=\"cases\"><td colspan=\"8\"><details><summary>the {len(members)} "
+                   f"cases</summary><table>{COLUMNS}")
+        out.extend(row(c) for c in members)
+        out.append("</table></details></td></tr>")
+    return out
+
+
+def paper_summary(checks):
+    """The paper comparison's opening: what it holds, and each known disagreement in numbers."""
+    agree = [c for c in checks if c["tolerance_kind"] != "disagreement"]
+    known = [c for c in checks if c["tolerance_kind"] == "disagreement"]
+    out = [f"<p>The study's published numbers (its Fig. 4 to 7 and their text) against the paper "
+           f"scenario: {len(agree)} checks of what fogradar reproduces, and {len(known)} known "
+           f"disagreement{'s' if len(known) != 1 else ''} — a published number fogradar does not "
+           "reproduce, shown with fogradar's band and not counted as a pass; "
+           "docs/paper-comparison.md gives the reasons.</p>"]
+    if known:
+        out.append("<ul>")
+        for c in known:
+            low, high = c["interval"]
+            # A difference of levels in dBsm, dBm, ... is in dB.
+            unit = "dB" if c["unit"].startswith("dB") else html.escape(c["unit"])
+            side = f"{number(c['reference'] - high, 3)} {unit} above" if c["reference"] > high \
+                else f"{number(low - c['reference'], 3)} {unit} below"
+            state = (f"the study's value lies {side} fogradar's band" if c["pass"] else
+                     "<b style=\"color:#c00\">the study's value now lies inside fogradar's band: "
+                     "docs/paper-comparison.md and this check must be revised</b>")
+            out.append(f"<li><a href=\"#{html.escape(c['id'])}\">{html.escape(c['quantity'])}</a>: "
+                       f"the study {number(c['reference'])} {html.escape(c['unit'])}; fogradar "
+                       f"{number(c['value'])} {html.escape(c['unit'])}, band "
+                       f"[{number(low)}, {number(high)}] ({html.escape(c.get('confidence', ''))}, "
+                       f"n = {c.get('samples', 0)}): {state}.</li>")
+        out.append("</ul>")
+    return out
 
 
 def page(checks, tests, failed_tests, commit):
     failing = [c for c in checks if not c["pass"]]
+    known = [c for c in checks if c["tolerance_kind"] == "disagreement" and c["pass"]]
     groups = {}
     for c in checks:
         groups.setdefault(c["group"], []).append(c)
@@ -191,15 +364,11 @@ def page(checks, tests, failed_tests, commit):
     for c in checks:
         if c.get("plot"):
             plots.setdefault(c["plot"], []).append(c)
-    # A plot stands in the group most of its checks are in; the paper comparison in its own.
+    # A plot stands in the group most of its checks are in.
     plot_group = {name: max(sorted({c["group"] for c in members}),
                             key=lambda g: sum(c["group"] == g for c in members))
                   for name, members in plots.items()}
-    if "paper_comparison" in plots:
-        plot_group["paper_comparison"] = "experiment: paper comparison"
-        groups.setdefault("experiment: paper comparison", [])
-        order = [g for g in GROUP_ORDER if g in groups] + sorted(g for g in groups
-                                                                 if g not in GROUP_ORDER)
+    rows = {g: len(loops(groups[g])) for g in order}
     out = ["<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">",
            "<title>fogradar validation report</title><style>",
            "body{font-family:sans-serif;margin:24px auto;max-width:1400px;color:#222}",
@@ -210,13 +379,19 @@ def page(checks, tests, failed_tests, commit):
            "th,td{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top}",
            "th{background:#eee}td.n{text-align:right;font-family:monospace}",
            "tr.fail td{background:#fdd}td.pass{color:#070;font-weight:bold}",
+           "tr.disagree td{background:#fff0d8}td.disagree{color:#a05000;font-weight:bold}",
+           "tr.loop td{background:#f6f8fb}tr.cases td{border-top:none}",
            "td.fail{color:#c00;font-weight:bold}.summary{font-size:16px}",
            "figure{margin:12px 0}svg{max-width:100%;height:auto}</style></head><body>",
            "<h1>fogradar validation report</h1>"]
     status = "all passing" if not failing and not failed_tests else \
         f"<b style=\"color:#c00\">{len(failing)} failing</b>"
-    out.append(f"<p class=\"summary\">{len(checks)} checks against independent references, "
-               f"{status}; from {tests} tests of the GoogleTest suites "
+    disagreements = "" if not known else \
+        (f"; {len(known)} known disagreement{'s' if len(known) != 1 else ''} with the study, "
+         f"shown as such in the <a href=\"#{PAPER}\">{PAPER}</a>")
+    out.append(f"<p class=\"summary\">{len(checks)} checks against independent references in "
+               f"{sum(rows.values())} rows (the checks of one loop are one row), {status}"
+               f"{disagreements}; from {tests} tests of the GoogleTest suites "
                f"({len(failed_tests)} failed). Commit {html.escape(commit)}, generated "
                f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC by "
                "<code>scripts/validate.sh</code> (docs/validation.md).</p>")
@@ -230,39 +405,24 @@ def page(checks, tests, failed_tests, commit):
     out.append("<h2>Groups</h2><ul>")
     for g in order:
         bad = sum(not c["pass"] for c in groups[g])
-        out.append(f"<li><a href=\"#{html.escape(g)}\">{html.escape(g)}</a>: {len(groups[g])} "
-                   f"checks{'' if not bad else f', {bad} failing'}</li>")
+        out.append(f"<li><a href=\"#{html.escape(g)}\">{html.escape(g)}</a>: {rows[g]} rows, "
+                   f"{len(groups[g])} checks{'' if not bad else f', {bad} failing'}</li>")
     out.append("</ul>")
     for g in order:
         out.append(f"<h2 id=\"{html.escape(g)}\">{html.escape(g)}</h2>")
+        if g == PAPER:
+            out.extend(paper_summary(groups[g]))
         for name, members in plots.items():
             if plot_group[name] == g:
                 out.append(f"<figure>{plot(name, members)}</figure>")
-        if not groups[g]:
-            continue
         out.append("<table>" + COLUMNS + "<tr><th>check</th><th>quantity</th><th>conditions</th>"
                    "<th>reference</th><th>source</th><th>fogradar</th><th>tolerance</th>"
                    "<th>result</th></tr>")
-        # The checks of one loop (one test, quantity, source and kind of tolerance) beyond a few
-        # are one row, the worst of them shown, the others a click away.
-        families = {}
-        for c in groups[g]:
-            key = (c["test"], c["quantity"], c["unit"], c["source"], c["tolerance_kind"])
-            families.setdefault(key, []).append(c)
-        for members in families.values():
-            if len(members) <= 4:
-                out.extend(row(c) for c in members)
-                continue
-            worst = max(members, key=lambda c: (not c["pass"], margin_used(c)))
-            bad = sum(not c["pass"] for c in members)
-            result = "fail" if bad else "pass"
-            out.append(f"<tr class=\"{result}\"><td colspan=\"8\"><details><summary>"
-                       f"{len(members)} checks of {html.escape(worst['test'])}: "
-                       f"{html.escape(worst['quantity'])}, {bad} failing; the closest to its "
-                       f"tolerance: {html.escape(worst['id'])}</summary><table>{COLUMNS}")
-            out.extend(row(c) for c in members)
-            out.append("</table></details></td></tr>")
-            out.append(row(worst))
+        for members in loops(groups[g]):
+            if len(members) == 1:
+                out.append(row(members[0]))
+            else:
+                out.extend(folded_row(members))
         out.append("</table>")
     out.append("</body></html>\n")
     return "\n".join(out)
@@ -276,6 +436,11 @@ def main():
     problems = [f"check {c['id']} has no {field}" for c in checks
                 for field in ("source", "quantity", "group") if not c.get(field)]
     problems += [f"check id {i} recorded more than once" for i in duplicates]
+    # A reference is a number a reader can use: not a subnormal standing for "above 0" (a bound of
+    # kind "above" says that).
+    problems += [f"check {c['id']} has a subnormal {field} {c[field]!r}" for c in checks
+                 for field in ("reference", "tolerance")
+                 if c.get(field) is not None and 0 < abs(c[field]) < sys.float_info.min]
     try:
         commit = subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(__file__)),
                                  "describe", "--always", "--dirty"], capture_output=True,
@@ -291,7 +456,9 @@ def main():
     with open(os.path.join(out_dir, "validation.html"), "w", encoding="utf-8") as f:
         f.write(page(checks, tests, failed_tests, commit))
     failing = [c["id"] for c in checks if not c["pass"]]
-    print(f"validation: {len(checks)} checks, {len(failing)} failing, {tests} tests "
+    known = sum(c["tolerance_kind"] == "disagreement" and c["pass"] for c in checks)
+    print(f"validation: {len(checks)} checks, {len(failing)} failing, {known} known "
+          f"disagreement{'' if known == 1 else 's'} with the study, {tests} tests "
           f"({len(failed_tests)} failed); {os.path.join(out_dir, 'validation.html')}, "
           f"{os.path.join(out_dir, 'validation.json')}")
     for line in problems + [f"failing: {i}" for i in failing] + \

@@ -186,7 +186,7 @@ TEST(Sensor, DefaultsReproduceTheCalibrationMeans) {
   const Camera& camera = default_camera();
   for (const auto& [layers, grey] : {std::pair<std::size_t, double>{0, 46.0}, {2, 64.0}}) {
     validate({.id = "camera.paper.mean_grey." + std::to_string(layers) + "layers",
-              .group = "camera",
+              .group = "paper comparison",
               .quantity = "noise-free mean grey value",
               .unit = "grey level",
               .conditions = "default (calibrated) camera, paper fog, " + std::to_string(layers) +
@@ -345,7 +345,7 @@ TEST(Sensor, RgbBandRunsAndAgreesWithPhotopicForAGreyScene) {
               default_camera().expected_mean_grey(default_camera().step_optics(active)), 1.0);
   const CameraStepResult step = rgb.measure_step(2, active, 1);
   validate({.id = "camera.paper.mean_grey.rgb.2layers",
-            .group = "camera",
+            .group = "paper comparison",
             .quantity = "mean grey value, rgb band (luma)",
             .unit = "grey level",
             .conditions = "rgb band, paper fog, 2 active layers, 2 frames",

@@ -22,7 +22,13 @@ enum class Tolerance {
   absolute,     // |value - reference| <= tolerance
   at_most,      // value <= reference + tolerance (a bound: the reference is the limit)
   at_least,     // value >= reference - tolerance
+  above,        // value > reference + tolerance (strictly: "above 0")
   statistical,  // value in [interval_low, interval_high]: the reference's confidence interval
+  // A known disagreement with a published value, explained in the docs: the reference lies outside
+  // fogradar's band [interval_low, interval_high]. The report shows it as a disagreement, never as
+  // a pass; the check fails when the reference comes inside the band, where the explanation no
+  // longer holds.
+  disagreement,
 };
 
 struct Check {
@@ -37,7 +43,8 @@ struct Check {
   double value = std::numeric_limits<double>::quiet_NaN();
   double tolerance = 0.0;
   Tolerance kind = Tolerance::relative;
-  // Statistical checks: the sample size and the accepted interval, with its confidence.
+  // Statistical checks: the sample size and the accepted interval, with its confidence;
+  // disagreements: fogradar's band and what it is.
   std::size_t samples = 0;
   double interval_low = std::numeric_limits<double>::quiet_NaN();
   double interval_high = std::numeric_limits<double>::quiet_NaN();
@@ -58,8 +65,12 @@ inline const char* tolerance_name(Tolerance kind) {
       return "at_most";
     case Tolerance::at_least:
       return "at_least";
+    case Tolerance::above:
+      return "above";
     case Tolerance::statistical:
       return "statistical";
+    case Tolerance::disagreement:
+      return "disagreement";
   }
   return "";
 }
@@ -75,8 +86,12 @@ inline bool passes(const Check& c) {
       return c.value <= c.reference + c.tolerance;
     case Tolerance::at_least:
       return c.value >= c.reference - c.tolerance;
+    case Tolerance::above:
+      return c.value > c.reference + c.tolerance;
     case Tolerance::statistical:
       return c.value >= c.interval_low && c.value <= c.interval_high;
+    case Tolerance::disagreement:
+      return c.reference < c.interval_low || c.reference > c.interval_high;
   }
   return false;
 }
@@ -88,7 +103,7 @@ inline void validate(const Check& c) {
   EXPECT_TRUE(pass) << c.id << ": " << c.quantity << " (" << c.conditions << ") = " << c.value
                     << " " << c.unit << " against " << c.reference << " from " << c.source
                     << ", tolerance " << tolerance_name(c.kind) << " " << c.tolerance
-                    << (c.kind == Tolerance::statistical
+                    << (c.kind == Tolerance::statistical || c.kind == Tolerance::disagreement
                             ? " interval [" + std::to_string(c.interval_low) + ", " +
                                   std::to_string(c.interval_high) + "]"
                             : std::string());
@@ -103,7 +118,7 @@ inline void validate(const Check& c) {
                            {"tolerance", c.tolerance},
                            {"tolerance_kind", tolerance_name(c.kind)},
                            {"pass", pass}};
-  if (c.kind == Tolerance::statistical) {
+  if (c.kind == Tolerance::statistical || c.kind == Tolerance::disagreement) {
     record["samples"] = c.samples;
     record["interval"] = {number(c.interval_low), number(c.interval_high)};
     record["confidence"] = c.confidence;
