@@ -76,6 +76,11 @@ double correlated_false_alarm_probability(
     CorrelatedPfaMethod method = CorrelatedPfaMethod::automatic,
     std::uint64_t seed = kCfarDesignSeed);
 
+// log P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2 >= 0, y >= 0: log Marcum
+// Q_1(sqrt(2 lambda), sqrt(2 y)), the cell under test's conditional tail of the sampled method
+// (exact series for lambda < 10, second-order saddlepoint approximation from 10 on).
+double log_marcum_q1_tail(double lambda, double y);
+
 // The factors that give the design P_fa in every cell: the independent-cell factor of
 // cfar_threshold_factor everywhere when config.threshold_design is `independent` or the noise is
 // white (then exact for all kinds), else solved per reference geometry (header comment).
