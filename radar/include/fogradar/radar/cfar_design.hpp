@@ -87,4 +87,12 @@ double log_marcum_q1_tail(double lambda, double y);
 CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
                                                    const NoiseCorrelation& noise);
 
+// The CPU seconds design_cfar_threshold_factors takes for this config and noise, a cost model for
+// the run-time estimate (constants fitted in Release on the project's shared 2-core machine to
+// within 0.5-2 x for n = 4-24, g = 0 and 2, every window and kind; docs/radar.md §7): 0 where the
+// iid factors serve; per distinct geometry (n + 1) CA's eigenvalue solves, ~12 x (N + 1)^3, and
+// for GO/SO/OS 2^14 samples x (N^2 products + ~15 conditional tails, Marcum evaluations where the
+// cell under test is correlated with a reference cell).
+double cfar_design_seconds(const CfarConfig& config, const NoiseCorrelation& noise);
+
 }  // namespace fogradar::radar
