@@ -102,12 +102,12 @@ rc=$?
 [ "$rc" -eq 2 ] && grep -q 'sweep needs an estimated .* for its 3 runs .*--time-limit' "$work/g.err" && [ ! -e "$work/g" ] \
   && pass || fail "sweep of 3 paper runs over 2 runs' time: exit $rc, $(cat "$work/g.err")"
 
-# (e) The CFAR design reaches a stop within a second: the paper radar with no guard cells and 16
-# training cells (valid values whose GO/SO/OS design took over 100 s), SIGTERM 0.2 s after the run
-# holds its staging directory, inside the design or just after it.
+# (e) The CFAR design reaches a stop within a second: the paper radar with no guard cells (a valid
+# value whose GO/SO/OS design took 49-67 s), SIGTERM 0.2 s after the run holds its staging
+# directory, inside the design (about 0.3 s of CPU) or just after it.
 for kind in go so os; do
   mkdir -p "$work/s_$kind"
-  printf '[experiment]\nsensors = ["radar"]\n[processing.cfar]\nkind = "%s"\nguard_cells = 0\ntraining_cells = 16\n' \
+  printf '[experiment]\nsensors = ["radar"]\n[processing.cfar]\nkind = "%s"\nguard_cells = 0\n' \
     "$kind" >"$work/s_$kind.toml"
   set -m
   "$fogradar" run --scenario "$work/s_$kind.toml" --threads 1 --out "$work/s_$kind/out" >/dev/null 2>"$work/s_$kind.err" &
@@ -128,7 +128,7 @@ for kind in go so os; do
     [ "$rc" -eq 143 ] && grep -q 'interrupted by SIGTERM' "$work/s_$kind.err" && pass \
       || fail "stopped $kind design: exit $rc, want 143: $(cat "$work/s_$kind.err")"
     [ "$took" -le "$limit_ms" ] && pass \
-      || fail "stopped $kind design (guard_cells = 0, training_cells = 16): exited $took ms after SIGTERM (limit $limit_ms ms)"
+      || fail "stopped $kind design (guard_cells = 0): exited $took ms after SIGTERM (limit $limit_ms ms)"
   else
     kill -s KILL "$pid"; wait "$pid"
     fail "the $kind run never started: $(cat "$work/s_$kind.err")"
