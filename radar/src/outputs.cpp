@@ -364,6 +364,13 @@ nlohmann::json summary_json(const RadarSummary& summary) {
                                   : nlohmann::json(nullptr)},
       {"sensor_limit_criterion", sensor_limit_criterion},
       {"expected_false_alarm_cells_per_frame", summary.expected_false_alarm_cells_per_frame},
+      {"velocity_fold",
+       summary.velocity_fold
+           ? nlohmann::json{{"set_m_per_s", summary.velocity_fold->set_m_per_s},
+                            {"unambiguous_m_per_s", summary.velocity_fold->unambiguous_m_per_s},
+                            {"reads_m_per_s", summary.velocity_fold->reads_m_per_s},
+                            {"range_error_m", summary.velocity_fold->range_error_m}}
+           : nlohmann::json(nullptr)},
       {"attenuation_margin_db", summary.attenuation_margin_db
                                     ? number_or_null(*summary.attenuation_margin_db)
                                     : nlohmann::json(nullptr)},
@@ -417,6 +424,18 @@ std::string table_cell(double value, int width, const char* format) {
     return std::string(static_cast<std::size_t>(width - 1), ' ') + "\u2013";
   }
   std::snprintf(text, sizeof text, format, width, value);
+  return text;
+}
+
+std::string velocity_fold_text(const VelocityFold& fold) {
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the target's radial velocity %s m/s (target.radial_velocity_m_per_s) is beyond "
+                "the radar's unambiguous \u00b1%.1f m/s (\u03bb/(4 T_i)): it reads as %.2f m/s, "
+                "and the range-Doppler coupling correction made with that velocity moves its "
+                "range by %+.3f m",
+                stats::format_number(fold.set_m_per_s, 0).c_str(), fold.unambiguous_m_per_s,
+                fold.reads_m_per_s, fold.range_error_m);
   return text;
 }
 
@@ -489,6 +508,8 @@ std::string summary_table(const RadarSummary& summary) {
     }
     out << '\n';
   }
+  if (summary.velocity_fold)
+    out << "velocity folded: " << velocity_fold_text(*summary.velocity_fold) << '\n';
   out << "sensor limit: ";
   if (summary.sensor_limit_layers)
     out << counted(*summary.sensor_limit_layers, "active layer") << "\n";

@@ -200,6 +200,11 @@ double echo_phase_at_chirp_start_rad(double path_length_m, const RadarDerived& d
          pi * derived.chirp_slope_hz_per_s * delay_s * delay_s;
 }
 
+double folded_velocity_m_per_s(double radial_velocity_m_per_s, double max_unambiguous_m_per_s) {
+  const double period = 2.0 * max_unambiguous_m_per_s;
+  return radial_velocity_m_per_s - period * std::round(radial_velocity_m_per_s / period);
+}
+
 double doppler_shift_hz(double radial_velocity_m_per_s, const RadarDerived& derived) {
   return derived.sweep_sign * 2.0 * radial_velocity_m_per_s / derived.wavelength_m;
 }

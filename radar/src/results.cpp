@@ -64,6 +64,20 @@ MeasurementRecord record_of(const Measurement& m, double target_range_m, double 
   return record;
 }
 
+std::optional<VelocityFold> velocity_fold(double radial_velocity_m_per_s,
+                                          const RadarDerived& derived) {
+  const double v_max = derived.max_unambiguous_velocity_m_per_s;
+  if (!(std::abs(radial_velocity_m_per_s) > v_max)) return std::nullopt;
+  const double reads = folded_velocity_m_per_s(radial_velocity_m_per_s, v_max);
+  const double doppler_error_hz =
+      doppler_shift_hz(radial_velocity_m_per_s, derived) - doppler_shift_hz(reads, derived);
+  return VelocityFold{.set_m_per_s = radial_velocity_m_per_s,
+                      .unambiguous_m_per_s = v_max,
+                      .reads_m_per_s = reads,
+                      .range_error_m = doppler_error_hz * speed_of_light_m_per_s /
+                                       (2.0 * derived.chirp_slope_hz_per_s)};
+}
+
 RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_threshold_db,
                        double expected_false_alarm_cells_per_frame) {
   RadarSummary summary;

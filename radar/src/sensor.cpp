@@ -12,8 +12,10 @@
 #include "fogradar/core/units.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "fogradar/propagation/water_film.hpp"
+#include "fogradar/radar/cfar_design.hpp"
 #include "fogradar/radar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
+#include "fogradar/radar/window.hpp"
 #include "fogradar/stats/format.hpp"
 
 namespace fogradar::radar {
@@ -115,13 +117,17 @@ class Report : public RadarReport {
         clipped += r.clipped_samples;
       }
     }
-    if (clipped == 0 || samples == 0) return {};
-    std::string w = "the radar's ADC clipped ";
-    w += percent_of_samples(static_cast<double>(clipped) / static_cast<double>(samples));
-    w += " % of the samples (radar.adc_full_scale_dbm = ";
-    w += stats::format_number(params_.radar.adc_full_scale_dbm, 0);
-    w += "): its RCS reads low";
-    return {w};
+    std::vector<std::string> found;
+    if (clipped > 0 && samples > 0) {
+      std::string w = "the radar's ADC clipped ";
+      w += percent_of_samples(static_cast<double>(clipped) / static_cast<double>(samples));
+      w += " % of the samples (radar.adc_full_scale_dbm = ";
+      w += stats::format_number(params_.radar.adc_full_scale_dbm, 0);
+      w += "): its RCS reads low";
+      found.push_back(std::move(w));
+    }
+    if (summary_.velocity_fold) found.push_back(velocity_fold_text(*summary_.velocity_fold));
+    return found;
   }
 
  private:
@@ -200,12 +206,17 @@ class Type : public sensor::SensorType {
            << " objects (" << scene_objects_per_frame
            << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
            << " x cells)";
+    // The CFAR design for the range window's correlated cells, as RadarChain makes it.
+    const double design_seconds = cfar_design_seconds(
+        p.cfar, window_noise_correlation(make_window(p.window, p.samples_per_chirp),
+                                         std::size_t{p.cfar.guard_cells} + p.cfar.reference_cells()));
     return {.item_seconds =
                 cells * (frame_seconds_per_cell + objects * frame_seconds_per_cell_and_object),
             .detail = detail.str(),
             .key = p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
                                                              : "radar.chirps_per_frame",
-            .items_key = "experiment.measurements_per_step"};
+            .items_key = "experiment.measurements_per_step",
+            .setup_seconds = design_seconds};
   }
 
   std::vector<sensor::RawKind> raw_kinds(const std::any& params,
@@ -516,10 +527,12 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
 }
 
 std::unique_ptr<const sensor::SensorSummary> RadarRun::summarize() const {
-  return std::make_unique<Report>(
-      sensor_->params(), sensor_->context(), steps_,
-      radar::summarize(*steps_, sensor_->cfar_threshold_db(),
-                       sensor_->expected_false_alarm_cells_per_frame()));
+  RadarSummary summary = radar::summarize(*steps_, sensor_->cfar_threshold_db(),
+                                          sensor_->expected_false_alarm_cells_per_frame());
+  summary.velocity_fold = velocity_fold(sensor_->params().target.radial_velocity_m_per_s,
+                                        sensor_->chain().derived());
+  return std::make_unique<Report>(sensor_->params(), sensor_->context(), steps_,
+                                  std::move(summary));
 }
 
 }  // namespace fogradar::radar

@@ -50,7 +50,8 @@ KeyTable<TargetSpec> target_keys() {
   keys.number("radial_velocity_m_per_s", FOGRADAR_KEY_FIELD(radial_velocity_m_per_s),
               closed(-300.0, 300.0),
               "the whole target's radial velocity, + receding; beyond the radar's unambiguous "
-              "velocity λ/(4 T_i) (19.0 m/s for the paper radar) the estimate folds into it");
+              "velocity λ/(4 T_i) (19.0 m/s for the paper radar) the estimate folds into it and the "
+              "run warns");
   keys.number("water_film_m", FOGRADAR_KEY_FIELD(water_film_m), closed(0.0, 0.01),
               "water film on the target's metal surfaces (the study's water-covered target), with "
               "the water model and temperature of the last layer's fog");

@@ -7,7 +7,8 @@
 # (b) --time-limit 1 refuses that scan before any work: exit 2, one line naming --time-limit, the
 #     estimate and lidar.sample_interval_ns, no result set;
 # (c) the paper scenario passes a generous limit and prints its estimate first;
-# (d) `fogradar sweep --time-limit` refuses a run, or all the runs together, over the limit.
+# (d) `fogradar sweep --time-limit` refuses a run, or all the runs together, over the limit;
+# (e) a stop reaches the CFAR design of a radar with no guard cells within the same limit.
 # Usage: test_stop.sh FOGRADAR_BINARY SANITIZED (1 in the sanitizer build, which runs ~10 x slower:
 # there the stop may take 5 s)
 set -u
@@ -100,6 +101,39 @@ limit=$("$fogradar" run --out "$work/f/out" | head -1 | sed -n 's/^estimated tim
 rc=$?
 [ "$rc" -eq 2 ] && grep -q 'sweep needs an estimated .* for its 3 runs .*--time-limit' "$work/g.err" && [ ! -e "$work/g" ] \
   && pass || fail "sweep of 3 paper runs over 2 runs' time: exit $rc, $(cat "$work/g.err")"
+
+# (e) The CFAR design reaches a stop within a second: the paper radar with no guard cells (a valid
+# value whose GO/SO/OS design took 49-67 s), SIGTERM 0.2 s after the run holds its staging
+# directory, inside the design (about 0.3 s of CPU) or just after it.
+for kind in go so os; do
+  mkdir -p "$work/s_$kind"
+  printf '[experiment]\nsensors = ["radar"]\n[processing.cfar]\nkind = "%s"\nguard_cells = 0\n' \
+    "$kind" >"$work/s_$kind.toml"
+  set -m
+  "$fogradar" run --scenario "$work/s_$kind.toml" --threads 1 --out "$work/s_$kind/out" >/dev/null 2>"$work/s_$kind.err" &
+  pid=$!
+  set +m
+  started=0
+  for _ in $(seq 400); do
+    if ls -A "$work/s_$kind" | grep -q '\.tmp-'; then started=1; break; fi
+    sleep 0.01
+  done
+  if [ "$started" = 1 ]; then
+    sleep 0.2
+    sent=$(now_ms)
+    kill -s TERM "$pid"
+    wait "$pid"
+    rc=$?
+    took=$(($(now_ms) - sent))
+    [ "$rc" -eq 143 ] && grep -q 'interrupted by SIGTERM' "$work/s_$kind.err" && pass \
+      || fail "stopped $kind design: exit $rc, want 143: $(cat "$work/s_$kind.err")"
+    [ "$took" -le "$limit_ms" ] && pass \
+      || fail "stopped $kind design (guard_cells = 0): exited $took ms after SIGTERM (limit $limit_ms ms)"
+  else
+    kill -s KILL "$pid"; wait "$pid"
+    fail "the $kind run never started: $(cat "$work/s_$kind.err")"
+  fi
+done
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

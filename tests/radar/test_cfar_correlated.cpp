@@ -162,9 +162,8 @@ std::string name_of(CfarKind kind, WindowType window) {
 // independent-cell factor gives 1.5-2.5 x, far outside.
 class CorrelatedPfa : public ::testing::TestWithParam<std::tuple<CfarKind, WindowType>> {};
 
-TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
-  const auto [kind, window_type] = GetParam();
-  CfarConfig config{.kind = kind, .false_alarm_probability = 1e-2};
+void check_brute_force_pfa(CfarKind kind, WindowType window_type, unsigned guard) {
+  CfarConfig config{.kind = kind, .guard_cells = guard, .false_alarm_probability = 1e-2};
   const std::vector<double> window = make_window(window_type, 512);
   const NoiseCorrelation noise = window_noise_correlation(window, 18);
   const CfarThresholdFactors factors = design_cfar_threshold_factors(config, noise);
@@ -180,16 +179,32 @@ TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
         "(accept [%.4e, %.4e])\n",
         name_of(kind, window_type).c_str(), from_end, measured, alpha, low / kSamples,
         high / kSamples);
+    const std::string guard_id = guard == 2 ? "" : ".guard" + std::to_string(guard);
     validate_realised_pfa(
-        "radar.cfar_correlated." + name_of(kind, window_type) + ".brute_force_pfa.from_end" +
-            std::to_string(from_end),
+        "radar.cfar_correlated." + name_of(kind, window_type) + guard_id +
+            ".brute_force_pfa.from_end" + std::to_string(from_end),
         "P_fa of correlated noise vectors at the designed factor (brute-force Monte Carlo)",
-        kind_label(kind) + ", 16 training cells, guard 2, " + std::string(to_string(window_type)) +
+        kind_label(kind) + ", 16 training cells, guard " + std::to_string(guard) + ", " +
+            std::string(to_string(window_type)) +
             " window, cell " + std::to_string(from_end) + " from the end, design P_fa 1e-2",
         "design P_fa (brute-force Monte Carlo of Cholesky-correlated Gaussian vectors, this test)",
         1e-2, measured * kSamples, kSamples, low, high,
         "99.9 % two-sided binomial interval (normal approximation, z = 3.29, +1 continuity)");
   }
+}
+
+TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarlo) {
+  const auto [kind, window_type] = GetParam();
+  check_brute_force_pfa(kind, window_type, 2);
+}
+
+// The same with no guard cells: the cell under test is then strongly correlated with its nearest
+// reference cells (Hann: rho(1) = 2/3; the conditional variance s^2 given the 16 reference cells is
+// 4.6e-3 of the interior cell's, 7e-5 with Blackman-Harris), so the conditional tails are Marcum
+// functions of lambda up to ~1e5, evaluated by the saddlepoint approximation.
+TEST_P(CorrelatedPfa, DesignedFactorMatchesBruteForceMonteCarloWithoutGuardCells) {
+  const auto [kind, window_type] = GetParam();
+  check_brute_force_pfa(kind, window_type, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(HannAndBlackmanHarris, CorrelatedPfa,
@@ -235,6 +250,67 @@ TEST(CorrelatedPfa, SampledMethodOnWhiteNoiseMatchesIndependentFormulas) {
              .kind = Tolerance::relative});
       }
     }
+  }
+}
+
+// log Marcum Q_1 of the cell under test's conditional tail (log_marcum_q1_tail) against its Poisson
+// mixture of gamma tails, sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, summed here term by term
+// in log space in long double from j = 0 until the terms fall 60 e-folds below the sum past the
+// Poisson mode (the reference; exact to rounding). Points: lambda from 0.01 to 4000, y from 0.3 x
+// the mean lambda + 1 to tails of e^-1400. Tolerance on Q (relative): 1e-12 below lambda = 10 (the
+// same series, summed in another order), 3e-5 from 10 on (the second-order saddlepoint
+// approximation; mpmath quadrature gave at most 1.9e-5 at lambda = 10, 2e-6 at 30).
+long double reference_log_marcum_q1(long double lambda, long double y) {
+  const long double log_lambda = std::log(lambda), log_y = std::log(y);
+  long double log_poisson = -lambda, log_term = -y, log_tail = -y;
+  long double max = log_poisson + log_tail, scaled = 1.0L;
+  for (long double j = 1;; j += 1) {
+    log_poisson += log_lambda - std::log(j);
+    log_term += log_y - std::log(j);
+    log_tail = std::max(log_tail, log_term) + std::log1p(std::exp(-std::abs(log_tail - log_term)));
+    const long double log_add = log_poisson + log_tail;
+    if (log_add > max) {
+      scaled = scaled * std::exp(max - log_add) + 1.0L;
+      max = log_add;
+    } else {
+      scaled += std::exp(log_add - max);
+    }
+    if (j > lambda + 10 && log_add < max + std::log(scaled) - 60) break;
+  }
+  return max + std::log(scaled);
+}
+
+TEST(CorrelatedPfa, MarcumTailMatchesItsSeries) {
+  double worst_series = 0.0, worst_saddlepoint = 0.0;
+  for (const double lambda : {0.01, 0.5, 3.0, 9.99, 10.0, 30.0, 100.0, 1000.0, 4000.0}) {
+    const double mean = lambda + 1.0;
+    const double sd = std::sqrt(2.0 * lambda + 1.0);
+    for (const double y : {0.3 * mean, mean - sd, mean, mean + 1e-4 * sd, mean + sd, mean + 5 * sd,
+                           mean + 20 * sd, 4.0 * mean + 100.0, 1400.0 + 3.0 * lambda}) {
+      if (!(y > 0.0)) continue;
+      const double reference = static_cast<double>(reference_log_marcum_q1(lambda, y));
+      const double error = std::abs(std::expm1(log_marcum_q1_tail(lambda, y) - reference));
+      (lambda < 10.0 ? worst_series : worst_saddlepoint) =
+          std::max(error, lambda < 10.0 ? worst_series : worst_saddlepoint);
+      EXPECT_LT(error, lambda < 10.0 ? 1e-12 : 3e-5) << "lambda " << lambda << " y " << y;
+    }
+  }
+  std::printf("[ measured ] Marcum tail: worst relative error %.2e (series), %.2e (saddlepoint)\n",
+              worst_series, worst_saddlepoint);
+  for (const bool saddlepoint : {false, true}) {
+    fogradar::testing::validate(
+        {.id = std::string("radar.cfar_correlated.marcum_q1.") +
+               (saddlepoint ? "saddlepoint" : "series") + ".worst_relative_error",
+         .group = "radar: CFAR",
+         .quantity = "worst relative error of the cell under test's Marcum Q_1 tail",
+         .unit = "1",
+         .conditions = saddlepoint ? "lambda 10 to 4000, y from 0.3 x the mean to e^-1400 tails"
+                                   : "lambda 0.01 to 9.99, y from 0.3 x the mean to e^-1400 tails",
+         .reference = saddlepoint ? 3e-5 : 1e-12,
+         .source = "Poisson mixture of gamma tails, log space in long double (this test)",
+         .value = saddlepoint ? worst_saddlepoint : worst_series,
+         .tolerance = 0.0,
+         .kind = Tolerance::at_most});
   }
 }
 
@@ -417,24 +493,19 @@ constexpr std::size_t kFrames = 300;
 constexpr std::size_t kFrames = 2000;
 #endif
 
-TEST_P(ChainRealisedPfa, DesignValueAtOneInAThousand) {
-  const auto [kind, window_type] = GetParam();
-#ifdef FOGRADAR_SANITIZE_BUILD
-  if (window_type != WindowType::rectangular && window_type != WindowType::hann) {
-    GTEST_SKIP() << "sanitizer build: the Release run checks every window";
-  }
-#endif
+void check_chain_realised_pfa(CfarKind kind, WindowType window_type, unsigned guard) {
   RadarParams p;
   p.window = window_type;
   p.chirps_per_frame = 1;
   p.cfar.kind = kind;
+  p.cfar.guard_cells = guard;
   p.cfar.false_alarm_probability = 1e-3;
   const RangeDopplerProcessor processor(p);
   const CfarDetector detector(
       p.cfar, window_noise_correlation(processor.range_window(),
                                        p.cfar.guard_cells + p.cfar.reference_cells()));
   const RealisedRate rate =
-      realised_rates(p, {&detector}, kFrames, 10 + static_cast<std::uint64_t>(kind))[0];
+      realised_rates(p, {&detector}, kFrames, 10 + 4 * guard + static_cast<std::uint64_t>(kind))[0];
   const auto [il, ih] =
       frame_interval(rate.interior_cells, 1e-3, rate.interior, rate.interior_squares, rate.frames);
   const auto [el, eh] =
@@ -446,22 +517,54 @@ TEST_P(ChainRealisedPfa, DesignValueAtOneInAThousand) {
       name_of(kind, window_type).c_str(), rate.interior / rate.interior_cells, rate.interior,
       rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el,
       eh);
-  const std::string conditions = kind_label(kind) + ", 16 training cells, guard 2, " +
+  const std::string conditions = kind_label(kind) + ", 16 training cells, guard " +
+                                 std::to_string(guard) + ", " +
                                  std::string(to_string(window_type)) + " window, " +
                                  std::to_string(kFrames) + " noise-only frames of 1 x 512";
   const char* source = "design P_fa (noise-only frames through the chain)";
   const char* confidence =
       "99.9 % two-sided interval of the frames' total (CLT, variance the larger of the per-frame "
       "and the binomial one, +1 continuity)";
-  validate_realised_pfa(
-      "radar.cfar_correlated.chain." + name_of(kind, window_type) + ".interior.pfa1e-3",
-      "realised P_fa through the chain, interior cells", conditions, source, 1e-3, rate.interior,
-      rate.interior_cells, il, ih, confidence);
-  validate_realised_pfa(
-      "radar.cfar_correlated.chain." + name_of(kind, window_type) + ".edge.pfa1e-3",
-      "realised P_fa through the chain, edge cells", conditions, source, 1e-3, rate.edges,
-      rate.edge_cells, el, eh, confidence);
+  const std::string id = "radar.cfar_correlated.chain." + name_of(kind, window_type) +
+                         (guard == 2 ? "" : ".guard" + std::to_string(guard));
+  validate_realised_pfa(id + ".interior.pfa1e-3", "realised P_fa through the chain, interior cells",
+                        conditions, source, 1e-3, rate.interior, rate.interior_cells, il, ih,
+                        confidence);
+  validate_realised_pfa(id + ".edge.pfa1e-3", "realised P_fa through the chain, edge cells",
+                        conditions, source, 1e-3, rate.edges, rate.edge_cells, el, eh, confidence);
 }
+
+TEST_P(ChainRealisedPfa, DesignValueAtOneInAThousand) {
+  const auto [kind, window_type] = GetParam();
+#ifdef FOGRADAR_SANITIZE_BUILD
+  if (window_type != WindowType::rectangular && window_type != WindowType::hann) {
+    GTEST_SKIP() << "sanitizer build: the Release run checks every window";
+  }
+#endif
+  check_chain_realised_pfa(kind, window_type, 2);
+}
+
+// The same with guard_cells = 0 (a valid value whose design once took a minute for GO, SO and OS):
+// Hann and Blackman-Harris, whose cell under test is then correlated with its neighbours.
+class ChainRealisedPfaWithoutGuardCells
+    : public ::testing::TestWithParam<std::tuple<CfarKind, WindowType>> {};
+
+TEST_P(ChainRealisedPfaWithoutGuardCells, DesignValueAtOneInAThousand) {
+  const auto [kind, window_type] = GetParam();
+#ifdef FOGRADAR_SANITIZE_BUILD
+  if (window_type != WindowType::hann) GTEST_SKIP() << "sanitizer build: Hann only";
+#endif
+  check_chain_realised_pfa(kind, window_type, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(HannAndBlackmanHarris, ChainRealisedPfaWithoutGuardCells,
+                         ::testing::Combine(::testing::ValuesIn(kKinds),
+                                            ::testing::Values(WindowType::hann,
+                                                              WindowType::blackman_harris)),
+                         [](const auto& test_info) {
+                           return name_of(std::get<0>(test_info.param),
+                                          std::get<1>(test_info.param));
+                         });
 
 INSTANTIATE_TEST_SUITE_P(AllKindsAndWindows, ChainRealisedPfa,
                          ::testing::Combine(::testing::ValuesIn(kKinds),

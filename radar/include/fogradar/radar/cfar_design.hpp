@@ -22,15 +22,17 @@
 //       entry of the Cholesky factor of R ordered (reference cells, cell under test), so
 //         P(x0 > alpha Z | r) = Q_1(sqrt(2 lambda), sqrt(2 y)),  lambda = |mu|^2/s^2, y = alpha
 //         Z/s^2,
-//       (Marcum Q, evaluated as the Poisson mixture of gamma tails
-//        sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, all terms positive). The mean over r
-//        uses
+//       (Marcum Q: for lambda < 10 the Poisson mixture of gamma tails
+//       sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, all terms positive; from 10 on the
+//       second-order saddlepoint approximation, log_marcum_q1_tail). The mean over r uses
 //       importance sampling from a defensive mixture (Hesterberg 1995, Technometrics 37(2),
 //       185-194; balance-heuristic weights, Veach & Guibas 1995): the noise itself and
 //       exponentially tilted versions of it that make the cells of the noise estimate small
-//       (all cells for GO and OS, each half for SO), 2^14 samples of a fixed seed (the same
-//       samples for every alpha, so the estimate is smooth and decreasing in alpha). Its relative
-//       standard error, measured over independent seeds, is stated in docs/radar.md §7.
+//       (all cells for GO and OS, each half for SO) and, where the cell under test is correlated
+//       with its reference cells, for each of those the tilt of |Y0|^2 - a sum |Y_j|^2 at its
+//       Chernoff exponent, 2^14 samples of a fixed seed (the same samples for every alpha, so the
+//       estimate is smooth and decreasing in alpha). Its relative standard error, measured over
+//       independent seeds, is stated in docs/radar.md §7.
 // Every cell's factor is solved for its own reference geometry: the interior cells share one; the
 // edge cells (edge policy in cfar.hpp) have one-sided or shifted reference windows; the cells i and
 // L-1-i from the two ends are mirror images (rho even) and share a factor. All arithmetic is scalar
@@ -76,10 +78,23 @@ double correlated_false_alarm_probability(
     CorrelatedPfaMethod method = CorrelatedPfaMethod::automatic,
     std::uint64_t seed = kCfarDesignSeed);
 
+// log P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2 >= 0, y >= 0: log Marcum
+// Q_1(sqrt(2 lambda), sqrt(2 y)), the cell under test's conditional tail of the sampled method
+// (exact series for lambda < 10, second-order saddlepoint approximation from 10 on).
+double log_marcum_q1_tail(double lambda, double y);
+
 // The factors that give the design P_fa in every cell: the independent-cell factor of
 // cfar_threshold_factor everywhere when config.threshold_design is `independent` or the noise is
 // white (then exact for all kinds), else solved per reference geometry (header comment).
 CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
                                                    const NoiseCorrelation& noise);
+
+// The CPU seconds design_cfar_threshold_factors takes for this config and noise, a cost model for
+// the run-time estimate (constants fitted in Release on the project's shared 2-core machine to
+// within 0.5-2 x for n = 4-24, g = 0 and 2, every window and kind; docs/radar.md §7): 0 where the
+// iid factors serve; per distinct geometry (n + 1) CA's eigenvalue solves, ~12 x (N + 1)^3, and
+// for GO/SO/OS 2^14 samples x (N^2 products + ~15 conditional tails, Marcum evaluations where the
+// cell under test is correlated with a reference cell).
+double cfar_design_seconds(const CfarConfig& config, const NoiseCorrelation& noise);
 
 }  // namespace fogradar::radar

@@ -32,6 +32,12 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
 // A fraction in [0, 1] as a percentage of 3 significant digits ("12.3", "0.05"): "100" only when
 // it is 1, ">99.9" when it is less but would round to 100.
 std::string percent_of_samples(double fraction);
+
+// "the target's radial velocity 25 m/s (target.radial_velocity_m_per_s) is beyond the radar's
+// unambiguous ±19.0 m/s (λ/(4 T_i)): it reads as -13.0 m/s, and the range-Doppler coupling
+// correction made with that velocity moves its range by 0.150 m": the run's warning and the
+// table's line.
+std::string velocity_fold_text(const VelocityFold& fold);
 // The per-layer table `fogradar run` prints for the radar.
 std::string summary_table(const RadarSummary& summary);
 

@@ -104,6 +104,12 @@ double echo_phase_at_chirp_start_rad(double path_length_m, const RadarDerived& d
 // receding target raises the beat frequency of an up-chirp and lowers that of a down-chirp).
 double doppler_shift_hz(double radial_velocity_m_per_s, const RadarDerived& derived);
 
+// The velocity a radial velocity v reads as after the Doppler FFT, which holds only
+// [-v_max, v_max) with v_max = lambda / (4 T_i): v - 2 v_max round(v / (2 v_max)) (aliasing of the
+// chirp-to-chirp phase 4 pi v T_i / lambda, Richards, Fundamentals of Radar Signal Processing,
+// 2nd ed., §5.3).
+double folded_velocity_m_per_s(double radial_velocity_m_per_s, double max_unambiguous_m_per_s);
+
 // Radar equation (paper eq. 7 solved for P_r): P_r = P_t G_t G_r lambda^2 sigma / ((4 pi)^3 R^4).
 double received_power_w(double tx_power_w, double tx_gain, double rx_gain, double wavelength_m,
                         double rcs_m2, double range_m);

@@ -91,6 +91,20 @@ struct StepSummary {
   double adc_clipped_fraction = 0.0;
 };
 
+// A target whose set radial velocity lies beyond the unambiguous +-v_max (|v| > v_max): the
+// velocity it reads as and the range error that the range-Doppler coupling correction, made with
+// that velocity, leaves (measured - true).
+struct VelocityFold {
+  double set_m_per_s = 0.0;
+  double unambiguous_m_per_s = 0.0;  // v_max = lambda / (4 T_i)
+  double reads_m_per_s = 0.0;        // folded_velocity_m_per_s
+  double range_error_m = 0.0;        // (f_D(v) - f_D(folded)) c / (2 S)
+};
+
+// The fold of the target's velocity, or none when |v| <= v_max.
+std::optional<VelocityFold> velocity_fold(double radial_velocity_m_per_s,
+                                          const RadarDerived& derived);
+
 struct RadarSummary {
   std::vector<StepSummary> steps;
   // First layer count at which fewer than half the measurements detect the target (target origin)
@@ -103,6 +117,8 @@ struct RadarSummary {
   // cells; a detection is an 8-connected object of cells, so noise detections per frame come out
   // at most this (fewer where the window correlates neighbouring cells).
   double expected_false_alarm_cells_per_frame = 0.0;
+  // The target's velocity folded by the Doppler FFT (set by the sensor from its parameters).
+  std::optional<VelocityFold> velocity_fold;
 };
 
 inline constexpr double sensor_limit_success_fraction = 0.5;

@@ -89,6 +89,8 @@ struct TimePart {
   std::string detail;     // "36001 beams (lidar.field_of_view_deg = ...) x 667129 samples (...)"
   std::string key;        // the key that sizes an item most ("lidar.sample_interval_ns")
   std::string items_key;  // the key that counts its items ("lidar.scans_per_step")
+  // CPU seconds spent once, when the sensor is made (the radar's CFAR design), not per item.
+  double setup_seconds = 0.0;
 };
 
 enum class Band { radio, optical };
