@@ -16,7 +16,8 @@ import numpy as np  # noqa: E402
 
 import fogradar  # noqa: E402
 
-COLOURS = {"target": "tab:red", "fog": "tab:blue", "noise": "tab:grey", "background": "tab:green"}
+COLOURS = {"target": "tab:red", "fog": "tab:blue", "noise": "tab:grey", "background": "tab:green",
+           "clipping": "tab:purple"}
 
 
 def main():

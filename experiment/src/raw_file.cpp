@@ -145,6 +145,17 @@ Handle complex_type(hid_t part) {
   return type;
 }
 
+// An 8-bit enumeration over `base` (H5T_STD_U8LE in the file, H5T_NATIVE_UINT8 in memory): each
+// label named with its index as value.
+Handle enum_type(hid_t base, const std::vector<std::string>& labels) {
+  Handle type(checked(H5Tenum_create(base), "H5Tenum_create"), H5Tclose);
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    const auto value = static_cast<std::uint8_t>(v);
+    checked(H5Tenum_insert(type.get(), labels[v].c_str(), &value), "H5Tenum_insert");
+  }
+  return type;
+}
+
 std::string joined(const std::vector<std::string>& parts, std::string_view separator) {
   std::string text;
   for (const std::string& part : parts) text += (text.empty() ? "" : std::string(separator)) + part;
@@ -382,6 +393,11 @@ class RawFile::Impl {
         kind.memory_type = Handle(checked(H5Tcopy(H5T_NATIVE_DOUBLE), "H5Tcopy"), H5Tclose);
         break;
       case sensor::RawElement::uint8:
+        if (!spec.labels.empty()) {
+          file_type = enum_type(H5T_STD_U8LE, spec.labels);
+          kind.memory_type = enum_type(H5T_NATIVE_UINT8, spec.labels);
+          break;
+        }
         file_type = Handle(checked(H5Tcopy(H5T_STD_U8LE), "H5Tcopy"), H5Tclose);
         kind.memory_type = Handle(checked(H5Tcopy(H5T_NATIVE_UINT8), "H5Tcopy"), H5Tclose);
         break;
@@ -463,13 +479,7 @@ class RawFile::Impl {
       hid_t memory_part = columns[c].integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
       if (!columns[c].labels.empty()) {
         for (const hid_t base : {H5T_STD_U8LE, H5T_NATIVE_UINT8}) {
-          Handle e(checked(H5Tenum_create(base), "H5Tenum_create"), H5Tclose);
-          for (std::size_t v = 0; v < columns[c].labels.size(); ++v) {
-            const std::uint8_t value = static_cast<std::uint8_t>(v);
-            checked(H5Tenum_insert(e.get(), columns[c].labels[v].c_str(), &value),
-                    "H5Tenum_insert");
-          }
-          enums.push_back(std::move(e));
+          enums.push_back(enum_type(base, columns[c].labels));
         }
         file_part = enums[enums.size() - 2].get();
         memory_part = enums.back().get();

@@ -41,18 +41,11 @@ SegmentHit intersect(double ux, double uy, double x0, double y0, double x1, doub
 
 }  // namespace
 
-std::string_view to_string(EchoOrigin origin) noexcept {
-  switch (origin) {
-    case EchoOrigin::target:
-      return "target";
-    case EchoOrigin::fog:
-      return "fog";
-    case EchoOrigin::background:
-      return "background";
-    case EchoOrigin::noise:
-      return "noise";
-  }
-  return "?";
+Origin dominant_origin(double target, double fog, double background, double noise_std) noexcept {
+  const double largest = std::max({target, fog, background});
+  if (largest < noise_std) return Origin::noise;
+  if (target == largest) return Origin::target;
+  return fog == largest ? Origin::fog : Origin::background;
 }
 
 std::span<const double> FogFluctuationSeries::scan(std::size_t scan_index) const {
@@ -247,10 +240,12 @@ BeamWaveform Lidar::waveform(std::size_t beam, const propagation::ActiveLayers& 
 
 LidarScan Lidar::measure(const propagation::ActiveLayers& active,
                          std::span<const double> optical_depth_factors, RandomStream& stream,
-                         std::span<double> waveforms, const StopToken& stop) const {
+                         std::span<double> waveforms, const StopToken& stop,
+                         std::vector<OriginRun>* origins) const {
   check_inputs(active, optical_depth_factors);
   FOGRADAR_CHECK(waveforms.empty() || waveforms.size() == beam_count_ * samples_);
   LidarScan scan;
+  if (origins != nullptr) origins->clear();
   ComplexNormalGenerator generator(stream);
   // Two real samples per complex one: each part of CN(0, 2 sigma^2) is N(0, sigma^2), read as the
   // array of doubles a std::complex<double> array is ([complex.numbers]).
@@ -301,11 +296,7 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
       for (std::size_t e = 0; e < echoes.count; ++e) {
         const DetectedEcho& echo = echoes.echoes[e];
         const std::size_t k = echo.peak_sample;
-        const std::array<double, 3> parts{target[k], fog[k], background[k]};
-        const auto largest = std::max_element(parts.begin(), parts.end());
-        const EchoOrigin origin = *largest < noise_std_
-                                      ? EchoOrigin::noise
-                                      : static_cast<EchoOrigin>(largest - parts.begin());
+        const Origin origin = dominant_origin(target[k], fog[k], background[k], noise_std_);
         const double intensity =
             std::min(params_.intensity_saturation,
                      params_.intensity_scale * echo.peak / detector_.threshold);
@@ -313,12 +304,15 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
                                .index = static_cast<std::uint8_t>(e),
                                .origin = origin,
                                .range_m = echo.range_m,
+                               .peak_range_m = static_cast<double>(echo.peak_sample) *
+                                               speed_of_light_m_per_s * grid_.sample_interval_s /
+                                               2.0,
                                .intensity = intensity});
-        if (origin == EchoOrigin::fog) {
+        if (origin == Origin::fog) {
           fog_echo = true;
           strongest_fog = std::max(strongest_fog, intensity);
         }
-        if (beam == target_beam_ && origin == EchoOrigin::target) {
+        if (beam == target_beam_ && origin == Origin::target) {
           scan.target_detected = true;
           scan.target_intensity = std::max(scan.target_intensity, intensity);
         }
@@ -331,6 +325,24 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
       if (beam == target_beam_ && scan.target_detected && fog_echo &&
           strongest_fog >= scan.target_intensity) {
         scan.fog_outshines_target = true;
+      }
+    }
+    if (origins != nullptr) {
+      const double dr = speed_of_light_m_per_s * grid_.sample_interval_s / 2.0;
+      Origin current = Origin::noise;
+      for (std::size_t k = lo; k <= hi; ++k) {
+        const Origin here = k < hi ? dominant_origin(target[k], fog[k], background[k], noise_std_)
+                                   : Origin::noise;
+        if (here == current) continue;
+        const double range_m = static_cast<double>(k) * dr;
+        if (current != Origin::noise) origins->back().end_m = range_m;
+        if (here != Origin::noise) {
+          origins->push_back({.beam = static_cast<std::uint32_t>(beam),
+                              .origin = here,
+                              .start_m = range_m,
+                              .end_m = range_m});
+        }
+        current = here;
       }
     }
     for (std::size_t k = lo; k < hi; ++k) target[k] = fog[k] = background[k] = 0.0;

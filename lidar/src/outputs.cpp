@@ -225,14 +225,14 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
          "ground-truth origin. Blue bands: active fog layers (dashed: off); grey bar: the "
          "target (EVT).</text>\n";
   struct Style {
-    EchoOrigin origin;
+    Origin origin;
     const char* colour;
     const char* name;
   };
-  constexpr Style styles[] = {{EchoOrigin::target, "#d62728", "target"},
-                              {EchoOrigin::fog, "#1f77b4", "fog"},
-                              {EchoOrigin::background, "#555555", "background"},
-                              {EchoOrigin::noise, "#ff7f0e", "noise"}};
+  constexpr Style styles[] = {{Origin::target, "#d62728", "target"},
+                              {Origin::fog, "#1f77b4", "fog"},
+                              {Origin::background, "#555555", "background"},
+                              {Origin::noise, "#ff7f0e", "noise"}};
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const LidarStepResult& step = steps[i];
     const double x0 = left + static_cast<double>(i) * (panel_w + gap);

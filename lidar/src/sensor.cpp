@@ -146,9 +146,18 @@ class Run : public sensor::SensorRun {
         waveforms_.resize(run_.lidar_->beam_count() * run_.lidar_->samples_per_beam());
       }
       LidarScan& scan = (*run_.steps_)[step].scans[index];
+      const bool truth = raw != nullptr && raw->wants(raw_origins);
       scan = run_.lidar_->measure(run_.made_->active(step), run_.fog_[step].scan(index), stream,
                                   waveforms ? std::span<double>(waveforms_) : std::span<double>(),
-                                  stop);
+                                  stop, truth ? &origins_ : nullptr);
+      if (truth) {
+        rows_.clear();
+        for (const OriginRun& o : origins_) {
+          rows_.insert(rows_.end(), {static_cast<double>(o.beam), o.start_m, o.end_m,
+                                     static_cast<double>(o.origin)});
+        }
+        raw->append_rows(raw_origins, rows_);
+      }
       if (waveforms) raw->write(raw_waveforms, std::span<const double>(waveforms_));
       if (raw != nullptr && raw->wants(raw_echoes)) {
         rows_.clear();
@@ -156,7 +165,7 @@ class Run : public sensor::SensorRun {
           rows_.insert(rows_.end(),
                        {static_cast<double>(e.beam), run_.lidar_->beam_angle_deg(e.beam),
                         static_cast<double>(e.index), e.range_m, e.intensity,
-                        static_cast<double>(e.origin)});
+                        static_cast<double>(e.origin), e.peak_range_m});
         }
         raw->append_rows(raw_echoes, rows_);
       }
@@ -165,6 +174,7 @@ class Run : public sensor::SensorRun {
    private:
     const Run& run_;
     std::vector<double> waveforms_, rows_;  // asked for as raw data
+    std::vector<OriginRun> origins_;
   };
 
   std::shared_ptr<const Made> made_;
@@ -284,7 +294,7 @@ std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
   for (std::size_t k = 0; k < samples; ++k) {
     time.values.push_back(static_cast<double>(k) * params.sample_interval_ns * 1e-9);
   }
-  std::vector<sensor::RawKind> kinds(2);
+  std::vector<sensor::RawKind> kinds(3);
   kinds[raw_waveforms] = {
       .name = "waveforms",
       .description =
@@ -301,7 +311,9 @@ std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
       .rows_per_item = 0,
       .attributes = {}};
   kinds[raw_echoes] = {.name = "echoes",
-                       .description = "every echo of the scan with its origin (lidar_echoes.csv)",
+                       .description = "every echo of the scan with its origin (lidar_echoes.csv); "
+                                      "peak_range_m: its peak sample's range, where the "
+                                      "origin is attributed",
                        .units = "",
                        .element = sensor::RawElement::table,
                        .dimensions = {},
@@ -312,9 +324,30 @@ std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
                                    {"echo", "", true, {}},
                                    {"range_m", "m", false, {}},
                                    {"intensity", "", false, {}},
-                                   {"origin", "", false, {"target", "fog", "background", "noise"}}},
+                                   {"origin", "", false, sensor::origin_labels()},
+                                   {"peak_range_m", "m", false, {}}},
                        .rows_per_item = beams * params.max_echoes,
                        .attributes = {}};
+  // An echo takes the origin of its beam's stretch that holds its peak_range_m, noise outside
+  // every stretch: the attribution the scan gave it.
+  kinds[raw_origins] = {
+      .name = "origins",
+      .description =
+          "the scan's ground truth: per beam the stretches of range whose noise-free parts give "
+          "an echo peaking there an origin other than noise (target, fog, background); noise "
+          "elsewhere",
+      .units = "",
+      .element = sensor::RawElement::table,
+      .dimensions = {},
+      .shape = {},
+      .axes = {},
+      .columns = {{"beam", "", true, {}},
+                  {"start_m", "m", false, {}},
+                  {"end_m", "m", false, {}},
+                  {"origin", "", false, sensor::origin_labels()}},
+      .rows_per_item = 3 * beams,
+      .attributes = {},
+      .by_default = false};
   return kinds;
 }
 

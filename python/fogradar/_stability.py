@@ -8,20 +8,24 @@ import pandas as pd
 from . import _core
 from ._errors import InvalidParameter
 
-ORIGINS = ["noise", "target", "fog"]
+ORIGINS = list(_core.origin_labels)  # the sensors' one code table (sensor/origin.hpp)
 
 
 class StabilityReport:
     """What `stability` found, per step (active layers):
 
-    table       a DataFrame, a row per step: items, detection_rate (items with a detection of the
-                target), false_alarms_per_item, fog_ and noise_false_alarms_per_item, the spread
-                of the target detections' values (value_n, value_median, value_q1, value_q3,
+    table       a DataFrame, a row per step: items, detection_rate (items with a target-origin
+                detection within the gate of the target's range), false_alarms_per_item (fog,
+                noise and clipping detections) with its fog_ and noise_false_alarms_per_item and
+                clipping_detections_per_item parts, background_detections_per_item (static
+                surfaces such as the lidar's walls: real echoes, not false alarms), the spread of
+                the target detections' values (value_n, value_median, value_q1, value_q3,
                 value_std, value_min, value_max; fogradar's type-7 box-plot statistics) and, where
                 the measurements kept a detection table with an ``associated`` column,
                 chain_detection_rate (fogradar's own chain on the same items)
     detections  every detection the algorithm returned: active_layers, item, range_m, value and
-                origin (a Categorical: noise, target, fog)
+                origin (a Categorical over the sensors' one code table: noise, target, fog,
+                background, clipping)
     layers_to_failure   the first step whose detection rate is below `criterion_rate`, else None
     criterion   the rule, in words
     """
@@ -63,12 +67,13 @@ class StabilityReport:
 
 
 def _detections_of(result):
-    """The algorithm's answer as (range_m or None, value) pairs, plus a detected flag for
-    answers without ranges."""
+    """The algorithm's answer as a list of detections ({"range_m", "value", and where given
+    "velocity_m_per_s" and "beam"}), plus a detected flag for answers without ranges."""
     if isinstance(result, (bool, np.bool_)):
         return [], bool(result)
     if isinstance(result, dict) and "detected" in result:
-        return [(None, result.get("value", np.nan))] if result["detected"] else [], None
+        return ([{"range_m": None, "value": result.get("value", np.nan)}]
+                if result["detected"] else []), None
     if isinstance(result, dict):
         result = pd.DataFrame(result)
     elif isinstance(result, (list, tuple)):
@@ -80,8 +85,60 @@ def _detections_of(result):
                         f"{type(result).__name__}")
     if len(result) and "range_m" not in result.columns:
         raise TypeError("the algorithm's detections need a column range_m")
-    values = result["value"] if "value" in result.columns else [np.nan] * len(result)
-    return [(float(r), float(v)) for r, v in zip(result.get("range_m", []), values)], None
+    n = len(result)
+    columns = {"range_m": result["range_m"] if n else [],
+               "value": result["value"] if "value" in result.columns else [np.nan] * n}
+    for extra in ("velocity_m_per_s", "beam", "peak_range_m"):
+        if extra in result.columns:
+            columns[extra] = result[extra]
+    out = []
+    for i in range(n):
+        d = {name: values.iloc[i] if hasattr(values, "iloc") else values[i]
+             for name, values in columns.items()}
+        d["range_m"], d["value"] = float(d["range_m"]), float(d["value"])
+        out.append(d)
+    return out, None
+
+
+def _cell_origin(truth, attributes, labels, detection):
+    """The origin the radar's map gives the cell a detection peaks in: its range column with the
+    range-Doppler coupling put back, its velocity's Doppler row (0 m/s when not given)."""
+    rows, columns = truth.shape
+    velocity = float(detection.get("velocity_m_per_s", 0.0))
+    range_bin = (detection["range_m"] + attributes["range_coupling_s"] * velocity) / \
+        attributes["range_bin_m"]
+    column = int(np.clip(np.floor(range_bin + 0.5), 0, columns - 1))
+    row = int(np.floor(velocity / attributes["velocity_bin_m_per_s"] + 0.5)) % rows
+    return labels[truth[row, column]]
+
+
+def _stretch_origin(truth, labels, detection):
+    """The origin of the lidar's stretch of the detection's beam that holds its peak_range_m
+    (where the lidar attributes an echo), else its range_m; noise outside every stretch."""
+    if "beam" not in detection:
+        raise TypeError("the lidar's detections need a column beam (the beam index, as the "
+                        "echoes' table has it): its ground truth is per beam")
+    beam = int(detection["beam"])
+    range_m = float(detection.get("peak_range_m", detection["range_m"]))
+    inside = np.nonzero((truth["beam"] == beam) & (truth["start_m"] <= range_m)
+                        & (range_m < truth["end_m"]))[0]
+    return labels[truth["origin"][inside[0]]] if len(inside) else "noise"
+
+
+def _origin_of(m, detection):
+    """A detection's origin from the measurement's own ground truth (its kind ``origins``, which
+    the sensor's attribution wrote from the chamber it measured through)."""
+    if detection["range_m"] is None:
+        return "target"  # an answer without ranges (the camera's) says whether it saw the target
+    kind = m._kinds.get("origins")
+    if kind is None:
+        raise TypeError(f"the {m.sensor} has no ground truth per range (no raw kind 'origins'): "
+                        "answer with a bool or {'detected': bool, 'value': float}")
+    raw = m._raw["origins"]
+    if kind["element"] == "table":
+        truth = {c["name"]: c["values"] for c in raw["columns"]}
+        return _stretch_origin(truth, ORIGINS, detection)
+    return _cell_origin(raw, kind["attributes"], kind["labels"], detection)
 
 
 def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate=0.5,
@@ -90,16 +147,21 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
     ``steps`` and first ``items`` per step given) and reports its detections against the ground
     truth, per step, as fogradar reports its own chain: a StabilityReport.
 
-    The measurement is Simulator.measure's (the raw kinds in `keep`, default all). The algorithm
+    The measurement is Simulator.measure's (the raw kinds in `keep`, default those `fogradar run
+    --raw` keeps, and always the ground truth ``origins`` where the sensor has one). The algorithm
     returns its detections: a DataFrame, a list of dicts or a dict of arrays with a column
     ``range_m`` and optionally ``value`` (an estimate such as an RCS or a power, whose spread is
     reported); or, for a sensor without ranges (the camera), a bool or
     ``{"detected": bool, "value": float}``, the detection counted as the target's.
 
-    Ground truth, from the chamber (docs/python.md): a detection within `gate_m` of the target's
-    range is the target's; one inside a fog layer switched on at that step, the fog's; any other,
-    the noise's. An item counts as detected when one of its detections is the target's. The limit
-    is the first step whose detection rate is below `criterion_rate`.
+    Ground truth, from C++ (docs/python.md): each measurement carries the origin the sensor's own
+    attribution gives at each range of that item (its raw kind ``origins``: the radar's per cell
+    of the range-Doppler map, the lidar's per beam), made from the chamber it measured through.
+    A radar detection is looked up at its range and ``velocity_m_per_s`` (0 when not given), a
+    lidar detection at its ``beam`` and ``peak_range_m`` (the range of its strongest sample, where
+    the lidar attributes an echo; its ``range_m`` when not given). An item counts as detected when one of its
+    detections is the target's and within `gate_m` of the target's range. The limit is the first
+    step whose detection rate is below `criterion_rate`.
     """
     from . import Scenario, Simulator  # the package's classes (this module is imported by it)
 
@@ -112,11 +174,7 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
         if not isinstance(value, numbers.Real) or not (low < value <= high):
             raise InvalidParameter(f"{name} = {value!r}: must be in ({low:g}, {high:g}]", name)
     sim = simulator if simulator is not None else Simulator(scenario, threads=threads)
-    chamber = scenario.to_dict()["chamber"]
-    start = chamber["sensor_gap_m"]
-    length = chamber["layer_length_m"]
-    layers = chamber["layer_count"]
-    target_m = start + layers * length + chamber["target_gap_m"]
+    target_m = scenario._core.target_range_m
     all_steps = list(range(scenario.steps))
     chosen_steps = all_steps if steps is None else list(steps)
     for k in chosen_steps:
@@ -128,43 +186,48 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
     if count < 1:
         raise InvalidParameter(f"items = {items!r}: must be at least 1", "items")
 
-    def origin(range_m, k):
-        if range_m is None or abs(range_m - target_m) <= gate_m:
-            return "target"
-        if start <= range_m <= start + k * length:
-            return "fog"
-        return "noise"
+    offered = [k["name"] for k in sim.kinds(sensor)]
+    if keep is None:
+        keep = [k["name"] for k in sim.kinds(sensor) if k["by_default"]]
+    else:
+        keep = [keep] if isinstance(keep, str) else list(keep)
+    if "origins" in offered and "origins" not in keep:
+        keep.append("origins")
 
     rows, found = [], []
     for k in chosen_steps:
         detected = chain_detected = 0
         chain_seen = False
-        fog = noise = 0
+        counts = dict.fromkeys(ORIGINS, 0)
         values = []
         for index, m in zip(range(count), sim.items(sensor, k, keep)):
             answer, flag = _detections_of(algorithm(m))
             hit = bool(flag)
-            for range_m, value in answer:
-                o = origin(range_m, k)
-                found.append({"active_layers": k, "item": index, "range_m": range_m,
-                              "value": value, "origin": o})
-                hit = hit or o == "target"
-                fog += o == "fog"
-                noise += o == "noise"
-                if o == "target" and not np.isnan(value):
-                    values.append(value)
+            for d in answer:
+                o = _origin_of(m, d)
+                found.append({"active_layers": k, "item": index, "range_m": d["range_m"],
+                              "value": d["value"], "origin": o})
+                counts[o] += 1
+                in_gate = d["range_m"] is None or abs(d["range_m"] - target_m) <= gate_m
+                if o == "target" and in_gate:
+                    hit = True
+                    if not np.isnan(d["value"]):
+                        values.append(d["value"])
             if flag:
                 found.append({"active_layers": k, "item": index, "range_m": None,
                               "value": np.nan, "origin": "target"})
             detected += hit
             if m.has_associated():
                 chain_seen = True
-                chain_detected += m.target is not None
+                chain_detected += m.target is not None and m.target["origin"] == "target"
         box = _core.box_plot(values) if values else {}
         row = {"active_layers": k, "items": count, "detection_rate": detected / count,
-               "false_alarms_per_item": (fog + noise) / count,
-               "fog_false_alarms_per_item": fog / count,
-               "noise_false_alarms_per_item": noise / count,
+               "false_alarms_per_item":
+                   (counts["fog"] + counts["noise"] + counts["clipping"]) / count,
+               "fog_false_alarms_per_item": counts["fog"] / count,
+               "noise_false_alarms_per_item": counts["noise"] / count,
+               "clipping_detections_per_item": counts["clipping"] / count,
+               "background_detections_per_item": counts["background"] / count,
                "value_n": len(values)}
         for stat in ("median", "q1", "q3", "std", "min", "max"):
             row[f"value_{stat}"] = box.get(stat, np.nan)
@@ -177,6 +240,6 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
     detections["origin"] = pd.Categorical(detections["origin"], categories=ORIGINS)
     failing = table.loc[table["detection_rate"] < criterion_rate, "active_layers"]
     limit = int(failing.iloc[0]) if len(failing) else None
-    criterion = (f"target detected (a detection within {gate_m:g} m of its range) in < "
+    criterion = (f"target detected (a target-origin detection within {gate_m:g} m of its range) in < "
                  f"{100 * criterion_rate:g} % of the items")
     return StabilityReport(table, detections, limit, criterion, value_label)

@@ -28,6 +28,7 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
+#include "fogradar/sensor/origin.hpp"
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/line_plot.hpp"
 #include "fogradar/stats/svg_plot.hpp"
@@ -149,6 +150,7 @@ py::list kinds_to_python(const std::vector<sensor::RawKind>& kinds) {
     entry["dimensions"] = kind.dimensions;
     entry["shape"] = kind.shape;
     entry["by_default"] = kind.by_default;
+    entry["labels"] = kind.labels;
     py::dict axes;
     for (const sensor::RawAxis& axis : kind.axes) {
       if (axis.values.empty()) continue;
@@ -290,6 +292,7 @@ PYBIND11_MODULE(_core, m) {
   using namespace fogradar::python;
   m.doc() = "fogradar's compiled core (docs/python.md); use the fogradar package";
   m.attr("version") = FOGRADAR_VERSION;
+  m.attr("origin_labels") = sensor::origin_labels();
 
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -324,7 +327,9 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("sensors", [](const Scenario& s) { return s.experiment.sensors; })
       .def_property_readonly("steps",
                              [](const Scenario& s) { return s.experiment.max_active_layers + 1; })
-      .def_property_readonly("seed", [](const Scenario& s) { return s.experiment.seed; });
+      .def_property_readonly("seed", [](const Scenario& s) { return s.experiment.seed; })
+      .def_property_readonly("target_range_m",
+                             [](const Scenario& s) { return s.chamber_spec().target_range_m(); });
 
   py::class_<experiment::Simulation, std::shared_ptr<experiment::Simulation>>(m, "Simulation")
       .def(py::init([](const Scenario& scenario, unsigned threads,

@@ -1,5 +1,6 @@
 #include "fogradar/radar/attribution.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fogradar/core/constants.hpp"
@@ -7,18 +8,6 @@
 #include "fogradar/radar/fft.hpp"
 
 namespace fogradar::radar {
-
-std::string_view to_string(Origin origin) noexcept {
-  switch (origin) {
-    case Origin::noise:
-      return "noise";
-    case Origin::target:
-      return "target";
-    case Origin::fog:
-      return "fog";
-  }
-  return "?";
-}
 
 Origin dominant_origin(double target_power, double fog_power, double noise_power) noexcept {
   if (target_power >= fog_power && target_power >= noise_power) return Origin::target;
@@ -54,7 +43,9 @@ OriginClassifier::OriginClassifier(const RangeDopplerProcessor& processor,
       doppler_bins_per_hz_(params.chirp_interval_s * static_cast<double>(processor.chirps())),
       derived_(derived),
       noise_power_(params.thermal_noise ? derived.noise_power_w * processor.noise_power_gain()
-                                        : 0.0) {}
+                                        : 0.0),
+      chirps_(processor.chirps()),
+      samples_(processor.samples()) {}
 
 CellContributions OriginClassifier::contributions(std::span<const Tone> tones,
                                                   std::size_t doppler_cell,
@@ -78,15 +69,62 @@ CellContributions OriginClassifier::contributions(std::span<const Tone> tones,
 }
 
 Origin OriginClassifier::classify(std::span<const Tone> tones, std::size_t doppler_cell,
-                                  std::size_t range_cell) const {
+                                  std::size_t range_cell, bool clipped) const {
   const CellContributions c = contributions(tones, doppler_cell, range_cell);
-  return dominant_origin(std::norm(c.target), std::norm(c.fog), c.noise_power);
+  const Origin origin = dominant_origin(std::norm(c.target), std::norm(c.fog), c.noise_power);
+  return clipped && origin == Origin::noise ? Origin::clipping : origin;
 }
 
-void OriginClassifier::attribute(std::span<const Tone> tones,
-                                 std::span<Detection> detections) const {
+void OriginClassifier::attribute(std::span<const Tone> tones, std::span<Detection> detections,
+                                 bool clipped) const {
   for (Detection& detection : detections) {
-    detection.origin = classify(tones, detection.doppler_cell, detection.range_cell);
+    detection.origin = classify(tones, detection.doppler_cell, detection.range_cell, clipped);
+  }
+}
+
+void OriginClassifier::origin_map(std::span<const Tone> tones, bool clipped,
+                                  std::span<std::uint8_t> map) const {
+  FOGRADAR_CHECK(map.size() == chirps_ * samples_);
+  // Per group of tones with one Doppler shift and one origin: sum_t a_t W_r(k - f_t N / fs) over
+  // the range cells k; the cell (d, k) adds W_d(d - f_D T_i N_c) times that.
+  struct Group {
+    double doppler_hz;
+    Origin origin;
+    std::vector<std::complex<double>> profile;
+  };
+  std::vector<Group> groups;
+  for (const Tone& tone : tones) {
+    FOGRADAR_CHECK(tone.origin != Origin::noise);
+    const double doppler_hz = doppler_shift_hz(tone.radial_velocity_m_per_s, derived_);
+    const double beat_hz =
+        beat_frequency_hz(tone.path_length_m, derived_.chirp_slope_hz_per_s) + doppler_hz;
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const Group& g) {
+      return g.doppler_hz == doppler_hz && g.origin == tone.origin;
+    });
+    if (group == groups.end()) {
+      groups.push_back({doppler_hz, tone.origin, std::vector<std::complex<double>>(samples_)});
+      group = groups.end() - 1;
+    }
+    const double centre = beat_hz * range_bins_per_hz_;
+    for (std::size_t k = 0; k < samples_; ++k) {
+      group->profile[k] += tone.amplitude * range_spectrum_.at(static_cast<double>(k) - centre);
+    }
+  }
+  std::vector<std::complex<double>> target(samples_), fog(samples_);
+  for (std::size_t d = 0; d < chirps_; ++d) {
+    std::fill(target.begin(), target.end(), std::complex<double>{});
+    std::fill(fog.begin(), fog.end(), std::complex<double>{});
+    for (const Group& g : groups) {
+      const std::complex<double> w =
+          doppler_spectrum_.at(static_cast<double>(d) - g.doppler_hz * doppler_bins_per_hz_);
+      std::vector<std::complex<double>>& sum = g.origin == Origin::target ? target : fog;
+      for (std::size_t k = 0; k < samples_; ++k) sum[k] += w * g.profile[k];
+    }
+    for (std::size_t k = 0; k < samples_; ++k) {
+      Origin origin = dominant_origin(std::norm(target[k]), std::norm(fog[k]), noise_power_);
+      if (clipped && origin == Origin::noise) origin = Origin::clipping;
+      map[d * samples_ + k] = static_cast<std::uint8_t>(origin);
+    }
   }
 }
 

@@ -130,7 +130,7 @@ void RadarChain::measure(const Scene& scene, const propagation::Chamber& chamber
   stop.check();
   estimate_detections(ws.frame, processor_, cfar_, params_, derived_, ws.estimation, out.detections,
                       stop);
-  origin_classifier_.attribute(ws.tones, out.detections);
+  origin_classifier_.attribute(ws.tones, out.detections, out.synthesis.clipped_samples > 0);
   out.target.reset();
   for (const Detection& detection : out.detections) {
     if (std::abs(detection.range_m - chamber.target_range_m()) > params_.association_gate_m)

@@ -302,7 +302,7 @@ std::string summary_csv(const RadarSummary& summary) {
       "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
       "radome_two_way_loss_db,target_film_loss_db,"
       "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,"
-      "adc_clipped_fraction\n";
+      "adc_clipped_fraction,clipping_detections_per_frame\n";
   for (const StepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.rcs;
     const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
@@ -313,7 +313,7 @@ std::string summary_csv(const RadarSummary& summary) {
                                      s.radome_two_way_loss_db, s.target_film_loss_db,
                                      s.confusion_rate,         s.false_association_rate,
                                      s.false_alarms_per_frame, s.fog_detections_per_frame,
-                                     s.adc_clipped_fraction};
+                                     s.adc_clipped_fraction,   s.clipping_detections_per_frame};
     out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
            std::to_string(s.detections);
     for (double v : numbers) out += ',' + exact(v);
@@ -355,7 +355,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          {"false_association_rate", s.false_association_rate},
          {"false_alarms_per_frame", s.false_alarms_per_frame},
          {"fog_detections_per_frame", s.fog_detections_per_frame},
-         {"adc_clipped_fraction", s.adc_clipped_fraction}});
+         {"adc_clipped_fraction", s.adc_clipped_fraction},
+         {"clipping_detections_per_frame", s.clipping_detections_per_frame}});
   }
   return {
       {"steps", steps},
@@ -504,6 +505,16 @@ std::string summary_table(const RadarSummary& summary) {
       out << (first ? " " : ", ") << percent_of_samples(s.adc_clipped_fraction)
           << (first ? " % of the samples at " : " % at ")
           << counted(s.active_layers, "active layer");
+      first = false;
+    }
+    out << "\nclipping detections (its harmonics and intermodulation products, not false alarms):";
+    first = true;
+    for (const StepSummary& s : summary.steps) {
+      if (s.adc_clipped_fraction <= 0.0) continue;
+      std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
+                    s.clipping_detections_per_frame,
+                    counted(s.active_layers, "active layer").c_str());
+      out << line;
       first = false;
     }
     out << '\n';

@@ -46,6 +46,7 @@ MeasurementRecord record_of(const Measurement& m, double target_range_m, double 
                                  .associated = m.target && d.range_cell == m.target->range_cell &&
                                                d.doppler_cell == m.target->doppler_cell});
     if (d.origin == Origin::noise) ++record.false_alarms;
+    if (d.origin == Origin::clipping) ++record.clipping_detections;
     if (d.origin != Origin::fog) continue;
     ++record.fog_detections;
     strongest_fog_w = std::max(strongest_fog_w, d.received_power_w);
@@ -95,7 +96,8 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.radome_two_way_loss_db = step.radome_two_way_loss_db;
     s.target_film_loss_db = step.target_film_loss_db;
     std::vector<double> snr;
-    std::size_t confused = 0, false_associations = 0, false_alarms = 0, fog_detections = 0;
+    std::size_t confused = 0, false_associations = 0, false_alarms = 0, fog_detections = 0,
+                clipping_detections = 0;
     std::size_t samples = 0, clipped_samples = 0;
     for (const MeasurementRecord& r : step.records) {
       if (r.detected) snr.push_back(r.snr_db);
@@ -103,6 +105,7 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
       if (r.associated && !r.detected) ++false_associations;
       false_alarms += r.false_alarms;
       fog_detections += r.fog_detections;
+      clipping_detections += r.clipping_detections;
       samples += r.samples;
       clipped_samples += r.clipped_samples;
     }
@@ -110,6 +113,7 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.false_association_rate = fraction(false_associations, s.n);
     s.false_alarms_per_frame = fraction(false_alarms, s.n);
     s.fog_detections_per_frame = fraction(fog_detections, s.n);
+    s.clipping_detections_per_frame = fraction(clipping_detections, s.n);
     s.median_snr_db = median_of(snr);
     s.confusion_rate = fraction(confused, s.n);
     s.adc_clipped_fraction = fraction(clipped_samples, samples);
@@ -130,7 +134,8 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
       break;
     }
   }
-  if (!summary.steps.empty() && !std::isnan(summary.steps.back().median_snr_db)) {
+  if (!summary.steps.empty() && !std::isnan(summary.steps.back().median_snr_db) &&
+      summary.steps.back().adc_clipped_fraction == 0.0) {
     summary.attenuation_margin_db = summary.steps.back().median_snr_db - cfar_threshold_db;
   }
   return summary;

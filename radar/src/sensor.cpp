@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
 #include "fogradar/propagation/water.hpp"
@@ -72,6 +73,10 @@ class Report : public RadarReport {
       v.margin = "median target SNR " + stats::format_fixed(*summary_.attenuation_margin_db, 1) +
                  " dB above the CFAR threshold at " +
                  counted(summary_.steps.empty() ? 0 : summary_.steps.back().active_layers, "layer");
+    } else if (!summary_.steps.empty() && summary_.steps.back().adc_clipped_fraction > 0.0) {
+      v.margin = "unknown: the ADC clipped " +
+                 percent_of_samples(summary_.steps.back().adc_clipped_fraction) +
+                 " % of the samples at the last step";
     } else {
       v.margin = "no target detection at the last step";
     }
@@ -276,6 +281,7 @@ class RadarWorker : public sensor::Worker {
   Measurement measurement_;
   std::vector<double> power_;  // |X|^2 of a map asked for as raw data
   std::vector<double> rows_;   // detection rows asked for as raw data
+  std::vector<std::uint8_t> origins_;  // the origin map asked for as raw data
 };
 
 KeyTable<SensorParams> sensor_keys() {
@@ -364,7 +370,7 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
   const std::vector<double> doppler_window = make_window(p.window, chirps);
   const double noise_level = d.noise_power_w * noise_power_gain(range_window, doppler_window);
   const double gain = coherent_amplitude_gain(range_window, doppler_window);
-  std::vector<sensor::RawKind> kinds(5);
+  std::vector<sensor::RawKind> kinds(6);
   kinds[raw_beat] = {
       .name = "beat",
       .description =
@@ -409,7 +415,7 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
                   {"power_dbm", "dBm", false, {}},
                   {"snr_db", "dB", false, {}},
                   {"rcs_dbsm", "dBsm", false, {}},
-                  {"origin", "", false, {"noise", "target", "fog"}},
+                  {"origin", "", false, sensor::origin_labels()},
                   {"in_gate", "", true, {}},
                   {"associated", "", true, {}}},
       .rows_per_item = detections,
@@ -428,6 +434,25 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
       "the receiver's thermal noise of the beat signal as drawn, CN(0, k T0 F fs) per sample "
       "(before the ADC)";
   kinds[raw_noise].by_default = false;
+  // Where a detection of the frame would come from, per cell: what the chain's attribution gives a
+  // detection peaking there. A detection at (range_m, velocity_m_per_s) peaks in the column of
+  // range bin (range_m + range_coupling_s velocity_m_per_s) / range_bin_m (the coupling the
+  // estimate removed) and the row of Doppler bin velocity_m_per_s / velocity_bin_m_per_s.
+  kinds[raw_origins] = kinds[raw_range_doppler];
+  kinds[raw_origins].name = "origins";
+  kinds[raw_origins].description =
+      "the frame's ground truth per cell: the origin the chain's attribution gives a detection "
+      "peaking there (target, fog, noise, or clipping in a frame whose ADC clipped), Doppler rows "
+      "in FFT order x range columns as range_doppler";
+  kinds[raw_origins].units = "";
+  kinds[raw_origins].element = sensor::RawElement::uint8;
+  kinds[raw_origins].labels = sensor::origin_labels();
+  kinds[raw_origins].by_default = false;
+  kinds[raw_origins].attributes = {
+      {"range_bin_m", d.range_bin_m},
+      {"velocity_bin_m_per_s", d.sweep_sign * d.velocity_resolution_m_per_s},
+      {"range_coupling_s",
+       doppler_shift_hz(1.0, d) * speed_of_light_m_per_s / (2.0 * d.chirp_slope_hz_per_s)}};
   return kinds;
 }
 
@@ -523,6 +548,12 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
                                  d.in_gate ? 1.0 : 0.0, d.associated ? 1.0 : 0.0});
     }
     raw->append_rows(raw_detections, rows_);
+  }
+  if (raw != nullptr && raw->wants(raw_origins)) {
+    origins_.resize(workspace_.frame.size());
+    sensor.chain().origin_classifier().origin_map(
+        workspace_.tones, measurement_.synthesis.clipped_samples > 0, origins_);
+    raw->write(raw_origins, std::span<const std::uint8_t>(origins_));
   }
 }
 

@@ -9,6 +9,11 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
   the same double, and each frame has as many detections as radar_detections.csv's rows for it;
 - the sum of a step's /camera/images histograms is camera_histograms.csv's counts, exactly;
 - /lidar/echoes holds lidar_echoes.csv's echoes (ranges to the CSV's 4 decimals);
+- every origin, the radar's and the lidar's, is one HDF5 enumeration with names: noise 0, target 1,
+  fog 2, background 3, clipping 4 (sensor/origin.hpp);
+- the ground truth on request: /radar/origins, an enumerated map whose cell at each detection's
+  peak holds that detection's origin; /lidar/origins, whose stretch holding each echo's
+  peak_range_m holds that echo's origin;
 - the layout: shapes [step, item, ...], one item per chunk, dimension scales attached, units, the
   resolved scenario as the root attribute (scenario.toml's text).
 
@@ -119,6 +124,10 @@ with tempfile.TemporaryDirectory() as work:
             listed = [r for r in csv.DictReader(echo_file)
                       if int(r["step"]) in (0, 4) and int(r["scan"]) < 4]
         check(len(listed) == len(echoes), f"{len(echoes)} echoes against the CSV's {len(listed)}")
+        table = {"noise": 0, "target": 1, "fog": 2, "background": 3, "clipping": 4}
+        check(h5py.check_enum_dtype(echoes.dtype["origin"]) == table, "the lidar's origin codes")
+        check(h5py.check_enum_dtype(f["/radar/detections"].dtype["origin"]) == table,
+              "the radar's origin codes")
         lidar_labels = {v: k for k, v in h5py.check_enum_dtype(echoes.dtype["origin"]).items()}
         for row, echo in zip(listed, echoes):
             check(int(row["step"]) == echo["step"] and int(row["scan"]) == echo["item"] and
@@ -141,6 +150,43 @@ with tempfile.TemporaryDirectory() as work:
               f"parts file: {sorted(f['/radar'])}")
         beat, signal, noise = (f[f"/radar/{k}"][0, 0] for k in ("beat", "signal", "noise"))
         check(np.array_equal(signal + noise, beat), "signal + noise == beat")
+
+# The ground truth, asked for by name: each detection's and each echo's origin is the one the
+# truth holds where it peaks.
+with tempfile.TemporaryDirectory() as work:
+    out, raw = os.path.join(work, "out"), os.path.join(work, "truth.h5")
+    subprocess.run([fogradar, "run", "--scenario", os.path.join(source, "tests/cli/small.toml"),
+                    "--out", out, "--raw", raw, "--raw-select",
+                    "radar.detections,radar.origins,lidar.echoes,lidar.origins", "--raw-steps",
+                    "0,4", "--raw-items", "0-1"], check=True, stdout=subprocess.DEVNULL)
+    with h5py.File(raw) as f:
+        truth = f["/radar/origins"]
+        check(h5py.check_enum_dtype(truth.dtype) == table, "the radar map's origin codes")
+        rows, columns = truth.shape[2:]
+        bin_m, velocity_bin = truth.attrs["range_bin_m"], truth.attrs["velocity_bin_m_per_s"]
+        coupling = truth.attrs["range_coupling_s"]
+        radar_seen = 0
+        for d in f["/radar/detections"][:]:
+            s, i = list(f["/radar/step"][:]).index(d["step"]), d["item"]
+            column = int(np.clip(np.floor((d["range_m"] + coupling * d["velocity_m_per_s"]) / bin_m
+                                          + 0.5), 0, columns - 1))
+            row = int(np.floor(d["velocity_m_per_s"] / velocity_bin + 0.5)) % rows
+            check(truth[s, i, row, column] == d["origin"], f"radar truth at {d}")
+            radar_seen += 1
+        check(radar_seen > 0, "radar detections with truth")
+        stretches = f["/lidar/origins"][:]
+        check(h5py.check_enum_dtype(stretches.dtype["origin"]) == table, "lidar truth codes")
+        lidar_seen = Counter()
+        for e in f["/lidar/echoes"][:]:
+            inside = stretches[(stretches["step"] == e["step"]) & (stretches["item"] == e["item"])
+                               & (stretches["beam"] == e["beam"])
+                               & (stretches["start_m"] <= e["peak_range_m"])
+                               & (e["peak_range_m"] < stretches["end_m"])]
+            expected = inside["origin"][0] if len(inside) else table["noise"]
+            check(expected == e["origin"], f"lidar truth at {e}")
+            lidar_seen[int(e["origin"])] += 1
+        check(lidar_seen[table["background"]] > 0 and lidar_seen[table["target"]] > 0,
+              f"lidar echoes with truth: {lidar_seen}")
 
 print(f"{len(failures)} failures")
 sys.exit(1 if failures else 0)

@@ -186,6 +186,14 @@ TEST(RcsBoxplot, TableStatesAdcClippingOnlyWhenAStepClipped) {
   EXPECT_GT(table.find("ADC clipping"), table.find("\u2013: no such value"));
   EXPECT_GT(table.find("ADC clipping"), table.find("*: fewer than half"));
   EXPECT_EQ(table.find("at 1 active layer"), std::string::npos) << table;
+  // The detections the clipping made, per frame, for the same steps.
+  summary.steps[0].clipping_detections_per_frame = 15.5;
+  EXPECT_NE(summary_table(summary).find(
+                "\nclipping detections (its harmonics and intermodulation products, not false "
+                "alarms): 15.500 per frame at 0 active layers, 0.000 per frame at 3 active "
+                "layers\n"),
+            std::string::npos)
+      << summary_table(summary);
   summary.steps[0].adc_clipped_fraction = 0.0;
   summary.steps[3].adc_clipped_fraction = 0.0;
   summary.steps[1].adc_clipped_fraction = 1.0;

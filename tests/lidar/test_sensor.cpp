@@ -64,7 +64,7 @@ TEST(LidarSensor, FalseAlarmRateOnNoiseAloneMatchesTheDesign) {
     RandomStream stream = sensor_stream(3, stream_key, 0, s);
     const LidarScan scan =
         lidar.measure(propagation::first_layers_active(0, 4), std::vector<double>(4, 1.0), stream);
-    for (const LidarEcho& e : scan.echoes) EXPECT_EQ(e.origin, EchoOrigin::noise);
+    for (const LidarEcho& e : scan.echoes) EXPECT_EQ(e.origin, Origin::noise);
     echoes += scan.echoes.size();
   }
   const double p = params.false_alarm_probability;
@@ -447,7 +447,7 @@ TEST(LidarPaperScenario, Fig6TargetIntensityPattern) {
           static_cast<double>(run.summary.steps[step].target_detections), Tolerance::absolute,
           "the study's text: from 2 layers on \"no signal is received from the EVT\"");
     for (const LidarScan& scan : run.steps[step].scans) {
-      for (const LidarEcho& e : scan.echoes) EXPECT_NE(e.origin, EchoOrigin::target);
+      for (const LidarEcho& e : scan.echoes) EXPECT_NE(e.origin, Origin::target);
     }
   }
   ASSERT_TRUE(run.summary.sensor_limit_layers.has_value());
@@ -483,7 +483,7 @@ TEST(LidarPaperScenario, Fig5FirstEchoesAtTheFogsNearEdge) {
         const double angle_deg = run.lidar->beam_angle_deg(e.beam);
         if (e.index != 0 || std::abs(angle_deg) > 20.0) continue;
         const double edge_m = 2.0 / std::cos(angle_deg * degree_rad);
-        if (e.origin == EchoOrigin::fog && e.range_m > edge_m - 0.5 && e.range_m < edge_m + 0.75) {
+        if (e.origin == Origin::fog && e.range_m > edge_m - 0.5 && e.range_m < edge_m + 0.75) {
           ++at_edge;
         }
         seen[e.beam] = true;

@@ -105,10 +105,18 @@ std::vector<Tone> fog_tones(const RadarParams& p, int first_bin, int last_bin, d
   return tones;
 }
 
+// The sensors' one code table (sensor/origin.hpp): the radar's codes as they always were, the
+// lidar's background and the ADC's clipping after them.
 TEST(Origin, NamesAndDominance) {
   EXPECT_EQ(to_string(Origin::target), "target");
   EXPECT_EQ(to_string(Origin::fog), "fog");
   EXPECT_EQ(to_string(Origin::noise), "noise");
+  EXPECT_EQ(to_string(Origin::clipping), "clipping");
+  EXPECT_EQ(sensor::origin_labels(),
+            (std::vector<std::string>{"noise", "target", "fog", "background", "clipping"}));
+  EXPECT_EQ(static_cast<int>(Origin::noise), 0);
+  EXPECT_EQ(static_cast<int>(Origin::target), 1);
+  EXPECT_EQ(static_cast<int>(Origin::fog), 2);
   EXPECT_EQ(dominant_origin(2.0, 1.0, 1.5), Origin::target);
   EXPECT_EQ(dominant_origin(1.0, 2.0, 1.5), Origin::fog);
   EXPECT_EQ(dominant_origin(1.0, 1.2, 1.5), Origin::noise);
@@ -363,6 +371,73 @@ TEST(OriginOfDetections, TargetSideLobe) {
     const std::vector<Tone> tones{{path_at_bin_m(p, nu_r), {a, 0.0}, v, Origin::target}};
     const Origin expected = side_lobe_db + snr_db > 0.0 ? Origin::target : Origin::noise;
     EXPECT_EQ(chain.origin_classifier().classify(tones, d, k), expected) << snr_db;
+  }
+}
+
+// A fully clipped ADC (full scale at the thermal noise's power, a 60 dB target): the frame clips,
+// and its detections away from the target's cell are the clipping's harmonics and intermodulation
+// products, never noise. The same tones without the ADC give fewer detections outside the target
+// (noise false alarms alone): the clipping makes them, not the tones.
+TEST(OriginOfDetections, ClippingProductsAreClipping) {
+  RadarParams p = small_radar();
+  p.adc_bits = 10;
+  p.adc_full_scale_dbm = 10.0 * std::log10(reference_noise_power_w(p) / 1e-3);
+  RadarParams ideal = p;
+  ideal.adc_bits = 0;
+  const RadarChain chain(p), ideal_chain(ideal);
+  MeasurementWorkspace ws = chain.make_workspace();
+  const double a = amplitude_for_snr(p, 60.0);
+  const std::vector<Tone> tones{{path_at_bin_m(p, 20.3), {a, 0.0}, 0.0, Origin::target}};
+  std::size_t clipping = 0, ideal_others = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    RandomStream rng(seed);
+    const FrameWindow window = chain.processor().window();
+    const SynthesisReport report =
+        synthesize_frame(tones, chain.params(), chain.derived(), rng, ws.frame, &window);
+    ASSERT_GT(report.clipped_samples, report.samples / 2);
+    chain.processor().transform_windowed(ws.frame);
+    std::vector<Detection> detections;
+    estimate_detections(ws.frame, chain.processor(), chain.cfar(), chain.params(),
+                        chain.derived(), ws.estimation, detections);
+    chain.origin_classifier().attribute(tones, detections, report.clipped_samples > 0);
+    for (const Detection& det : detections) {
+      EXPECT_NE(det.origin, Origin::noise) << det.range_cell << ' ' << det.doppler_cell;
+      clipping += det.origin == Origin::clipping ? 1 : 0;
+    }
+    MeasurementWorkspace ideal_ws = ideal_chain.make_workspace();
+    for (const Detection& det : detect(ideal_chain, tones, seed, ideal_ws)) {
+      ideal_others += det.origin == Origin::target ? 0 : 1;
+    }
+  }
+  EXPECT_GT(clipping, ideal_others);
+}
+
+// The map of origins (OriginClassifier::origin_map) against classify at every cell, for a moving
+// target in fog, with and without clipping: the grouped sums give the same origin wherever the
+// powers do not tie (none does here).
+TEST(OriginMap, EqualsClassifyAtEveryCell) {
+  const RadarParams p = small_radar();
+  const RadarChain chain(p);
+  RandomStream rng(7);
+  std::vector<Tone> tones = fog_tones(p, 26, 36, 15.0, rng);
+  tones.push_back({path_at_bin_m(p, 30.5), {0.0, amplitude_for_snr(p, 45.0)}, 1.1, Origin::target});
+  tones.push_back({path_at_bin_m(p, 12.2), {amplitude_for_snr(p, 25.0), 0.0}, 0.0, Origin::target});
+  const std::size_t chirps = p.chirps_per_frame, samples = p.samples_per_chirp;
+  std::vector<std::uint8_t> map(chirps * samples);
+  for (const bool clipped : {false, true}) {
+    chain.origin_classifier().origin_map(tones, clipped, map);
+    std::size_t counts[5] = {};
+    for (std::size_t d = 0; d < chirps; ++d) {
+      for (std::size_t k = 0; k < samples; ++k) {
+        const Origin expected = chain.origin_classifier().classify(tones, d, k, clipped);
+        ASSERT_EQ(map[d * samples + k], static_cast<std::uint8_t>(expected)) << d << ' ' << k;
+        ++counts[map[d * samples + k]];
+      }
+    }
+    EXPECT_GT(counts[static_cast<int>(Origin::target)], 0u);
+    EXPECT_GT(counts[static_cast<int>(Origin::fog)], 0u);
+    EXPECT_GT(counts[static_cast<int>(clipped ? Origin::clipping : Origin::noise)], 0u);
+    EXPECT_EQ(counts[static_cast<int>(clipped ? Origin::noise : Origin::clipping)], 0u);
   }
 }
 

@@ -25,23 +25,39 @@
 #include "fogradar/lidar/waveform.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
+#include "fogradar/sensor/origin.hpp"
 
 namespace fogradar::lidar {
 
 // The lidar's random streams: sensor_stream(seed, stream_key, step, index).
 inline constexpr std::uint64_t stream_key = 1;
 
-// What produced an echo: the noise-free contribution largest at the echo's peak sample (target:
-// the EVT; fog: the active layers' volume backscatter; background: a static segment), or noise when
-// the largest is below the receiver noise's standard deviation (a false alarm).
-enum class EchoOrigin : std::uint8_t { target, fog, background, noise };
-std::string_view to_string(EchoOrigin origin) noexcept;  // "target", "fog", "background", "noise"
+// What produced an echo (the sensors' one code table, sensor/origin.hpp): the noise-free
+// contribution largest at the echo's peak sample (target: the EVT; fog: the active layers' volume
+// backscatter; background: a static segment), or noise when the largest is below the receiver
+// noise's standard deviation (a false alarm).
+using sensor::Origin;
+using sensor::to_string;
+
+// The origin of a sample from its noise-free parts: the largest (ties to target, then fog), or
+// noise when it is below `noise_std`.
+Origin dominant_origin(double target, double fog, double background, double noise_std) noexcept;
+
+// A stretch of one beam's samples with one origin other than noise: samples k with
+// start_m <= c k dt / 2 < end_m (the sample's range, before the echo range's calibration).
+struct OriginRun {
+  std::uint32_t beam = 0;
+  Origin origin = Origin::noise;
+  double start_m = 0.0;
+  double end_m = 0.0;
+};
 
 struct LidarEcho {
   std::uint32_t beam = 0;  // index into the scan, angle = beam_angle_deg(beam)
   std::uint8_t index = 0;  // 0 = first echo in range order
-  EchoOrigin origin = EchoOrigin::noise;
+  Origin origin = Origin::noise;
   double range_m = 0.0;    // leading-edge crossing, calibrated (EchoDetector::range_offset_m)
+  double peak_range_m = 0.0;  // c k dt / 2 of its peak sample k, where its origin is attributed
   double intensity = 0.0;  // min(saturation, scale * peak / threshold)
 };
 
@@ -116,11 +132,14 @@ class Lidar {
   // `stream`, echoes extracted, origins attributed. Beams that cross no active layer and hit
   // nothing get noise only. Given `waveforms` (beam_count() x samples_per_beam(), row-major), each
   // beam's received waveform, noise included, as the echo extraction sees it, goes into its row.
-  // Throws InvalidParameter when `active` or the factors do not have one entry per layer, and
-  // Stopped, before a beam, when `stop` says stop.
+  // Given `origins`, it is filled with the scan's ground truth: every beam's stretches of samples
+  // whose noise-free parts give an origin other than noise (the attribution an echo peaking there
+  // gets), ascending beam and range. Throws InvalidParameter when `active` or the factors do not
+  // have one entry per layer, and Stopped, before a beam, when `stop` says stop.
   LidarScan measure(const propagation::ActiveLayers& active,
                     std::span<const double> optical_depth_factors, RandomStream& stream,
-                    std::span<double> waveforms = {}, const StopToken& stop = {}) const;
+                    std::span<double> waveforms = {}, const StopToken& stop = {},
+                    std::vector<OriginRun>* origins = nullptr) const;
 
  private:
   struct Layer {

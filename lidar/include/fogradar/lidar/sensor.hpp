@@ -17,7 +17,7 @@ namespace fogradar::lidar {
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
 // The lidar's raw data per scan (DESIGN §11), by index: the received waveforms and the echoes.
-enum RawKindIndex : std::size_t { raw_waveforms = 0, raw_echoes = 1 };
+enum RawKindIndex : std::size_t { raw_waveforms = 0, raw_echoes = 1, raw_origins = 2 };
 std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params);
 
 // What a run of the lidar found: the sensor as built (its files need its geometry and derived

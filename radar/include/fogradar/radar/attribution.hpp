@@ -4,6 +4,7 @@
 
 #include <complex>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -50,7 +51,11 @@ struct CellContributions {
 // (the windowed 2-D DFT of the tone synthesize_frame makes; W_r, W_d the range and Doppler windows'
 // DTFTs); T and F sum this over the target and the fog tones; the noise's expected power is
 // k T0 F fs sum(w_r^2) sum(w_d^2) (zero without thermal noise). Phase noise and ADC quantisation
-// are not counted. Immutable: one classifier serves every thread.
+// are not counted. In a frame whose ADC clipped, a cell that neither T nor F explains (noise would
+// dominate) is the clipping's: a rail clipped at +-A is an odd nonlinearity of the sum of tones,
+// whose harmonics and intermodulation products (f = sum of n_i f_i, Blachman, IEEE Trans. Inf.
+// Theory 17 (1971) 398) land in cells no tone reaches, strong as the clipped tones and far above
+// the thermal noise. Immutable: one classifier serves every thread.
 class OriginClassifier {
  public:
   OriginClassifier(const RangeDopplerProcessor& processor, const RadarParams& params,
@@ -58,11 +63,17 @@ class OriginClassifier {
 
   CellContributions contributions(std::span<const Tone> tones, std::size_t doppler_cell,
                                   std::size_t range_cell) const;
-  // dominant_origin of the contributions at the cell.
-  Origin classify(std::span<const Tone> tones, std::size_t doppler_cell,
-                  std::size_t range_cell) const;
-  // Sets every detection's origin from its peak cell.
-  void attribute(std::span<const Tone> tones, std::span<Detection> detections) const;
+  // dominant_origin of the contributions at the cell; noise becomes clipping when `clipped`.
+  Origin classify(std::span<const Tone> tones, std::size_t doppler_cell, std::size_t range_cell,
+                  bool clipped = false) const;
+  // Sets every detection's origin from its peak cell; `clipped`: the frame's ADC clipped.
+  void attribute(std::span<const Tone> tones, std::span<Detection> detections,
+                 bool clipped = false) const;
+  // The origin a detection peaking in each cell would be given (classify), Doppler rows in FFT
+  // order x range columns as the map: the frame's ground truth everywhere. The tones are summed
+  // in groups of equal Doppler shift (the window's DTFT along Doppler is common to a group), so a
+  // cell whose powers tie to rounding may differ from classify.
+  void origin_map(std::span<const Tone> tones, bool clipped, std::span<std::uint8_t> map) const;
 
  private:
   WindowSpectrum range_spectrum_;
@@ -71,6 +82,8 @@ class OriginClassifier {
   double doppler_bins_per_hz_;  // T_i N_c
   RadarDerived derived_;  // the beat and Doppler frequencies synthesize_frame gives each tone
   double noise_power_;
+  std::size_t chirps_;
+  std::size_t samples_;
 };
 
 }  // namespace fogradar::radar

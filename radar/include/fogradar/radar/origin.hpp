@@ -1,17 +1,15 @@
-// What produced a detection: the ground truth the simulation knows and a real radar does not.
+// What produced a detection: the ground truth the simulation knows and a real radar does not. The
+// radar's origins are the sensors' one code table (sensor/origin.hpp): noise, target (a path of a
+// target scattering centre, direct or via the floor), fog (the fog's volume clutter) and clipping
+// (the ADC's clipping products, in a frame that clipped).
 #pragma once
 
-#include <cstdint>
-#include <string_view>
+#include "fogradar/sensor/origin.hpp"
 
 namespace fogradar::radar {
 
-// target: a path of a target scattering centre (direct or via the floor); fog: the fog's volume
-// clutter; noise: the receiver's thermal noise (a false alarm).
-enum class Origin : std::uint8_t { noise, target, fog };
-
-// "noise", "target", "fog".
-std::string_view to_string(Origin origin) noexcept;
+using sensor::Origin;
+using sensor::to_string;
 
 // The origin whose expected power in a cell is largest: |T|^2 of the target paths, |F|^2 of the fog
 // clutter, the thermal noise's E|N|^2 (all in the same units); ties go to target, then fog.

@@ -45,6 +45,7 @@ struct MeasurementRecord {
   bool fog_rivals_target = false;
   std::size_t fog_detections = 0;  // fog-origin detections anywhere in the map
   std::size_t false_alarms = 0;    // noise-origin detections anywhere in the map
+  std::size_t clipping_detections = 0;  // clipping-origin detections anywhere in the map
   std::vector<DetectionRecord> detections;  // every detection of the map, in the chain's order
   // The frame's samples and those with an I or Q rail clipped by the ADC (SynthesisReport); not
   // written per measurement, summed per step (StepSummary::adc_clipped_fraction).
@@ -73,6 +74,9 @@ struct StepSummary {
   double false_association_rate = 0.0;
   double false_alarms_per_frame = 0.0;    // mean noise-origin detections per measurement
   double fog_detections_per_frame = 0.0;  // mean fog-origin detections per measurement
+  // Mean clipping-origin detections per measurement: the ADC's harmonics and intermodulation
+  // products (attribution.hpp), not counted as false alarms.
+  double clipping_detections_per_frame = 0.0;
   stats::BoxPlot rcs;                     // of the target detections' rcs_dbsm values
   // Against the 0-layer series: the Hodges-Lehmann shift (median of all pairwise differences
   // x_i - y_j), its distribution-free 95 % interval (the inverted Mann-Whitney test) and the
@@ -112,6 +116,8 @@ struct RadarSummary {
   std::optional<std::size_t> sensor_limit_layers;
   // At the last step: median target SNR minus the CFAR threshold factor (dB), i.e. roughly how
   // much more two-way attenuation the median echo could take before it drops below the threshold.
+  // Empty when the last step's ADC clipped: a clipped echo's level is not what it measures, and
+  // its clipping products raise the map, so the SNR says nothing of the margin.
   std::optional<double> attenuation_margin_db;
   // The CFAR's design: P_fa times the cells it tests per frame (every cell of the map). Counts
   // cells; a detection is an 8-connected object of cells, so noise detections per frame come out

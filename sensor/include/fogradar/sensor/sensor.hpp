@@ -134,6 +134,9 @@ struct RawKind {
   std::vector<std::pair<std::string, double>> attributes;
   // Kept when no kinds are named (--raw without --raw-select); false: only when asked for by name.
   bool by_default = true;
+  // uint8 arrays: non-empty, an enumeration, the value its label's index (the origin maps:
+  // sensor::origin_labels()).
+  std::vector<std::string> labels = {};
 
   std::size_t item_values() const;  // product of `shape`
   std::size_t item_bytes() const;   // of one item (tables: rows_per_item rows)
