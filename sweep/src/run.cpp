@@ -309,7 +309,7 @@ std::string comparison_svg(const std::vector<Point>& points, const std::vector<j
 std::string limits_svg(const SweepSpec& spec, const std::vector<Point>& points,
                        const std::vector<json>& pieces) {
   const std::vector<std::string> sensors = sensor_order(pieces);
-  const std::size_t steps = points.front().scenario.experiment.max_active_layers + 1;
+  const std::size_t steps = points.front().scenario.steps();
   const auto limit_of = [&](std::size_t p, const std::string& sensor) -> std::optional<double> {
     const json* s = sensor_of(pieces[p]["runs"][0]["sensors"], sensor);
     if (s == nullptr || (*s)["limit"].is_null()) return std::nullopt;
