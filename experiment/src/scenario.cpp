@@ -439,6 +439,13 @@ class Reader {
     take_table_temperature("fog.", scenario_.fog);
     for (const auto& [key, node] : arrays_) read_array(*key, *node);
     for (std::size_t i = 0; i < scenario_.chamber.layers.size(); ++i) {
+      // A layer starts without a length (NaN, "missing"): a NaN the file gives is its own value.
+      const std::string length = "chamber.layers[" + std::to_string(i) + "].length_m";
+      if (std::isnan(scenario_.chamber.layers[i].length_m) && lines_.contains(length)) {
+        throw_at(source_, shown(lines_.at(length)), length,
+                 length + " = " + typed_numbers_.at(length) + ": must be " +
+                     open_closed(0.0, propagation::max_chamber_length_m).constraint());
+      }
       take_table_temperature("chamber.layers[" + std::to_string(i) + "].fog.",
                              scenario_.chamber.layers[i].fog);
     }

@@ -463,6 +463,13 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
        "bad.toml:2: radar.samples_per_chirp = 0x10_0000: must be an integer in [16, 65536]"},
       {"[fog]\nvisibility_m = 1E-4\n",
        "bad.toml:2: fog.visibility_m = 1E-4: must be in [0.001, 10000000]"},
+      // A layer's length given as nan is quoted, not taken for a missing one.
+      {"[[chamber.layers]]\nlength_m = nan\n",
+       "bad.toml:2: chamber.layers[0].length_m = nan: must be in (0, 10000] (chamber.layers at line "
+       "1)"},
+      {"[[chamber.layers]]\nlength_m = 1.0\n[[chamber.layers]]\nlength_m = -nan\n",
+       "bad.toml:4: chamber.layers[1].length_m = -nan: must be in (0, 10000] (chamber.layers at "
+       "line 1)"},
       // A range the other keys leave empty is said to be so, not printed as [16, 5].
       {"[radar]\nsample_rate_hz = 1e5\n",
        "bad.toml:2: radar.samples_per_chirp = 512: must be an integer >= 16 and <= 5: the samples "
