@@ -466,7 +466,7 @@ int run(const Options& options) {
   if (options.measurements > 0)
     scenario.experiment.measurements_per_step = static_cast<std::size_t>(options.measurements);
   scenario.validate();
-  const std::size_t steps = scenario.experiment.max_active_layers + 1;
+  const std::size_t steps = scenario.steps();
   const std::size_t frames = steps * scenario.experiment.measurements_per_step;
   const radar::RadarParams& radar_params = scenario.params<radar::SensorParams>("radar").radar;
   const std::size_t rows = radar_params.chirps_per_frame, columns = radar_params.samples_per_chirp;

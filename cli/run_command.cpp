@@ -102,16 +102,17 @@ void run(const RunOptions& options) {
     request.path = *options.raw_path;
     raw_plan = experiment::resolve_raw(scenario, request);
   }
-  // Flushed: a caller reads it while the run works.
-  std::cout << "estimated time: " << experiment::estimate_run_time(scenario, threads).text()
-            << ", peak memory: "
-            << mib_text(experiment::estimate_peak_memory(scenario, threads).total_bytes())
-            << std::endl;
   // Before the output directory: the directory is released with the signals still held off.
   const SignalWatch signals;
   experiment::OutputDirectory out(dir, experiment::result_file_names(scenario));
   std::optional<experiment::RawFile> raw;
   if (raw_plan) raw.emplace(*raw_plan, scenario);
+  // Once nothing is left to refuse, so that a refused run prints its message alone. Flushed: a
+  // caller reads it while the run works.
+  std::cout << "estimated time: " << experiment::estimate_run_time(scenario, threads).text()
+            << ", peak memory: "
+            << mib_text(experiment::estimate_peak_memory(scenario, threads).total_bytes())
+            << std::endl;
   experiment::ExperimentResult result;
   try {
     result = experiment::run_experiment(

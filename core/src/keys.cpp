@@ -5,18 +5,45 @@
 #include <sstream>
 
 namespace fogradar {
-namespace {
 
-// The numbers of a bad-input message, as core/error.hpp's checks write them (ten significant
-// digits, "1e+09").
 std::string message_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
   std::ostringstream text;
   text.precision(10);
   text << value;
   return text.str();
 }
 
-}  // namespace
+bool CrossBound::empty() const {
+  if (!integer) {
+    return range.low > range.high ||
+           (range.low == range.high && (range.low_open || range.high_open));
+  }
+  // The least and greatest integers inside.
+  double least = std::ceil(range.low);
+  if (range.low_open && least == range.low) least += 1.0;
+  double greatest = std::floor(range.high);
+  if (range.high_open && greatest == range.high) greatest -= 1.0;
+  return least > greatest;
+}
+
+std::string CrossBound::constraint() const {
+  if (!empty()) {
+    return std::string(integer ? "an integer in " : "in ") + (range.low_open ? "(" : "[") +
+           low_text + ", " + high_text + (range.high_open ? ")" : "]") + note;
+  }
+  const std::string kind = integer ? "integer" : "number";
+  std::string text = integer ? "an " : "a ";
+  text += kind;
+  text += range.low_open ? " > " : " >= ";
+  text += low_text;
+  text += range.high_open ? " and < " : " and <= ";
+  text += high_text;
+  text += note;
+  text += "; no " + kind + " is both: the keys named leave it no value";
+  return text;
+}
 
 bool Interval::contains(double value) const {
   if (!std::isfinite(value)) return false;

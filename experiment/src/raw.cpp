@@ -57,6 +57,19 @@ std::string joined(const std::vector<std::string>& parts, std::string_view separ
   return text;
 }
 
+// Indices as --raw-steps and --raw-items take them: "0-4", "0,2-3".
+std::string index_ranges(const std::vector<std::size_t>& indices) {
+  std::string text;
+  for (std::size_t i = 0; i < indices.size();) {
+    std::size_t j = i;
+    while (j + 1 < indices.size() && indices[j + 1] == indices[j] + 1) ++j;
+    text += (text.empty() ? "" : ",") + std::to_string(indices[i]);
+    if (j > i) text += "-" + std::to_string(indices[j]);
+    i = j + 1;
+  }
+  return text;
+}
+
 }  // namespace
 
 RawPlan resolve_raw(const Scenario& scenario, const RawRequest& request) {
@@ -138,12 +151,26 @@ RawPlan resolve_raw(const Scenario& scenario, const RawRequest& request) {
     std::ostringstream limit;
     limit.precision(6);
     limit << request.limit_mib;
+    std::vector<std::string> kinds;
+    for (const RawPlan::Sensor& s : plan.sensors) {
+      for (const std::size_t k : s.chosen) kinds.push_back(s.name + "." + s.kinds[k].name);
+    }
+    // Each option as typed, or the default in force where it was not given.
+    const auto option = [](std::string_view name, const std::string& typed,
+                           const std::string& by_default) {
+      return typed.empty() ? std::string(name) + " not given: " + by_default
+                           : std::string(name) + " = '" + typed + "'";
+    };
     throw InvalidParameter(
         "--raw-limit-mib",
         "--raw needs an estimated " + mib_text(plan.bytes) + ", more than the limit of " +
-            limit.str() + " MiB (--raw-limit-mib; default 4096): fewer kinds (--raw-select = '" +
-            request.kinds + "'), steps (--raw-steps = '" + request.steps +
-            "') or items (--raw-items = '" + request.items + "')");
+            limit.str() + " MiB (--raw-limit-mib; default 4096): fewer kinds (" +
+            option("--raw-select", request.kinds,
+                   "every kind of the sensors that run, " + joined(kinds, ",")) +
+            "), steps (" +
+            option("--raw-steps", request.steps, "every step, " + index_ranges(plan.steps)) +
+            ") or items (" +
+            option("--raw-items", request.items, "the first ten, " + index_ranges(items)) + ")");
   }
   return plan;
 }

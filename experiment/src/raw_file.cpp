@@ -341,7 +341,7 @@ class RawFile::Impl {
     string_attribute(file_.get(), "scenario", to_toml(scenario));
     integer_attribute(file_.get(), "seed", static_cast<std::int64_t>(scenario.experiment.seed));
 
-    const std::size_t steps = scenario.experiment.max_active_layers + 1;
+    const std::size_t steps = scenario.steps();
     step_position_.assign(steps, -1);
     for (std::size_t p = 0; p < plan_.steps.size(); ++p) {
       step_position_[plan_.steps[p]] = static_cast<std::ptrdiff_t>(p);

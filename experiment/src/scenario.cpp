@@ -36,10 +36,13 @@ using ScenarioKey = Key<Scenario>;
 // Line of each key read from the file, to point error messages at it.
 using KeyLines = std::map<std::string, std::size_t>;
 
+// Line 0: the message names the source and the key alone.
 [[noreturn]] void throw_at(std::string_view source, std::size_t line, const std::string& key,
                            const std::string& message) {
   std::ostringstream out;
-  out << source << ':' << line << ": " << message;
+  out << source;
+  if (line != 0) out << ':' << line;
+  out << ": " << message;
   throw InvalidParameter(key, out.str());
 }
 
@@ -176,16 +179,23 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
                FOGRADAR_KEY_FIELD(experiment.measurements_per_step), 1, 1000000,
                "the study's series length: measurements per step of the sensors that take its "
                "measurements (the others count their own items)");
-  // Its true upper bound is chamber.layer_count: the key's own bound is only the widest one the
-  // reader accepts before it states that (chamber is read first), and the check states it too.
-  ScenarioKey& active =
-      keys.integer("experiment.max_active_layers", FOGRADAR_KEY_FIELD(experiment.max_active_layers),
-                   0, static_cast<std::int64_t>(propagation::max_chamber_layers),
-                   "steps k = 0 … max_active_layers");
+  // Its true upper bound is the chamber's layer count: the key's own bound is only the widest one
+  // the reader accepts before it states that (chamber is read first), and the check states it too.
+  // Not given, it follows the chamber: every layer. scenario.toml writes the value in force.
+  ScenarioKey& active = keys.integer(
+      "experiment.max_active_layers",
+      [](const Scenario& s) { return static_cast<std::int64_t>(s.steps() - 1); },
+      [](Scenario& s, std::int64_t v) {
+        s.experiment.max_active_layers = static_cast<std::size_t>(v);
+      },
+      "", "steps k = 0 … max_active_layers; not given: every layer of the chamber");
+  active.integer_low = 0;
+  active.integer_high = static_cast<std::int64_t>(propagation::max_chamber_layers);
   active.check = [](const Scenario& s) {
-    if (s.experiment.max_active_layers > s.chamber.layers_in_use()) {
+    if (s.experiment.max_active_layers &&
+        *s.experiment.max_active_layers > s.chamber.layers_in_use()) {
       throw_invalid("experiment.max_active_layers",
-                    static_cast<double>(s.experiment.max_active_layers),
+                    static_cast<double>(*s.experiment.max_active_layers),
                     integer_range_of_active(s.chamber.layers_in_use(), !s.chamber.layers.empty()));
     }
   };
@@ -387,8 +397,12 @@ std::size_t byte_of_column(std::string_view line, std::size_t column) {
 class Reader {
  public:
   Reader(const toml::table& root, std::string_view text, std::string_view source,
-         Scenario& scenario)
-      : root_(root), text_(text), source_(source), scenario_(scenario) {}
+         Scenario& scenario, LineNumbers line_numbers)
+      : root_(root),
+        text_(text),
+        source_(source),
+        scenario_(scenario),
+        lines_shown_(line_numbers == LineNumbers::shown) {}
 
   void read() {
     const detail::ScenarioKeys& keys = detail::keys_of(scenario_);
@@ -409,7 +423,7 @@ class Reader {
     for (const auto& [name, node] : root_) {
       const std::string key(name.str());
       if (std::find(top.begin(), top.end(), key) == top.end()) {
-        throw_at(source_, node.source().begin.line, key,
+        throw_at(source_, shown(node.source().begin.line), key,
                  "unknown section or key '" + key + "' (sections: " + joined(top, ", ") + ")");
       }
     }
@@ -425,6 +439,13 @@ class Reader {
     take_table_temperature("fog.", scenario_.fog);
     for (const auto& [key, node] : arrays_) read_array(*key, *node);
     for (std::size_t i = 0; i < scenario_.chamber.layers.size(); ++i) {
+      // A layer starts without a length (NaN, "missing"): a NaN the file gives is its own value.
+      const std::string length = "chamber.layers[" + std::to_string(i) + "].length_m";
+      if (std::isnan(scenario_.chamber.layers[i].length_m) && lines_.contains(length)) {
+        throw_at(source_, shown(lines_.at(length)), length,
+                 length + " = " + typed_numbers_.at(length) + ": must be " +
+                     open_closed(0.0, propagation::max_chamber_length_m).constraint());
+      }
       take_table_temperature("chamber.layers[" + std::to_string(i) + "].fog.",
                              scenario_.chamber.layers[i].fog);
     }
@@ -432,7 +453,7 @@ class Reader {
     for (const ScenarioKey& key : keys.all.keys()) {
       const auto given = lines_.find(key.name);
       if (given == lines_.end() || !key.group.empty() || key.takes_effect(scenario_)) continue;
-      throw_at(source_, given->second, key.name,
+      throw_at(source_, shown(given->second), key.name,
                key.name + " is given: it takes effect only " + key.applies_text);
     }
   }
@@ -491,7 +512,7 @@ class Reader {
     try {
       Scenario probe = scenario_;
       set(probe);
-      if (key.check) key.check(probe);
+      key.check_alone(probe);
       if (whole) probe.validate();
     } catch (const InvalidParameter& e) {
       const std::string_view what = e.what(), must = ": must be ";
@@ -562,8 +583,10 @@ class Reader {
 
   [[noreturn]] void fail(const toml::node& node, const std::string& key,
                          const std::string& message) const {
-    throw_at(source_, node.source().begin.line, key, message);
+    throw_at(source_, shown(node.source().begin.line), key, message);
   }
+  // A line for a message: 0 (none) where the text is not the user's own.
+  std::size_t shown(std::size_t line) const { return lines_shown_ ? line : 0; }
 
   [[noreturn]] void fail_not_table(const toml::node& node, const std::string& section) const {
     const std::set<std::string> keys = keys_of_table(section);
@@ -689,10 +712,12 @@ class Reader {
     std::vector<std::string> members;
     for (const std::string& member : groups_.at(key.group))
       members.push_back(section + "." + member);
+    const auto at = [this](std::size_t line) {
+      return lines_shown_ ? " (line " + std::to_string(line) + ")" : std::string();
+    };
     fail(node, key.name,
-         first->second + " (line " + std::to_string(lines_.at(first->second)) + ") and " +
-             key.name + " (line " + std::to_string(node.source().begin.line) +
-             ") are both given: at most one " + key.group + " of " + joined(members, ", ") +
+         first->second + at(lines_.at(first->second)) + " and " + key.name +
+             at(node.source().begin.line) + " are both given: at most one " + key.group + " of " + joined(members, ", ") +
              " per [" + section + "]");
   }
 
@@ -799,6 +824,7 @@ class Reader {
   std::string_view text_;
   std::string_view source_;
   Scenario& scenario_;
+  bool lines_shown_;
   KeyLines lines_;
   std::map<std::string, std::string> typed_numbers_;
   std::set<std::string> declared_;                          // every section and its parents
@@ -852,7 +878,8 @@ std::string as_typed(const std::string& message, const std::string& key,
 }
 
 // Reads `toml_text` over `base`: keys the file gives replace the base's values.
-Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name) {
+Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name,
+                    LineNumbers line_numbers = LineNumbers::shown) {
   detail::require_toml_safe_bytes(toml_text, source_name);
   toml::table root;
   try {
@@ -861,12 +888,13 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     throw_at(source_name, e.source().begin.line, "toml",
              std::string("malformed TOML: ") + std::string(e.description()));
   }
-  Reader reader(root, toml_text, source_name, s);
+  Reader reader(root, toml_text, source_name, s, line_numbers);
   try {
     reader.read();
     s.validate();
   } catch (const InvalidParameter& e) {
-    const KeyLines& lines = reader.lines();
+    // Without line numbers, the other keys a message names are not pointed at either.
+    const KeyLines& lines = line_numbers == LineNumbers::shown ? reader.lines() : KeyLines{};
     // A reader's error already names its key and line; it may name keys read before it.
     if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) {
       throw InvalidParameter(e.field(), e.what() + other_key_lines(e.what(), e.field(), lines));
@@ -946,6 +974,10 @@ bool Scenario::runs(std::string_view name) const {
          experiment.sensors.end();
 }
 
+std::size_t Scenario::steps() const {
+  return experiment.max_active_layers.value_or(chamber.layers_in_use()) + 1;
+}
+
 const KeyTable<Scenario>& Scenario::keys() const { return detail::keys_of(*this).all; }
 
 // The keys in file order first, then what each sensor checks beyond its keys (a sensor's keys are
@@ -982,7 +1014,7 @@ std::vector<std::size_t> switching_sequence(const SwitchingOrder& order, std::si
 sensor::Context Scenario::context() const {
   return {
       .chamber = chamber_spec(),
-      .steps = experiment.max_active_layers + 1,
+      .steps = steps(),
       .measurements_per_step = experiment.measurements_per_step,
       .seed = experiment.seed,
       .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use())};
@@ -1000,8 +1032,8 @@ Scenario parse_scenario(std::string_view toml_text, std::string_view source_name
 }
 
 Scenario parse_scenario_over(const Scenario& base, std::string_view toml_text,
-                             std::string_view source_name) {
-  return parse_over(base, toml_text, source_name);
+                             std::string_view source_name, LineNumbers line_numbers) {
+  return parse_over(base, toml_text, source_name, line_numbers);
 }
 
 Scenario load_scenario_file(const std::string& path, const SensorRegistry& registry) {

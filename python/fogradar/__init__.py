@@ -55,14 +55,14 @@ class Scenario:
     def from_dict(cls, mapping, source="<dict>"):
         """A dict of the same keys over the paper scenario: nested tables or dotted keys
         ({"fog": {"lwc_g_per_m3": 0.5}} or {"fog.lwc_g_per_m3": 0.5}), lists of dicts for arrays
-        of tables. It is read as its TOML text, dict_to_toml(mapping): a message's line is that
-        text's."""
-        return cls.from_toml(dict_to_toml(mapping), source)
+        of tables. It is read as its TOML text, dict_to_toml(mapping); a message names `source`
+        and the dotted key ("<dict>: radar.tx_power_dbm = 99.0: ..."), no line of that text."""
+        return cls.paper().with_overrides(mapping, source)
 
     def with_overrides(self, overrides, source="<overrides>"):
         """A new scenario: this one with the keys of `overrides` (dotted keys or nested dicts)
-        replaced; the rest as here."""
-        return Scenario(self._core.over(dict_to_toml(overrides), source))
+        replaced; the rest as here. Messages as from_dict's."""
+        return Scenario(self._core.over(dict_to_toml(overrides), source, line_numbers=False))
 
     def to_toml(self):
         """The resolved scenario, every key that takes effect (the run's scenario.toml)."""

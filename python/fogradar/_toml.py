@@ -57,6 +57,13 @@ def _scalar(value):
     raise TypeError(f"a scenario value is a number, boolean, string or list, not {value!r}")
 
 
+def _inline(value):
+    """A value of an array-of-tables element: a dict (a layer's `fog`) as an inline table."""
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {_inline(v)}" for k, v in nest(value).items()) + " }"
+    return _scalar(value)
+
+
 def _is_table_array(value):
     return isinstance(value, (list, tuple)) and value and all(isinstance(v, dict) for v in value)
 
@@ -79,7 +86,7 @@ def dumps(mapping):
                 table(full, v)
             elif _is_table_array(v):
                 for element in v:
-                    lines = [f"{ek} = {_scalar(ev)}" for ek, ev in element.items()]
+                    lines = [f"{ek} = {_inline(ev)}" for ek, ev in element.items()]
                     blocks.append(f"[[{full}]]\n" + "".join(line + "\n" for line in lines))
 
     table("", nest(mapping))

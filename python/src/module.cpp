@@ -318,15 +318,21 @@ PYBIND11_MODULE(_core, m) {
                     return reading(source,
                                    [&] { return experiment::parse_scenario(text, source); });
                   })
-      .def("over",
-           [](const Scenario& base, const std::string& text, const std::string& source) {
-             return reading(source,
-                            [&] { return experiment::parse_scenario_over(base, text, source); });
-           })
+      .def(
+          "over",
+          [](const Scenario& base, const std::string& text, const std::string& source,
+             bool line_numbers) {
+            return reading(source, [&] {
+              return experiment::parse_scenario_over(
+                  base, text, source,
+                  line_numbers ? experiment::LineNumbers::shown : experiment::LineNumbers::hidden);
+            });
+          },
+          py::arg("text"), py::arg("source"), py::arg("line_numbers") = true)
       .def("to_toml", [](const Scenario& s) { return experiment::to_toml(s); })
       .def_property_readonly("sensors", [](const Scenario& s) { return s.experiment.sensors; })
       .def_property_readonly("steps",
-                             [](const Scenario& s) { return s.experiment.max_active_layers + 1; })
+                             [](const Scenario& s) { return s.steps(); })
       .def_property_readonly("seed", [](const Scenario& s) { return s.experiment.seed; })
       .def_property_readonly("target_range_m",
                              [](const Scenario& s) { return s.chamber_spec().target_range_m(); });

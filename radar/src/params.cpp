@@ -56,48 +56,39 @@ KeyTable<RadarParams> radar_param_keys() {
       "up: f_c − B/2 → f_c + B/2 (most automotive front ends); down: the reverse "
       "(docs/radar.md §3.2)");
   // B <= f_c / 2 keeps the whole sweep above 3 f_c / 4.
-  keys.number(
-      "radar.sweep_bandwidth_hz", FOGRADAR_KEY_FIELD(sweep_bandwidth_hz),
-      "[1e6, centre_frequency_hz/2]",
-      [](const RadarParams& p) {
-        if (!(p.sweep_bandwidth_hz >= 1e6 && p.sweep_bandwidth_hz <= 0.5 * p.centre_frequency_hz)) {
-          std::ostringstream range;
-          range.precision(10);
-          range << "in [1e6, radar.centre_frequency_hz / 2 = " << 0.5 * p.centre_frequency_hz
-                << "]";
-          throw_invalid("radar.sweep_bandwidth_hz", p.sweep_bandwidth_hz, range.str());
-        }
-      },
-      "B; range resolution c/(2B)");
+  keys.number("radar.sweep_bandwidth_hz", FOGRADAR_KEY_FIELD(sweep_bandwidth_hz),
+              "[1e6, centre_frequency_hz/2]", nullptr, "B; range resolution c/(2B)")
+      .within([](const RadarParams& p) {
+        const double half = 0.5 * p.centre_frequency_hz;
+        return CrossBound{.range = closed(1e6, half),
+                          .low_text = "1e6",
+                          .high_text = "radar.centre_frequency_hz / 2 = " + message_number(half),
+                          .note = ""};
+      });
   keys.number("radar.chirp_duration_s", FOGRADAR_KEY_FIELD(chirp_duration_s), closed(1e-7, 1e-2),
               "T_c; slope S = B/T_c");
-  keys.number(
-      "radar.chirp_interval_s", FOGRADAR_KEY_FIELD(chirp_interval_s), "[chirp_duration_s, 1]",
-      [](const RadarParams& p) {
-        if (!(p.chirp_interval_s >= p.chirp_duration_s && p.chirp_interval_s <= 1.0)) {
-          std::ostringstream range;
-          range.precision(10);
-          range << "in [radar.chirp_duration_s = " << p.chirp_duration_s << ", 1]";
-          throw_invalid("radar.chirp_interval_s", p.chirp_interval_s, range.str());
-        }
-      },
-      "chirp start to chirp start (Doppler sampling)");
+  keys.number("radar.chirp_interval_s", FOGRADAR_KEY_FIELD(chirp_interval_s),
+              "[chirp_duration_s, 1]", nullptr, "chirp start to chirp start (Doppler sampling)")
+      .within([](const RadarParams& p) {
+        return CrossBound{
+            .range = closed(p.chirp_duration_s, 1.0),
+            .low_text = "radar.chirp_duration_s = " + message_number(p.chirp_duration_s),
+            .high_text = "1",
+            .note = ""};
+      });
   keys.integer("radar.samples_per_chirp", FOGRADAR_KEY_FIELD(samples_per_chirp), 16, 1 << 16,
                "complex I/Q samples per chirp")
-      .with_check([](const RadarParams& p) {
+      .within([](const RadarParams& p) {
         // The samples must fit inside the chirp: N / fs <= T_c.
-        const double sampling_time_s = static_cast<double>(p.samples_per_chirp) / p.sample_rate_hz;
-        if (sampling_time_s > p.chirp_duration_s * (1.0 + 1e-12)) {
-          const double fitting = p.chirp_duration_s * p.sample_rate_hz;
-          std::ostringstream range;
-          range.precision(10);
-          range << "an integer in [16, " << std::min(65536.0, std::floor(fitting * (1.0 + 1e-12)))
-                << "]: the samples fit in the chirp, radar.chirp_duration_s x "
-                   "radar.sample_rate_hz = "
-                << fitting;
-          throw_invalid("radar.samples_per_chirp", static_cast<double>(p.samples_per_chirp),
-                        range.str());
-        }
+        const double fitting = p.chirp_duration_s * p.sample_rate_hz;
+        const double most = std::min(65536.0, std::floor(fitting * (1.0 + 1e-12)));
+        return CrossBound{.range = closed(16.0, most),
+                          .low_text = "16",
+                          .high_text = message_number(most),
+                          .integer = true,
+                          .note = ": the samples fit in the chirp, radar.chirp_duration_s x "
+                                  "radar.sample_rate_hz = " +
+                                  message_number(fitting)};
       })
       .documented_as("integer [16, 65536], ≤ chirp_duration_s · sample_rate_hz");
   keys.number("radar.sample_rate_hz", FOGRADAR_KEY_FIELD(sample_rate_hz), closed(1e5, 1e10),
@@ -126,13 +117,19 @@ KeyTable<RadarParams> radar_param_keys() {
   keys.number("radar.phase_noise_rms_rad", FOGRADAR_KEY_FIELD(phase_noise_rms_rad), closed(0.0, pi),
               "white phase noise per sample")
       .documented_as("[0, π]");
+  // A radome of no thickness is no layer: its material would change nothing.
+  const auto has_radome = [](const RadarParams& p) { return p.radome.thickness_m > 0.0; };
+  const std::string radome_text =
+      "with radar.radome.thickness_m > 0 (0: no radome, whose material changes nothing)";
   keys.number("radar.radome.thickness_m", FOGRADAR_KEY_FIELD(radome.thickness_m), closed(0.0, 0.05),
               "flat radome in front of the antenna; 0: none");
   keys.number("radar.radome.relative_permittivity",
               FOGRADAR_KEY_FIELD(radome.relative_permittivity), closed(1.0, 100.0),
-              "ε_r′ of the radome (2.9: of the order of polycarbonate at W band)");
+              "ε_r′ of the radome (default 2.9: of the order of polycarbonate at W band)")
+      .when(has_radome, radome_text);
   keys.number("radar.radome.loss_tangent", FOGRADAR_KEY_FIELD(radome.loss_tangent),
-              closed(0.0, 1.0), "tan δ = ε_r″/ε_r′ of the radome");
+              closed(0.0, 1.0), "tan δ = ε_r″/ε_r′ of the radome (default 0.01)")
+      .when(has_radome, radome_text);
   keys.number("radar.radome.water_film_m", FOGRADAR_KEY_FIELD(radome.water_film_m),
               closed(0.0, 0.01),
               "water film on the radome's outer face (the study's water-covered sensor), with the "

@@ -221,6 +221,8 @@ check_message() {
   if [ "$(grep -vc "^(run 'fogradar --help' for usage)$" "$work/stderr")" -ne 1 ]; then
     fail "$name: not exactly one message: $(cat "$work/stderr")"; return 1
   fi
+  # Nothing but the message: no estimate line or table before it.
+  if [ -s "$work/stdout" ]; then fail "$name: printed besides its message: $(cat "$work/stdout")"; return 1; fi
   return 0
 }
 # expect_bad NAME KEY ALLOWED ARGS...: a command that writes no results (fog, a bad subcommand, a bad
@@ -376,6 +378,14 @@ expect_bad fog-lwc-empty "--lwc = ''" "[0, 100]" fog --lwc ""
 expect_bad fog-lwc-text "--lwc = 'wet'" "[0, 100]" fog --lwc wet
 expect_bad fog-extinction-empty "--extinction-per-km = ''" "[0, 1e6]" fog --extinction-per-km ""
 expect_bad fog-visibility-inf "--visibility-m = 'inf'" "[1e-3, 1e7]" fog --visibility-m inf
+# nan and inf as typed, signs included, in options and in scenario keys.
+expect_bad time-limit-nan "--time-limit = '-nan'" "[0.001, 1e9]" run --time-limit=-nan --out "$work/bad-time-nan"
+expect_bad threads-inf "--threads = '+inf'" "[0, 4096]" run --threads=+inf --out "$work/bad-threads-inf"
+printf '[radar]\ntx_power_dbm = +inf\n' >"$work/plus-inf.toml"
+expect_bad_run plus-inf "plus-inf.toml:2: radar.tx_power_dbm = +inf:" "[-30, 50]" --scenario "$work/plus-inf.toml"
+printf '[radar]\nchirp_interval_s = -nan\n' >"$work/minus-nan.toml"
+expect_bad_run minus-nan "minus-nan.toml:2: radar.chirp_interval_s = -nan:" "[radar.chirp_duration_s = 5.12e-05, 1]" \
+  --scenario "$work/minus-nan.toml"
 expect_bad fog-diameter-empty "--diameter-um = ''" "[0.01, 1000]" fog --diameter-um ""
 expect_bad fog-temperature-empty "--temperature-c = ''" "[-20, 50] with --water-model liebe" fog --temperature-c ""
 expect_bad fog-frequency-empty "--frequency-ghz = ''" "[0.03, 1000] with --water-model liebe" fog --frequency-ghz ""
@@ -692,6 +702,11 @@ expect_bad_run raw-steps "--raw-steps" "ranges a-b in [0, 4]" --scenario "$small
 expect_bad_run raw-items "--raw-items" "(e.g. 0,4 or 0-2,4)" --scenario "$small" --raw "$work/x.h5" --raw-items 3-1
 expect_bad_run raw-limit "--raw-limit-mib" "more than the limit of 1 MiB" --scenario "$small" --raw "$work/x.h5" \
   --raw-limit-mib 1
+# The options not given are named with the defaults in force, those given as typed.
+expect_bad_run raw-limit-defaults "--raw-limit-mib" "fewer kinds (--raw-select not given: every kind of the sensors that run, radar.beat," \
+  --scenario "$small" --raw "$work/x.h5" --raw-limit-mib 1
+expect_bad_run raw-limit-default-steps "--raw-select = 'radar.beat'" "steps (--raw-steps not given: every step, 0-4) or items (--raw-items = '0-5')" \
+  --scenario "$small" --raw "$work/x.h5" --raw-limit-mib 1 --raw-select radar.beat --raw-items 0-5
 expect_bad_run raw-needed "--raw" "--raw-select requires --raw" --scenario "$small" --raw-select radar.beat
 "$fogradar" run --scenario "$small" --out "$work/raw-inside" --raw "$work/raw-inside/r.h5" >/dev/null 2>"$work/stderr"
 rc=$?

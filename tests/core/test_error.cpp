@@ -40,6 +40,17 @@ TEST(Error, NonFiniteNeverPasses) {
   }
 }
 
+// Non-finite values as TOML and the command line spell them, never the stream's "-nan" or a NaN's
+// sign.
+TEST(Error, NonFiniteValuesAreWrittenAsTyped) {
+  EXPECT_EQ(message_of([] { require_in_range("x", nan, 0.0, 1.0); }, "x"),
+            "x = nan: must be in [0, 1]");
+  EXPECT_EQ(message_of([] { require_in_range("x", -nan, 0.0, 1.0); }, "x"),
+            "x = nan: must be in [0, 1]");
+  EXPECT_EQ(message_of([] { require_positive("x", inf); }, "x"), "x = inf: must be finite and > 0");
+  EXPECT_EQ(message_of([] { require_finite("x", -inf); }, "x"), "x = -inf: must be a finite number");
+}
+
 TEST(Error, Boundaries) {
   EXPECT_THROW(require_positive("x", 0.0), InvalidParameter);
   EXPECT_NO_THROW(require_non_negative("x", 0.0));

@@ -3,6 +3,8 @@
 // in declaration order with the bad-input messages core/error.hpp's checks give.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -141,6 +143,50 @@ TEST(Keys, AKeyThatTakesNoEffectIsNotChecked) {
   EXPECT_NO_THROW(keys.check(p));
   p.count = 2;
   EXPECT_THROW(keys.check(p), InvalidParameter);
+}
+
+// A bound other keys set (Key::within): the range as usual where some value meets it, and in words
+// where none can, not as an interval such as [16, 5].
+TEST(Keys, ACrossKeyBoundThatNoValueMeetsSaysSo) {
+  struct Pair {
+    std::int64_t samples = 8;
+    double room = 5.12;  // the other key: at most this many samples
+  };
+  KeyTable<Pair> keys("p.");
+  keys.integer("samples", FOGRADAR_KEY_FIELD(samples), 16, 65536, "n")
+      .within([](const Pair& p) {
+        return CrossBound{.range = closed(16.0, std::floor(p.room)),
+                          .low_text = "16",
+                          .high_text = message_number(std::floor(p.room)),
+                          .integer = true,
+                          .note = ": they fit in p.room = " + message_number(p.room)};
+      });
+  const auto message = [&keys](const Pair& p) -> std::string {
+    try {
+      keys.check(p);
+    } catch (const InvalidParameter& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(message({.samples = 20, .room = 5.12}),
+            "p.samples = 20: must be an integer >= 16 and <= 5: they fit in p.room = 5.12; no "
+            "integer is both: the keys named leave it no value");
+  EXPECT_EQ(message({.samples = 20, .room = 18.5}),
+            "p.samples = 20: must be an integer in [16, 18]: they fit in p.room = 18.5");
+  EXPECT_EQ(message({.samples = 18, .room = 18.5}), "accepted");
+  // Emptiness as the values the key takes see it: integers in (2, 3), numbers in [1, 1).
+  const auto bound = [](Interval range, bool integer) {
+    return CrossBound{
+        .range = range, .low_text = "q = 7", .high_text = "5", .integer = integer, .note = ""};
+  };
+  EXPECT_TRUE(bound(open(2.0, 3.0), true).empty());
+  EXPECT_FALSE(bound(open(2.0, 3.0), false).empty());
+  EXPECT_FALSE(bound(closed(3.0, 3.0), true).empty());
+  EXPECT_TRUE(bound({.low = 1.0, .high = 1.0, .high_open = true}, false).empty());
+  EXPECT_EQ(bound(open_closed(7.0, 5.0), false).constraint(),
+            "a number > q = 7 and <= 5; no number is both: the keys named leave it no value");
+  EXPECT_EQ(bound(open_closed(1.0, 5.0), false).constraint(), "in (q = 7, 5]");
 }
 
 }  // namespace

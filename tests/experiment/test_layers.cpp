@@ -324,6 +324,58 @@ TEST(Layers, LidarTargetEchoFollowsEq4WithoutFogFluctuation) {
   }
 }
 
+// experiment.max_active_layers not given follows the chamber: every layer it has, whether
+// chamber.layer_count gives them or [[chamber.layers]] lists them. Given beyond them, it is refused
+// naming itself, the value as typed and the true range.
+TEST(Layers, ActiveLayersFollowTheChamber) {
+  const char* radar_only =
+      "[experiment]\nsensors = [\"radar\"]\nmeasurements_per_step = 2\n"
+      "[radar]\nchirps_per_frame = 16\n";
+  const Scenario two = parse_scenario("[chamber]\nlayer_count = 2\n", "two.toml");
+  EXPECT_EQ(two.steps(), 3u);
+  EXPECT_EQ(two.context().steps, 3u);
+  const Scenario eight =
+      parse_scenario(std::string("[chamber]\nlayer_count = 8\n") + radar_only, "eight.toml");
+  EXPECT_EQ(eight.steps(), 9u);
+  const ExperimentSummary summary =
+      summarize(run_experiment(eight, {.threads = 2, .progress = {}}));
+  const auto& steps = radar_report(summary).summary().steps;
+  ASSERT_EQ(steps.size(), 9u);
+  // Every one of the 8 layers is switched on by the last step: 8 times one layer's loss.
+  EXPECT_NEAR(steps[8].two_way_attenuation_db, 8.0 * steps[1].two_way_attenuation_db,
+              1e-9 * steps[8].two_way_attenuation_db);
+  // The value in force is written, and reads back to the same scenario.
+  const std::string written = to_toml(eight);
+  EXPECT_NE(written.find("max_active_layers = 8\n"), std::string::npos);
+  EXPECT_EQ(to_toml(parse_scenario(written, "written.toml")), written);
+  const Scenario listed = parse_scenario(
+      "[[chamber.layers]]\nlength_m = 1.0\n[[chamber.layers]]\nlength_m = 2.0\n"
+      "[[chamber.layers]]\nlength_m = 0.5\n",
+      "listed.toml");
+  EXPECT_EQ(listed.steps(), 4u);
+  EXPECT_EQ(parse_scenario("[experiment]\nmax_active_layers = 1\n[chamber]\nlayer_count = 8\n",
+                           "fewer.toml")
+                .steps(),
+            2u);
+  const std::pair<std::string, std::string> refused[] = {
+      {"[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n",
+       "beyond.toml:4: experiment.max_active_layers = 3: must be an integer in [0, "
+       "chamber.layer_count = 2] (chamber.layer_count at line 2)"},
+      {"[experiment]\nmax_active_layers = 4\n[[chamber.layers]]\nlength_m = 1.0\n",
+       "beyond.toml:2: experiment.max_active_layers = 4: must be an integer in [0, 1] (the layers "
+       "[[chamber.layers]] lists) (chamber.layers at line 3)"},
+  };
+  for (const auto& [text, message] : refused) {
+    try {
+      parse_scenario(text, "beyond.toml");
+      ADD_FAILURE() << text << " accepted";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(std::string(e.what()), message);
+      EXPECT_EQ(e.field(), "experiment.max_active_layers");
+    }
+  }
+}
+
 // Every example scenario of the README reads and validates; the layered one lists its four layers.
 TEST(Layers, EveryExampleScenarioReads) {
   std::size_t files = 0;

@@ -282,7 +282,7 @@ TEST(Runner, StopFlagEndsTheRunWithoutAResult) {
   const ExperimentResult full = run_experiment(s, {.threads = 2, .progress = {}, .stop = &stop});
   const std::vector<StepResult>& steps = radar_run(full).steps();
   EXPECT_EQ(steps.size() * steps.front().records.size(),
-            (s.experiment.max_active_layers + 1) * s.experiment.measurements_per_step);
+            s.steps() * s.experiment.measurements_per_step);
 }
 
 }  // namespace

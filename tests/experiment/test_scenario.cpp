@@ -43,7 +43,8 @@ TEST(Scenario, PaperScenarioIsDesignSection4) {
   EXPECT_EQ(radar_of(s).target.model, radar::TargetModel::evt);
   EXPECT_EQ(radar_of(s).target.rcs_dbsm, 10.0);
   EXPECT_EQ(s.experiment.measurements_per_step, 200u);
-  EXPECT_EQ(s.experiment.max_active_layers, 4u);
+  EXPECT_FALSE(s.experiment.max_active_layers.has_value());  // every layer
+  EXPECT_EQ(s.steps(), 5u);
   EXPECT_EQ(s.experiment.seed, 1u);
 }
 
@@ -378,8 +379,20 @@ INSTANTIATE_TEST_SUITE_P(
                  2, "must be true or false"},
         // The water-covered sensor and target: a permittivity below vacuum's, a negative film, a
         // window film too thin for its incoherent model.
-        BadInput{"radome_permittivity", "[radar.radome]\nrelative_permittivity = 0.5\n",
-                 "radar.radome.relative_permittivity", 2, "[1, 100]"},
+        BadInput{"radome_permittivity",
+                 "[radar.radome]\nthickness_m = 0.005\nrelative_permittivity = 0.5\n",
+                 "radar.radome.relative_permittivity", 3, "[1, 100]"},
+        // A radome's material without a radome (thickness 0, the default) would change nothing.
+        BadInput{"radome_permittivity_without_radome",
+                 "[radar.radome]\nrelative_permittivity = 4.0\n",
+                 "radar.radome.relative_permittivity", 2,
+                 "radar.radome.relative_permittivity = 4.0: takes effect only with "
+                 "radar.radome.thickness_m > 0"},
+        BadInput{"radome_loss_without_radome",
+                 "[radar.radome]\nthickness_m = 0.0\nloss_tangent = 0.02\nwater_film_m = 1e-4\n",
+                 "radar.radome.loss_tangent", 3,
+                 "radar.radome.loss_tangent = 0.02: takes effect only with "
+                 "radar.radome.thickness_m > 0"},
         BadInput{"target_water_film", "[target]\nwater_film_m = -1e-4\n", "target.water_film_m", 2,
                  "[0, 0.01]"},
         BadInput{"lidar_window_film", "[lidar]\nwindow_water_film_m = 5e-7\n",
@@ -450,6 +463,25 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
        "bad.toml:2: radar.samples_per_chirp = 0x10_0000: must be an integer in [16, 65536]"},
       {"[fog]\nvisibility_m = 1E-4\n",
        "bad.toml:2: fog.visibility_m = 1E-4: must be in [0.001, 10000000]"},
+      // A layer's length given as nan is quoted, not taken for a missing one.
+      {"[[chamber.layers]]\nlength_m = nan\n",
+       "bad.toml:2: chamber.layers[0].length_m = nan: must be in (0, 10000] (chamber.layers at line "
+       "1)"},
+      {"[[chamber.layers]]\nlength_m = 1.0\n[[chamber.layers]]\nlength_m = -nan\n",
+       "bad.toml:4: chamber.layers[1].length_m = -nan: must be in (0, 10000] (chamber.layers at "
+       "line 1)"},
+      // A range the other keys leave empty is said to be so, not printed as [16, 5].
+      {"[radar]\nsample_rate_hz = 1e5\n",
+       "bad.toml:2: radar.samples_per_chirp = 512: must be an integer >= 16 and <= 5: the samples "
+       "fit in the chirp, radar.chirp_duration_s x radar.sample_rate_hz = 5.12; no integer is "
+       "both: the keys named leave it no value (radar.sample_rate_hz at line 2)"},
+      {"[radar]\nsample_rate_hz = 1e6\n",
+       "bad.toml:2: radar.samples_per_chirp = 512: must be an integer in [16, 51]: the samples fit "
+       "in the chirp, radar.chirp_duration_s x radar.sample_rate_hz = 51.2 (radar.sample_rate_hz "
+       "at line 2)"},
+      {"[lidar]\nmin_range_m = 100\nmax_range_m = 50\n",
+       "bad.toml:3: lidar.max_range_m = 50: must be in (lidar.min_range_m = 100, 1000] "
+       "(lidar.min_range_m at line 2)"},
   };
   for (const auto& [text, expected] : cases) {
     try {
@@ -459,6 +491,30 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
       EXPECT_EQ(std::string(e.what()), expected) << text;
     }
   }
+}
+
+// Every number key of the scenario refuses nan and the infinities quoting them as typed, whichever
+// check refuses them (its own range, or a bound across keys).
+TEST(Scenario, EveryNumberKeyQuotesNanAndInfAsTyped) {
+  const Scenario paper = paper_scenario();
+  std::size_t checked = 0;
+  for (const Key<Scenario>& key : paper.keys().keys()) {
+    if (key.type != KeyType::number || !key.takes_effect(paper)) continue;
+    for (const char* typed : {"nan", "-nan", "+nan", "inf", "+inf", "-inf"}) {
+      std::string text = "[";
+      text.append(key.section()).append("]\n").append(key.short_name());
+      text.append(" = ").append(typed).append("\n");
+      try {
+        parse_scenario(text, "bad.toml");
+        ADD_FAILURE() << "accepted: " << text;
+      } catch (const InvalidParameter& e) {
+        const std::string expected = "bad.toml:2: " + key.name + " = " + typed + ": must be ";
+        EXPECT_EQ(std::string(e.what()).substr(0, expected.size()), expected) << e.what();
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 6u * 60u);
 }
 
 // Documented bounds are accepted exactly (checked in the user's units, before any conversion), and
@@ -512,7 +568,8 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
       "[experiment]\nmeasurements_per_step = 1000000\nmax_active_layers = 0\n",
       "[radar.radome]\nthickness_m = 0.05\nrelative_permittivity = 100\nloss_tangent = 1\n"
       "water_film_m = 0.01\n",
-      "[radar.radome]\nthickness_m = 0\nrelative_permittivity = 1\nloss_tangent = 0\n",
+      "[radar.radome]\nthickness_m = 1e-4\nrelative_permittivity = 1\nloss_tangent = 0\n",
+      "[radar.radome]\nthickness_m = 0\nwater_film_m = 1e-4\n",
       "[target]\nwater_film_m = 0.01\n",
       "[lidar]\nwindow_water_film_m = 1e-6\n[camera]\nwindow_water_film_m = 0.01\n",
   };

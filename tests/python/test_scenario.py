@@ -1,5 +1,6 @@
 """Scenarios from Python: the paper, files, TOML text, dicts and overrides; bad input raises
 InvalidParameter with the command line's message, word for word."""
+import re
 import subprocess
 
 import pytest
@@ -36,15 +37,48 @@ BAD_SCENARIOS = [
 
 @pytest.mark.parametrize("mapping,key", BAD_SCENARIOS)
 def test_every_bad_scenario_raises_the_command_lines_message(mapping, key, cli_error):
-    message, path, status = cli_error(fogradar.dict_to_toml(mapping))
+    text = fogradar.dict_to_toml(mapping)
+    message, path, status = cli_error(text)
     assert status == 2
     with pytest.raises(fogradar.InvalidParameter) as raised:
-        fogradar.Scenario.from_dict(mapping, source=path)
+        fogradar.Scenario.from_toml(text, source=path)
     error = raised.value
     assert isinstance(error, ValueError)
     assert str(error) == message
     assert error.key == key
     assert error.line == int(message[len(path) + 1:].split(":")[0])
+    # A dict has no lines the user wrote: the same message names the source and the key alone,
+    # without the line of the TOML text written from it or those of other keys.
+    with pytest.raises(fogradar.InvalidParameter) as raised:
+        fogradar.Scenario.from_dict(mapping, source=path)
+    error = raised.value
+    unlined = re.sub(r" \(line \d+\)", "", message.split(":", 2)[2])
+    unlined = re.sub(r" \([^()]* at line \d+(, [^()]* at line \d+)*\)$", "", unlined)
+    assert str(error) == path + ":" + unlined
+    assert "line" not in str(error).replace("multiline", "")
+    assert (error.key, error.line) == (key, None)
+
+
+def test_a_dict_s_error_names_the_users_dotted_key():
+    cases = [
+        ({"radar": {"tx_power_dbm": 99.0}}, "<dict>: radar.tx_power_dbm = 99.0: must be in [-30, 50]"),
+        ({"chamber": {"layers": [{"length_m": 1.0}, {"length_m": -1.0}]}},
+         "<dict>: chamber.layers[1].length_m = -1.0: must be in (0, 10000]"),
+        ({"chamber.layers": [{"length_m": 1.0, "fog": {"lwc_g_per_m3": -1.0}}]},
+         "<dict>: chamber.layers[0].fog.lwc_g_per_m3 = -1.0: must be in [0, 100]"),
+        ({"fog": {"lwc_g_per_m3": 0.1, "visibility_m": 50.0}},
+         "<dict>: fog.lwc_g_per_m3 and fog.visibility_m are both given: at most one fog density of "
+         "fog.lwc_g_per_m3, fog.extinction_per_km, fog.visibility_m per [fog]"),
+    ]
+    for mapping, message in cases:
+        with pytest.raises(fogradar.InvalidParameter) as raised:
+            fogradar.Scenario.from_dict(mapping)
+        assert str(raised.value) == message
+        assert raised.value.line is None
+    # A layer's own fog, given as a dict, is that layer's fog table.
+    layered = fogradar.Scenario.from_dict(
+        {"chamber": {"layers": [{"length_m": 1.0, "fog": {"lwc_g_per_m3": 2.0}}]}})
+    assert layered.to_dict()["chamber"]["layers"][0]["fog"]["lwc_g_per_m3"] == 2.0
 
 
 def test_a_file_s_error_names_its_line_as_the_command_does(cli_error):

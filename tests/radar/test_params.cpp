@@ -136,11 +136,19 @@ TEST(RadarParams, RejectsEveryInvalidField) {
                     "radar.radome.thickness_m");
   }
   for (const double bad : {0.5, 101.0, kNaN}) {
-    expect_rejected([&](RadarParams& p) { p.radome.relative_permittivity = bad; },
+    expect_rejected(
+        [&](RadarParams& p) {
+          p.radome.thickness_m = 0.005;
+          p.radome.relative_permittivity = bad;
+        },
                     "radar.radome.relative_permittivity");
   }
   for (const double bad : {-0.01, 1.5, kNaN}) {
-    expect_rejected([&](RadarParams& p) { p.radome.loss_tangent = bad; },
+    expect_rejected(
+        [&](RadarParams& p) {
+          p.radome.thickness_m = 0.005;
+          p.radome.loss_tangent = bad;
+        },
                     "radar.radome.loss_tangent");
   }
   for (const double bad : {-1e-4, 0.02, kNaN}) {

@@ -63,6 +63,29 @@ Interval open_closed(double low, double high);  // (low, high]
 Interval open(double low, double high);         // (low, high)
 Interval positive();                            // (0, inf): "finite and > 0"
 
+// A number as bad-input messages write it: ten significant digits, "1e+09" (core/error.hpp's
+// checks).
+std::string message_number(double value);
+
+// The range other keys leave a key ("radar.samples_per_chirp": at most radar.chirp_duration_s x
+// radar.sample_rate_hz samples), with how each end reads in a message. Where the other keys leave
+// no value at all, constraint() says so in words: an interval such as [16, 5] reads as a range to
+// meet, not as keys that contradict each other.
+struct CrossBound {
+  Interval range;
+  std::string low_text;   // "16", "lidar.min_range_m = 0.1"
+  std::string high_text;  // "radar.centre_frequency_hz / 2 = 3.85e+10"
+  bool integer = false;
+  std::string note;  // after the range: ": the samples fit in the chirp, ..." or " (...)"
+
+  bool empty() const;  // no value (no integer, for an integer key) is in the range
+  bool admits(double value) const { return range.contains(value); }
+  // After "must be ": "an integer in [16, 5120]: the samples fit ..."; for an empty range "an
+  // integer >= 16 and <= 5: the samples fit ...; no integer is both: the keys named leave it no
+  // value".
+  std::string constraint() const;
+};
+
 // Shortest text that reads back to exactly `value`, exponent without '+' or leading zeros ("1e9",
 // "2.5e-7", "0.1"): numbers in docs/scenario.md.
 std::string doc_number(double value);
@@ -108,6 +131,9 @@ struct Key {
   std::size_t array_max = 0;
 
   std::function<void(const P&)> check;
+  // The bounds other keys set (within()): checked after every key's own check, so that a value
+  // outside its own range is named itself rather than through a bound it makes meaningless.
+  std::function<void(const P&)> cross_check;
   // Where set, the key takes effect only while `applies` holds: it is written only then, and a file
   // that gives it otherwise is refused saying `applies_text`.
   std::function<bool(const P&)> applies;
@@ -136,6 +162,26 @@ struct Key {
   Key& also(std::function<std::string(const P&)> text) {
     integer_also = std::move(text);
     return *this;
+  }
+  // Adds the check of a bound other keys set (a number or integer key): `bound(p)` gives the range
+  // they leave, and a value outside it is refused with CrossBound::constraint().
+  Key& within(std::function<CrossBound(const P&)> bound) {
+    const auto value = get_number ? get_number : [get = get_integer](const P& p) {
+      return static_cast<double>(get(p));
+    };
+    cross_check = [name = name, value, bound = std::move(bound),
+                   earlier = std::move(cross_check)](const P& p) {
+      if (earlier) earlier(p);
+      const double v = value(p);
+      const CrossBound b = bound(p);
+      if (!b.admits(v)) throw_invalid(name, v, b.constraint());
+    };
+    return *this;
+  }
+  // Its own check, then its bounds across keys (the one key alone: a reader's probe).
+  void check_alone(const P& p) const {
+    if (check) check(p);
+    if (cross_check) cross_check(p);
   }
   // Replaces the allowed-values text of docs/scenario.md.
   Key& documented_as(std::string text) {
@@ -166,10 +212,14 @@ class KeyTable {
     check_failed("key declared", __FILE__, __LINE__);
   }
 
-  // Checks every key that takes effect, in declaration order (validate() of the parameters).
+  // Checks every key that takes effect, in declaration order (validate() of the parameters), then
+  // the bounds across keys, in the same order.
   void check(const P& p) const {
     for (const Key<P>& key : keys_) {
       if (key.check && key.takes_effect(p)) key.check(p);
+    }
+    for (const Key<P>& key : keys_) {
+      if (key.cross_check && key.takes_effect(p)) key.cross_check(p);
     }
   }
 
@@ -446,6 +496,9 @@ class KeyTable {
       };
     }
     if (sub.check) key.check = [project, f = std::move(sub.check)](const P& p) { f(project(p)); };
+    if (sub.cross_check) {
+      key.cross_check = [project, f = std::move(sub.cross_check)](const P& p) { f(project(p)); };
+    }
     if (sub.applies) key.applies = reading(std::move(sub.applies));
     return key;
   }

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -51,7 +52,8 @@ struct ExperimentSpec {
   // names every registered sensor.
   std::vector<std::string> sensors;
   std::size_t measurements_per_step = 200;
-  std::size_t max_active_layers = 4;  // steps k = 0 .. max_active_layers
+  // Steps k = 0 .. max_active_layers; none given: every layer of the chamber (Scenario::steps).
+  std::optional<std::size_t> max_active_layers;
   SwitchingOrder switching_order = SwitchingFrom::sensor;
   std::uint64_t seed = 1;
 };
@@ -93,6 +95,8 @@ struct Scenario {
   const SensorSetting& setting(std::string_view name) const;
 
   bool runs(std::string_view name) const;
+  // Steps k = 0 .. experiment.max_active_layers, every layer of the chamber where it is not given.
+  std::size_t steps() const;
   // Throws InvalidParameter naming the scenario key (e.g. "processing.cfar.training_cells").
   void validate() const;
   propagation::ChamberSpec chamber_spec() const;
@@ -117,10 +121,16 @@ Scenario paper_scenario(const SensorRegistry& registry = standard_registry());
 Scenario parse_scenario(std::string_view toml_text, std::string_view source_name,
                         const SensorRegistry& registry = standard_registry());
 
+// Whether a message points at the text's lines ("my.toml:12: ..."), or names the source and the
+// key alone ("<dict>: radar.tx_power_dbm = 99.0: ..."): for a text fogradar wrote from what the
+// user gave (a Python dict), whose lines the user never saw.
+enum class LineNumbers { shown, hidden };
+
 // Reads a scenario file's text over `base` instead: the keys it gives replace base's values (the
 // Python module's Scenario.with_overrides). Errors as parse_scenario's.
 Scenario parse_scenario_over(const Scenario& base, std::string_view toml_text,
-                             std::string_view source_name);
+                             std::string_view source_name,
+                             LineNumbers line_numbers = LineNumbers::shown);
 
 // Largest scenario file read: a scenario is a few kB; anything larger is refused before it is read.
 inline constexpr std::size_t max_scenario_file_bytes = std::size_t{1} << 20;
