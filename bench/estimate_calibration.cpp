@@ -251,6 +251,31 @@ void items() {
     radar_cases.push_back(c);
   }
   report("radar frame", "cell x log2(cells)", "cell and object", radar_cases);
+  // Fog clutter: the long chamber's 40 layers of fog against the same chamber clear.
+  std::vector<Case> tone_cases;
+  for (const double lwc : {0.0, 1.0}) {
+    experiment::Scenario s = only("radar");
+    s.chamber.layer_count = 40;
+    s.chamber.target_gap_m = 2.0;
+    s.experiment.max_active_layers = 40;
+    s.fog.density = propagation::LiquidWaterContent{lwc};
+    radar::RadarParams& p = radar_of(s).radar;
+    p.samples_per_chirp = 1024;
+    p.sample_rate_hz = 20e6;
+    const experiment::Simulation simulation(s);
+    experiment::ItemRun run(simulation, "radar");
+    run.measure(40, 0, nullptr);
+    Case c{.name = lwc > 0.0 ? "40 active layers of fog, 1024 samples" : "the same, clear"};
+    c.measured = median_seconds([&] { for (std::size_t i = 1; i <= 20; ++i) run.measure(40, i, nullptr); }, 3) / 20.0;
+    const experiment::TimeEstimate e = experiment::estimate_run_time(s, 1);
+    // The last step's tones, twice the mean over steps 0..40 (every layer is wet).
+    c.modelled = e.sensors.front().time.item_seconds;
+    tone_cases.push_back(c);
+  }
+  std::printf("fog clutter tones (radar sensor.cpp frame_seconds_per_tone_sample): the last step's"
+              " frame %.3g s more than clear, %.3g s per tone and sample\n",
+              tone_cases[1].measured - tone_cases[0].measured,
+              (tone_cases[1].measured - tone_cases[0].measured) / (40.0 * 7.0 * 4.0 * 1024.0));
   std::vector<Case> lidar_cases;
   for (const auto& [fov, range] : {std::pair{90.0, 30.0}, std::pair{90.0, 120.0},
                                    std::pair{360.0, 30.0}}) {

@@ -34,6 +34,32 @@ constexpr std::size_t interpolation_batch = 4;
 // P_fa x cells passes a few.
 constexpr double frame_seconds_per_cell_log2_cell = 2.16e-10;
 constexpr double frame_seconds_per_cell_and_object = 3.22e-10;
+// Each static tone (a scene path, a fog clutter scatterer) is synthesised once per frame over one
+// chirp's samples (synthesis.cpp), so the fog's clutter adds per tone and sample.
+constexpr double frame_seconds_per_tone_sample = 3.38e-10;
+
+// The fog clutter's tones of a frame, averaged over the steps: clutter_scatterers_per_bin in every
+// range bin of every active layer that holds water (scene.cpp, add_fog_clutter).
+double mean_clutter_tones(const SensorParams& p, const sensor::Context& context) {
+  const double bin_m = derive(p.radar).range_bin_m;
+  const auto wet = [](const propagation::FogSpec& fog) {
+    if (const auto* lwc = std::get_if<propagation::LiquidWaterContent>(&fog.density))
+      return lwc->g_per_m3 > 0.0;
+    if (const auto* beta = std::get_if<propagation::OpticalExtinction>(&fog.density))
+      return beta->per_km > 0.0;
+    return true;
+  };
+  double tones = 0.0;
+  for (std::size_t k = 0; k < context.steps; ++k) {
+    const propagation::ActiveLayers active = context.active(k);
+    for (std::size_t i = 0; i < context.chamber.layers.size(); ++i) {
+      const propagation::FogLayerSpec& layer = context.chamber.layers[i];
+      if (!active[i] || !wet(layer.fog)) continue;
+      tones += std::ceil(layer.length_m / bin_m) * p.clutter_scatterers_per_bin;
+    }
+  }
+  return tones / static_cast<double>(std::max<std::size_t>(context.steps, 1));
+}
 constexpr double scene_objects_per_frame = 3.0;
 // The rest of a run (setup_cost), CPU seconds measured by bench/estimate_calibration: a chain's
 // fixed part (its FFTW wisdom read, the scene) and its part per cell of the frame (windows, plans);
@@ -206,9 +232,11 @@ class Type : public sensor::SensorType {
             .key = "radar.samples_per_chirp"};
   }
 
-  sensor::TimePart item_time(const std::any& params, const sensor::Context&) const override {
+  sensor::TimePart item_time(const std::any& params,
+                             const sensor::Context& context) const override {
     const RadarParams& p = sensor::params_of<SensorParams>(params).radar;
     const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
+    const double tones = mean_clutter_tones(sensor::params_of<SensorParams>(params), context);
     const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
     std::ostringstream detail;
     detail.precision(6);
@@ -216,9 +244,14 @@ class Type : public sensor::SensorType {
            << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
            << " objects (" << scene_objects_per_frame
            << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
-           << " x cells)";
+           << " x cells), about " << tones
+           << " fog clutter tones (fog.clutter_scatterers_per_bin = "
+           << sensor::params_of<SensorParams>(params).clutter_scatterers_per_bin
+           << " per range bin of the active layers)";
     return {.item_seconds = cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
-                                     objects * frame_seconds_per_cell_and_object),
+                                     objects * frame_seconds_per_cell_and_object) +
+                            tones * static_cast<double>(p.samples_per_chirp) *
+                                frame_seconds_per_tone_sample,
             .detail = detail.str(),
             .key = p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
                                                              : "radar.chirps_per_frame",

@@ -40,7 +40,7 @@ struct TimeEstimate {
   // Everything but the items, on one thread: the process, every sensor's set-up, the chamber.
   double setup_seconds() const;
   double wall_seconds() const;  // setup_seconds() + items_wall_seconds()
-  // "188 ms on 2 threads (radar 1000 x 138 us, lidar 200 x 200 us, camera 50 x 134 us; set-up
+  // "193 ms on 2 threads (radar 1000 x 148 us, lidar 200 x 200 us, camera 50 x 134 us; set-up
   // and files 95.3 ms)", as `fogradar run` prints it.
   std::string text() const;
 };
