@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include "fogradar/camera/spectral.hpp"
+#include "fogradar/propagation/fog.hpp"
 #include "fogradar/stats/format.hpp"
 
 namespace fogradar::camera {
@@ -12,8 +14,30 @@ namespace {
 
 // The CPU time of a frame per pixel of the region of interest (reflectance, airlight, noise,
 // encoding, histogram), from `fogradar run --threads 1` of one-sensor camera scenarios of 4096 x
-// 4096 and 160 x 120 px on the project's 2-core VM (release build), 5 to 7 ns; the larger is taken.
+// 4096 and 160 x 120 px on the project's 2-core VM (release build), 5 to 7 ns; the larger is taken
+// (bench/estimate_calibration measures it again).
 constexpr double frame_seconds_per_pixel = 7e-9;
+// The rest of a run (setup_time), CPU seconds measured by bench/estimate_calibration besides the
+// Mie sums: a camera's making (band quadrature, look-up tables, scene) and its result files (the
+// histograms, the ROI images, JSON); its summary costs less than either.
+constexpr double make_seconds = 7e-4;
+constexpr double files_seconds = 4e-4;
+
+// Each distinct fog resolved and its bulk optics at every Mie wavelength of the band
+// (camera.mie_step_nm), as Camera makes them (and fog_report a layer's).
+double fog_seconds(const CameraParams& p, const propagation::ChamberSpec& chamber) {
+  const std::vector<double> wavelengths = mie_wavelengths_m(p.band, p.wavelength_nm, p.mie_step_nm);
+  double seconds = 0.0;
+  for (std::size_t i = 0; i < chamber.layers.size(); ++i) {
+    std::size_t same = 0;
+    while (same < i && chamber.layers[same].fog != chamber.layers[i].fog) ++same;
+    if (same < i) continue;
+    seconds += propagation::fog_resolution_seconds(chamber.layers[i].fog);
+    for (const double wavelength_m : wavelengths)
+      seconds += propagation::bulk_optics_seconds(chamber.layers[i].fog.droplets, wavelength_m);
+  }
+  return seconds;
+}
 
 const char* const file_names[] = {"camera_histograms.csv", "camera_summary.csv",
                                   "camera_summary.json", "camera_histograms.svg"};
@@ -217,6 +241,22 @@ class Type : public sensor::SensorType {
         .detail = detail.str(),
         .key = p.roi.width_px >= p.roi.height_px ? "camera.roi.width_px" : "camera.roi.height_px",
         .items_key = "camera.frames_per_step"};
+  }
+
+  sensor::SetupTime setup_time(const std::any& params,
+                               const sensor::Context& context) const override {
+    const CameraParams& p = sensor::params_of<CameraParams>(params);
+    const double fogs = fog_seconds(p, context.chamber);
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics at " << mie_wavelengths_m(p.band, p.wavelength_nm, p.mie_step_nm).size()
+           << " wavelengths (camera.band = " << to_string(p.band)
+           << ", camera.mie_step_nm = " << p.mie_step_nm << "): " << fogs << " s";
+    return {.make_seconds = fogs + make_seconds,
+            .run_seconds = 0.0,
+            .report_seconds = fogs + make_seconds + files_seconds,
+            .detail = detail.str(),
+            .key = "camera.mie_step_nm"};
   }
 
   std::vector<sensor::RawKind> raw_kinds(const std::any& params,

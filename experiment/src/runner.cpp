@@ -79,10 +79,6 @@ const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
   throw_invalid("experiment.sensors", name, "a sensor that ran");
 }
 
-namespace {
-
-// What a sensor is made from: its own keys and the chamber's, fog's and experiment's, as the
-// resolved scenario writes them (the other sensors at their defaults).
 std::string sensor_identity(const Scenario& scenario, const SensorSetting& setting) {
   Scenario alone = scenario;
   for (SensorSetting& other : alone.sensors) {
@@ -91,8 +87,6 @@ std::string sensor_identity(const Scenario& scenario, const SensorSetting& setti
   alone.experiment.sensors = {std::string(setting.type->name())};
   return to_toml(alone);
 }
-
-}  // namespace
 
 std::shared_ptr<const sensor::Sensor> SensorCache::sensor(
     const Scenario& scenario, const SensorSetting& setting, const sensor::Context& context,

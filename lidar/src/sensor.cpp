@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fogradar/lidar/outputs.hpp"
+#include "fogradar/propagation/fog.hpp"
 #include "fogradar/stats/format.hpp"
 
 namespace fogradar::lidar {
@@ -13,10 +14,29 @@ namespace {
 
 // The CPU time of a scan, fitted to `fogradar run --threads 1` of one-sensor lidar scenarios of
 // 36001 beams of 41 and of 401 samples on the project's 2-core VM (release build): per sample the
-// noise drawn, the signal added, the maximum taken; per beam its ray traced. docs/scenario.md
-// ("Time limit") compares it with measured times.
+// noise drawn, the signal added, the maximum taken; per beam its ray traced. bench/
+// estimate_calibration measures them again (docs/scenario.md, "Time limit").
 constexpr double scan_seconds_per_sample = 1.32e-9;
 constexpr double scan_seconds_per_beam = 26e-9;
+// The rest of a run (setup_time), CPU seconds measured by bench/estimate_calibration besides the
+// Mie sums (a Lidar's scene costs less than they): a summary's part and the result files' part
+// (their CSV rows, the scan plots) per beam of every scan.
+constexpr double summary_seconds_per_beam = 3.3e-8;
+constexpr double files_seconds_per_beam = 2.2e-7;
+
+// Each distinct fog resolved and its bulk optics at the lidar's wavelength, as Lidar makes its
+// layers (and fog_report a layer's).
+double fog_seconds(const LidarParams& p, const propagation::ChamberSpec& chamber) {
+  double seconds = 0.0;
+  for (std::size_t i = 0; i < chamber.layers.size(); ++i) {
+    std::size_t same = 0;
+    while (same < i && chamber.layers[same].fog != chamber.layers[i].fog) ++same;
+    if (same < i) continue;
+    seconds += propagation::fog_resolution_seconds(chamber.layers[i].fog) +
+               propagation::bulk_optics_seconds(chamber.layers[i].fog.droplets, p.wavelength_m);
+  }
+  return seconds;
+}
 
 const char* const file_names[] = {"lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
                                   "lidar_intensity_boxplot.svg", "lidar_scans.svg"};
@@ -234,6 +254,21 @@ class Type : public sensor::SensorType {
             .detail = detail.str(),
             .key = samples >= beams ? "lidar.sample_interval_ns" : "lidar.angular_step_deg",
             .items_key = "lidar.scans_per_step"};
+  }
+
+  sensor::SetupTime setup_time(const std::any& params,
+                               const sensor::Context& context) const override {
+    const LidarParams& p = sensor::params_of<LidarParams>(params);
+    const double fogs = fog_seconds(p, context.chamber);
+    const double beams = static_cast<double>(context.steps * p.scans_per_step * p.beam_count());
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics at lidar.wavelength_m = " << p.wavelength_m << ": " << fogs << " s";
+    return {.make_seconds = fogs,
+            .run_seconds = beams * summary_seconds_per_beam,
+            .report_seconds = fogs + beams * files_seconds_per_beam,
+            .detail = detail.str(),
+            .key = "fog.droplets"};
   }
 
   std::vector<sensor::RawKind> raw_kinds(const std::any& params,

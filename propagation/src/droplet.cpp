@@ -199,6 +199,11 @@ MieEfficiencies mie_efficiencies(double size_parameter, std::complex<double> m) 
   return q;
 }
 
+std::size_t mie_recurrence_steps(double size_parameter, std::complex<double> m) {
+  const int n_max = series_length(size_parameter);
+  return static_cast<std::size_t>(recurrence_start(std::abs(m * size_parameter), n_max) + n_max);
+}
+
 CrossSections mie_cross_sections(double diameter_m, double wavelength_m, std::complex<double> m) {
   const MieEfficiencies q = mie_efficiencies(size_parameter(diameter_m, wavelength_m), m);
   const double area_m2 = pi * diameter_m * diameter_m / 4.0;

@@ -164,4 +164,21 @@ FogOptics Fog::bulk_optics(double wavelength_m, WaterModel model, double tempera
   return optics;
 }
 
+double bulk_optics_seconds(const DropSizeDistribution& droplets, double wavelength_m,
+                           const MieCost& cost) {
+  constexpr std::complex<double> optical_index{1.33, 0.0};
+  double seconds = 0.0;
+  for (const QuadratureNode& node : quadrature_nodes(droplets)) {
+    const double x = size_parameter(node.diameter_m, wavelength_m);
+    seconds += cost.seconds_per_node +
+               cost.seconds_per_step * static_cast<double>(mie_recurrence_steps(x, optical_index));
+  }
+  return seconds;
+}
+
+double fog_resolution_seconds(const FogSpec& spec, const MieCost& cost) {
+  if (std::holds_alternative<LiquidWaterContent>(spec.density)) return 0.0;
+  return bulk_optics_seconds(spec.droplets, visibility_wavelength_m, cost);
+}
+
 }  // namespace fogradar::propagation

@@ -11,6 +11,7 @@
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
+#include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "fogradar/propagation/water_film.hpp"
 #include "fogradar/radar/cfar_design.hpp"
@@ -29,14 +30,49 @@ constexpr std::size_t doppler_block_columns = 32;
 // Objects whose rows the estimator interpolates in one pass (estimation.cpp).
 constexpr std::size_t interpolation_batch = 4;
 
-// The CPU time of a frame, fitted to `fogradar run --threads 1` of one-sensor radar scenarios of
-// 65536 samples x 256 and x 1024 chirps on the project's 2-core VM (release build). Synthesis,
-// transforms and CFAR cost about the same per cell; each object's peak search (the scene's few
-// plus about P_fa x cells false alarms) sums over the whole map, so a frame grows as cells squared
-// once P_fa x cells passes a few. docs/scenario.md ("Time limit") compares it with measured times.
-constexpr double frame_seconds_per_cell = 6.7e-9;
-constexpr double frame_seconds_per_cell_and_object = 5.6e-10;
+// The CPU time of a frame, measured by bench/estimate_calibration (docs/scenario.md, "Time limit"):
+// synthesis, the two transforms and the CFAR cost about cells x log2(cells) together (the FFTs'
+// n log n, and a map that outgrows the caches); each object's peak search (the scene's few plus
+// about P_fa x cells false alarms) sums over the whole map, so a frame grows as cells squared once
+// P_fa x cells passes a few.
+constexpr double frame_seconds_per_cell_log2_cell = 2.16e-10;
+constexpr double frame_seconds_per_cell_and_object = 3.22e-10;
+// Each static tone (a scene path, a fog clutter scatterer) is synthesised once per frame over one
+// chirp's samples (synthesis.cpp), so the fog's clutter adds per tone and sample.
+constexpr double frame_seconds_per_tone_sample = 3.38e-10;
+
+// The fog clutter's tones of a frame, averaged over the steps: clutter_scatterers_per_bin in every
+// range bin of every active layer that holds water (scene.cpp, add_fog_clutter).
+double mean_clutter_tones(const SensorParams& p, const sensor::Context& context) {
+  const double bin_m = derive(p.radar).range_bin_m;
+  const auto wet = [](const propagation::FogSpec& fog) {
+    if (const auto* lwc = std::get_if<propagation::LiquidWaterContent>(&fog.density))
+      return lwc->g_per_m3 > 0.0;
+    if (const auto* beta = std::get_if<propagation::OpticalExtinction>(&fog.density))
+      return beta->per_km > 0.0;
+    return true;
+  };
+  double tones = 0.0;
+  for (std::size_t k = 0; k < context.steps; ++k) {
+    const propagation::ActiveLayers active = context.active(k);
+    for (std::size_t i = 0; i < context.chamber.layers.size(); ++i) {
+      const propagation::FogLayerSpec& layer = context.chamber.layers[i];
+      if (!active[i] || !wet(layer.fog)) continue;
+      tones += std::ceil(layer.length_m / bin_m) * p.clutter_scatterers_per_bin;
+    }
+  }
+  return tones / static_cast<double>(std::max<std::size_t>(context.steps, 1));
+}
 constexpr double scene_objects_per_frame = 3.0;
+// The rest of a run (setup_cost), CPU seconds measured by bench/estimate_calibration: a chain's
+// fixed part (its FFTW wisdom read, the scene) and its part per cell of the frame (windows, plans);
+// a summary's part per measurement and per Hodges-Lehmann pair (n_k x n_0 per step); the result
+// files' part per measurement (their CSV rows; the box plot and the JSON cost less than the rows).
+constexpr double chain_seconds = 1.31e-3;
+constexpr double chain_seconds_per_cell = 1.61e-9;
+constexpr double summary_seconds_per_measurement = 4.5e-7;
+constexpr double summary_seconds_per_pair = 6.4e-10;
+constexpr double files_seconds_per_measurement = 7.8e-7;
 
 double mib(std::size_t bytes) {
   return static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 20);
@@ -200,9 +236,11 @@ class Type : public sensor::SensorType {
             .key = "radar.samples_per_chirp"};
   }
 
-  sensor::TimePart item_time(const std::any& params, const sensor::Context&) const override {
+  sensor::TimePart item_time(const std::any& params,
+                             const sensor::Context& context) const override {
     const RadarParams& p = sensor::params_of<SensorParams>(params).radar;
     const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
+    const double tones = mean_clutter_tones(sensor::params_of<SensorParams>(params), context);
     const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
     std::ostringstream detail;
     detail.precision(6);
@@ -210,18 +248,38 @@ class Type : public sensor::SensorType {
            << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
            << " objects (" << scene_objects_per_frame
            << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
-           << " x cells)";
-    // The CFAR design for the range window's correlated cells, as RadarChain makes it.
-    const double design_seconds = cfar_design_seconds(
-        p.cfar, window_noise_correlation(make_window(p.window, p.samples_per_chirp),
-                                         std::size_t{p.cfar.guard_cells} + p.cfar.reference_cells()));
-    return {.item_seconds =
-                cells * (frame_seconds_per_cell + objects * frame_seconds_per_cell_and_object),
+           << " x cells), about " << tones
+           << " fog clutter tones (fog.clutter_scatterers_per_bin = "
+           << sensor::params_of<SensorParams>(params).clutter_scatterers_per_bin
+           << " per range bin of the active layers)";
+    return {.item_seconds = cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
+                                     objects * frame_seconds_per_cell_and_object) +
+                            tones * static_cast<double>(p.samples_per_chirp) *
+                                frame_seconds_per_tone_sample,
             .detail = detail.str(),
             .key = p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
                                                              : "radar.chirps_per_frame",
-            .items_key = "experiment.measurements_per_step",
-            .setup_seconds = design_seconds};
+            .items_key = "experiment.measurements_per_step"};
+  }
+
+  sensor::SetupTime setup_time(const std::any& params,
+                               const sensor::Context& context) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    const SetupCost c = setup_cost(p, context);
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics " << c.fog_seconds << " s, chain " << c.chain_seconds
+           << " s, CFAR design (processing.cfar.kind = " << to_string(p.radar.cfar.kind)
+           << ", processing.cfar.threshold_design = "
+           << to_string(p.radar.cfar.threshold_design) << ") " << c.cfar_design_seconds << " s";
+    const double largest = std::max({c.fog_seconds, c.chain_seconds, c.cfar_design_seconds});
+    return {.make_seconds = c.fog_seconds + c.chain_seconds + c.cfar_design_seconds,
+            .run_seconds = c.summary_seconds,
+            .report_seconds = c.report_seconds,
+            .detail = detail.str(),
+            .key = largest == c.cfar_design_seconds ? "processing.cfar.threshold_design"
+                   : largest == c.chain_seconds     ? "radar.samples_per_chirp"
+                                                    : "fog.droplets"};
   }
 
   std::vector<sensor::RawKind> raw_kinds(const std::any& params,
@@ -291,6 +349,33 @@ KeyTable<SensorParams> sensor_keys() {
   keys.integer("fog.clutter_scatterers_per_bin", FOGRADAR_KEY_FIELD(clutter_scatterers_per_bin), 1,
                64, "random point scatterers per range bin that make up the radar's fog clutter");
   return keys;
+}
+
+SetupCost setup_cost(const SensorParams& params, const sensor::Context& context) {
+  const RadarParams& r = params.radar;
+  const double wavelength_m = derive(r).wavelength_m;
+  // Each distinct fog once (propagation::Chamber), in the chamber and in summary.json's report.
+  double fog_seconds = 0.0;
+  const std::vector<propagation::FogLayerSpec>& layers = context.chamber.layers;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    std::size_t same = 0;
+    while (same < i && layers[same].fog != layers[i].fog) ++same;
+    if (same < i) continue;
+    fog_seconds += propagation::fog_resolution_seconds(layers[i].fog) +
+                   propagation::bulk_optics_seconds(layers[i].fog.droplets, wavelength_m);
+  }
+  const double cells = static_cast<double>(r.samples_per_chirp * r.chirps_per_frame);
+  const double per_step = static_cast<double>(context.measurements_per_step);
+  const double steps = static_cast<double>(context.steps);
+  return {.fog_seconds = fog_seconds,
+          .chain_seconds = chain_seconds + cells * chain_seconds_per_cell,
+          .cfar_design_seconds = cfar_design_seconds(
+              r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
+                                               std::size_t{r.cfar.guard_cells} +
+                                                   r.cfar.reference_cells())),
+          .summary_seconds = steps * per_step *
+                             (summary_seconds_per_measurement + per_step * summary_seconds_per_pair),
+          .report_seconds = fog_seconds + steps * per_step * files_seconds_per_measurement};
 }
 
 MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measurements) {

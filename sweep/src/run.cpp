@@ -558,35 +558,46 @@ std::string SweepEstimate::text() const {
   out.precision(4);
   out << points << " point" << (points == 1 ? "" : "s") << ", " << runs << " run"
       << (runs == 1 ? "" : "s") << ", " << items << " items; about " << seconds_text(seconds)
-      << " (one item of each sensor timed here), peak memory about "
+      << " (cost models; " << seconds_text(cpu_seconds) << " of CPU), peak memory about "
       << static_cast<double>(peak_bytes) / 1048576.0 << " MiB";
   return out.str();
 }
 
 namespace {
 
-// Before anything is timed: the run that alone exceeds the limit is refused as `run` refuses it,
-// else the sum of every run's cost-model estimate against the limit.
-void require_sweep_time_within(const SweepSpec& spec, const std::vector<Point>& points,
-                               const SweepOptions& options) {
-  double total_seconds = 0.0;
-  std::size_t runs = 0;
+// Every run of the sweep in the order compute_point runs them: each point's replications, then
+// its setups.
+std::vector<experiment::Scenario> sweep_runs(const SweepSpec& spec,
+                                             const std::vector<Point>& points) {
+  std::vector<experiment::Scenario> runs;
   for (const Point& p : points) {
-    runs += spec.replications + p.setups.size();
-    for (std::size_t s = 0; s <= p.setups.size(); ++s) {
-      const experiment::Scenario& scenario = s == 0 ? p.scenario : p.setups[s - 1];
-      experiment::require_time_within(scenario, options.threads, options.time_limit_seconds);
-      total_seconds += experiment::estimate_run_time(scenario, options.threads).wall_seconds() *
-                       static_cast<double>(s == 0 ? spec.replications : 1);
-    }
+    for (std::size_t r = 0; r < spec.replications; ++r) runs.push_back(with_seed(p.scenario, p.seed + r));
+    for (const experiment::Scenario& setup : p.setups) runs.push_back(setup);
   }
+  return runs;
+}
+
+// The runs' cost-model estimate in one process (experiment::estimate_runs).
+experiment::RunsEstimate sweep_estimate(const std::vector<experiment::Scenario>& runs,
+                                        unsigned threads) {
+  std::vector<const experiment::Scenario*> order;
+  for (const experiment::Scenario& run : runs) order.push_back(&run);
+  return experiment::estimate_runs(order, threads);
+}
+
+// The run that alone exceeds the limit is refused as `run` refuses it, else the sweep's estimate
+// against the limit.
+void require_sweep_time_within(const std::vector<experiment::Scenario>& runs, double total_seconds,
+                               std::size_t points, const SweepOptions& options) {
+  for (const experiment::Scenario& run : runs)
+    experiment::require_time_within(run, options.threads, options.time_limit_seconds);
   if (total_seconds <= options.time_limit_seconds) return;
   std::string message = "the sweep needs an estimated ";
   message += seconds_text(total_seconds);
   message += " for its ";
-  message += std::to_string(runs);
+  message += std::to_string(runs.size());
   message += " runs (";
-  message += std::to_string(points.size());
+  message += std::to_string(points);
   message += " points) with --threads ";
   message += std::to_string(options.threads);
   message += ", each within --time-limit = ";
@@ -603,47 +614,28 @@ SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
                                                        : experiment::default_memory_limit_bytes();
   SweepEstimate e;
   e.points = points.size();
+  const std::vector<experiment::Scenario> runs = sweep_runs(spec, points);
+  e.runs = runs.size();
   const experiment::Scenario* largest = nullptr;
-  for (const Point& p : points) {
-    for (std::size_t s = 0; s <= p.setups.size(); ++s) {
-      const experiment::Scenario& scenario = s == 0 ? p.scenario : p.setups[s - 1];
-      const std::size_t bytes =
-          experiment::estimate_peak_memory(scenario, options.threads).total_bytes();
-      if (bytes > e.peak_bytes || largest == nullptr) {
-        e.peak_bytes = std::max(e.peak_bytes, bytes);
-        largest = &scenario;
-      }
-      ++e.runs;
-      const sensor::Context context = scenario.context();
-      for (const std::string& name : scenario.experiment.sensors) {
-        const experiment::SensorSetting& setting = scenario.setting(name);
-        e.items += context.steps * setting.type->items_per_step(setting.params, context) *
-                   (s == 0 ? spec.replications : 1);
-      }
+  for (const experiment::Scenario& scenario : runs) {
+    const std::size_t bytes =
+        experiment::estimate_peak_memory(scenario, options.threads).total_bytes();
+    if (bytes > e.peak_bytes || largest == nullptr) {
+      e.peak_bytes = std::max(e.peak_bytes, bytes);
+      largest = &scenario;
     }
-    e.runs += spec.replications - 1;
+    const sensor::Context context = scenario.context();
+    for (const std::string& name : scenario.experiment.sensors) {
+      const experiment::SensorSetting& setting = scenario.setting(name);
+      e.items += context.steps * setting.type->items_per_step(setting.params, context);
+    }
   }
   if (largest != nullptr) experiment::require_memory_within(*largest, options.threads, limit);
-  if (options.time_limit_seconds > 0.0) require_sweep_time_within(spec, points, options);
-  // One sensor set-up and one item of each sensor of the first point, timed.
-  const propagation::SegelsteinTable water;
-  const auto now = [] { return std::chrono::steady_clock::now(); };
-  const auto start = now();
-  const experiment::Simulation simulation(points.front().scenario, water, options.cache);
-  const double setup = std::chrono::duration<double>(now() - start).count();
-  double item_seconds = 0.0;
-  std::size_t items_per_run = 0;
-  for (const std::string& name : simulation.scenario().experiment.sensors) {
-    experiment::ItemRun run(simulation, name);
-    run.measure(0, 0, nullptr);  // prepares the step, makes the workspace
-    const auto t = now();
-    run.measure(0, run.items_per_step() > 1 ? 1 : 0, nullptr);
-    const double one = std::chrono::duration<double>(now() - t).count();
-    items_per_run += run.steps() * run.items_per_step();
-    item_seconds += one * static_cast<double>(run.steps() * run.items_per_step());
-  }
-  const unsigned threads = experiment::worker_threads(options.threads, items_per_run);
-  e.seconds = static_cast<double>(e.runs) * (setup + item_seconds / static_cast<double>(threads));
+  const experiment::RunsEstimate time = sweep_estimate(runs, options.threads);
+  e.seconds = time.wall_seconds;
+  e.cpu_seconds = time.cpu_seconds;
+  if (options.time_limit_seconds > 0.0)
+    require_sweep_time_within(runs, e.seconds, points.size(), options);
   return e;
 }
 

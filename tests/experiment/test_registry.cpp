@@ -217,6 +217,13 @@ class RangeFinderType : public sensor::SensorType {
             .key = "rangefinder.shots_per_step",
             .items_key = "rangefinder.shots_per_step"};
   }
+  sensor::SetupTime setup_time(const std::any&, const sensor::Context&) const override {
+    return {.make_seconds = 0.0,
+            .run_seconds = 0.0,
+            .report_seconds = 0.0,
+            .detail = "nothing to make",
+            .key = "rangefinder.shots_per_step"};
+  }
   std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
     return {};
   }

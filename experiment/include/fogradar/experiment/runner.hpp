@@ -56,18 +56,22 @@ class Interrupted : public std::runtime_error {
   Interrupted() : std::runtime_error("interrupted") {}
 };
 
+// What a sensor is made from, as text: its own keys and the chamber's, fog's and experiment's, as
+// the resolved scenario writes them (the other sensors at their defaults). SensorCache's key.
+std::string sensor_identity(const Scenario& scenario, const SensorSetting& setting);
+
 // Sensors kept from one scenario for the next (a sweep's points): a scenario whose sensor keys and
 // chamber, fog and experiment keys equal an earlier one's gets that sensor again, its optics,
 // plans and tables made once. Holds the most recent few; safe to share between threads.
 class SensorCache {
  public:
+  static constexpr std::size_t capacity = 16;
   std::shared_ptr<const sensor::Sensor> sensor(const Scenario& scenario,
                                                const SensorSetting& setting,
                                                const sensor::Context& context,
                                                const propagation::SegelsteinTable& water);
 
  private:
-  static constexpr std::size_t capacity = 16;
   std::mutex mutex_;
   std::vector<std::pair<std::string, std::shared_ptr<const sensor::Sensor>>> made_;  // newest last
 };

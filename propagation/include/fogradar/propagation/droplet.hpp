@@ -34,6 +34,11 @@ double size_parameter(double diameter_m, double wavelength_m);
 // Throws InvalidParameter for x <= 0, non-finite input, Re(m) <= 0 or Im(m) < 0.
 MieEfficiencies mie_efficiencies(double size_parameter, std::complex<double> m);
 
+// The complex recurrence steps mie_efficiencies takes: the downward ratio recurrence of m x from
+// its start, then one step per order of the series (the real recurrence of x is cheaper and left
+// out). The unit of the Mie cost model of the run-time estimate.
+std::size_t mie_recurrence_steps(double size_parameter, std::complex<double> m);
+
 // Mie cross sections of a droplet of diameter D at wavelength lambda.
 CrossSections mie_cross_sections(double diameter_m, double wavelength_m, std::complex<double> m);
 

@@ -62,6 +62,24 @@ struct FogOptics {
   double volume_backscatter_m2_per_m3 = 0.0;    // eta = N <sigma_b>
 };
 
+// The cost model of a Fog's Mie sums, for the run-time estimate (experiment/run_time.hpp): each
+// quadrature node of the droplets costs a fixed part and its recurrence steps
+// (mie_recurrence_steps at water's optical index, 1.33: at radio wavelengths the droplets are too
+// small for the index to change the count). Per-unit constants measured by bench/
+// estimate_calibration (docs/scenario.md, "Time limit").
+struct MieCost {
+  double seconds_per_node = 0.0;
+  double seconds_per_step = 0.0;
+};
+inline constexpr MieCost mie_cost{.seconds_per_node = 1.49e-8, .seconds_per_step = 2.28e-8};
+// CPU seconds of one bulk evaluation (Fog::at_frequency, Fog::at_optical_wavelength) of these
+// droplets at `wavelength_m`.
+double bulk_optics_seconds(const DropSizeDistribution& droplets, double wavelength_m,
+                           const MieCost& cost = mie_cost);
+// CPU seconds of constructing a Fog of `spec`: one bulk evaluation at 550 nm unless its density
+// is an LWC.
+double fog_resolution_seconds(const FogSpec& spec, const MieCost& cost = mie_cost);
+
 // A fog with its LWC resolved: for OpticalExtinction or Visibility the LWC follows from Mie at
 // 550 nm over the drop size distribution (Segelstein index).
 class Fog {

@@ -58,6 +58,20 @@ struct MemoryEstimate {
 };
 MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measurements);
 
+// The CPU time of the radar's work in a run besides its frames (sensor::SetupTime), from a cost
+// model in parts whose constants bench/estimate_calibration measures (docs/scenario.md, "Time
+// limit").
+struct SetupCost {
+  double fog_seconds = 0.0;          // the chamber: each distinct fog resolved and its Mie sum at
+                                     // the sweep centre (propagation::bulk_optics_seconds)
+  double chain_seconds = 0.0;        // the RadarChain's plans, windows and noise correlation
+  double cfar_design_seconds = 0.0;  // its CFAR threshold factors (cfar_design.hpp)
+  double summary_seconds = 0.0;      // each run's summary (box plots, Hodges-Lehmann pairs)
+  double report_seconds = 0.0;       // the fog reports of summary.json and the result files
+};
+SetupCost setup_cost(const SensorParams& params, const sensor::Context& context);
+
+
 // What a run of the radar found (RadarRun::summarize): its records and their summary.
 class RadarReport : public sensor::SensorSummary {
  public:

@@ -89,8 +89,17 @@ struct TimePart {
   std::string detail;     // "36001 beams (lidar.field_of_view_deg = ...) x 667129 samples (...)"
   std::string key;        // the key that sizes an item most ("lidar.sample_interval_ns")
   std::string items_key;  // the key that counts its items ("lidar.scans_per_step")
-  // CPU seconds spent once, when the sensor is made (the radar's CFAR design), not per item.
-  double setup_seconds = 0.0;
+};
+
+// The CPU time of what a run does for a sensor besides its items, from the same kind of cost model
+// (the Mie sums of its fog optics, its plans and tables, its CFAR design), in three parts by how
+// often they happen.
+struct SetupTime {
+  double make_seconds = 0.0;    // make(): once per process, or per sensor a sweep cannot reuse
+  double run_seconds = 0.0;     // each run: begin_run, every step prepared, summarize
+  double report_seconds = 0.0;  // a result set (`fogradar run`): its fog reports and result files
+  std::string detail;  // what make_seconds is made of, with its keys and values
+  std::string key;     // the key that sizes it most ("processing.cfar.threshold_design")
 };
 
 enum class Band { radio, optical };
@@ -233,6 +242,8 @@ class SensorType {
                             unsigned threads) const = 0;
   // The CPU time of one of its items (valid params and context).
   virtual TimePart item_time(const std::any& params, const Context& context) const = 0;
+  // The CPU time of the rest of its work in a run (valid params and context).
+  virtual SetupTime setup_time(const std::any& params, const Context& context) const = 0;
   virtual std::vector<RawKind> raw_kinds(const std::any& params, const Context& context) const = 0;
   // Whether a file of this name in a result directory is one of the sensor's result files.
   virtual bool owns_file_name(std::string_view file_name) const = 0;

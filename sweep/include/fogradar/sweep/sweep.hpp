@@ -48,8 +48,8 @@ struct SweepOptions {
   // After each point: (points committed, points in all, seconds so far of this invocation's
   // points).
   std::function<void(std::size_t, std::size_t, double)> progress;
-  // Sensors kept from point to point (what does not depend on a swept key is made once); shared by
-  // estimate() and run_sweep() when given, else each keeps its own.
+  // Sensors kept from point to point (what does not depend on a swept key is made once); run_sweep()
+  // uses this one when given, else keeps its own.
   experiment::SensorCache* cache = nullptr;
 };
 
@@ -58,15 +58,16 @@ struct SweepEstimate {
   std::size_t points = 0;
   std::size_t runs = 0;   // points x (replications + setups)
   std::size_t items = 0;  // of every sensor of every run
-  double seconds = 0.0;   // from one item of each sensor and one sensor set-up, timed here
+  double seconds = 0.0;   // experiment::estimate_runs of every run, in one process: wall time
+  double cpu_seconds = 0.0;  // and CPU time
   std::size_t peak_bytes = 0;
   std::string text() const;
 };
 
 // Refuses (InvalidParameter naming "--memory-limit-mib") a point whose run would exceed the memory
 // limit, and one over the time limit (experiment::require_time_within: filed under the key that
-// dominates it) or a sweep whose runs together exceed it ("--time-limit"); then times one item of
-// each sensor of the first point to estimate the sweep's time.
+// dominates it) or a sweep whose runs together exceed it ("--time-limit"). Its time is the cost
+// models' (experiment::estimate_runs): nothing is run or timed.
 SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
                        const SweepOptions& options);
 
