@@ -270,7 +270,7 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   t.set("processing.cfar", "false_alarm_probability", d.log_uniform(1e-7, 1e-3));
   if (kind == "os" && d.chance(0.5))
     t.set_integer("processing.cfar", "os_rank", d.integer(1, 2 * training));
-  const bool correlated = kind == "ca" || window == "rectangular" ? d.chance(0.5) : false;
+  const bool correlated = d.chance(0.5);
   t.set("processing.cfar", "threshold_design", quoted(correlated ? "correlated" : "independent"));
 
   const bool point = d.chance(0.5);
@@ -301,10 +301,14 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   for (const std::string& s : out.sensors) sensors += (sensors.empty() ? "" : ", ") + quoted(s);
   t.set("experiment", "sensors", "[" + sensors + "]");
   t.set_integer("experiment", "measurements_per_step", d.integer(1, 6));
-  out.max_active_layers =
-      static_cast<std::size_t>(d.integer(0, static_cast<std::int64_t>(layer_count)));
-  t.set_integer("experiment", "max_active_layers",
-                static_cast<std::int64_t>(out.max_active_layers));
+  // Not given, the run goes to every layer of the chamber.
+  out.max_active_layers = layer_count;
+  if (d.chance(0.7)) {
+    out.max_active_layers =
+        static_cast<std::size_t>(d.integer(0, static_cast<std::int64_t>(layer_count)));
+    t.set_integer("experiment", "max_active_layers",
+                  static_cast<std::int64_t>(out.max_active_layers));
+  }
   out.switching.resize(layer_count);
   std::iota(out.switching.begin(), out.switching.end(), std::size_t{0});
   switch (d.integer(0, 2)) {

@@ -5,14 +5,9 @@
 // short radar frames, a few lidar beams and scans, small camera frames.
 //
 // The space is narrower than the key table in these places, each for the reason given:
-// - processing.cfar: GO, SO and OS with the window-correlated threshold design are drawn only with
-//   the rectangular window (whose noise cells are uncorrelated); with a tapered window they take
-//   the iid design. Their correlated design with a tapered window takes far beyond a case's second
-//   (measured, 12 training cells: 0.4-5.3 s at 2 guard cells, 9-260 s at 0).
-// - experiment.max_active_layers is always written, in [0, the layer count]: its default (4) is
-//   refused with fewer than 4 layers and leaves steps out with more.
 // - target.radial_velocity_m_per_s stays inside the radar's unambiguous ±λ/(4 T_i): beyond it the
-//   estimate folds without a warning and the range-Doppler coupling correction moves the range.
+//   velocity folds and the range-Doppler coupling correction moves the range (the run warns,
+//   `velocity_fold`), which the target-origin check's range window does not model.
 // - The chamber is at most 2/3 of the radar's unambiguous range long and shorter than the lidar's
 //   max_range_m, so the target is inside both sensors' view.
 #pragma once
