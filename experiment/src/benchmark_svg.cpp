@@ -1,4 +1,4 @@
-// benchmark.svg: the study's sensor comparison in one figure (DESIGN §10).
+// benchmark.svg: the study's sensor comparison in one figure (docs/architecture.md).
 #include <algorithm>
 #include <cctype>
 #include <string>

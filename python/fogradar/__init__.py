@@ -87,8 +87,8 @@ class Scenario:
 
 class Measurement:
     """One item (step, index) of a sensor, exactly as `fogradar run` measures it, with the raw
-    data kept (DESIGN §11): arrays as read-only NumPy views of C++ buffers, tables as DataFrames
-    whose columns view them too (enumerations such as ``origin`` as pandas Categoricals).
+    data kept (docs/data-out.md): arrays as read-only NumPy views of C++ buffers, tables as
+    DataFrames whose columns view them too (enumerations such as ``origin`` as pandas Categoricals).
     Attributes and ``m["name"]`` give the kinds; ``axes`` the axes of the arrays (e.g. range_m,
     velocity_m_per_s); ``target`` the detection table's row marked ``associated`` (the radar's
     gate detection), else None."""

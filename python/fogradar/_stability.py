@@ -1,4 +1,4 @@
-"""A user's own detector checked for stability in fog (DESIGN §12, docs/python.md, "Your own
+"""A user's own detector checked for stability in fog (docs/python.md, "Your own
 algorithm in fog")."""
 import numbers
 

@@ -1,4 +1,4 @@
-// fogradar._core: the compiled part of the Python module (DESIGN §12, docs/python.md). It reaches
+// fogradar._core: the compiled part of the Python module (docs/python.md). It reaches
 // the sensors only through experiment/ and the sensor interface (sensor/sensor.hpp); the package's
 // Python code (python/fogradar/) builds the API on it. The GIL is released while C++ computes;
 // arrays are NumPy views of buffers C++ owns (a capsule keeps them alive), read-only.

@@ -1,8 +1,8 @@
-// The experiment with several sensors on one chamber (DESIGN §10): the result files are the same
-// bytes for any thread count; adding or removing a sensor never changes another sensor's files
-// (each draws from its own streams, sensor_stream); summary.json carries every sensor's limit and
-// summary in the documented layout; the embedded paper scenario holds the sensors' own defaults;
-// every invalid [lidar] and [camera] key is refused naming the key and its line.
+// The experiment with several sensors on one chamber (docs/architecture.md): the result files are
+// the same bytes for any thread count; adding or removing a sensor never changes another sensor's
+// files (each draws from its own streams, sensor_stream); summary.json carries every sensor's limit
+// and summary in the documented layout; the embedded paper scenario holds the sensors' own
+// defaults; every invalid [lidar] and [camera] key is refused naming the key and its line.
 #include <gtest/gtest.h>
 
 #include <atomic>

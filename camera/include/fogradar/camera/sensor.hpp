@@ -1,4 +1,4 @@
-// The camera as a sensor of the experiment (DESIGN §10, sensor/sensor.hpp): its keys ([camera] and
+// The camera as a sensor of the experiment (sensor/sensor.hpp): its keys ([camera] and
 // its sub-tables), one run on the chamber (the band's fog optics resolved once, the optics and
 // exposure per step, one frame per item), and its result files camera_histograms.csv,
 // camera_summary.csv, camera_summary.json, camera_histograms.svg and, when asked for,
@@ -16,7 +16,7 @@ namespace fogradar::camera {
 // The camera's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
-// The camera's raw data per frame (DESIGN §11): its grey image.
+// The camera's raw data per frame (docs/data-out.md): its grey image.
 enum RawKindIndex : std::size_t { raw_images = 0 };
 
 // What a run of the camera found: one result per step with the frames by index, and their summary.

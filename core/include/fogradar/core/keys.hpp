@@ -1,4 +1,4 @@
-// Scenario keys, declared once beside the parameters they set (DESIGN §10, STYLE 18): a key's
+// Scenario keys, declared once beside the parameters they set: a key's
 // dotted name as the user writes it, its type, the values it allows, its meaning, and the accessors
 // that read and write its field. That one declaration drives the scenario reader and writer
 // (experiment/), the checks of the parameters' validate() and their messages, and the key tables of

@@ -1,4 +1,4 @@
-// One item's raw data kept in memory (DESIGN §11, §12): the Python module's arrays. A RawSink that
+// One item's raw data kept in memory (docs/python.md): the Python module's arrays. A RawSink that
 // keeps the kinds asked for, each in a buffer of its own element type, and a table column by
 // column (numbers as float64, integer columns as int64, enumerations as int8 codes), so that every
 // array and every table column is one contiguous buffer a NumPy array can view without a copy.

@@ -1,4 +1,4 @@
-// Every measurement's data out (DESIGN §11, docs/data-out.md): which of the raw data the sensors
+// Every measurement's data out (docs/data-out.md): which of the raw data the sensors
 // offer (sensor::RawKind) a run keeps — the kinds, steps and items `fogradar run --raw FILE.h5
 // --raw-select --raw-steps --raw-items` choose — with its size estimated and refused over a limit
 // before the run, and where the kept items go while it runs (RawSinks: the HDF5 file of

@@ -1,4 +1,4 @@
-// The HDF5 file of `fogradar run --raw FILE.h5` (DESIGN §11, docs/data-out.md): a group per
+// The HDF5 file of `fogradar run --raw FILE.h5` (docs/data-out.md): a group per
 // sensor, each array kind a dataset [step, item, ...] chunked one item per chunk, each table kind a
 // compound dataset of rows, with units and the resolved scenario as attributes and the axes as
 // dimension scales; written like the result set, complete or not at all. Its own library

@@ -1,7 +1,7 @@
-// The one place that names the sensors (DESIGN §10): the registry of sensor types a scenario can
-// run. Everything else in experiment/ and cli/ loops over it. A fourth sensor is one folder that
-// implements sensor::SensorType and one line in standard_registry(); a test can add its own with
-// add().
+// The one place that names the sensors (docs/architecture.md): the registry of sensor types a
+// scenario can run. Everything else in experiment/ and cli/ loops over it. A fourth sensor is one
+// folder that implements sensor::SensorType and one line in standard_registry(); a test can add its
+// own with add().
 #pragma once
 
 #include <memory>

@@ -1,4 +1,4 @@
-// The 905 nm scanning lidar in the fog chamber (DESIGN §8, docs/lidar.md): built once per run from
+// The 905 nm scanning lidar in the fog chamber (docs/lidar.md): built once per run from
 // its parameters and the chamber, it resolves each layer's fog at 905 nm by Mie over the drop size
 // distribution, and measures scans: per beam the received waveform (waveform.hpp), receiver noise,
 // echo extraction, and each echo's origin from the simulation's ground truth.

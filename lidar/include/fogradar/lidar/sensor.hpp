@@ -1,4 +1,4 @@
-// The lidar as a sensor of the experiment (DESIGN §10, sensor/sensor.hpp): its keys ([lidar] and
+// The lidar as a sensor of the experiment (sensor/sensor.hpp): its keys ([lidar] and
 // its sub-tables), one run on the chamber (the Lidar built once, a fog series per step, one scan
 // per item), and its result files lidar_echoes.csv, lidar_summary.csv, lidar_summary.json,
 // lidar_intensity_boxplot.svg and lidar_scans.svg.
@@ -16,7 +16,8 @@ namespace fogradar::lidar {
 // The lidar's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
-// The lidar's raw data per scan (DESIGN §11), by index: the received waveforms and the echoes.
+// The lidar's raw data per scan (docs/data-out.md), by index: the received waveforms and the
+// echoes.
 enum RawKindIndex : std::size_t { raw_waveforms = 0, raw_echoes = 1, raw_origins = 2 };
 std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params);
 

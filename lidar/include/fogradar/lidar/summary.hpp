@@ -1,5 +1,5 @@
 // Per-step statistics of the lidar (Fig. 6's box of the target's intensity per active-layer count,
-// a missing target counted as 0 as the study plots it) and its sensor limit (DESIGN §8).
+// a missing target counted as 0 as the study plots it) and its sensor limit (docs/lidar.md).
 #pragma once
 
 #include <cstddef>

@@ -39,12 +39,13 @@ struct MeasurementWorkspace {
   std::vector<std::complex<double>> signal, noise;
 };
 
-// What RadarChain::measure shows of a frame on its way (raw data, DESIGN §11): the beat signal as
-// synthesised (chirps x samples, chirp-major, before the window), its two parts (synthesis.hpp,
-// FrameParts: the thermal noise as drawn, and the rest) and the complex range-Doppler map (Doppler
-// rows in FFT order x range columns; the CFAR sees its |.|^2). An empty tap costs nothing; with a
-// beat, signal or noise tap the frame is windowed and range transformed after the synthesis instead
-// of during it, which gives the same bits (synthesis.hpp, transform_windowed).
+// What RadarChain::measure shows of a frame on its way (raw data, docs/data-out.md): the beat
+// signal as synthesised (chirps x samples, chirp-major, before the window), its two parts
+// (synthesis.hpp, FrameParts: the thermal noise as drawn, and the rest) and the complex
+// range-Doppler map (Doppler rows in FFT order x range columns; the CFAR sees its |.|^2). An empty
+// tap costs nothing; with a beat, signal or noise tap the frame is windowed and range transformed
+// after the synthesis instead of during it, which gives the same bits (synthesis.hpp,
+// transform_windowed).
 struct FrameTaps {
   std::function<void(std::span<const std::complex<double>>)> beat;
   std::function<void(std::span<const std::complex<double>>)> signal;

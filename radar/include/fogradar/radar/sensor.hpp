@@ -1,4 +1,4 @@
-// The radar as a sensor of the experiment (DESIGN §10, sensor/sensor.hpp): its parameters and
+// The radar as a sensor of the experiment (sensor/sensor.hpp): its parameters and
 // scenario keys ([radar], [processing], [processing.cfar], [target] and the fog clutter's
 // fog.clutter_scatterers_per_bin), one run on the chamber (the chain made once, one frame per
 // item), and what experiment/ writes of it: radar_samples.csv, radar_summary.csv,
@@ -35,9 +35,10 @@ KeyTable<SensorParams> sensor_keys();
 // The radar's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
-// The radar's raw data per measurement (DESIGN §11), by index: the beat signal, the range-Doppler
-// map |X|^2 and the detections, with their axes; the beat's two parts (synthesis.hpp, FrameParts)
-// and the frame's ground truth per cell (OriginClassifier::origin_map) only when asked for by name.
+// The radar's raw data per measurement (docs/data-out.md), by index: the beat signal, the
+// range-Doppler map |X|^2 and the detections, with their axes; the beat's two parts (synthesis.hpp,
+// FrameParts) and the frame's ground truth per cell (OriginClassifier::origin_map) only when asked
+// for by name.
 enum RawKindIndex : std::size_t {
   raw_beat = 0,
   raw_range_doppler = 1,

@@ -1,7 +1,7 @@
-// The one shape every sensor has (DESIGN §10): experiment/, cli/ and python/ know a sensor only
-// through this interface, and one registry in experiment/ names the sensors that implement it
-// (pbrt-v4's Medium: a small interface, one factory that names the types). A sensor folder
-// (radar/, lidar/, camera/) provides:
+// The one shape every sensor has (docs/architecture.md): experiment/, cli/ and python/ know a
+// sensor only through this interface, and one registry in experiment/ names the sensors that
+// implement it (pbrt-v4's Medium: a small interface, one factory that names the types). A sensor
+// folder (radar/, lidar/, camera/) provides:
 //
 //   SensorType     its name, scenario keys, validation, memory and time estimates, raw data kinds,
 //                  result file names and its view of a fog (`fogradar fog`); it makes
@@ -111,9 +111,9 @@ struct FogReport {
   std::string line;
 };
 
-// One kind of raw data a sensor can write per item (DESIGN §11): an array of `shape` per item, or a
-// table of rows per item (element = table). The run's HDF5 file holds it as /<sensor>/<name>,
-// indexed [step, item, ...].
+// One kind of raw data a sensor can write per item (docs/data-out.md): an array of `shape` per
+// item, or a table of rows per item (element = table). The run's HDF5 file holds it as
+// /<sensor>/<name>, indexed [step, item, ...].
 enum class RawElement { complex128, float64, uint8, table };
 
 struct RawAxis {

@@ -1,4 +1,4 @@
-// Sweeps on the ranks of an MPI job (DESIGN §14, docs/scale-out.md): rank 0 reads and validates the
+// Sweeps on the ranks of an MPI job (docs/scale-out.md): rank 0 reads and validates the
 // sweep, hands the points out from a queue (the most costly first), computes points itself on a
 // thread of its own and is the only writer; the other ranks compute the points they are handed and
 // send each piece back. Only the main thread of a rank calls MPI (MPI_THREAD_FUNNELED). Built with

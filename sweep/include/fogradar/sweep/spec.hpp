@@ -1,4 +1,4 @@
-// A sweep file (DESIGN §13, docs/sweep.md): a base scenario, the keys to vary (axes: value lists or
+// A sweep file (docs/sweep.md): a base scenario, the keys to vary (axes: value lists or
 // lin/log ranges, several keys zipped on one axis, the grid their product), replications, a seed
 // mode, and an optional [uncertain] section that gives unmeasured keys distributions. Expanded into
 // points, each a full scenario validated before anything runs.

@@ -1,4 +1,4 @@
-// `fogradar sweep` (DESIGN §13, docs/sweep.md): every point of a sweep run into one directory of
+// `fogradar sweep` (docs/sweep.md): every point of a sweep run into one directory of
 // tidy tables and overlay plots, each point committed whole as it finishes, so that a sweep stopped
 // at any instant and resumed ends with the same bytes as one never interrupted.
 //
