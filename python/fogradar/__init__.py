@@ -255,6 +255,11 @@ class Simulator:
         if not isinstance(threads, int) or threads < 0 or threads > 4096:
             raise InvalidParameter(f"threads = {threads!r}: must be an integer in [0, 4096]",
                                    "threads")
+        if memory_limit_mib is not None and not (
+                isinstance(memory_limit_mib, (int, float)) and 1 <= memory_limit_mib <= 1e9):
+            raise InvalidParameter(
+                f"memory_limit_mib = {memory_limit_mib!r}: must be a number in [1, 1e9] (MiB), "
+                "as fogradar run's --memory-limit-mib", "memory_limit_mib")
         self.scenario = scenario
         self.threads = threads
         self._core = _core.Simulation(scenario._core, threads, memory_limit_mib)

@@ -115,6 +115,16 @@ def test_bad_measure_arguments_name_themselves(paper_sim):
         paper_sim.measure("radar", 0, 0, keep="beat").range_doppler
 
 
+def test_a_memory_limit_outside_its_range_is_refused_by_name():
+    # NaN would pass a `limit < x` test and become an undefined size_t in the C++ cast.
+    scenario = fogradar.Scenario.paper()
+    for bad in (float("nan"), float("inf"), 0.5, -1, 2e9, "64"):
+        with pytest.raises(fogradar.InvalidParameter) as raised:
+            fogradar.Simulator(scenario, memory_limit_mib=bad)
+        assert raised.value.key == "memory_limit_mib", bad
+        assert "[1, 1e9]" in str(raised.value), bad
+
+
 def test_threads_share_one_simulator(paper_sim):
     expected = [paper_sim.measure("radar", 1, i, keep="beat").beat.copy() for i in range(4)]
     got = [None] * 4
