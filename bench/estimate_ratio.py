@@ -11,6 +11,11 @@ by the share of the cores the run did not get; the CPU ratio does not depend on 
 average is printed before and after.
 
     /usr/bin/python3 bench/estimate_ratio.py [--fogradar build/release/cli/fogradar] [--repeats 3]
+    /usr/bin/python3 bench/estimate_ratio.py --property-seeds 0-49
+
+--property-seeds FIRST-LAST runs, instead of the examples, the property checker's random scenarios
+of those seeds (tests/property/scenario_generator.cpp, printed by the property_scenario program of
+the same build, --property-scenario) with `fogradar run` at --threads 1 and 2.
 
 Exit status 1 when a wall ratio lies outside [0.5, 2] (docs/scenario.md, "Time limit").
 """
@@ -73,20 +78,37 @@ def main():
     parser.add_argument("--fogradar", default=str(ROOT / "build/release/cli/fogradar"))
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--only", default="", help="run only the examples whose path contains this")
+    parser.add_argument("--property-seeds", metavar="FIRST-LAST",
+                        help="the property checker's scenarios of these seeds instead of the examples")
+    parser.add_argument("--property-scenario",
+                        default=str(ROOT / "build/release/tests/property_scenario"))
     args = parser.parse_args()
+    scratch_dir = tempfile.TemporaryDirectory()
     cases = []
-    for toml in sorted((ROOT / "examples").glob("*.toml")):
-        cases += [(toml, threads, "run") for threads in (1, 2)]
-    for toml in sorted((ROOT / "examples/sweeps").glob("*.toml")):
-        cases += [(toml, threads, "sweep") for threads in (1, 2)]
+    if args.property_seeds:
+        match = re.fullmatch(r"([0-9]+)-([0-9]+)", args.property_seeds)
+        if match is None or int(match.group(1)) > int(match.group(2)):
+            print(f"--property-seeds {args.property_seeds!r}: must be FIRST-LAST with "
+                  "0 <= FIRST <= LAST", file=sys.stderr)
+            return 2
+        for seed in range(int(match.group(1)), int(match.group(2)) + 1):
+            toml = pathlib.Path(scratch_dir.name) / f"seed_{seed}.toml"
+            toml.write_text(subprocess.run([args.property_scenario, str(seed)], check=True,
+                                           capture_output=True, text=True).stdout)
+            cases += [(toml, threads, "run") for threads in (1, 2)]
+    else:
+        for toml in sorted((ROOT / "examples").glob("*.toml")):
+            cases += [(toml, threads, "run") for threads in (1, 2)]
+        for toml in sorted((ROOT / "examples/sweeps").glob("*.toml")):
+            cases += [(toml, threads, "sweep") for threads in (1, 2)]
     print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     print(f"{'example':<40} {'threads':>7} {'est wall':>9} {'wall':>8} {'ratio':>6}"
           f" {'est CPU':>9} {'CPU':>8} {'ratio':>6}")
-    ratios = []
-    with tempfile.TemporaryDirectory() as scratch:
+    ratios, cpu_ratios = [], []
+    with scratch_dir, tempfile.TemporaryDirectory() as scratch:
         out = pathlib.Path(scratch) / "out"
         for toml, threads, command in cases:
-            name = str(toml.relative_to(ROOT))
+            name = toml.stem if args.property_seeds else str(toml.relative_to(ROOT))
             if args.only not in name:
                 continue
             flag = "--scenario" if command == "run" else "--sweep"
@@ -96,11 +118,13 @@ def main():
             wall = statistics.median(w for _, w, _ in runs)
             cpu = statistics.median(c for _, _, c in runs)
             ratios.append(est_wall / wall)
+            cpu_ratios.append(est_cpu / cpu)
             print(f"{name:<40} {threads:>7} {est_wall:>9.3f} {wall:>8.3f} {est_wall / wall:>6.2f}"
                   f" {est_cpu:>9.3f} {cpu:>8.3f} {est_cpu / cpu:>6.2f}", flush=True)
     print(f"load average after: {os.getloadavg()[0]:.2f}")
     if ratios:
-        print(f"wall ratios in [{min(ratios):.2f}, {max(ratios):.2f}]")
+        print(f"wall ratios in [{min(ratios):.2f}, {max(ratios):.2f}], "
+              f"CPU ratios in [{min(cpu_ratios):.2f}, {max(cpu_ratios):.2f}]")
     return 0 if all(0.5 <= r <= 2.0 for r in ratios) else 1
 
 
