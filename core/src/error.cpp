@@ -9,11 +9,7 @@ namespace fogradar {
 InvalidParameter::InvalidParameter(std::string field, const std::string& message)
     : std::invalid_argument(message), field_(std::move(field)) {}
 
-namespace {
-
-// NaN and the infinities as TOML and the command line spell them: the stream's "-nan" and its
-// sign of a NaN are no value anyone typed.
-std::string value_text(double value) {
+std::string message_number(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
   std::ostringstream text;
@@ -22,11 +18,9 @@ std::string value_text(double value) {
   return text.str();
 }
 
-}  // namespace
-
 void throw_invalid(std::string_view field, double value, std::string_view constraint) {
   std::ostringstream message;
-  message << field << " = " << value_text(value) << ": must be " << constraint;
+  message << field << " = " << message_number(value) << ": must be " << constraint;
   throw InvalidParameter(std::string(field), message.str());
 }
 

@@ -6,15 +6,6 @@
 
 namespace fogradar {
 
-std::string message_number(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
-  std::ostringstream text;
-  text.precision(10);
-  text << value;
-  return text.str();
-}
-
 bool CrossBound::empty() const {
   if (!integer) {
     return range.low > range.high ||

@@ -1,5 +1,6 @@
-// Two error channels (docs/architecture.md, Conventions): bad user input throws InvalidParameter naming the field and
-// the allowed range; broken invariants (programmer errors) go through FOGRADAR_CHECK.
+// Two error channels (docs/architecture.md, Conventions): bad user input throws InvalidParameter
+// naming the field and the allowed range; broken invariants (programmer errors) go through
+// FOGRADAR_CHECK.
 #pragma once
 
 #include <stdexcept>
@@ -18,6 +19,10 @@ class InvalidParameter : public std::invalid_argument {
  private:
   std::string field_;
 };
+
+// A number as bad-input messages write it: ten significant digits, "1e+09"; NaN and the
+// infinities as TOML and the command line spell them ("nan", "inf", "-inf"), not as a stream does.
+std::string message_number(double value);
 
 // Throws InvalidParameter "<field> = <value>: must be <constraint>" (e.g. "> 0", "in [0, 50]").
 [[noreturn]] void throw_invalid(std::string_view field, double value, std::string_view constraint);

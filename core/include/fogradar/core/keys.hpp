@@ -63,10 +63,6 @@ Interval open_closed(double low, double high);  // (low, high]
 Interval open(double low, double high);         // (low, high)
 Interval positive();                            // (0, inf): "finite and > 0"
 
-// A number as bad-input messages write it: ten significant digits, "1e+09" (core/error.hpp's
-// checks).
-std::string message_number(double value);
-
 // The range other keys leave a key ("radar.samples_per_chirp": at most radar.chirp_duration_s x
 // radar.sample_rate_hz samples), with how each end reads in a message. Where the other keys leave
 // no value at all, constraint() says so in words: an interval such as [16, 5] reads as a range to
