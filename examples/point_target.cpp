@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
             << " m\n"
             << "target: 10 dBsm point at " << chamber.target_range_m() << " m; expected SNR "
             << expected_snr_db << " dB\n"
-            << "measurement,detected,range_m,rcs_dbsm,snr_db\n";
+            << "item,detected,range_m,rcs_dbsm,snr_db\n";
   auto workspace = chain.make_workspace();
   radar::Measurement m;
   for (int i = 0; i < measurements; ++i) {

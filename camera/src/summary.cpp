@@ -76,12 +76,11 @@ CameraSummary summarize(const CameraParams& params, const std::vector<CameraStep
 }
 
 std::string histograms_csv(const CameraSummary& summary) {
-  std::string csv = "step,active_layers,grey_level,count\n";
-  for (std::size_t i = 0; i < summary.steps.size(); ++i) {
-    const CameraStepSummary& s = summary.steps[i];
+  std::string csv = "active_layers,grey_level,count\n";
+  for (const CameraStepSummary& s : summary.steps) {
     for (std::size_t g = 0; g < grey_levels; ++g) {
-      csv += std::to_string(i) + "," + std::to_string(s.active_layers) + "," + std::to_string(g) +
-             "," + std::to_string(s.histogram[g]) + "\n";
+      csv += std::to_string(s.active_layers) + "," + std::to_string(g) + "," +
+             std::to_string(s.histogram[g]) + "\n";
     }
   }
   return csv;
@@ -89,17 +88,15 @@ std::string histograms_csv(const CameraSummary& summary) {
 
 std::string summary_csv(const CameraSummary& summary) {
   std::string csv =
-      "step,active_layers,frames,mean_grey,std_grey,p05_grey,p95_grey,tonal_range,target_contrast,"
+      "active_layers,frames,mean_grey,std_grey,p05_grey,p95_grey,tonal_range,target_contrast,"
       "relative_contrast,edges_above_threshold,clear_edges,transmittance\n";
-  for (std::size_t i = 0; i < summary.steps.size(); ++i) {
-    const CameraStepSummary& s = summary.steps[i];
-    csv += std::to_string(i) + "," + std::to_string(s.active_layers) + "," +
-           std::to_string(s.frames) + "," + format_number(s.mean_grey) + "," +
-           format_number(s.std_grey) + "," + format_number(s.p05_grey) + "," +
-           format_number(s.p95_grey) + "," + format_number(s.tonal_range) + "," +
-           format_number(s.target_contrast) + "," + format_number(s.relative_contrast) + "," +
-           format_number(s.edges_above_threshold) + "," + std::to_string(s.clear_edges) + "," +
-           format_number(s.transmittance) + "\n";
+  for (const CameraStepSummary& s : summary.steps) {
+    csv += std::to_string(s.active_layers) + "," + std::to_string(s.frames) + "," +
+           format_number(s.mean_grey) + "," + format_number(s.std_grey) + "," +
+           format_number(s.p05_grey) + "," + format_number(s.p95_grey) + "," +
+           format_number(s.tonal_range) + "," + format_number(s.target_contrast) + "," +
+           format_number(s.relative_contrast) + "," + format_number(s.edges_above_threshold) + "," +
+           std::to_string(s.clear_edges) + "," + format_number(s.transmittance) + "\n";
   }
   return csv;
 }

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 // The version of the file's layout (docs/data-out.md); the root attribute `raw_format` that also
 // marks a file fogradar wrote, and may replace.
-constexpr std::int64_t raw_format_version = 1;
+constexpr std::int64_t raw_format_version = 2;
 // An item larger than this is chunked by rows of its first dimension (HDF5 chunks hold < 4 GiB).
 constexpr std::size_t max_chunk_bytes = std::size_t{1} << 30;
 constexpr hsize_t table_chunk_rows = 4096;
@@ -336,8 +336,8 @@ class RawFile::Impl {
     integer_attribute(file_.get(), "raw_format", raw_format_version);
     string_attribute(file_.get(), "fogradar_version", FOGRADAR_VERSION);
     string_attribute(file_.get(), "description",
-                     "fogradar run's raw data: a group per sensor, each dataset indexed [step, "
-                     "item, ...] (docs/data-out.md)");
+                     "fogradar run's raw data: a group per sensor, each dataset indexed "
+                     "[active_layers, item, ...] (docs/data-out.md)");
     string_attribute(file_.get(), "scenario", to_toml(scenario));
     integer_attribute(file_.get(), "seed", static_cast<std::int64_t>(scenario.experiment.seed));
 
@@ -362,8 +362,8 @@ class RawFile::Impl {
                          H5Gclose);
       std::vector<std::int64_t> layers(plan_.steps.begin(), plan_.steps.end());
       std::vector<std::int64_t> items(plan.items.begin(), plan.items.end());
-      const Handle step_scale = scale(out.group.get(), "step", H5T_STD_I64LE, H5T_NATIVE_INT64,
-                                      layers.data(), layers.size(), "active layers");
+      const Handle step_scale = scale(out.group.get(), "active_layers", H5T_STD_I64LE,
+                                      H5T_NATIVE_INT64, layers.data(), layers.size(), "layers");
       const Handle item_scale = scale(out.group.get(), "item", H5T_STD_I64LE, H5T_NATIVE_INT64,
                                       items.data(), items.size(), "");
       std::vector<std::pair<std::string, Handle>> axes;
@@ -431,7 +431,7 @@ class RawFile::Impl {
                                              space.get(), H5P_DEFAULT, creation.get(), H5P_DEFAULT),
                                   "H5Dcreate2"),
                           H5Dclose);
-    std::vector<std::string> dimensions = {"step", "item"};
+    std::vector<std::string> dimensions = {"active_layers", "item"};
     dimensions.insert(dimensions.end(), spec.dimensions.begin(), spec.dimensions.end());
     string_attribute(kind.dataset.get(), "units", spec.units);
     string_attribute(kind.dataset.get(), "description", spec.description);
@@ -458,11 +458,11 @@ class RawFile::Impl {
     }
   }
 
-  // A compound dataset of every kept item's rows, in (step, item) order: step (active layers) and
-  // item, then the kind's columns.
+  // A compound dataset of every kept item's rows, in (step, item) order: active_layers and item,
+  // then the kind's columns.
   void write_table(SensorOut& s, KindOut& out) {
     const sensor::RawKind& spec = s.plan->kinds[out.kind];
-    std::vector<sensor::RawColumn> columns = {{"step", "active layers", true, {}},
+    std::vector<sensor::RawColumn> columns = {{"active_layers", "layers", true, {}},
                                               {"item", "", true, {}}};
     columns.insert(columns.end(), spec.columns.begin(), spec.columns.end());
     std::vector<std::size_t> offsets;

@@ -48,7 +48,7 @@ double clear_margin(const Lidar& lidar) {
 }  // namespace
 
 std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResult>& steps) {
-  std::string out = "step,scan,angle_deg,echo,range_m,intensity,origin\n";
+  std::string out = "active_layers,item,angle_deg,echo,range_m,intensity,origin\n";
   for (const LidarStepResult& step : steps) {
     const std::string step_text = std::to_string(step.active_layers) + ',';
     for (std::size_t s = 0; s < step.scans.size(); ++s) {

@@ -257,7 +257,7 @@ std::string step_note(const StepSummary& s) {
 
 std::string samples_csv(const std::vector<StepResult>& steps) {
   std::string out =
-      "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,"
+      "active_layers,item,detected,range_m,rcs_dbsm,snr_db,"
       "origin,fog_detections,false_alarms,velocity_m_per_s\n";
   for (const StepResult& step : steps) {
     for (std::size_t i = 0; i < step.records.size(); ++i) {
@@ -279,7 +279,7 @@ std::string samples_csv(const std::vector<StepResult>& steps) {
 
 std::string detections_csv(const std::vector<StepResult>& steps) {
   std::string out =
-      "step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
+      "active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
       "associated\n";
   for (const StepResult& step : steps) {
     for (std::size_t i = 0; i < step.records.size(); ++i) {

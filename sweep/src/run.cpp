@@ -134,9 +134,7 @@ experiment::Scenario with_seed(experiment::Scenario scenario, std::uint64_t seed
   return scenario;
 }
 
-bool is_step_column(const std::string& column) {
-  return column == "active_layers" || column == "step";
-}
+bool is_step_column(const std::string& column) { return column == "active_layers"; }
 
 std::string points_csv(const SweepSpec& spec, const std::vector<Point>& points) {
   std::string out = "point";

@@ -260,7 +260,7 @@ TEST(Summary, ResultFiles) {
 
   const std::string histograms = histograms_csv(summary);
   EXPECT_EQ(std::count(histograms.begin(), histograms.end(), '\n'), 1 + 5 * 256);
-  EXPECT_TRUE(histograms.starts_with("step,active_layers,grey_level,count\n0,0,0,"));
+  EXPECT_TRUE(histograms.starts_with("active_layers,grey_level,count\n0,0,"));
   const std::string csv = summary_csv(summary);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
   const nlohmann::json json = summary_json(summary);

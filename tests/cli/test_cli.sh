@@ -33,8 +33,12 @@ for sensor in radar lidar camera; do
   grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
   grep -q "^$sensor *layers to failure: " "$work/t1.log" && pass || fail "no benchmark line for $sensor"
 done
-head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'step,scan,angle_deg,echo,range_m,intensity,origin' && pass \
+head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'active_layers,item,angle_deg,echo,range_m,intensity,origin' && pass \
   || fail "lidar_echoes.csv header: $(head -1 "$work/t1/lidar_echoes.csv")"
+head -1 "$work/t1/camera_histograms.csv" | grep -qx 'active_layers,grey_level,count' && pass \
+  || fail "camera_histograms.csv header: $(head -1 "$work/t1/camera_histograms.csv")"
+head -1 "$work/t1/camera_summary.csv" | grep -q '^active_layers,frames,' && pass \
+  || fail "camera_summary.csv header: $(head -1 "$work/t1/camera_summary.csv")"
 if [ -x /usr/bin/python3 ]; then
   /usr/bin/python3 - "$work/t1/summary.json" <<'PY' && pass || fail "summary.json lacks a sensor's limit"
 import json, sys
@@ -44,9 +48,9 @@ for name, entry in sensors.items():
     assert "sensor_limit_layers" in entry and entry["criterion"], name
 PY
 fi
-head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms,velocity_m_per_s' && pass \
+head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,item,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms,velocity_m_per_s' && pass \
   || fail "radar_samples.csv header"
-head -1 "$work/t1/radar_detections.csv" | grep -qx 'step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated' && pass \
+head -1 "$work/t1/radar_detections.csv" | grep -qx 'active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated' && pass \
   || fail "radar_detections.csv header"
 head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,radome_two_way_loss_db,target_film_loss_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,adc_clipped_fraction,clipping_detections_per_frame' \
   && pass || fail "radar_summary.csv header"

@@ -115,7 +115,7 @@ TEST_F(Outputs, TheRunHoldsEveryKindOfRecord) {
 TEST_F(Outputs, SamplesCsvNumbersReadBackExactly) {
   const std::vector<std::string> lines = lines_of(radar::samples_csv(steps()));
   ASSERT_EQ(lines.front(),
-            "active_layers,measurement,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,"
+            "active_layers,item,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,"
             "false_alarms,velocity_m_per_s");
   std::size_t row = 1;
   for (const StepResult& step : steps()) {
@@ -150,7 +150,7 @@ TEST_F(Outputs, SamplesCsvNumbersReadBackExactly) {
 TEST_F(Outputs, DetectionsCsvHoldsEveryDetectionOfEveryFrame) {
   const std::vector<std::string> lines = lines_of(radar::detections_csv(steps()));
   ASSERT_EQ(lines.front(),
-            "step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
+            "active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
             "associated");
   struct Frame {
     std::size_t fog = 0, noise = 0, associated = 0;

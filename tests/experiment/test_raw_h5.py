@@ -14,8 +14,11 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
 - the ground truth on request: /radar/origins, an enumerated map whose cell at each detection's
   peak holds that detection's origin; /lidar/origins, whose stretch holding each echo's
   peak_range_m holds that echo's origin;
-- the layout: shapes [step, item, ...], one item per chunk, dimension scales attached, units, the
-  resolved scenario as the root attribute (scenario.toml's text).
+- the layout: shapes [active_layers, item, ...], one item per chunk, dimension scales attached,
+  units, the resolved scenario as the root attribute (scenario.toml's text);
+- one name for the step and one for the item everywhere: every CSV file of the result set and
+  every HDF5 dataset, table field and `dimensions` attribute say `active_layers` and `item`, never
+  `step`, `measurement`, `scan` or `frame`.
 
 Usage: test_raw_h5.py FOGRADAR_BINARY SOURCE_DIR
 """
@@ -54,14 +57,43 @@ with tempfile.TemporaryDirectory() as work:
         check(beat.shape == (2, 4, 16, 512) and beat.dtype == np.complex128, f"beat {beat.shape} {beat.dtype}")
         check(beat.chunks == (1, 1, 16, 512), f"beat chunks {beat.chunks}")
         check(rd.shape == (2, 4, 16, 512) and rd.dtype == np.float64, f"range_doppler {rd.shape}")
-        check(list(f["/radar/step"][:]) == [0, 4] and list(f["/radar/item"][:]) == [0, 1, 2, 3],
-              "step and item scales")
+        check(list(f["/radar/active_layers"][:]) == [0, 4]
+              and list(f["/radar/item"][:]) == [0, 1, 2, 3], "active_layers and item scales")
         check(rd.dims[3][0].name == "/radar/range_m" and rd.dims[2][0].name == "/radar/velocity_m_per_s",
               "range_doppler's axes attached")
         check(rd.attrs["units"].decode().startswith("W"), "range_doppler's units")
         with open(os.path.join(out, "scenario.toml"), "rb") as toml:
             check(f.attrs["scenario"] == toml.read(), "the root attribute is scenario.toml")
-        check(f.attrs["raw_format"] == 1, "raw_format")
+        check(f.attrs["raw_format"] == 2, "raw_format")
+
+        # One name for the step and the item in every file.
+        other_names = {"step", "measurement", "scan", "frame"}
+        for name in sorted(os.listdir(out)):
+            if name.endswith(".csv"):
+                with open(os.path.join(out, name)) as table:
+                    header = next(csv.reader(table))
+                check(not other_names & set(header) and header.count("active_layers") <= 1,
+                      f"{name}'s header names the step and item active_layers and item: {header}")
+        for name in ("radar_samples.csv", "radar_detections.csv", "lidar_echoes.csv"):
+            with open(os.path.join(out, name)) as table:
+                header = next(csv.reader(table))
+            check(header[:2] == ["active_layers", "item"],
+                  f"{name} starts with active_layers, item: {header}")
+
+        def names_of(path, node):
+            names = [path.rsplit("/", 1)[-1]]
+            if isinstance(node, h5py.Dataset):
+                names += list(node.dtype.names or ())
+                if "dimensions" in node.attrs:
+                    names += node.attrs["dimensions"].decode().split(", ")
+                if node.dtype.names:
+                    check(list(node.dtype.names[:2]) == ["active_layers", "item"],
+                          f"{path}'s rows start with active_layers, item")
+                elif node.ndim >= 2 and "dimensions" in node.attrs:
+                    check(node.attrs["dimensions"].decode().startswith("active_layers, item"),
+                          f"{path} is indexed [active_layers, item, ...]")
+            check(not other_names & set(names), f"{path} names the step or item otherwise: {names}")
+        f.visititems(names_of)
 
         # The map from the beat.
         window = hann(16)[:, None] * hann(512)[None, :]
@@ -83,20 +115,20 @@ with tempfile.TemporaryDirectory() as work:
         origins = h5py.check_enum_dtype(detections.dtype["origin"])
         label = {v: k for k, v in origins.items()}
         with open(os.path.join(out, "radar_samples.csv")) as samples_file:
-            samples = {(int(r["active_layers"]), int(r["measurement"])): r
+            samples = {(int(r["active_layers"]), int(r["item"])): r
                        for r in csv.DictReader(samples_file)}
         with open(os.path.join(out, "radar_detections.csv")) as detections_file:
-            csv_count = Counter((int(r["step"]), int(r["measurement"]))
+            csv_count = Counter((int(r["active_layers"]), int(r["item"]))
                                 for r in csv.DictReader(detections_file))
-        h5_count = Counter((int(r["step"]), int(r["item"])) for r in detections)
+        h5_count = Counter((int(r["active_layers"]), int(r["item"])) for r in detections)
         compared = 0
         for step in (0, 4):
             for item in range(4):
                 check(h5_count[(step, item)] == csv_count[(step, item)],
                       f"detections of ({step}, {item}): {h5_count[(step, item)]} against the CSV's "
                       f"{csv_count[(step, item)]}")
-                gate = [r for r in detections
-                        if r["step"] == step and r["item"] == item and r["associated"] == 1]
+                gate = [r for r in detections if r["active_layers"] == step
+                        and r["item"] == item and r["associated"] == 1]
                 row = samples[(step, item)]
                 check(len(gate) == (1 if row["origin"] else 0), f"gate detection of ({step}, {item})")
                 if gate:
@@ -122,7 +154,7 @@ with tempfile.TemporaryDirectory() as work:
         echoes = f["/lidar/echoes"][:]
         with open(os.path.join(out, "lidar_echoes.csv")) as echo_file:
             listed = [r for r in csv.DictReader(echo_file)
-                      if int(r["step"]) in (0, 4) and int(r["scan"]) < 4]
+                      if int(r["active_layers"]) in (0, 4) and int(r["item"]) < 4]
         check(len(listed) == len(echoes), f"{len(echoes)} echoes against the CSV's {len(listed)}")
         table = {"noise": 0, "target": 1, "fog": 2, "background": 3, "clipping": 4}
         check(h5py.check_enum_dtype(echoes.dtype["origin"]) == table, "the lidar's origin codes")
@@ -130,8 +162,9 @@ with tempfile.TemporaryDirectory() as work:
               "the radar's origin codes")
         lidar_labels = {v: k for k, v in h5py.check_enum_dtype(echoes.dtype["origin"]).items()}
         for row, echo in zip(listed, echoes):
-            check(int(row["step"]) == echo["step"] and int(row["scan"]) == echo["item"] and
-                  abs(float(row["range_m"]) - echo["range_m"]) <= 5e-5 and
+            check(int(row["active_layers"]) == echo["active_layers"]
+                  and int(row["item"]) == echo["item"]
+                  and abs(float(row["range_m"]) - echo["range_m"]) <= 5e-5 and
                   row["origin"] == lidar_labels[echo["origin"]], f"echo {row}")
         waveforms = f["/lidar/waveforms"]
         check(waveforms.shape[:2] == (2, 4) and waveforms.shape[2] == len(f["/lidar/angle_deg"]),
@@ -145,9 +178,10 @@ with tempfile.TemporaryDirectory() as work:
                     "radar.beat,radar.signal,radar.noise", "--raw-steps", "2",
                     "--raw-items", "1"], check=True, stdout=subprocess.DEVNULL)
     with h5py.File(raw) as f:
-        check(sorted(f["/radar"]) == sorted(["beat", "signal", "noise", "step", "item",
+        check(sorted(f["/radar"]) == sorted(["beat", "signal", "noise", "active_layers", "item",
                                              "chirp_time_s", "sample_time_s"]),
               f"parts file: {sorted(f['/radar'])}")
+        f.visititems(names_of)
         beat, signal, noise = (f[f"/radar/{k}"][0, 0] for k in ("beat", "signal", "noise"))
         check(np.array_equal(signal + noise, beat), "signal + noise == beat")
 
@@ -160,6 +194,7 @@ with tempfile.TemporaryDirectory() as work:
                     "radar.detections,radar.origins,lidar.echoes,lidar.origins", "--raw-steps",
                     "0,4", "--raw-items", "0-1"], check=True, stdout=subprocess.DEVNULL)
     with h5py.File(raw) as f:
+        f.visititems(names_of)
         truth = f["/radar/origins"]
         check(h5py.check_enum_dtype(truth.dtype) == table, "the radar map's origin codes")
         rows, columns = truth.shape[2:]
@@ -167,7 +202,7 @@ with tempfile.TemporaryDirectory() as work:
         coupling = truth.attrs["range_coupling_s"]
         radar_seen = 0
         for d in f["/radar/detections"][:]:
-            s, i = list(f["/radar/step"][:]).index(d["step"]), d["item"]
+            s, i = list(f["/radar/active_layers"][:]).index(d["active_layers"]), d["item"]
             column = int(np.clip(np.floor((d["range_m"] + coupling * d["velocity_m_per_s"]) / bin_m
                                           + 0.5), 0, columns - 1))
             row = int(np.floor(d["velocity_m_per_s"] / velocity_bin + 0.5)) % rows
@@ -178,7 +213,8 @@ with tempfile.TemporaryDirectory() as work:
         check(h5py.check_enum_dtype(stretches.dtype["origin"]) == table, "lidar truth codes")
         lidar_seen = Counter()
         for e in f["/lidar/echoes"][:]:
-            inside = stretches[(stretches["step"] == e["step"]) & (stretches["item"] == e["item"])
+            inside = stretches[(stretches["active_layers"] == e["active_layers"])
+                               & (stretches["item"] == e["item"])
                                & (stretches["beam"] == e["beam"])
                                & (stretches["start_m"] <= e["peak_range_m"])
                                & (e["peak_range_m"] < stretches["end_m"])]

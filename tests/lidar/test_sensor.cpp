@@ -525,7 +525,8 @@ TEST(LidarPaperScenario, ResultFilesAndMemoryEstimate) {
   }
   const std::string csv = lidar_echoes_csv(*run.lidar, run.steps);
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), echoes + 1);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "step,scan,angle_deg,echo,range_m,intensity,origin");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "active_layers,item,angle_deg,echo,range_m,intensity,origin");
   const nlohmann::json json = lidar_summary_json(*run.lidar, run.summary);
   EXPECT_EQ(json.at("sensor_limit_layers"), 1);
   EXPECT_EQ(json.at("steps").size(), 5u);

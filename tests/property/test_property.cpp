@@ -181,11 +181,11 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
     const double r = d.target_range_m;
     const double multipath_m = std::hypot(r, d.target_height_span_m) - r;
     for (const auto& row : read_csv(*csv)) {
-      const auto k = static_cast<std::size_t>(std::stoul(row.at("step")));
+      const auto k = static_cast<std::size_t>(std::stoul(row.at("active_layers")));
       const double range_m = std::stod(row.at("range_m"));
       const std::string& origin = row.at("origin");
-      const std::string where = "radar detection at step " + row.at("step") + ", measurement " +
-                                row.at("measurement") + ", range " + row.at("range_m") +
+      const std::string where = "radar detection at step " + row.at("active_layers") +
+                                ", measurement " + row.at("item") + ", range " + row.at("range_m") +
                                 " m, origin " + origin;
       if (origin == "fog") {
         bool inside = false;
@@ -208,14 +208,14 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
     const double tol_m =
         speed_of_light_m_per_s * (d.lidar_pulse_width_s + 0.5 * d.lidar_sample_interval_s);
     for (const auto& row : read_csv(*csv)) {
-      const auto k = static_cast<std::size_t>(std::stoul(row.at("step")));
+      const auto k = static_cast<std::size_t>(std::stoul(row.at("active_layers")));
       const double range_m = std::stod(row.at("range_m"));
       const double angle = std::stod(row.at("angle_deg")) * pi / 180.0;
       const double x = range_m * std::cos(angle);
       const double y = range_m * std::sin(angle);
       const std::string& origin = row.at("origin");
-      const std::string where = "lidar echo at step " + row.at("step") + ", scan " +
-                                row.at("scan") + ", angle " + row.at("angle_deg") + " deg, range " +
+      const std::string where = "lidar echo at step " + row.at("active_layers") + ", scan " +
+                                row.at("item") + ", angle " + row.at("angle_deg") + " deg, range " +
                                 row.at("range_m") + " m, origin " + origin;
       if (origin == "fog") {
         bool inside = false;

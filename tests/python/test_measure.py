@@ -17,7 +17,7 @@ def hann(n):
 @pytest.mark.parametrize("step,index", [(0, 0), (2, 17), (4, 199)])
 def test_the_gate_detection_equals_the_run_s_samples_row(paper_sim, paper_cli_run, step, index):
     samples = pd.read_csv(paper_cli_run / "radar_samples.csv", float_precision="round_trip")
-    row = samples[(samples["active_layers"] == step) & (samples["measurement"] == index)].iloc[0]
+    row = samples[(samples["active_layers"] == step) & (samples["item"] == index)].iloc[0]
     target = paper_sim.measure("radar", step, index, keep="detections").target
     assert target is not None
     # The CSV writes every number exactly (shortest round trip): the same doubles.
@@ -96,7 +96,7 @@ def test_the_camera_s_images_make_the_run_s_histograms(paper_sim, paper_cli_run)
 def test_the_lidar_s_echoes_are_the_run_s(paper_sim, paper_cli_run):
     echoes = pd.read_csv(paper_cli_run / "lidar_echoes.csv", float_precision="round_trip")
     m = paper_sim.measure("lidar", 2, 3)
-    listed = echoes[(echoes["step"] == 2) & (echoes["scan"] == 3)].reset_index(drop=True)
+    listed = echoes[(echoes["active_layers"] == 2) & (echoes["item"] == 3)].reset_index(drop=True)
     assert len(listed) == len(m.echoes) > 0
     assert np.allclose(m.echoes["range_m"], listed["range_m"], atol=5e-5)  # the CSV's 4 decimals
     assert list(m.echoes["origin"].astype(str)) == list(listed["origin"])

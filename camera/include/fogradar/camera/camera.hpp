@@ -154,7 +154,7 @@ CameraSummary summarize(const CameraParams& params, const std::vector<CameraStep
 
 // Result files as strings.
 std::string histograms_csv(
-    const CameraSummary& summary);  // camera_histograms.csv: step,active_layers,grey_level,count
+    const CameraSummary& summary);  // camera_histograms.csv: active_layers,grey_level,count
 std::string summary_csv(const CameraSummary& summary);      // camera_summary.csv: one row per step
 nlohmann::json summary_json(const CameraSummary& summary);  // the object summary.json embeds
 std::string histograms_svg(const CameraSummary& summary);   // camera_histograms.svg (Fig. 7)

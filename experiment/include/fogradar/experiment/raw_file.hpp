@@ -1,7 +1,7 @@
 // The HDF5 file of `fogradar run --raw FILE.h5` (docs/data-out.md): a group per
-// sensor, each array kind a dataset [step, item, ...] chunked one item per chunk, each table kind a
-// compound dataset of rows, with units and the resolved scenario as attributes and the axes as
-// dimension scales; written like the result set, complete or not at all. Its own library
+// sensor, each array kind a dataset [active_layers, item, ...] chunked one item per chunk, each
+// table kind a compound dataset of rows, with units and the resolved scenario as attributes and the
+// axes as dimension scales; written like the result set, complete or not at all. Its own library
 // (fogradar::raw_file, linked by the command line) so that only what writes the file links
 // libhdf5 (experiment/CMakeLists.txt).
 #pragma once

@@ -12,12 +12,13 @@
 
 namespace fogradar::radar {
 
-// radar_samples.csv: one row per measurement, "active_layers,measurement,detected,range_m,rcs_dbsm,
-// snr_db,origin,fog_detections,false_alarms,velocity_m_per_s"; numbers in shortest round-trip form.
+// radar_samples.csv: one row per measurement, "active_layers,item,detected,range_m,rcs_dbsm,snr_db,
+// origin,fog_detections,false_alarms,velocity_m_per_s" (item: the measurement's index in its step);
+// numbers in shortest round-trip form.
 std::string samples_csv(const std::vector<StepResult>& steps);
-// radar_detections.csv: every detection of every measurement, "step,measurement,range_m,
-// velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated" (step = active layers; the
-// received power at the receiver input; in_gate and associated 0 or 1).
+// radar_detections.csv: every detection of every measurement, "active_layers,item,range_m,
+// velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated" (the received power at the
+// receiver input; in_gate and associated 0 or 1).
 std::string detections_csv(const std::vector<StepResult>& steps);
 // radar_summary.csv: one row per step with every per-step field of summary_json.
 std::string summary_csv(const RadarSummary& summary);

@@ -113,7 +113,7 @@ struct FogReport {
 
 // One kind of raw data a sensor can write per item (docs/data-out.md): an array of `shape` per
 // item, or a table of rows per item (element = table). The run's HDF5 file holds it as
-// /<sensor>/<name>, indexed [step, item, ...].
+// /<sensor>/<name>, indexed [active_layers, item, ...].
 enum class RawElement { complex128, float64, uint8, table };
 
 struct RawAxis {
