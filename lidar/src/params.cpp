@@ -189,7 +189,9 @@ KeyTable<LidarParams> lidar_keys() {
   keys.number("fog_fluctuation.correlation_time_s",
               FOGRADAR_KEY_FIELD(fog_fluctuation.correlation_time_s), positive(),
               "AR(1) correlation time of the fluctuation; assumption: eddies of ~0.5 m carried at "
-              "~1 m/s by the barrels' fans");
+              "~1 m/s by the barrels' fans")
+      .when([](const LidarParams& p) { return p.fog_fluctuation.log_std > 0.0; },
+            "with lidar.fog_fluctuation.log_std > 0 (0: no fluctuation to correlate)");
   return keys;
 }
 

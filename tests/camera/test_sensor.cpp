@@ -285,15 +285,27 @@ TEST(Params, EveryInvalidKeyIsRefusedByName) {
     return rejected_field([&] { params.validate(); });
   };
   EXPECT_EQ(rejected([](CameraParams&) {}), "accepted");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.wavelength_nm = 200.0; }), "camera.wavelength_nm");
+  // A key is checked where it takes effect (a wavelength with the monochromatic band, ...).
+  EXPECT_EQ(rejected([](CameraParams& p) {
+              p.band = Band::monochromatic;
+              p.wavelength_nm = 200.0;
+            }),
+            "camera.wavelength_nm");
   EXPECT_EQ(rejected([](CameraParams& p) { p.mie_step_nm = 2.0; }), "camera.mie_step_nm");
   EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = 0.0; }),
             "camera.exposure.ambient_level");
   EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.ambient_level = std::nan(""); }),
             "camera.exposure.ambient_level");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.exposure.auto_target_grey = 255.0; }),
+  EXPECT_EQ(rejected([](CameraParams& p) {
+              p.exposure.mode = ExposureMode::automatic;
+              p.exposure.auto_target_grey = 255.0;
+            }),
             "camera.exposure.auto_target_grey");
-  EXPECT_EQ(rejected([](CameraParams& p) { p.gamma = 0.5; }), "camera.gamma");
+  EXPECT_EQ(rejected([](CameraParams& p) {
+              p.transfer = TransferCurve::gamma;
+              p.gamma = 0.5;
+            }),
+            "camera.gamma");
   for (const double bad : {-1e-4, 0.5e-6, 0.011, std::nan("")}) {
     EXPECT_EQ(rejected([&](CameraParams& p) { p.window_water_film_m = bad; }),
               "camera.window_water_film_m")
@@ -327,6 +339,7 @@ TEST(Params, EveryInvalidKeyIsRefusedByName) {
   EXPECT_EQ(to_string(Band::rgb), "rgb");
   // The sensor refuses bad params and a wrong active-layer list at construction / per step.
   CameraParams bad;
+  bad.transfer = TransferCurve::gamma;
   bad.gamma = 9.0;
   EXPECT_EQ(rejected_field([&] { Camera(bad, paper_chamber(), table()); }), "camera.gamma");
   EXPECT_EQ(rejected_field([] { default_camera().step_optics({true}); }), "active_layers");

@@ -373,7 +373,8 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   const std::string band = d.pick(std::vector<std::string>{"photopic", "rgb", "monochromatic"});
   t.set("camera", "band", quoted(band));
   if (band == "monochromatic") t.set("camera", "wavelength_nm", d.uniform(400.0, 1000.0));
-  t.set("camera", "mie_step_nm", d.uniform(40.0, 160.0));
+  const double mie_step_nm = d.uniform(40.0, 160.0);
+  if (band != "monochromatic") t.set("camera", "mie_step_nm", mie_step_nm);
   const bool gamma = d.chance(0.5);
   t.set("camera", "transfer", quoted(gamma ? "gamma" : "srgb"));
   if (gamma) t.set("camera", "gamma", d.uniform(1.0, 4.0));
@@ -388,9 +389,14 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   } else {
     t.set("camera.exposure", "ambient_level", d.uniform(0.01, 0.2));
   }
-  t.set_boolean("camera.noise", "enabled", d.chance(0.7));
-  t.set("camera.noise", "full_well_electrons", d.log_uniform(1e3, 1e5));
-  t.set("camera.noise", "read_noise_electrons", d.uniform(0.0, 20.0));
+  const bool noise = d.chance(0.7);
+  t.set_boolean("camera.noise", "enabled", noise);
+  const double full_well_electrons = d.log_uniform(1e3, 1e5);
+  const double read_noise_electrons = d.uniform(0.0, 20.0);
+  if (noise) {
+    t.set("camera.noise", "full_well_electrons", full_well_electrons);
+    t.set("camera.noise", "read_noise_electrons", read_noise_electrons);
+  }
   const std::int64_t width = d.integer(16, 64);
   const std::int64_t height = d.integer(16, 64);
   t.set_integer("camera.roi", "width_px", width);
