@@ -33,7 +33,7 @@ for sensor in radar lidar camera; do
   grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
   grep -q "^$sensor *layers to failure: " "$work/t1.log" && pass || fail "no benchmark line for $sensor"
 done
-head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'step,scan,angle_deg,echo,range_m,intensity,origin' && pass \
+head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'step,scan,angle_deg,echo,range_m,intensity,origin,layer' && pass \
   || fail "lidar_echoes.csv header: $(head -1 "$work/t1/lidar_echoes.csv")"
 if [ -x /usr/bin/python3 ]; then
   /usr/bin/python3 - "$work/t1/summary.json" <<'PY' && pass || fail "summary.json lacks a sensor's limit"
