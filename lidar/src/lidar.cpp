@@ -165,8 +165,10 @@ void Lidar::check_inputs(const propagation::ActiveLayers& active,
 }
 
 Lidar::Hit Lidar::trace(std::size_t beam, const propagation::ActiveLayers& active,
-                        std::span<const double> factors, std::vector<FogStretch>& stretches) const {
+                        std::span<const double> factors, std::vector<FogStretch>& stretches,
+                        std::vector<std::int32_t>& stretch_layers) const {
   stretches.clear();
+  stretch_layers.clear();
   const double angle = beam_angle_deg(beam) * degree_rad;
   const double ux = std::cos(angle);
   const double uy = std::sin(angle);
@@ -206,6 +208,7 @@ Lidar::Hit Lidar::trace(std::size_t beam, const propagation::ActiveLayers& activ
                            .extinction_per_m = alpha,
                            .backscatter_per_m_sr = layers_[i].backscatter_per_m_sr * factors[i],
                            .transmittance_at_start = transmittance});
+      stretch_layers.push_back(static_cast<std::int32_t>(i));
       transmittance *= std::exp(-2.0 * alpha * (stop - start));
     }
   }
@@ -228,7 +231,8 @@ BeamWaveform Lidar::waveform(std::size_t beam, const propagation::ActiveLayers& 
                    .fog = std::vector<double>(samples_),
                    .background = std::vector<double>(samples_)};
   std::vector<FogStretch> stretches;
-  const Hit hit = trace(beam, active, optical_depth_factors, stretches);
+  std::vector<std::int32_t> stretch_layers;
+  const Hit hit = trace(beam, active, optical_depth_factors, stretches, stretch_layers);
   out.crosses_fog = !stretches.empty();
   out.hits = hit.found;
   for (const FogStretch& stretch : stretches) add_fog_stretch(out.fog, grid_, stretch);
@@ -251,10 +255,18 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
   // array of doubles a std::complex<double> array is ([complex.numbers]).
   std::vector<std::complex<double>> noise((samples_ + 1) / 2);
   const double noise_variance = 2.0 * noise_std_ * noise_std_;
-  // The components stay zero outside the samples a beam's signal touches, [lo, hi).
-  std::vector<double> target(samples_), fog(samples_), background(samples_), received(samples_);
+  // The components and their sum stay zero outside the samples a beam's signal touches, [lo, hi).
+  std::vector<double> target(samples_), fog(samples_), background(samples_), noise_free(samples_),
+      received(samples_);
   std::vector<FogStretch> stretches;
+  std::vector<std::int32_t> stretch_layers;
   stretches.reserve(layers_.size());
+  stretch_layers.reserve(layers_.size());
+  // Each stretch's own share of the fog return, samples [share_first[i], share_first[i] +
+  // share_count[i]) at shares[share_at[i]...], made only for a beam through several layers whose
+  // fog's layer is asked for.
+  std::vector<double> shares;
+  std::vector<std::size_t> share_first, share_count, share_at;
   const double support_s = 2.0 * grid_.pulse_fwhm_s;
   const auto sample_at = [&](double range_m, double shift_s) {
     const double k =
@@ -264,7 +276,7 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
   for (std::size_t beam = 0; beam < beam_count_; ++beam) {
     // A beam is at most 1e6 samples, a few ms: a scan stops within one.
     stop.check();
-    const Hit hit = trace(beam, active, optical_depth_factors, stretches);
+    const Hit hit = trace(beam, active, optical_depth_factors, stretches, stretch_layers);
     std::fill(noise.begin(), noise.end(), std::complex<double>{});
     generator.add(noise, noise_variance);
     const double* noise_samples = reinterpret_cast<const double*>(noise.data());
@@ -282,7 +294,45 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
       add_hard_target(hit.is_target ? target : background, grid_, hit.range_m, hit.amplitude);
     }
     hi = std::min(hi, samples_);
-    for (std::size_t k = lo; k < hi; ++k) received[k] += target[k] + fog[k] + background[k];
+    for (std::size_t k = lo; k < hi; ++k) {
+      noise_free[k] = target[k] + fog[k] + background[k];
+      received[k] += noise_free[k];
+    }
+    bool shares_made = false;
+    // The layer whose fog contributes most to sample k (the nearer on a tie), for a fog sample.
+    const auto fog_layer = [&](std::size_t k) {
+      if (stretch_layers.size() == 1) return stretch_layers.front();
+      if (!shares_made) {
+        shares_made = true;
+        shares.clear();
+        share_first.clear();
+        share_count.clear();
+        share_at.clear();
+        for (const FogStretch& stretch : stretches) {
+          // One sample beyond the stretch's support either side: its every non-zero sample.
+          const std::size_t first = sample_at(stretch.start_m, -support_s);
+          const std::size_t end = std::min(samples_, sample_at(stretch.end_m, support_s) + 2);
+          const std::size_t from = first == 0 ? 0 : first - 1;
+          share_first.push_back(from);
+          share_count.push_back(end - from);
+          share_at.push_back(shares.size());
+          shares.resize(shares.size() + (end - from), 0.0);
+          add_fog_stretch(std::span<double>(shares).subspan(share_at.back(), end - from), grid_,
+                          stretch, from);
+        }
+      }
+      std::int32_t layer = no_layer;
+      double largest = 0.0;
+      for (std::size_t i = 0; i < stretches.size(); ++i) {
+        if (k < share_first[i] || k >= share_first[i] + share_count[i]) continue;
+        const double share = shares[share_at[i] + (k - share_first[i])];
+        if (share > largest) {
+          largest = share;
+          layer = stretch_layers[i];
+        }
+      }
+      return layer;
+    };
     if (!waveforms.empty()) {
       std::copy(received.begin(), received.end(), waveforms.begin() + beam * samples_);
     }
@@ -295,19 +345,20 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
       double strongest_fog = 0.0;
       for (std::size_t e = 0; e < echoes.count; ++e) {
         const DetectedEcho& echo = echoes.echoes[e];
-        const std::size_t k = echo.peak_sample;
+        const std::size_t k = attribution_sample(noise_free, echo);
         const Origin origin = dominant_origin(target[k], fog[k], background[k], noise_std_);
         const double intensity =
             std::min(params_.intensity_saturation,
                      params_.intensity_scale * echo.peak / detector_.threshold);
-        scan.echoes.push_back({.beam = static_cast<std::uint32_t>(beam),
-                               .index = static_cast<std::uint8_t>(e),
-                               .origin = origin,
-                               .range_m = echo.range_m,
-                               .peak_range_m = static_cast<double>(echo.peak_sample) *
-                                               speed_of_light_m_per_s * grid_.sample_interval_s /
-                                               2.0,
-                               .intensity = intensity});
+        scan.echoes.push_back(
+            {.beam = static_cast<std::uint32_t>(beam),
+             .index = static_cast<std::uint8_t>(e),
+             .origin = origin,
+             .range_m = echo.range_m,
+             .attributed_range_m =
+                 static_cast<double>(k) * speed_of_light_m_per_s * grid_.sample_interval_s / 2.0,
+             .intensity = intensity,
+             .layer = origin == Origin::fog ? fog_layer(k) : no_layer});
         if (origin == Origin::fog) {
           fog_echo = true;
           strongest_fog = std::max(strongest_fog, intensity);
@@ -330,22 +381,26 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
     if (origins != nullptr) {
       const double dr = speed_of_light_m_per_s * grid_.sample_interval_s / 2.0;
       Origin current = Origin::noise;
+      std::int32_t current_layer = no_layer;
       for (std::size_t k = lo; k <= hi; ++k) {
-        const Origin here = k < hi ? dominant_origin(target[k], fog[k], background[k], noise_std_)
-                                   : Origin::noise;
-        if (here == current) continue;
+        const Origin here =
+            k < hi ? dominant_origin(target[k], fog[k], background[k], noise_std_) : Origin::noise;
+        const std::int32_t here_layer = here == Origin::fog ? fog_layer(k) : no_layer;
+        if (here == current && here_layer == current_layer) continue;
         const double range_m = static_cast<double>(k) * dr;
         if (current != Origin::noise) origins->back().end_m = range_m;
         if (here != Origin::noise) {
           origins->push_back({.beam = static_cast<std::uint32_t>(beam),
                               .origin = here,
                               .start_m = range_m,
-                              .end_m = range_m});
+                              .end_m = range_m,
+                              .layer = here_layer});
         }
         current = here;
+        current_layer = here_layer;
       }
     }
-    for (std::size_t k = lo; k < hi; ++k) target[k] = fog[k] = background[k] = 0.0;
+    for (std::size_t k = lo; k < hi; ++k) target[k] = fog[k] = background[k] = noise_free[k] = 0.0;
   }
   return scan;
 }

@@ -48,7 +48,7 @@ double clear_margin(const Lidar& lidar) {
 }  // namespace
 
 std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResult>& steps) {
-  std::string out = "active_layers,item,angle_deg,echo,range_m,intensity,origin\n";
+  std::string out = "active_layers,item,angle_deg,echo,range_m,intensity,origin,layer\n";
   for (const LidarStepResult& step : steps) {
     const std::string step_text = std::to_string(step.active_layers) + ',';
     for (std::size_t s = 0; s < step.scans.size(); ++s) {
@@ -59,7 +59,7 @@ std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResu
         out += ',' + std::to_string(e.index) + ',' + stats::format_fixed(e.range_m, 4) + ',' +
                stats::format_fixed(e.intensity, 2) + ',';
         out += to_string(e.origin);
-        out += '\n';
+        out += ',' + std::to_string(e.layer) + '\n';
       }
     }
   }
@@ -354,10 +354,11 @@ std::size_t lidar_memory_bytes(const LidarParams& params, std::size_t steps, uns
       static_cast<std::size_t>(2.0 * params.max_range_m / speed_of_light_m_per_s /
                                (params.sample_interval_ns * 1e-9)) +
       2;
-  // Per thread: four real waveforms and the complex noise buffer.
-  const std::size_t per_thread = 6 * samples * sizeof(double);
-  // lidar_echoes.csv: at most ~60 characters a row; the SVGs and the summary are small.
-  const std::size_t files = scans * beams * params.max_echoes * 60 + (1u << 20);
+  // Per thread: five real waveforms, the complex noise buffer and the fog's shares by layer (about
+  // one record).
+  const std::size_t per_thread = 8 * samples * sizeof(double);
+  // lidar_echoes.csv: at most ~64 characters a row; the SVGs and the summary are small.
+  const std::size_t files = scans * beams * params.max_echoes * 64 + (1u << 20);
   return scans * per_scan + threads * per_thread + files;
 }
 

@@ -174,7 +174,7 @@ class Run : public sensor::SensorRun {
         rows_.clear();
         for (const OriginRun& o : origins_) {
           rows_.insert(rows_.end(), {static_cast<double>(o.beam), o.start_m, o.end_m,
-                                     static_cast<double>(o.origin)});
+                                     static_cast<double>(o.origin), static_cast<double>(o.layer)});
         }
         raw->append_rows(raw_origins, rows_);
       }
@@ -182,10 +182,11 @@ class Run : public sensor::SensorRun {
       if (raw != nullptr && raw->wants(raw_echoes)) {
         rows_.clear();
         for (const LidarEcho& e : scan.echoes) {
-          rows_.insert(rows_.end(),
-                       {static_cast<double>(e.beam), run_.lidar_->beam_angle_deg(e.beam),
-                        static_cast<double>(e.index), e.range_m, e.intensity,
-                        static_cast<double>(e.origin), e.peak_range_m});
+          rows_.insert(
+              rows_.end(),
+              {static_cast<double>(e.beam), run_.lidar_->beam_angle_deg(e.beam),
+               static_cast<double>(e.index), e.range_m, e.intensity, static_cast<double>(e.origin),
+               e.attributed_range_m, static_cast<double>(e.layer)});
         }
         raw->append_rows(raw_echoes, rows_);
       }
@@ -272,8 +273,8 @@ class Type : public sensor::SensorType {
   }
 
   std::vector<sensor::RawKind> raw_kinds(const std::any& params,
-                                         const sensor::Context&) const override {
-    return lidar_raw_kinds(sensor::params_of<LidarParams>(params));
+                                         const sensor::Context& context) const override {
+    return lidar_raw_kinds(sensor::params_of<LidarParams>(params), context.chamber.layers.size());
   }
 
   bool owns_file_name(std::string_view file_name) const override {
@@ -322,7 +323,7 @@ class Type : public sensor::SensorType {
 
 std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
 
-std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
+std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params, std::size_t layer_count) {
   const std::size_t beams = params.beam_count(), samples = params.samples_per_beam();
   sensor::RawAxis angle{"angle_deg", "deg", {}}, time{"time_s", "s", {}};
   for (std::size_t b = 0; b < beams; ++b) angle.values.push_back(params.beam_angle_deg(b));
@@ -346,9 +347,11 @@ std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
       .rows_per_item = 0,
       .attributes = {}};
   kinds[raw_echoes] = {.name = "echoes",
-                       .description = "every echo of the scan with its origin (lidar_echoes.csv); "
-                                      "peak_range_m: its peak sample's range, where the "
-                                      "origin is attributed",
+                       .description =
+                           "every echo of the scan with its origin (lidar_echoes.csv); "
+                           "attributed_range_m: the range of the peak of the return whose leading "
+                           "edge made the echo, where its origin and layer are attributed; layer: "
+                           "a fog echo's chamber layer (0 nearest the sensor), -1 for the others",
                        .units = "",
                        .element = sensor::RawElement::table,
                        .dimensions = {},
@@ -360,17 +363,21 @@ std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
                                    {"range_m", "m", false, {}},
                                    {"intensity", "", false, {}},
                                    {"origin", "", false, sensor::origin_labels()},
-                                   {"peak_range_m", "m", false, {}}},
+                                   {"attributed_range_m", "m", false, {}},
+                                   {"layer", "", true, {}}},
                        .rows_per_item = beams * params.max_echoes,
                        .attributes = {}};
-  // An echo takes the origin of its beam's stretch that holds its peak_range_m, noise outside
-  // every stretch: the attribution the scan gave it.
+  // An echo takes the origin and layer of its beam's stretch that holds its attributed_range_m,
+  // noise outside every stretch: the attribution the scan gave it. Per beam at most a target or
+  // background stretch, the stretches of each layer's fog and one beyond: the size estimate's
+  // rows.
   kinds[raw_origins] = {
       .name = "origins",
       .description =
           "the scan's ground truth: per beam the stretches of range whose noise-free parts give "
-          "an echo peaking there an origin other than noise (target, fog, background); noise "
-          "elsewhere",
+          "an echo attributed there an origin other than noise (target, fog, background), fog "
+          "split by the chamber layer (0 nearest the sensor) whose fog contributes most; layer "
+          "-1 where not fog; noise elsewhere",
       .units = "",
       .element = sensor::RawElement::table,
       .dimensions = {},
@@ -379,8 +386,9 @@ std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params) {
       .columns = {{"beam", "", true, {}},
                   {"start_m", "m", false, {}},
                   {"end_m", "m", false, {}},
-                  {"origin", "", false, sensor::origin_labels()}},
-      .rows_per_item = 3 * beams,
+                  {"origin", "", false, sensor::origin_labels()},
+                  {"layer", "", true, {}}},
+      .rows_per_item = (2 + layer_count) * beams,
       .attributes = {},
       .by_default = false};
   return kinds;

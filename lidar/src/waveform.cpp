@@ -32,18 +32,21 @@ double gaussian_exponent_per_s2(double fwhm_s) {
 // tau_j (so each pulse is evaluated at least that far from its centre), by the exact multiplicative
 // recurrence of exp(-A x^2) along x = k dt - tau_j (no exp per sample): the nodes' recurrences are
 // independent and run side by side.
+// waveform[0] is sample `offset` of the record.
 template <std::size_t N>
 void add_pulses(std::span<double> waveform, const WaveformGrid& grid,
-                const std::array<double, N>& taus, const std::array<double, N>& weights) {
+                const std::array<double, N>& taus, const std::array<double, N>& weights,
+                std::size_t offset = 0) {
   const double dt = grid.sample_interval_s;
   const double half_s = support_fwhm * grid.pulse_fwhm_s;
   const auto [low, high] = std::minmax_element(taus.begin(), taus.end());
   const double first = std::ceil((*low - half_s) / dt);
   const double last = std::floor((*high + half_s) / dt);
-  const double n = static_cast<double>(waveform.size());
-  if (last < 0.0 || first >= n) return;
-  const auto k0 = static_cast<std::size_t>(std::max(first, 0.0));
-  const auto k1 = static_cast<std::size_t>(std::min(last, n - 1.0));
+  const double begin = static_cast<double>(offset);
+  const double end = begin + static_cast<double>(waveform.size());
+  if (last < begin || first >= end) return;
+  const auto k0 = static_cast<std::size_t>(std::max(first, begin));
+  const auto k1 = static_cast<std::size_t>(std::min(last, end - 1.0));
   const double a = gaussian_exponent_per_s2(grid.pulse_fwhm_s);
   std::array<double, N> g{}, h{};
   for (std::size_t j = 0; j < N; ++j) {
@@ -59,7 +62,7 @@ void add_pulses(std::span<double> waveform, const WaveformGrid& grid,
       g[j] *= h[j];
       h[j] *= d;
     }
-    waveform[k] += sum;
+    waveform[k - offset] += sum;
   }
 }
 
@@ -90,7 +93,8 @@ void add_hard_target(std::span<double> waveform, const WaveformGrid& grid, doubl
                 {amplitude * overlap(range_m, grid.full_overlap_range_m)});
 }
 
-void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog) {
+void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog,
+                     std::size_t first_sample) {
   if (!(fog.end_m > fog.start_m) || fog.backscatter_per_m_sr == 0.0) return;
   const double panel_m = panel_fwhm_fraction * speed_of_light_m_per_s * grid.pulse_fwhm_s / 2.0;
   // Panel edges: uniform over the stretch, plus the overlap function's kink where it falls inside.
@@ -115,7 +119,7 @@ void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const
                      std::exp(-2.0 * fog.extinction_per_m * (r - fog.start_m)) / (r * r) *
                      overlap(r, grid.full_overlap_range_m);
       }
-      add_pulses(waveform, grid, taus, weights);
+      add_pulses(waveform, grid, taus, weights, first_sample);
     }
   };
   const double kink = grid.full_overlap_range_m;
@@ -159,7 +163,8 @@ DetectedEchoes extract_echoes(std::span<const double> waveform, const EchoDetect
           break;
         } else {
           recording = true;
-          out.echoes[out.count++] = {.range_m = range_m, .peak = v, .peak_sample = k};
+          out.echoes[out.count++] = {
+              .range_m = range_m, .peak = v, .first_sample = k, .last_sample = k};
           continue;
         }
       }
@@ -169,13 +174,17 @@ DetectedEchoes extract_echoes(std::span<const double> waveform, const EchoDetect
     }
     if (recording) {
       DetectedEcho& echo = out.echoes[out.count - 1];
-      if (v > echo.peak) {
-        echo.peak = v;
-        echo.peak_sample = k;
-      }
+      echo.last_sample = k;
+      echo.peak = std::max(echo.peak, v);
     }
   }
   return out;
+}
+
+std::size_t attribution_sample(std::span<const double> noise_free, const DetectedEcho& echo) {
+  std::size_t k = echo.first_sample;
+  while (k < echo.last_sample && noise_free[k + 1] > noise_free[k]) ++k;
+  return k;
 }
 
 }  // namespace fogradar::lidar

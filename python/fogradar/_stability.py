@@ -88,7 +88,7 @@ def _detections_of(result):
     n = len(result)
     columns = {"range_m": result["range_m"] if n else [],
                "value": result["value"] if "value" in result.columns else [np.nan] * n}
-    for extra in ("velocity_m_per_s", "beam", "peak_range_m"):
+    for extra in ("velocity_m_per_s", "beam", "attributed_range_m"):
         if extra in result.columns:
             columns[extra] = result[extra]
     out = []
@@ -113,13 +113,14 @@ def _cell_origin(truth, attributes, labels, detection):
 
 
 def _stretch_origin(truth, labels, detection):
-    """The origin of the lidar's stretch of the detection's beam that holds its peak_range_m
-    (where the lidar attributes an echo), else its range_m; noise outside every stretch."""
+    """The origin of the lidar's stretch of the detection's beam that holds its
+    attributed_range_m (the peak of the return whose leading edge made the echo, where the lidar
+    attributes it), else its range_m; noise outside every stretch."""
     if "beam" not in detection:
         raise TypeError("the lidar's detections need a column beam (the beam index, as the "
                         "echoes' table has it): its ground truth is per beam")
     beam = int(detection["beam"])
-    range_m = float(detection.get("peak_range_m", detection["range_m"]))
+    range_m = float(detection.get("attributed_range_m", detection["range_m"]))
     inside = np.nonzero((truth["beam"] == beam) & (truth["start_m"] <= range_m)
                         & (range_m < truth["end_m"]))[0]
     return labels[truth["origin"][inside[0]]] if len(inside) else "noise"
@@ -158,8 +159,8 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
     attribution gives at each range of that item (its raw kind ``origins``: the radar's per cell
     of the range-Doppler map, the lidar's per beam), made from the chamber it measured through.
     A radar detection is looked up at its range and ``velocity_m_per_s`` (0 when not given), a
-    lidar detection at its ``beam`` and ``peak_range_m`` (the range of its strongest sample, where
-    the lidar attributes an echo; its ``range_m`` when not given). An item counts as detected when one of its
+    lidar detection at its ``beam`` and ``attributed_range_m`` (the peak of the return whose leading
+    edge made the echo, where the lidar attributes it; its ``range_m`` when not given). An item counts as detected when one of its
     detections is the target's and within `gate_m` of the target's range. The limit is the first
     step whose detection rate is below `criterion_rate`.
     """

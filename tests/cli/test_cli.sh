@@ -33,7 +33,7 @@ for sensor in radar lidar camera; do
   grep -qx "$sensor" "$work/t1.log" && pass || fail "no $sensor table: $(cat "$work/t1.log")"
   grep -q "^$sensor *layers to failure: " "$work/t1.log" && pass || fail "no benchmark line for $sensor"
 done
-head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'active_layers,item,angle_deg,echo,range_m,intensity,origin' && pass \
+head -1 "$work/t1/lidar_echoes.csv" | grep -qx 'active_layers,item,angle_deg,echo,range_m,intensity,origin,layer' && pass \
   || fail "lidar_echoes.csv header: $(head -1 "$work/t1/lidar_echoes.csv")"
 head -1 "$work/t1/camera_histograms.csv" | grep -qx 'active_layers,grey_level,count' && pass \
   || fail "camera_histograms.csv header: $(head -1 "$work/t1/camera_histograms.csv")"

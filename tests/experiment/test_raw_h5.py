@@ -8,12 +8,13 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
 - the gate detection in /radar/detections (associated = 1) is radar_samples.csv's row, every number
   the same double, and each frame has as many detections as radar_detections.csv's rows for it;
 - the sum of a step's /camera/images histograms is camera_histograms.csv's counts, exactly;
-- /lidar/echoes holds lidar_echoes.csv's echoes (ranges to the CSV's 4 decimals);
+- /lidar/echoes holds lidar_echoes.csv's echoes (ranges to the CSV's 4 decimals, origins and
+  layers);
 - every origin, the radar's and the lidar's, is one HDF5 enumeration with names: noise 0, target 1,
   fog 2, background 3, clipping 4 (sensor/origin.hpp);
 - the ground truth on request: /radar/origins, an enumerated map whose cell at each detection's
   peak holds that detection's origin; /lidar/origins, whose stretch holding each echo's
-  peak_range_m holds that echo's origin;
+  attributed_range_m holds that echo's origin and layer;
 - the layout: shapes [active_layers, item, ...], one item per chunk, dimension scales attached,
   units, the resolved scenario as the root attribute (scenario.toml's text);
 - one name for the step and one for the item everywhere: every CSV file of the result set and
@@ -164,8 +165,9 @@ with tempfile.TemporaryDirectory() as work:
         for row, echo in zip(listed, echoes):
             check(int(row["active_layers"]) == echo["active_layers"]
                   and int(row["item"]) == echo["item"]
-                  and abs(float(row["range_m"]) - echo["range_m"]) <= 5e-5 and
-                  row["origin"] == lidar_labels[echo["origin"]], f"echo {row}")
+                  and abs(float(row["range_m"]) - echo["range_m"]) <= 5e-5
+                  and row["origin"] == lidar_labels[echo["origin"]]
+                  and int(row["layer"]) == echo["layer"], f"echo {row}")
         waveforms = f["/lidar/waveforms"]
         check(waveforms.shape[:2] == (2, 4) and waveforms.shape[2] == len(f["/lidar/angle_deg"]),
               f"waveforms {waveforms.shape}")
@@ -185,8 +187,9 @@ with tempfile.TemporaryDirectory() as work:
         beat, signal, noise = (f[f"/radar/{k}"][0, 0] for k in ("beat", "signal", "noise"))
         check(np.array_equal(signal + noise, beat), "signal + noise == beat")
 
-# The ground truth, asked for by name: each detection's and each echo's origin is the one the
-# truth holds where it peaks.
+# The ground truth, asked for by name: each detection's and each echo's origin (and an echo's
+# layer) is the one the truth holds where it is attributed: a detection's peak cell, an echo's
+# attributed_range_m.
 with tempfile.TemporaryDirectory() as work:
     out, raw = os.path.join(work, "out"), os.path.join(work, "truth.h5")
     subprocess.run([fogradar, "run", "--scenario", os.path.join(source, "tests/cli/small.toml"),
@@ -216,10 +219,12 @@ with tempfile.TemporaryDirectory() as work:
             inside = stretches[(stretches["active_layers"] == e["active_layers"])
                                & (stretches["item"] == e["item"])
                                & (stretches["beam"] == e["beam"])
-                               & (stretches["start_m"] <= e["peak_range_m"])
-                               & (e["peak_range_m"] < stretches["end_m"])]
+                               & (stretches["start_m"] <= e["attributed_range_m"])
+                               & (e["attributed_range_m"] < stretches["end_m"])]
             expected = inside["origin"][0] if len(inside) else table["noise"]
             check(expected == e["origin"], f"lidar truth at {e}")
+            check((inside["layer"][0] if len(inside) else -1) == e["layer"],
+                  f"lidar truth's layer at {e}")
             lidar_seen[int(e["origin"])] += 1
         check(lidar_seen[table["background"]] > 0 and lidar_seen[table["target"]] > 0,
               f"lidar echoes with truth: {lidar_seen}")

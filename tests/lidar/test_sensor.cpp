@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "fogradar/core/constants.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/lidar/outputs.hpp"
@@ -185,6 +186,161 @@ std::vector<LidarScan> scans_of_step(const Lidar& lidar, std::size_t step, unsig
   }
   for (std::thread& thread : pool) thread.join();
   return scans;
+}
+
+// A lidar that sees a 1 m layer of the study's fog (alpha = 0.88 /m at 905 nm) and, 0.3 m behind
+// it, the target (reflectivity 0.3 at 3.3 m): 9 beams within 1 deg of boresight, no fog
+// fluctuation, noise sigma = threshold / 7 (p = 1e-12), and leading edges within 3 m merging. The
+// fog's return (1-2 thresholds, docs/lidar.md §8) rises at 2 m; the target's echo through the
+// layer, rho / pi exp(-2 alpha L) / R^2 = 4.7 thresholds, is the stronger.
+LidarParams merging_lidar() {
+  LidarParams params;
+  params.background.clear();
+  params.field_of_view_deg = 2.0;
+  params.fog_fluctuation.log_std = 0.0;
+  params.false_alarm_probability = 1e-12;
+  params.min_echo_separation_m = 3.0;
+  return params;
+}
+
+propagation::ChamberSpec one_layer_before_the_target() {
+  propagation::ChamberSpec chamber;
+  chamber.layers.resize(1);
+  chamber.target_gap_m = 0.3;
+  return chamber;
+}
+
+// With the layer on, fog and target merge into one echo per beam: its range is read at the fog's
+// leading edge, so it is the fog's (layer 0), attributed inside the layer, while its intensity
+// stays its strongest sample's, the target's: scale (peak / threshold) within 5 sigma of the
+// closed-form peak. With the layer off the lone target echo is the target's, attributed at its
+// peak: the sample nearest the target's range along the beam R / cos(angle), within half a sample.
+TEST(LidarSensor, MergedFogAndTargetEchoIsTheFogsAtItsRange) {
+  const LidarParams params = merging_lidar();
+  const propagation::ChamberSpec chamber = one_layer_before_the_target();
+  const Lidar lidar(params, chamber, table());
+  ASSERT_EQ(lidar.beam_count(), 9u);
+  const double dr = speed_of_light_m_per_s * params.sample_interval_ns * 1e-9 / 2.0;
+  const double sigma = lidar.noise_std() * params.intensity_scale / lidar.threshold();
+  const double loss = std::exp(-2.0 * lidar.layer_extinction_per_m(0));
+  RandomStream stream = sensor_stream(11, stream_key, 1, 0);
+  const LidarScan fogged = lidar.measure({true}, std::vector<double>{1.0}, stream);
+  ASSERT_EQ(fogged.echoes.size(), lidar.beam_count());
+  for (const LidarEcho& e : fogged.echoes) {
+    const double cos_a = std::cos(lidar.beam_angle_deg(e.beam) * degree_rad);
+    const std::string conditions = "one 1 m layer at 2 m, target 0.3 m behind it, beam " +
+                                   std::to_string(lidar.beam_angle_deg(e.beam)) + " deg";
+    EXPECT_EQ(e.origin, Origin::fog) << conditions;
+    EXPECT_EQ(e.layer, 0) << conditions;
+    EXPECT_GE(e.range_m, 2.0 / cos_a) << conditions;
+    EXPECT_LE(e.range_m, 3.0 / cos_a) << conditions;
+    EXPECT_GE(e.attributed_range_m, 2.0 / cos_a) << conditions;
+    EXPECT_LE(e.attributed_range_m, 3.0 / cos_a) << conditions;
+    const double range_m = 3.3 / cos_a;
+    const double peak = hard_target_peak(0.3, cos_a, loss, range_m);
+    validate({.id = "lidar.merged_echo.intensity.beam" + std::to_string(e.beam),
+              .group = "lidar",
+              .quantity = "merged fog and target echo's intensity",
+              .unit = "intensity",
+              .conditions = conditions,
+              .reference = params.intensity_scale * peak / lidar.threshold(),
+              .source = "closed form: the target's peak rho cos(i) / pi exp(-2 alpha L) / R^2 "
+                        "(off-grid: the sample may sit 4 % below it), 5 noise sigma",
+              .value = e.intensity,
+              .tolerance = 5.0 * sigma + 0.04 * params.intensity_scale * peak / lidar.threshold(),
+              .kind = Tolerance::absolute});
+  }
+  EXPECT_FALSE(fogged.target_detected);
+  RandomStream clear_stream = sensor_stream(11, stream_key, 0, 0);
+  const LidarScan clear = lidar.measure({false}, std::vector<double>{1.0}, clear_stream);
+  ASSERT_EQ(clear.echoes.size(), lidar.beam_count());
+  for (const LidarEcho& e : clear.echoes) {
+    const double angle_deg = lidar.beam_angle_deg(e.beam);
+    EXPECT_EQ(e.origin, Origin::target) << angle_deg;
+    EXPECT_EQ(e.layer, no_layer) << angle_deg;
+    validate(
+        {.id = "lidar.lone_target.attributed_range.beam" + std::to_string(e.beam),
+         .group = "lidar",
+         .quantity = "lone target echo's attribution range",
+         .unit = "m",
+         .conditions = "target at 3.3 m, clear air, beam " + std::to_string(angle_deg) + " deg",
+         .reference = 3.3 / std::cos(angle_deg * degree_rad),
+         .source = "closed form: the target's range along the beam R / cos(angle); the "
+                   "sampled pulse peaks at the nearest sample",
+         .value = e.attributed_range_m,
+         .tolerance = dr / 2.0,
+         .kind = Tolerance::absolute});
+  }
+  EXPECT_TRUE(clear.target_detected);
+}
+
+// Two layers: a thin fog (visibility 150 m) in layer 0 and the study's fog in layer 1, both on,
+// the threshold from 60 m: layer 0's return peaks at 0.3 thresholds (2 sigma), layer 1's at 3.
+// The ground truth names, along the centre beam, layer 0 where
+// its fog's return is the larger and layer 1 from where layer 1's is: the reference is a second
+// computation, each layer's fog waveform alone (Lidar::waveform with that layer on), layer 1's
+// times layer 0's two-way transmittance exp(-2 alpha_0 L_0) in front of it; the switch within one
+// sample. The beam's first echo, made by layer 1's leading edge (layer 0's return stays below the
+// threshold), is the fog's of layer 1, attributed inside it and read at most the pulse's range
+// FWHM c fwhm / 2 before it (the leading edge's walk).
+TEST(LidarSensor, FogEchoesAndStretchesNameTheirLayer) {
+  LidarParams params = merging_lidar();
+  params.min_echo_separation_m = 1.0;
+  params.threshold_range_m = 60.0;
+  propagation::ChamberSpec chamber;
+  chamber.layers.resize(2);
+  chamber.layers[0].fog.density = propagation::Visibility{.m = 150.0};
+  const Lidar lidar(params, chamber, table());
+  const std::size_t beam = lidar.beam_count() / 2;
+  ASSERT_EQ(lidar.beam_angle_deg(beam), 0.0);
+  const std::vector<double> factors(2, 1.0);
+  const BeamWaveform near = lidar.waveform(beam, {true, false}, factors);
+  const BeamWaveform far = lidar.waveform(beam, {false, true}, factors);
+  const double t0 = std::exp(-2.0 * lidar.layer_extinction_per_m(0) * 1.0);
+  const double dr = speed_of_light_m_per_s * params.sample_interval_ns * 1e-9 / 2.0;
+  std::size_t switch_sample = 0;
+  while (!(t0 * far.fog[switch_sample] > near.fog[switch_sample])) ++switch_sample;
+  RandomStream stream = sensor_stream(12, stream_key, 2, 0);
+  std::vector<OriginRun> origins;
+  const LidarScan scan = lidar.measure({true, true}, factors, stream, {}, {}, &origins);
+  std::vector<OriginRun> fog_runs;
+  for (const OriginRun& run : origins) {
+    if (run.beam != beam) continue;
+    if (run.origin == Origin::fog) {
+      fog_runs.push_back(run);
+    } else {
+      EXPECT_EQ(run.layer, no_layer) << to_string(run.origin);
+    }
+  }
+  ASSERT_EQ(fog_runs.size(), 2u);
+  EXPECT_EQ(fog_runs[0].layer, 0);
+  EXPECT_EQ(fog_runs[1].layer, 1);
+  EXPECT_EQ(fog_runs[0].end_m, fog_runs[1].start_m);
+  EXPECT_LT(fog_runs[0].start_m, 2.0);
+  validate({.id = "lidar.origins.layer_switch",
+            .group = "lidar",
+            .quantity = "range where the ground truth's fog passes from layer 0 to layer 1",
+            .unit = "m",
+            .conditions = "layers [2, 3] m (visibility 150 m) and [3, 4] m (the study's fog), "
+                          "both on, boresight beam",
+            .reference = static_cast<double>(switch_sample) * dr,
+            .source = "second computation: each layer's fog waveform alone, layer 1's times layer "
+                      "0's two-way transmittance; the first sample where layer 1's is larger",
+            .value = fog_runs[1].start_m,
+            .tolerance = dr,
+            .kind = Tolerance::absolute});
+  std::size_t echoes = 0;
+  for (const LidarEcho& e : scan.echoes) {
+    if (e.beam != beam || e.index != 0) continue;
+    ++echoes;
+    EXPECT_EQ(e.origin, Origin::fog);
+    EXPECT_EQ(e.layer, 1);
+    EXPECT_GE(e.range_m, 3.0 - speed_of_light_m_per_s * params.pulse_width_ns * 1e-9 / 2.0);
+    EXPECT_LE(e.range_m, 4.0);
+    EXPECT_GE(e.attributed_range_m, 3.0);
+    EXPECT_LE(e.attributed_range_m, 4.0);
+  }
+  EXPECT_EQ(echoes, 1u);
 }
 
 // Same seed, any thread count and order: byte-identical echoes CSV.
@@ -526,7 +682,7 @@ TEST(LidarPaperScenario, ResultFilesAndMemoryEstimate) {
   const std::string csv = lidar_echoes_csv(*run.lidar, run.steps);
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), echoes + 1);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "active_layers,item,angle_deg,echo,range_m,intensity,origin");
+            "active_layers,item,angle_deg,echo,range_m,intensity,origin,layer");
   const nlohmann::json json = lidar_summary_json(*run.lidar, run.summary);
   EXPECT_EQ(json.at("sensor_limit_layers"), 1);
   EXPECT_EQ(json.at("steps").size(), 5u);

@@ -427,6 +427,94 @@ TEST(LidarEchoes, EchoesCloserThanTheSeparationMerge) {
   check_peak("1m.echo1.peak", "1 m minimum separation, second echo", 5.0, split.echoes[1].peak);
 }
 
+// A fog layer and a stronger hard target merged into one echo (leading edges closer than the
+// minimum separation) are attributed to the return whose leading edge made the echo: the fog's.
+// Constructed from closed forms: a transparent layer [5, 6] m whose plateau beta_pi (c tau_e / 2)
+// / r^2 is 2 thresholds at 5 m (Rasshofer et al. 2011 eq. 3), then a Gaussian echo of peak 5 at
+// 6.5 m, 3 m minimum separation. The echo's range is the fog's leading edge (the plateau's half
+// height at the layer's edge, read at 5 m + c fwhm / 4 by the calibration; 5 cm for the 1/r^2
+// fall across the pulse's extent, 4 cm here); its attribution sample, the first local maximum of
+// the noise-free return after that edge, lies inside the layer; its peak (the intensity) is still
+// the target's 5 (2 %, as the other peaks). A lone Gaussian echo is attributed at its own peak: the
+// sample nearest its centre, within half a sample (c dt / 4 in range).
+TEST(LidarEchoes, MergedFogAndTargetEchoIsAttributedToTheFogWhoseEdgeItReads) {
+  const double dr = c * grid.sample_interval_s / 2.0;
+  const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
+  std::vector<double> w(samples, 0.0);
+  add_fog_stretch(w, grid,
+                  {.start_m = 5.0,
+                   .end_m = 6.0,
+                   .extinction_per_m = 0.0,
+                   .backscatter_per_m_sr = 2.0 * 25.0 / (c * tau_e / 2.0),
+                   .transmittance_at_start = 1.0});
+  Constructed target;
+  target.add(6.5, 5.0);
+  for (std::size_t k = 0; k < samples; ++k) w[k] += target.w[k];
+  const DetectedEchoes merged = extract_echoes(w, detector(3, 3.0));
+  ASSERT_EQ(merged.count, 1u);
+  const DetectedEcho& echo = merged.echoes[0];
+  const std::string conditions =
+      "transparent layer [5, 6] m at 2 thresholds, Gaussian echo of peak 5 at 6.5 m, 3 m minimum "
+      "separation";
+  validate({.id = "lidar.echoes.merged_fog_target.range",
+            .group = "lidar",
+            .quantity = "merged echo's range (its leading edge)",
+            .unit = "m",
+            .conditions = conditions,
+            .reference = 5.0 + c * grid.pulse_fwhm_s / 4.0,
+            .source = "closed form: the plateau's half height at the layer's edge, plus the "
+                      "calibration c fwhm / 4",
+            .value = echo.range_m,
+            .tolerance = 0.05,
+            .kind = Tolerance::absolute});
+  const double attributed_m = static_cast<double>(attribution_sample(w, echo)) * dr;
+  validate({.id = "lidar.echoes.merged_fog_target.attribution.after_layer_start",
+            .group = "lidar",
+            .quantity = "merged echo's attribution range",
+            .unit = "m",
+            .conditions = conditions,
+            .reference = 5.0,
+            .source = "constructed waveform: the fog layer starts at 5 m",
+            .value = attributed_m,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_least});
+  validate({.id = "lidar.echoes.merged_fog_target.attribution.before_layer_end",
+            .group = "lidar",
+            .quantity = "merged echo's attribution range",
+            .unit = "m",
+            .conditions = conditions,
+            .reference = 6.0,
+            .source = "constructed waveform: the fog layer ends at 6 m, the target is at 6.5 m",
+            .value = attributed_m,
+            .tolerance = 0.0,
+            .kind = Tolerance::at_most});
+  validate({.id = "lidar.echoes.merged_fog_target.peak",
+            .group = "lidar",
+            .quantity = "merged echo's peak (its intensity)",
+            .unit = "threshold",
+            .conditions = conditions,
+            .reference = 5.0,
+            .source = "constructed waveform: the target echo's peak, the larger",
+            .value = echo.peak,
+            .tolerance = 0.02,
+            .kind = Tolerance::relative});
+
+  Constructed lone;
+  lone.add(12.34, 3.0);
+  const DetectedEchoes single = extract_echoes(lone.w, detector());
+  ASSERT_EQ(single.count, 1u);
+  validate({.id = "lidar.echoes.lone.attribution",
+            .group = "lidar",
+            .quantity = "lone echo's attribution range",
+            .unit = "m",
+            .conditions = "constructed Gaussian echo at 12.34 m, peak 3 x threshold",
+            .reference = 12.34,
+            .source = "constructed waveform: the pulse's centre; its nearest sample is the peak",
+            .value = static_cast<double>(attribution_sample(lone.w, single.echoes[0])) * dr,
+            .tolerance = dr / 2.0,
+            .kind = Tolerance::absolute});
+}
+
 TEST(LidarEchoes, BelowThresholdAndTooNearGiveNothing) {
   Constructed weak;
   weak.add(10.0, 0.99);

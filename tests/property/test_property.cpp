@@ -201,10 +201,15 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
       }
     }
   }
-  const bool lidar_checked =
-      d.lidar_min_echo_separation_m <= 0.5 * speed_of_light_m_per_s * d.lidar_pulse_width_s;
-  const std::string* lidar_csv = lidar_checked ? o.file("lidar_echoes.csv") : nullptr;
-  if (const std::string* csv = lidar_csv) {
+  // Every lidar echo is checked, merged ones included. The range checked is the one the echo
+  // reports, range_m (its leading edge, the range a user reads in lidar_echoes.csv), not its
+  // attributed_range_m (where the origin is taken; the raw echoes carry it, and
+  // tests/experiment/test_raw_h5.py checks it against the ground truth): the origin and layer are
+  // attributed at the peak of the return whose leading edge made the echo (lidar/waveform.hpp,
+  // attribution_sample), so the reported range must lie on that return, before its surface or
+  // layer by at most the pulse's rise. That is the stronger claim: an attribution at any later
+  // sample of the echo (its strongest, say) would pass at the attributed range and fail here.
+  if (const std::string* csv = o.file("lidar_echoes.csv")) {
     const double tol_m =
         speed_of_light_m_per_s * (d.lidar_pulse_width_s + 0.5 * d.lidar_sample_interval_s);
     for (const auto& row : read_csv(*csv)) {
@@ -214,9 +219,11 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
       const double x = range_m * std::cos(angle);
       const double y = range_m * std::sin(angle);
       const std::string& origin = row.at("origin");
+      const int layer = std::stoi(row.at("layer"));
       const std::string where = "lidar echo at step " + row.at("active_layers") + ", scan " +
                                 row.at("item") + ", angle " + row.at("angle_deg") + " deg, range " +
-                                row.at("range_m") + " m, origin " + origin;
+                                row.at("range_m") + " m, origin " + origin + ", layer " +
+                                row.at("layer");
       if (origin == "fog") {
         bool inside = false;
         for (const LayerGeometry& l : active_layers(d, k)) {
@@ -226,7 +233,21 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
                             << " m)";
         EXPECT_LE(std::abs(y), 0.5 * d.lidar_fog_width_m + tol_m)
             << where << ": beside the fog bank";
-      } else if (origin == "target") {
+        // Its layer: one of the chamber's, switched on by this step, and holding the echo.
+        ASSERT_GE(layer, 0) << where << ": a fog echo without its layer";
+        ASSERT_LT(static_cast<std::size_t>(layer), d.layers.size()) << where << ": no such layer";
+        bool active = false;
+        for (std::size_t j = 0; j < k && j < d.switching.size(); ++j)
+          active = active || d.switching[j] == static_cast<std::size_t>(layer);
+        EXPECT_TRUE(active) << where << ": its layer is not active at that step";
+        const LayerGeometry& l = d.layers[static_cast<std::size_t>(layer)];
+        EXPECT_TRUE(x >= l.start_m - tol_m && x <= l.end_m + tol_m)
+            << where << ": outside its layer [" << l.start_m << ", " << l.end_m << "] m (+-"
+            << tol_m << " m)";
+      } else {
+        EXPECT_EQ(layer, -1) << where << ": a layer for an echo that is not fog";
+      }
+      if (origin == "target") {
         EXPECT_NEAR(x, d.target_range_m, tol_m) << where << ": not at the target's range";
         EXPECT_LE(std::abs(y - d.lidar_target_offset_m), 0.5 * d.lidar_target_width_m + tol_m)
             << where << ": beside the target";

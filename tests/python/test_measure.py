@@ -100,6 +100,7 @@ def test_the_lidar_s_echoes_are_the_run_s(paper_sim, paper_cli_run):
     assert len(listed) == len(m.echoes) > 0
     assert np.allclose(m.echoes["range_m"], listed["range_m"], atol=5e-5)  # the CSV's 4 decimals
     assert list(m.echoes["origin"].astype(str)) == list(listed["origin"])
+    assert list(m.echoes["layer"]) == list(listed["layer"])
     assert m.waveforms.shape == (361, len(m.axes["time_s"]))
 
 

@@ -64,7 +64,7 @@ def test_the_layered_example_runs_and_gives_the_chain_s_origins(source_dir):
     assert truth == chain and "target" in chain
     assert list(report.table["detection_rate"]) == [1.0] * 5
     chain, truth, _ = chain_versus_truth(scenario, "lidar", "echoes",
-                                         ["range_m", "beam", "peak_range_m"], items=1)
+                                         ["range_m", "beam", "attributed_range_m"], items=1)
     assert truth == chain and {"fog", "background", "target"} <= set(chain)
 
 
@@ -74,7 +74,7 @@ def test_the_lidar_s_background_is_counted_apart_from_noise():
     scenario = fogradar.Scenario.from_dict({"experiment.sensors": ["lidar"],
                                             "lidar.scans_per_step": 2})
     chain, truth, report = chain_versus_truth(scenario, "lidar", "echoes",
-                                              ["range_m", "beam", "peak_range_m"], items=2,
+                                              ["range_m", "beam", "attributed_range_m"], items=2,
                                               steps=[0])
     assert truth == chain
     counts = collections.Counter(chain)

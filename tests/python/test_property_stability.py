@@ -16,7 +16,7 @@ import fogradar
 SEEDS = range(0, 40)
 ITEMS = 2  # per step: keeps the file to a few seconds on two cores
 COLUMNS = {"radar": ("detections", ["range_m", "velocity_m_per_s"]),
-           "lidar": ("echoes", ["range_m", "beam", "peak_range_m"])}
+           "lidar": ("echoes", ["range_m", "beam", "attributed_range_m"])}
 COUNTED = ("target", "fog", "background", "clipping", "noise")
 # Where stability() and the chain disagree today. The chain attributes a radar detection at the
 # cell its object peaks in; stability() at the cell nearest the detection's range and velocity.

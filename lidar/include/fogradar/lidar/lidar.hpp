@@ -33,9 +33,11 @@ namespace fogradar::lidar {
 inline constexpr std::uint64_t stream_key = 1;
 
 // What produced an echo (the sensors' one code table, sensor/origin.hpp): the noise-free
-// contribution largest at the echo's peak sample (target: the EVT; fog: the active layers' volume
-// backscatter; background: a static segment), or noise when the largest is below the receiver
-// noise's standard deviation (a false alarm).
+// contribution largest at the echo's attribution sample (attribution_sample, waveform.hpp: the
+// peak of the return whose leading edge made the echo; target: the EVT; fog: the active layers'
+// volume backscatter; background: a static segment), or noise when the largest is below the
+// receiver noise's standard deviation (a false alarm). A fog echo also names the chamber layer
+// whose fog contributes most there.
 using sensor::Origin;
 using sensor::to_string;
 
@@ -43,22 +45,34 @@ using sensor::to_string;
 // noise when it is below `noise_std`.
 Origin dominant_origin(double target, double fog, double background, double noise_std) noexcept;
 
-// A stretch of one beam's samples with one origin other than noise: samples k with
-// start_m <= c k dt / 2 < end_m (the sample's range, before the echo range's calibration).
+// No chamber layer: the layer of an echo or a stretch whose origin is not fog.
+inline constexpr std::int32_t no_layer = -1;
+
+// A stretch of one beam's samples with one origin other than noise (and, for fog, one dominant
+// layer): samples k with start_m <= c k dt / 2 < end_m (the sample's range, before the echo range's
+// calibration).
 struct OriginRun {
   std::uint32_t beam = 0;
   Origin origin = Origin::noise;
   double start_m = 0.0;
   double end_m = 0.0;
+  // Fog: the index into chamber.layers (0 nearest the sensor) of the layer whose fog contributes
+  // most to these samples; no_layer otherwise.
+  std::int32_t layer = no_layer;
 };
 
 struct LidarEcho {
   std::uint32_t beam = 0;  // index into the scan, angle = beam_angle_deg(beam)
   std::uint8_t index = 0;  // 0 = first echo in range order
   Origin origin = Origin::noise;
-  double range_m = 0.0;    // leading-edge crossing, calibrated (EchoDetector::range_offset_m)
-  double peak_range_m = 0.0;  // c k dt / 2 of its peak sample k, where its origin is attributed
-  double intensity = 0.0;  // min(saturation, scale * peak / threshold)
+  double range_m = 0.0;  // leading-edge crossing, calibrated (EchoDetector::range_offset_m)
+  // c k dt / 2 of its attribution sample k (attribution_sample), where its origin and layer are
+  // taken: the OriginRun holding it gives both.
+  double attributed_range_m = 0.0;
+  // min(saturation, scale * peak / threshold): the echo's largest sample, whichever return it
+  // belongs to.
+  double intensity = 0.0;
+  std::int32_t layer = no_layer;  // fog: its OriginRun's layer; no_layer otherwise
 };
 
 // One scan. The per-scan quantities the summary needs are kept here so that a step's scans can be
@@ -133,9 +147,10 @@ class Lidar {
   // nothing get noise only. Given `waveforms` (beam_count() x samples_per_beam(), row-major), each
   // beam's received waveform, noise included, as the echo extraction sees it, goes into its row.
   // Given `origins`, it is filled with the scan's ground truth: every beam's stretches of samples
-  // whose noise-free parts give an origin other than noise (the attribution an echo peaking there
-  // gets), ascending beam and range. Throws InvalidParameter when `active` or the factors do not
-  // have one entry per layer, and Stopped, before a beam, when `stop` says stop.
+  // whose noise-free parts give an origin other than noise (the attribution an echo attributed
+  // there gets), fog split where its dominant layer changes, ascending beam and range. Throws
+  // InvalidParameter when `active` or the factors do not have one entry per layer, and Stopped,
+  // before a beam, when `stop` says stop.
   LidarScan measure(const propagation::ActiveLayers& active,
                     std::span<const double> optical_depth_factors, RandomStream& stream,
                     std::span<double> waveforms = {}, const StopToken& stop = {},
@@ -155,10 +170,11 @@ class Lidar {
     double range_m = 0.0;
     double amplitude = 0.0;  // hard_target_peak with the two-way transmittance to it
   };
-  // The beam's fog stretches (one per active layer it crosses before its hard surface) and hit.
+  // The beam's fog stretches (one per active layer it crosses before its hard surface, with that
+  // layer's index in `stretch_layers`) and hit.
   Hit trace(std::size_t beam, const propagation::ActiveLayers& active,
-            std::span<const double> optical_depth_factors,
-            std::vector<FogStretch>& stretches) const;
+            std::span<const double> optical_depth_factors, std::vector<FogStretch>& stretches,
+            std::vector<std::int32_t>& stretch_layers) const;
   void check_inputs(const propagation::ActiveLayers& active,
                     std::span<const double> optical_depth_factors) const;
 

@@ -12,8 +12,9 @@
 
 namespace fogradar::lidar {
 
-// lidar_echoes.csv: header "active_layers,item,angle_deg,echo,range_m,intensity,origin", one row
-// per echo, item = the scan's index in its step.
+// lidar_echoes.csv: header "active_layers,item,angle_deg,echo,range_m,intensity,origin,layer", one
+// row per echo, item = the scan's index in its step, layer a fog echo's chamber layer (0 nearest
+// the sensor), -1 for the others.
 std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResult>& steps);
 // lidar_summary.csv: one row per step.
 std::string lidar_summary_csv(const LidarSummary& summary);

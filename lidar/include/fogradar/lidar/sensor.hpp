@@ -16,10 +16,10 @@ namespace fogradar::lidar {
 // The lidar's entry in the registry.
 std::shared_ptr<const sensor::SensorType> sensor_type();
 
-// The lidar's raw data per scan (docs/data-out.md), by index: the received waveforms and the
-// echoes.
+// The lidar's raw data per scan (docs/data-out.md), by index: the received waveforms, the echoes
+// and the ground truth's stretches, in a chamber of `layer_count` layers.
 enum RawKindIndex : std::size_t { raw_waveforms = 0, raw_echoes = 1, raw_origins = 2 };
-std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params);
+std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params, std::size_t layer_count);
 
 // What a run of the lidar found: the sensor as built (its files need its geometry and derived
 // figures), one result per step with the scans by index, and their summary.

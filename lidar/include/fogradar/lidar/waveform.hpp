@@ -57,8 +57,12 @@ struct FogStretch {
 // T^2(r) = T^2(start) exp(-2 alpha (r - start)), by composite 8-point Gauss-Legendre quadrature
 // (Boost.Math nodes) in panels of at most the pulse's range FWHM c fwhm / 2 (and split at the
 // overlap function's kink), each node's pulse evaluated at least 2 fwhm either side of it (a
-// panel's nodes share one window: their own 2 fwhm around any of them).
-void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog);
+// panel's nodes share one window: their own 2 fwhm around any of them). With `first_sample`,
+// waveform[0] is sample first_sample: a part of the record gets exactly the values the whole
+// record would (the same sums in the same order), so one stretch's share of a sample can be taken
+// apart from the others'.
+void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog,
+                     std::size_t first_sample = 0);
 
 // The receiver (docs/lidar.md §4).
 struct EchoDetector {
@@ -73,9 +77,10 @@ struct EchoDetector {
 };
 
 struct DetectedEcho {
-  double range_m = 0.0;  // leading-edge threshold crossing, linearly interpolated
-  double peak = 0.0;     // largest sample from the crossing until the signal falls below
-  std::size_t peak_sample = 0;
+  double range_m = 0.0;          // leading-edge threshold crossing, linearly interpolated
+  double peak = 0.0;             // largest sample from the crossing until the signal falls below
+  std::size_t first_sample = 0;  // the leading edge's first sample at or above the threshold
+  std::size_t last_sample = 0;   // the echo's last one, crossings merged into it included
 };
 
 struct DetectedEchoes {
@@ -90,5 +95,14 @@ struct DetectedEchoes {
 // are dropped, as is one already above the threshold at the record's first sample; at most
 // max_echoes (<= capacity) are kept, the nearest.
 DetectedEchoes extract_echoes(std::span<const double> waveform, const EchoDetector& detector);
+
+// The sample an echo is attributed at (its origin, in the simulation's ground truth): the first
+// local maximum of the noise-free return at or after the echo's leading edge, within the echo,
+// found by climbing `noise_free` from echo.first_sample while it rises, up to echo.last_sample.
+// The return whose leading edge made the echo is the one whose peak this reaches: a lone pulse's
+// own peak; for a fog layer and a hard target merged into one echo (closer than the minimum
+// separation), the fog's, where the echo's range is read. The echo's largest sample (its peak,
+// the intensity) may belong to a later return.
+std::size_t attribution_sample(std::span<const double> noise_free, const DetectedEcho& echo);
 
 }  // namespace fogradar::lidar
