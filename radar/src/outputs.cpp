@@ -280,7 +280,7 @@ std::string samples_csv(const std::vector<StepResult>& steps) {
 std::string detections_csv(const std::vector<StepResult>& steps) {
   std::string out =
       "step,measurement,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
-      "associated\n";
+      "associated,layer\n";
   for (const StepResult& step : steps) {
     for (std::size_t i = 0; i < step.records.size(); ++i) {
       const std::string prefix = std::to_string(step.active_layers) + ',' + std::to_string(i) + ',';
@@ -288,7 +288,8 @@ std::string detections_csv(const std::vector<StepResult>& steps) {
         out += prefix + exact(d.range_m) + ',' + exact(d.velocity_m_per_s) + ',' +
                exact(watt_to_dbm(d.received_power_w)) + ',' + exact(d.snr_db) + ',' +
                exact(d.rcs_dbsm) + ',' + std::string(to_string(d.origin)) +
-               (d.in_gate ? ",1," : ",0,") + (d.associated ? "1\n" : "0\n");
+               (d.in_gate ? ",1," : ",0,") + (d.associated ? "1," : "0,") +
+               (d.layer >= 0 ? std::to_string(d.layer) : "") + '\n';
       }
     }
   }

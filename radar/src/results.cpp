@@ -44,7 +44,10 @@ MeasurementRecord record_of(const Measurement& m, double target_range_m, double 
                                  .origin = d.origin,
                                  .in_gate = std::abs(d.range_m - target_range_m) <= gate_m,
                                  .associated = m.target && d.range_cell == m.target->range_cell &&
-                                               d.doppler_cell == m.target->doppler_cell});
+                                               d.doppler_cell == m.target->doppler_cell,
+                                 .range_cell = d.range_cell,
+                                 .doppler_cell = d.doppler_cell,
+                                 .layer = d.layer});
     if (d.origin == Origin::noise) ++record.false_alarms;
     if (d.origin == Origin::clipping) ++record.clipping_detections;
     if (d.origin != Origin::fog) continue;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct DetectionRecord {
   Origin origin = Origin::noise;
   bool in_gate = false;     // within the association gate of the chamber's target range
   bool associated = false;  // the gate's strongest: the one the record associates
+  std::size_t range_cell = 0;    // the peak cell the attribution looked at (Detection)
+  std::size_t doppler_cell = 0;
+  std::int16_t layer = -1;  // for a fog origin, the dominant chamber layer (Detection::layer)
 };
 
 // What the tracker reports for one measurement, with the simulation's ground truth beside it.
