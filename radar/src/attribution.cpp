@@ -95,8 +95,10 @@ OriginClassifier::OriginClassifier(const RangeDopplerProcessor& processor,
       derived_(derived),
       noise_gain_(processor.noise_power_gain()),
       thermal_and_quantisation_w_(0.0),
-      phase_noise_incoherent_(-std::expm1(-params.phase_noise_rms_rad * params.phase_noise_rms_rad)),
-      phase_noise_coherent_(std::exp(-0.5 * params.phase_noise_rms_rad * params.phase_noise_rms_rad)),
+      phase_noise_incoherent_(
+          -std::expm1(-params.phase_noise_rms_rad * params.phase_noise_rms_rad)),
+      phase_noise_coherent_(
+          std::exp(-0.5 * params.phase_noise_rms_rad * params.phase_noise_rms_rad)),
       chirps_(processor.chirps()),
       samples_(processor.samples()) {
   if (params.thermal_noise) thermal_and_quantisation_w_ += derived.noise_power_w;
@@ -182,8 +184,7 @@ Attribution OriginClassifier::attribution(std::span<const Tone> tones, std::size
 void OriginClassifier::attribute(std::span<const Tone> tones, std::span<Detection> detections,
                                  bool clipped) const {
   for (Detection& detection : detections) {
-    const Attribution a =
-        attribution(tones, detection.doppler_cell, detection.range_cell, clipped);
+    const Attribution a = attribution(tones, detection.doppler_cell, detection.range_cell, clipped);
     detection.origin = a.origin;
     detection.layer = a.layer;
   }
@@ -217,8 +218,7 @@ void OriginClassifier::origin_map(std::span<const Tone> tones, bool clipped,
       return g.doppler_hz == doppler_hz && g.origin == tone.origin && g.layer == layer;
     });
     if (group == groups.end()) {
-      groups.push_back({doppler_hz, tone.origin, layer,
-                        std::vector<std::complex<double>>(samples_),
+      groups.push_back({doppler_hz, tone.origin, layer, std::vector<std::complex<double>>(samples_),
                         std::vector<std::complex<double>>(samples_)});
       group = groups.end() - 1;
     }
@@ -255,15 +255,16 @@ void OriginClassifier::origin_map(std::span<const Tone> tones, bool clipped,
         leak[k] += w * g.leak[k];
       }
       if (g.origin == Origin::fog && g.layer >= 0) {
-        std::complex<double>* row = fog_by_layer.data() + static_cast<std::size_t>(g.layer) * samples_;
+        std::complex<double>* row =
+            fog_by_layer.data() + static_cast<std::size_t>(g.layer) * samples_;
         for (std::size_t k = 0; k < samples_; ++k) row[k] += w * g.main[k];
       }
     }
     for (std::size_t k = 0; k < samples_; ++k) {
       for (std::size_t i = 0; i < slots; ++i) cell_layers[i] = fog_by_layer[i * samples_ + k];
-      const Attribution a = attribution_of(std::norm(target[k]), std::norm(fog[k]),
-                                           std::norm(leak[k]), noise,
-                                           strongest_layer(cell_layers), clipped);
+      const Attribution a =
+          attribution_of(std::norm(target[k]), std::norm(fog[k]), std::norm(leak[k]), noise,
+                         strongest_layer(cell_layers), clipped);
       map[d * samples_ + k] = static_cast<std::uint8_t>(a.origin);
       if (!layers.empty()) layers[d * samples_ + k] = a.layer;
     }

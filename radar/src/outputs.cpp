@@ -303,18 +303,26 @@ std::string summary_csv(const RadarSummary& summary) {
       "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
       "radome_two_way_loss_db,target_film_loss_db,"
       "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,"
-      "adc_clipped_fraction,clipping_detections_per_frame\n";
+      "adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame\n";
   for (const StepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.rcs;
     const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
                               b.median,         b.q3,   b.max,     b.whisker_low, b.whisker_high};
-    const double after_outliers[] = {s.median_shift_db,        s.p_value,
-                                     s.median_shift_ci95.low,  s.median_shift_ci95.high,
-                                     s.median_snr_db,          s.two_way_attenuation_db,
-                                     s.radome_two_way_loss_db, s.target_film_loss_db,
-                                     s.confusion_rate,         s.false_association_rate,
-                                     s.false_alarms_per_frame, s.fog_detections_per_frame,
-                                     s.adc_clipped_fraction,   s.clipping_detections_per_frame};
+    const double after_outliers[] = {s.median_shift_db,
+                                     s.p_value,
+                                     s.median_shift_ci95.low,
+                                     s.median_shift_ci95.high,
+                                     s.median_snr_db,
+                                     s.two_way_attenuation_db,
+                                     s.radome_two_way_loss_db,
+                                     s.target_film_loss_db,
+                                     s.confusion_rate,
+                                     s.false_association_rate,
+                                     s.false_alarms_per_frame,
+                                     s.fog_detections_per_frame,
+                                     s.adc_clipped_fraction,
+                                     s.clipping_detections_per_frame,
+                                     s.sidelobe_detections_per_frame};
     out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
            std::to_string(s.detections);
     for (double v : numbers) out += ',' + exact(v);
@@ -357,7 +365,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          {"false_alarms_per_frame", s.false_alarms_per_frame},
          {"fog_detections_per_frame", s.fog_detections_per_frame},
          {"adc_clipped_fraction", s.adc_clipped_fraction},
-         {"clipping_detections_per_frame", s.clipping_detections_per_frame}});
+         {"clipping_detections_per_frame", s.clipping_detections_per_frame},
+         {"sidelobe_detections_per_frame", s.sidelobe_detections_per_frame}});
   }
   return {
       {"steps", steps},
@@ -514,6 +523,20 @@ std::string summary_table(const RadarSummary& summary) {
       if (s.adc_clipped_fraction <= 0.0) continue;
       std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
                     s.clipping_detections_per_frame,
+                    counted(s.active_layers, "active layer").c_str());
+      out << line;
+      first = false;
+    }
+    out << '\n';
+  }
+  if (std::any_of(summary.steps.begin(), summary.steps.end(),
+                  [](const StepSummary& s) { return s.sidelobe_detections_per_frame > 0.0; })) {
+    // "sidelobe false alarms (...): 0.200 per frame at 1 active layer, ...".
+    out << "sidelobe false alarms (echoes' leakage outside their window main lobes):";
+    bool first = true;
+    for (const StepSummary& s : summary.steps) {
+      std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
+                    s.sidelobe_detections_per_frame,
                     counted(s.active_layers, "active layer").c_str());
       out << line;
       first = false;

@@ -17,6 +17,7 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/radar/attribution.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/results.hpp"
 #include "fogradar/radar/synthesis.hpp"
 #include "validation.hpp"
 
@@ -102,7 +103,8 @@ std::vector<Tone> fog_tones(const RadarParams& p, int first_bin, int last_bin, d
   for (int k = first_bin; k < last_bin; ++k) {
     for (int s = 0; s < per_bin; ++s) {
       tones.push_back(
-          {path_at_bin_m(p, k + rng.uniform()), rng.complex_normal(a * a), 0.0, Origin::fog, layer});
+          {path_at_bin_m(p, k + rng.uniform()), rng.complex_normal(a * a), 0.0, Origin::fog,
+           layer});
     }
   }
   return tones;
@@ -503,9 +505,9 @@ TEST_P(Spectrum, MainLobeHalfWidth) {
 }
 
 // The rectangular window's sidelobe false alarms: a 90 dB target between range bins and Doppler
-// bins over 8 chirps (a rectangular window's sidelobes fall off only as 1/u: -13 dB at 1.5 bins, -47
-// dB 2-D at 20 bins): no CFAR detection outside its main lobe is target, the one at its peak is;
-// cells in its range and Doppler sidelobes are sidelobe.
+// bins over 8 chirps (a rectangular window's sidelobes fall off only as 1/u: -13 dB at 1.5 bins):
+// no CFAR detection outside its main lobe is target, the one at its peak is; cells in its range
+// and Doppler sidelobes are sidelobe.
 TEST(OriginOfDetections, RectangularSidelobesAreSidelobe) {
   RadarParams p = small_radar(WindowType::rectangular);
   p.chirps_per_frame = 8;
@@ -612,8 +614,8 @@ double mean_cell_power(const RadarChain& chain, const std::vector<Tone>& tones, 
 // The noise power the attribution compares with (OriginClassifier::noise_power), three ways:
 // - thermal only: k T0 F fs sum w_r^2 sum w_d^2 (closed form), and the mean cell power of 8
 //   noise-only frames (2048 cells each; 16384 exponential cells, relative sd < 1 %): within 4 %;
-// - white phase noise of 0.3 rad rms on a static 60 dB tone on a bin centre (periodic Hann: the tone
-//   reaches only its 3 x 3 cells, so every other cell holds only the phase noise), no thermal noise:
+// - white phase noise of 0.3 rad rms on a static 60 dB tone on a bin centre (periodic Hann: the
+//   tone reaches only its 3 x 3 cells, every other cell holds only phase noise), no thermal noise:
 //   the coherent part a e^{-sigma^2/2} and the white power |a|^2 (1 - e^{-sigma^2}) per sample
 //   (E e^{i phi} = e^{-sigma^2/2} for phi ~ N(0, sigma^2)), times the window gains (closed form,
 //   1e-12) and the mean cell power of 8 frames away from the tone (within 4 %);
@@ -688,6 +690,37 @@ TEST(NoisePower, QuantisationErrorOfGaussianSamples) {
   error /= static_cast<double>(samples.size());
   std::printf("[ measured ] mean |e|^2 / (q^2 / 6) = %.4f\n", error / (step * step / 6.0));
   EXPECT_NEAR(error / (step * step / 6.0), 1.0, 0.01);
+}
+
+// The record and the summary count each origin apart: sidelobe detections are neither noise false
+// alarms nor fog; a fog detection keeps its layer and its peak cell.
+TEST(OriginRecords, SidelobesAreCountedApart) {
+  Measurement m;
+  const Origin origins[] = {Origin::target, Origin::sidelobe, Origin::sidelobe, Origin::noise,
+                            Origin::fog};
+  for (std::size_t i = 0; i < 5; ++i) {
+    Detection d;
+    d.range_m = 3.0 + static_cast<double>(i);
+    d.range_cell = 10 + i;
+    d.doppler_cell = i;
+    d.origin = origins[i];
+    d.layer = origins[i] == Origin::fog ? std::int16_t{1} : std::int16_t{-1};
+    m.detections.push_back(d);
+  }
+  const MeasurementRecord r = record_of(m, 10.0, 0.5);
+  EXPECT_EQ(r.sidelobe_detections, 2u);
+  EXPECT_EQ(r.false_alarms, 1u);
+  EXPECT_EQ(r.fog_detections, 1u);
+  EXPECT_EQ(r.detections[4].layer, 1);
+  EXPECT_EQ(r.detections[4].range_cell, 14u);
+  EXPECT_EQ(r.detections[4].doppler_cell, 4u);
+  EXPECT_EQ(r.detections[0].layer, -1);
+  StepResult step;
+  step.records = {r, r};
+  step.records[1].sidelobe_detections = 1;
+  const RadarSummary summary = summarize({step}, 0.0, 0.0);
+  EXPECT_EQ(summary.steps[0].sidelobe_detections_per_frame, 1.5);
+  EXPECT_EQ(summary.steps[0].false_alarms_per_frame, 1.0);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // Ground truth per detection: which of the frame's ingredients (target paths, fog clutter, their
 // sidelobes, noise) dominates the detection's peak cell of the range-Doppler map (docs/radar.md
-// sec. 6).
+// sec. 5.1).
 #pragma once
 
 #include <complex>
@@ -134,8 +134,8 @@ class OriginClassifier {
   WindowSpectrum doppler_spectrum_;
   double range_bins_per_hz_;    // N / fs
   double doppler_bins_per_hz_;  // T_i N_c
-  RadarDerived derived_;  // the beat and Doppler frequencies synthesize_frame gives each tone
-  double noise_gain_;     // sum(w_r^2) sum(w_d^2)
+  RadarDerived derived_;        // the beat and Doppler frequencies synthesize_frame gives each tone
+  double noise_gain_;           // sum(w_r^2) sum(w_d^2)
   double thermal_and_quantisation_w_;  // per sample, before the window gains
   double phase_noise_incoherent_;      // 1 - e^{-sigma^2}
   double phase_noise_coherent_;        // e^{-sigma^2 / 2}
