@@ -52,6 +52,12 @@ void RawCapture::write(std::size_t kind, std::span<const std::uint8_t> values) {
   k.uint8.assign(values.begin(), values.end());
 }
 
+void RawCapture::write(std::size_t kind, std::span<const std::int16_t> values) {
+  Kept& k = slot(kind, sensor::RawElement::int16);
+  FOGRADAR_CHECK(values.size() == kinds_[kind].item_values());
+  k.int16.assign(values.begin(), values.end());
+}
+
 void RawCapture::append_rows(std::size_t kind, std::span<const double> rows) {
   Kept& k = slot(kind, sensor::RawElement::table);
   const std::vector<sensor::RawColumn>& columns = kinds_[kind].columns;

@@ -401,6 +401,10 @@ class RawFile::Impl {
         file_type = Handle(checked(H5Tcopy(H5T_STD_U8LE), "H5Tcopy"), H5Tclose);
         kind.memory_type = Handle(checked(H5Tcopy(H5T_NATIVE_UINT8), "H5Tcopy"), H5Tclose);
         break;
+      case sensor::RawElement::int16:
+        file_type = Handle(checked(H5Tcopy(H5T_STD_I16LE), "H5Tcopy"), H5Tclose);
+        kind.memory_type = Handle(checked(H5Tcopy(H5T_NATIVE_INT16), "H5Tcopy"), H5Tclose);
+        break;
       case sensor::RawElement::table:
         return;
     }
@@ -569,6 +573,10 @@ class RawFile::Impl {
     }
     void write(std::size_t kind, std::span<const std::uint8_t> values) override {
       check(kind, sensor::RawElement::uint8);
+      file_.write(sensor_, step_, index_, kind, values.data(), values.size());
+    }
+    void write(std::size_t kind, std::span<const std::int16_t> values) override {
+      check(kind, sensor::RawElement::int16);
       file_.write(sensor_, step_, index_, kind, values.data(), values.size());
     }
     void append_rows(std::size_t kind, std::span<const double> rows) override {

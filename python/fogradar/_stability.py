@@ -16,16 +16,18 @@ class StabilityReport:
 
     table       a DataFrame, a row per step: items, detection_rate (items with a target-origin
                 detection within the gate of the target's range), false_alarms_per_item (fog,
-                noise and clipping detections) with its fog_ and noise_false_alarms_per_item and
-                clipping_detections_per_item parts, background_detections_per_item (static
+                noise, sidelobe and clipping detections) with its fog_, noise_ and
+                sidelobe_false_alarms_per_item and clipping_detections_per_item parts, background_detections_per_item (static
                 surfaces such as the lidar's walls: real echoes, not false alarms), the spread of
                 the target detections' values (value_n, value_median, value_q1, value_q3,
                 value_std, value_min, value_max; fogradar's type-7 box-plot statistics) and, where
                 the measurements kept a detection table with an ``associated`` column,
                 chain_detection_rate (fogradar's own chain on the same items)
-    detections  every detection the algorithm returned: active_layers, item, range_m, value and
+    detections  every detection the algorithm returned: active_layers, item, range_m, value,
                 origin (a Categorical over the sensors' one code table: noise, target, fog,
-                background, clipping)
+                background, clipping, sidelobe) and layer (for a fog origin the chamber layer,
+                the index in chamber.layers, that dominates it; -1 otherwise and where the
+                sensor's ground truth has no layers)
     layers_to_failure   the first step whose detection rate is below `criterion_rate`, else None
     criterion   the rule, in words
     """
@@ -88,7 +90,8 @@ def _detections_of(result):
     n = len(result)
     columns = {"range_m": result["range_m"] if n else [],
                "value": result["value"] if "value" in result.columns else [np.nan] * n}
-    for extra in ("velocity_m_per_s", "beam", "attributed_range_m"):
+    for extra in ("velocity_m_per_s", "beam", "attributed_range_m", "range_cell",
+                  "doppler_cell"):
         if extra in result.columns:
             columns[extra] = result[extra]
     out = []
@@ -100,22 +103,26 @@ def _detections_of(result):
     return out, None
 
 
-def _cell_origin(truth, attributes, labels, detection):
-    """The origin the radar's map gives the cell a detection peaks in: its range column with the
-    range-Doppler coupling put back, its velocity's Doppler row (0 m/s when not given)."""
+def _cell(truth, attributes, detection):
+    """The (row, column) of the radar's map a detection peaks in: its range_cell and doppler_cell
+    when it gives them (the chain's own detections do), else its range column with the
+    range-Doppler coupling put back and its velocity's Doppler row (0 m/s when not given)."""
     rows, columns = truth.shape
+    if "range_cell" in detection and "doppler_cell" in detection:
+        return int(detection["doppler_cell"]) % rows, int(detection["range_cell"]) % columns
     velocity = float(detection.get("velocity_m_per_s", 0.0))
     range_bin = (detection["range_m"] + attributes["range_coupling_s"] * velocity) / \
         attributes["range_bin_m"]
     column = int(np.clip(np.floor(range_bin + 0.5), 0, columns - 1))
     row = int(np.floor(velocity / attributes["velocity_bin_m_per_s"] + 0.5)) % rows
-    return labels[truth[row, column]]
+    return row, column
 
 
 def _stretch_origin(truth, labels, detection):
-    """The origin of the lidar's stretch of the detection's beam that holds its
+    """The origin and fog layer of the lidar's stretch of the detection's beam that holds its
     attributed_range_m (the peak of the return whose leading edge made the echo, where the lidar
-    attributes it), else its range_m; noise outside every stretch."""
+    attributes it), else its range_m; noise outside every stretch. The layer is the table's
+    ``layer`` where it has that column, else -1."""
     if "beam" not in detection:
         raise TypeError("the lidar's detections need a column beam (the beam index, as the "
                         "echoes' table has it): its ground truth is per beam")
@@ -123,14 +130,18 @@ def _stretch_origin(truth, labels, detection):
     range_m = float(detection.get("attributed_range_m", detection["range_m"]))
     inside = np.nonzero((truth["beam"] == beam) & (truth["start_m"] <= range_m)
                         & (range_m < truth["end_m"]))[0]
-    return labels[truth["origin"][inside[0]]] if len(inside) else "noise"
+    if not len(inside):
+        return "noise", -1
+    layer = int(truth["layer"][inside[0]]) if "layer" in truth else -1
+    return labels[truth["origin"][inside[0]]], layer
 
 
 def _origin_of(m, detection):
-    """A detection's origin from the measurement's own ground truth (its kind ``origins``, which
-    the sensor's attribution wrote from the chamber it measured through)."""
+    """A detection's origin and fog layer (-1 where not fog) from the measurement's own ground
+    truth (its kinds ``origins`` and, for the radar, ``origin_layers``, which the sensor's
+    attribution wrote from the chamber it measured through)."""
     if detection["range_m"] is None:
-        return "target"  # an answer without ranges (the camera's) says whether it saw the target
+        return "target", -1  # an answer without ranges (the camera's) says whether it saw it
     kind = m._kinds.get("origins")
     if kind is None:
         raise TypeError(f"the {m.sensor} has no ground truth per range (no raw kind 'origins'): "
@@ -139,7 +150,11 @@ def _origin_of(m, detection):
     if kind["element"] == "table":
         truth = {c["name"]: c["values"] for c in raw["columns"]}
         return _stretch_origin(truth, ORIGINS, detection)
-    return _cell_origin(raw, kind["attributes"], kind["labels"], detection)
+    row, column = _cell(raw, kind["attributes"], detection)
+    origin = kind["labels"][raw[row, column]]
+    layers = m._raw.get("origin_layers")
+    layer = int(layers[row, column]) if layers is not None and origin == "fog" else -1
+    return origin, layer
 
 
 def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate=0.5,
@@ -158,11 +173,13 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
     Ground truth, from C++ (docs/python.md): each measurement carries the origin the sensor's own
     attribution gives at each range of that item (its raw kind ``origins``: the radar's per cell
     of the range-Doppler map, the lidar's per beam), made from the chamber it measured through.
-    A radar detection is looked up at its range and ``velocity_m_per_s`` (0 when not given), a
-    lidar detection at its ``beam`` and ``attributed_range_m`` (the peak of the return whose leading
-    edge made the echo, where the lidar attributes it; its ``range_m`` when not given). An item counts as detected when one of its
-    detections is the target's and within `gate_m` of the target's range. The limit is the first
-    step whose detection rate is below `criterion_rate`.
+    A radar detection is looked up at its peak cell ``range_cell`` and ``doppler_cell`` when it
+    gives them (the chain's detections table has them), else at its range and
+    ``velocity_m_per_s`` (0 when not given); its fog layer in the kind ``origin_layers``. A lidar
+    detection at its ``beam`` and ``attributed_range_m`` (the peak of the return whose leading
+    edge made the echo, where the lidar attributes it; its ``range_m`` when not given). An item
+    counts as detected when one of its detections is the target's and within `gate_m` of the
+    target's range. The limit is the first step whose detection rate is below `criterion_rate`.
     """
     from . import Scenario, Simulator  # the package's classes (this module is imported by it)
 
@@ -192,8 +209,9 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
         keep = [k["name"] for k in sim.kinds(sensor) if k["by_default"]]
     else:
         keep = [keep] if isinstance(keep, str) else list(keep)
-    if "origins" in offered and "origins" not in keep:
-        keep.append("origins")
+    for truth in ("origins", "origin_layers"):
+        if truth in offered and truth not in keep:
+            keep.append(truth)
 
     rows, found = [], []
     for k in chosen_steps:
@@ -205,9 +223,9 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
             answer, flag = _detections_of(algorithm(m))
             hit = bool(flag)
             for d in answer:
-                o = _origin_of(m, d)
+                o, layer = _origin_of(m, d)
                 found.append({"active_layers": k, "item": index, "range_m": d["range_m"],
-                              "value": d["value"], "origin": o})
+                              "value": d["value"], "origin": o, "layer": layer})
                 counts[o] += 1
                 in_gate = d["range_m"] is None or abs(d["range_m"] - target_m) <= gate_m
                 if o == "target" and in_gate:
@@ -216,7 +234,7 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
                         values.append(d["value"])
             if flag:
                 found.append({"active_layers": k, "item": index, "range_m": None,
-                              "value": np.nan, "origin": "target"})
+                              "value": np.nan, "origin": "target", "layer": -1})
             detected += hit
             if m.has_associated():
                 chain_seen = True
@@ -224,9 +242,11 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
         box = _core.box_plot(values) if values else {}
         row = {"active_layers": k, "items": count, "detection_rate": detected / count,
                "false_alarms_per_item":
-                   (counts["fog"] + counts["noise"] + counts["clipping"]) / count,
+                   (counts["fog"] + counts["noise"] + counts["sidelobe"] + counts["clipping"])
+                   / count,
                "fog_false_alarms_per_item": counts["fog"] / count,
                "noise_false_alarms_per_item": counts["noise"] / count,
+               "sidelobe_false_alarms_per_item": counts["sidelobe"] / count,
                "clipping_detections_per_item": counts["clipping"] / count,
                "background_detections_per_item": counts["background"] / count,
                "value_n": len(values)}
@@ -237,7 +257,7 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
         rows.append(row)
     table = pd.DataFrame(rows)
     detections = pd.DataFrame(found, columns=["active_layers", "item", "range_m", "value",
-                                              "origin"])
+                                              "origin", "layer"])
     detections["origin"] = pd.Categorical(detections["origin"], categories=ORIGINS)
     failing = table.loc[table["detection_rate"] < criterion_rate, "active_layers"]
     limit = int(failing.iloc[0]) if len(failing) else None

@@ -108,6 +108,9 @@ py::dict kept_to_python(const std::shared_ptr<const experiment::RawCapture>& cap
       case sensor::RawElement::uint8:
         out[py::str(kind.name)] = view(kept.uint8.data(), kind.shape, owner);
         break;
+      case sensor::RawElement::int16:
+        out[py::str(kind.name)] = view(kept.int16.data(), kind.shape, owner);
+        break;
       case sensor::RawElement::table: {
         py::list columns;
         for (std::size_t c = 0; c < kind.columns.size(); ++c) {
@@ -139,7 +142,7 @@ py::dict kept_to_python(const std::shared_ptr<const experiment::RawCapture>& cap
 
 // What a sensor offers: per kind its name, description, units, element, dimensions and axes.
 py::list kinds_to_python(const std::vector<sensor::RawKind>& kinds) {
-  static constexpr const char* elements[] = {"complex128", "float64", "uint8", "table"};
+  static constexpr const char* elements[] = {"complex128", "float64", "uint8", "table", "int16"};
   py::list out;
   for (const sensor::RawKind& kind : kinds) {
     py::dict entry;

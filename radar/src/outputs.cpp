@@ -280,7 +280,7 @@ std::string samples_csv(const std::vector<StepResult>& steps) {
 std::string detections_csv(const std::vector<StepResult>& steps) {
   std::string out =
       "active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
-      "associated\n";
+      "associated,layer\n";
   for (const StepResult& step : steps) {
     for (std::size_t i = 0; i < step.records.size(); ++i) {
       const std::string prefix = std::to_string(step.active_layers) + ',' + std::to_string(i) + ',';
@@ -288,7 +288,8 @@ std::string detections_csv(const std::vector<StepResult>& steps) {
         out += prefix + exact(d.range_m) + ',' + exact(d.velocity_m_per_s) + ',' +
                exact(watt_to_dbm(d.received_power_w)) + ',' + exact(d.snr_db) + ',' +
                exact(d.rcs_dbsm) + ',' + std::string(to_string(d.origin)) +
-               (d.in_gate ? ",1," : ",0,") + (d.associated ? "1\n" : "0\n");
+               (d.in_gate ? ",1," : ",0,") + (d.associated ? "1," : "0,") +
+               std::to_string(d.layer) + '\n';
       }
     }
   }
@@ -302,18 +303,26 @@ std::string summary_csv(const RadarSummary& summary) {
       "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
       "radome_two_way_loss_db,target_film_loss_db,"
       "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,"
-      "adc_clipped_fraction,clipping_detections_per_frame\n";
+      "adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame\n";
   for (const StepSummary& s : summary.steps) {
     const stats::BoxPlot& b = s.rcs;
     const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
                               b.median,         b.q3,   b.max,     b.whisker_low, b.whisker_high};
-    const double after_outliers[] = {s.median_shift_db,        s.p_value,
-                                     s.median_shift_ci95.low,  s.median_shift_ci95.high,
-                                     s.median_snr_db,          s.two_way_attenuation_db,
-                                     s.radome_two_way_loss_db, s.target_film_loss_db,
-                                     s.confusion_rate,         s.false_association_rate,
-                                     s.false_alarms_per_frame, s.fog_detections_per_frame,
-                                     s.adc_clipped_fraction,   s.clipping_detections_per_frame};
+    const double after_outliers[] = {s.median_shift_db,
+                                     s.p_value,
+                                     s.median_shift_ci95.low,
+                                     s.median_shift_ci95.high,
+                                     s.median_snr_db,
+                                     s.two_way_attenuation_db,
+                                     s.radome_two_way_loss_db,
+                                     s.target_film_loss_db,
+                                     s.confusion_rate,
+                                     s.false_association_rate,
+                                     s.false_alarms_per_frame,
+                                     s.fog_detections_per_frame,
+                                     s.adc_clipped_fraction,
+                                     s.clipping_detections_per_frame,
+                                     s.sidelobe_detections_per_frame};
     out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
            std::to_string(s.detections);
     for (double v : numbers) out += ',' + exact(v);
@@ -356,7 +365,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          {"false_alarms_per_frame", s.false_alarms_per_frame},
          {"fog_detections_per_frame", s.fog_detections_per_frame},
          {"adc_clipped_fraction", s.adc_clipped_fraction},
-         {"clipping_detections_per_frame", s.clipping_detections_per_frame}});
+         {"clipping_detections_per_frame", s.clipping_detections_per_frame},
+         {"sidelobe_detections_per_frame", s.sidelobe_detections_per_frame}});
   }
   return {
       {"steps", steps},
@@ -513,6 +523,20 @@ std::string summary_table(const RadarSummary& summary) {
       if (s.adc_clipped_fraction <= 0.0) continue;
       std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
                     s.clipping_detections_per_frame,
+                    counted(s.active_layers, "active layer").c_str());
+      out << line;
+      first = false;
+    }
+    out << '\n';
+  }
+  if (std::any_of(summary.steps.begin(), summary.steps.end(),
+                  [](const StepSummary& s) { return s.sidelobe_detections_per_frame > 0.0; })) {
+    // "sidelobe false alarms (...): 0.200 per frame at 1 active layer, ...".
+    out << "sidelobe false alarms (echoes' leakage outside their window main lobes):";
+    bool first = true;
+    for (const StepSummary& s : summary.steps) {
+      std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
+                    s.sidelobe_detections_per_frame,
                     counted(s.active_layers, "active layer").c_str());
       out << line;
       first = false;

@@ -84,7 +84,7 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
                                  scene.radome_two_way_transmittance * scene.target_film_reflectance;
     tones.push_back({length_m,
                      path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
-                     centre.radial_velocity_m_per_s, Origin::target});
+                     centre.radial_velocity_m_per_s, Origin::target, -1});
   }
 }
 
@@ -110,7 +110,8 @@ void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
                                     chamber.two_way_transmittance(range_m, active) *
                                     scene.radome_two_way_transmittance;
         // The phase of a random scatterer is uniform anyway: the complex normal carries it.
-        tones.push_back({2.0 * range_m, rng.complex_normal(mean_power_w), 0.0, Origin::fog});
+        tones.push_back({2.0 * range_m, rng.complex_normal(mean_power_w), 0.0, Origin::fog,
+                         static_cast<std::int16_t>(i)});
       }
     }
   }

@@ -340,6 +340,7 @@ class RadarWorker : public sensor::Worker {
   std::vector<double> power_;  // |X|^2 of a map asked for as raw data
   std::vector<double> rows_;   // detection rows asked for as raw data
   std::vector<std::uint8_t> origins_;  // the origin map asked for as raw data
+  std::vector<std::int16_t> layers_;   // and its fog layers
 };
 
 KeyTable<SensorParams> sensor_keys() {
@@ -455,7 +456,7 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
   const std::vector<double> doppler_window = make_window(p.window, chirps);
   const double noise_level = d.noise_power_w * noise_power_gain(range_window, doppler_window);
   const double gain = coherent_amplitude_gain(range_window, doppler_window);
-  std::vector<sensor::RawKind> kinds(6);
+  std::vector<sensor::RawKind> kinds(7);
   kinds[raw_beat] = {
       .name = "beat",
       .description =
@@ -489,7 +490,10 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
           "every detection of the frame with its origin (radar_detections.csv): range "
           "corrected for the range-Doppler coupling, received power at the receiver "
           "input; in_gate: within the association gate; associated: the gate's "
-          "strongest, radar_samples.csv's",
+          "strongest, radar_samples.csv's; range_cell, doppler_cell: the peak cell the "
+          "attribution looked at (column and row of range_doppler and origins); layer: for "
+          "a fog origin, the chamber layer (chamber.layers[layer]) that dominates the fog "
+          "there, else -1",
       .units = "",
       .element = sensor::RawElement::table,
       .dimensions = {},
@@ -502,7 +506,10 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
                   {"rcs_dbsm", "dBsm", false, {}},
                   {"origin", "", false, sensor::origin_labels()},
                   {"in_gate", "", true, {}},
-                  {"associated", "", true, {}}},
+                  {"associated", "", true, {}},
+                  {"range_cell", "", true, {}},
+                  {"doppler_cell", "", true, {}},
+                  {"layer", "", true, {}}},
       .rows_per_item = detections,
       .attributes = {}};
   // The beat's parts (synthesis.hpp, FrameParts), on request: beat = signal + noise exactly for
@@ -520,15 +527,16 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
       "(before the ADC)";
   kinds[raw_noise].by_default = false;
   // Where a detection of the frame would come from, per cell: what the chain's attribution gives a
-  // detection peaking there. A detection at (range_m, velocity_m_per_s) peaks in the column of
-  // range bin (range_m + range_coupling_s velocity_m_per_s) / range_bin_m (the coupling the
-  // estimate removed) and the row of Doppler bin velocity_m_per_s / velocity_bin_m_per_s.
+  // detection peaking there. A detection names its peak cell (range_cell, doppler_cell); from its
+  // range_m and velocity_m_per_s alone the column is near range bin (range_m + range_coupling_s
+  // velocity_m_per_s) / range_bin_m (the coupling the estimate removed) and the row near Doppler
+  // bin velocity_m_per_s / velocity_bin_m_per_s, within the interpolation's offset from the peak.
   kinds[raw_origins] = kinds[raw_range_doppler];
   kinds[raw_origins].name = "origins";
   kinds[raw_origins].description =
       "the frame's ground truth per cell: the origin the chain's attribution gives a detection "
-      "peaking there (target, fog, noise, or clipping in a frame whose ADC clipped), Doppler rows "
-      "in FFT order x range columns as range_doppler";
+      "peaking there (target, fog, sidelobe, noise, or clipping in a frame whose ADC clipped), "
+      "Doppler rows in FFT order x range columns as range_doppler";
   kinds[raw_origins].units = "";
   kinds[raw_origins].element = sensor::RawElement::uint8;
   kinds[raw_origins].labels = sensor::origin_labels();
@@ -538,6 +546,14 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
       {"velocity_bin_m_per_s", d.sweep_sign * d.velocity_resolution_m_per_s},
       {"range_coupling_s",
        doppler_shift_hz(1.0, d) * speed_of_light_m_per_s / (2.0 * d.chirp_slope_hz_per_s)}};
+  kinds[raw_origin_layers] = kinds[raw_origins];
+  kinds[raw_origin_layers].name = "origin_layers";
+  kinds[raw_origin_layers].description =
+      "the frame's fog layer per cell, beside origins: where the origin is fog, the chamber layer "
+      "(the index in chamber.layers, 0-based from the sensor) whose echoes dominate the fog "
+      "there; -1 elsewhere";
+  kinds[raw_origin_layers].element = sensor::RawElement::int16;
+  kinds[raw_origin_layers].labels = {};
   return kinds;
 }
 
@@ -630,15 +646,22 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
     for (const DetectionRecord& d : record.detections) {
       rows_.insert(rows_.end(), {d.range_m, d.velocity_m_per_s, watt_to_dbm(d.received_power_w),
                                  d.snr_db, d.rcs_dbsm, static_cast<double>(d.origin),
-                                 d.in_gate ? 1.0 : 0.0, d.associated ? 1.0 : 0.0});
+                                 d.in_gate ? 1.0 : 0.0, d.associated ? 1.0 : 0.0,
+                                 static_cast<double>(d.range_cell),
+                                 static_cast<double>(d.doppler_cell),
+                                 static_cast<double>(d.layer)});
     }
     raw->append_rows(raw_detections, rows_);
   }
-  if (raw != nullptr && raw->wants(raw_origins)) {
+  const bool origins = raw != nullptr && raw->wants(raw_origins);
+  const bool layers = raw != nullptr && raw->wants(raw_origin_layers);
+  if (origins || layers) {
     origins_.resize(workspace_.frame.size());
+    layers_.resize(layers ? workspace_.frame.size() : 0);
     sensor.chain().origin_classifier().origin_map(
-        workspace_.tones, measurement_.synthesis.clipped_samples > 0, origins_);
-    raw->write(raw_origins, std::span<const std::uint8_t>(origins_));
+        workspace_.tones, measurement_.synthesis.clipped_samples > 0, origins_, layers_);
+    if (origins) raw->write(raw_origins, std::span<const std::uint8_t>(origins_));
+    if (layers) raw->write(raw_origin_layers, std::span<const std::int16_t>(layers_));
   }
 }
 

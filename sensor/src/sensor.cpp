@@ -22,6 +22,8 @@ std::size_t RawKind::item_bytes() const {
       return item_values() * sizeof(double);
     case RawElement::uint8:
       return item_values();
+    case RawElement::int16:
+      return item_values() * sizeof(std::int16_t);
     case RawElement::table:
       return rows_per_item * columns.size() * sizeof(double);
   }

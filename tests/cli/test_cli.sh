@@ -50,9 +50,9 @@ PY
 fi
 head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,item,detected,range_m,rcs_dbsm,snr_db,origin,fog_detections,false_alarms,velocity_m_per_s' && pass \
   || fail "radar_samples.csv header"
-head -1 "$work/t1/radar_detections.csv" | grep -qx 'active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated' && pass \
+head -1 "$work/t1/radar_detections.csv" | grep -qx 'active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated,layer' && pass \
   || fail "radar_detections.csv header"
-head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,radome_two_way_loss_db,target_film_loss_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,adc_clipped_fraction,clipping_detections_per_frame' \
+head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,radome_two_way_loss_db,target_film_loss_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame' \
   && pass || fail "radar_summary.csv header"
 [ "$(wc -l <"$work/t1/radar_samples.csv")" -eq 31 ] && pass || fail "radar_samples.csv should have 5 x 6 rows"
 grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary.json lacks sensor_limit_layers"

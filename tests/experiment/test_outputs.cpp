@@ -151,7 +151,7 @@ TEST_F(Outputs, DetectionsCsvHoldsEveryDetectionOfEveryFrame) {
   const std::vector<std::string> lines = lines_of(radar::detections_csv(steps()));
   ASSERT_EQ(lines.front(),
             "active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,"
-            "associated");
+            "associated,layer");
   struct Frame {
     std::size_t fog = 0, noise = 0, associated = 0;
     double strongest_in_gate_dbm = -1e300;
@@ -160,7 +160,8 @@ TEST_F(Outputs, DetectionsCsvHoldsEveryDetectionOfEveryFrame) {
   std::map<std::pair<std::size_t, std::size_t>, Frame> frames;
   for (std::size_t row = 1; row < lines.size(); ++row) {
     const std::vector<std::string> f = split(lines[row], ',');
-    ASSERT_EQ(f.size(), 10u) << lines[row];
+    ASSERT_EQ(f.size(), 11u) << lines[row];
+    EXPECT_EQ(f[10].empty(), f[7] != "fog") << lines[row];
     Frame& frame = frames[{std::stoul(f[0]), std::stoul(f[1])}];
     frame.fog += f[7] == "fog" ? 1 : 0;
     frame.noise += f[7] == "noise" ? 1 : 0;

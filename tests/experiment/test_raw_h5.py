@@ -11,10 +11,11 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
 - /lidar/echoes holds lidar_echoes.csv's echoes (ranges to the CSV's 4 decimals, origins and
   layers);
 - every origin, the radar's and the lidar's, is one HDF5 enumeration with names: noise 0, target 1,
-  fog 2, background 3, clipping 4 (sensor/origin.hpp);
+  fog 2, background 3, clipping 4, sidelobe 5 (sensor/origin.hpp);
 - the ground truth on request: /radar/origins, an enumerated map whose cell at each detection's
-  peak holds that detection's origin; /lidar/origins, whose stretch holding each echo's
-  attributed_range_m holds that echo's origin and layer;
+  peak (its range_cell, doppler_cell) holds that detection's origin, and /radar/origin_layers,
+  int16, whose cell there holds its layer (-1 where not fog); /lidar/origins, whose stretch holding
+  each echo's attributed_range_m holds that echo's origin and layer;
 - the layout: shapes [active_layers, item, ...], one item per chunk, dimension scales attached,
   units, the resolved scenario as the root attribute (scenario.toml's text);
 - one name for the step and one for the item everywhere: every CSV file of the result set and
@@ -157,7 +158,8 @@ with tempfile.TemporaryDirectory() as work:
             listed = [r for r in csv.DictReader(echo_file)
                       if int(r["active_layers"]) in (0, 4) and int(r["item"]) < 4]
         check(len(listed) == len(echoes), f"{len(echoes)} echoes against the CSV's {len(listed)}")
-        table = {"noise": 0, "target": 1, "fog": 2, "background": 3, "clipping": 4}
+        table = {"noise": 0, "target": 1, "fog": 2, "background": 3, "clipping": 4,
+                 "sidelobe": 5}
         check(h5py.check_enum_dtype(echoes.dtype["origin"]) == table, "the lidar's origin codes")
         check(h5py.check_enum_dtype(f["/radar/detections"].dtype["origin"]) == table,
               "the radar's origin codes")
@@ -194,7 +196,8 @@ with tempfile.TemporaryDirectory() as work:
     out, raw = os.path.join(work, "out"), os.path.join(work, "truth.h5")
     subprocess.run([fogradar, "run", "--scenario", os.path.join(source, "tests/cli/small.toml"),
                     "--out", out, "--raw", raw, "--raw-select",
-                    "radar.detections,radar.origins,lidar.echoes,lidar.origins", "--raw-steps",
+                    "radar.detections,radar.origins,radar.origin_layers,lidar.echoes,lidar.origins",
+                    "--raw-steps",
                     "0,4", "--raw-items", "0-1"], check=True, stdout=subprocess.DEVNULL)
     with h5py.File(raw) as f:
         f.visititems(names_of)
@@ -204,12 +207,20 @@ with tempfile.TemporaryDirectory() as work:
         bin_m, velocity_bin = truth.attrs["range_bin_m"], truth.attrs["velocity_bin_m_per_s"]
         coupling = truth.attrs["range_coupling_s"]
         radar_seen = 0
+        layers = f["/radar/origin_layers"]
+        check(layers.dtype == np.int16 and layers.shape == truth.shape, "the radar's layer map")
         for d in f["/radar/detections"][:]:
             s, i = list(f["/radar/active_layers"][:]).index(d["active_layers"]), d["item"]
-            column = int(np.clip(np.floor((d["range_m"] + coupling * d["velocity_m_per_s"]) / bin_m
-                                          + 0.5), 0, columns - 1))
-            row = int(np.floor(d["velocity_m_per_s"] / velocity_bin + 0.5)) % rows
+            row, column = d["doppler_cell"], d["range_cell"]
             check(truth[s, i, row, column] == d["origin"], f"radar truth at {d}")
+            check(layers[s, i, row, column] == d["layer"], f"radar layer at {d}")
+            check((d["layer"] >= 0) == (d["origin"] == table["fog"]), f"radar layer of {d}")
+            # From range and velocity alone: the peak cell to within one (the estimate's offset).
+            near_column = (d["range_m"] + coupling * d["velocity_m_per_s"]) / bin_m
+            near_row = d["velocity_m_per_s"] / velocity_bin
+            check(abs(near_column - column) <= 1.0, f"radar range cell of {d}")
+            check(abs((near_row - row + rows / 2) % rows - rows / 2) <= 1.0,
+                  f"radar Doppler cell of {d}")
             radar_seen += 1
         check(radar_seen > 0, "radar detections with truth")
         stretches = f["/lidar/origins"][:]

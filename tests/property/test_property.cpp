@@ -3,8 +3,9 @@
 // whatever its chamber, fogs, switching order, sensors and settings:
 // - the result files are the same bytes at 1 and 2 threads;
 // - every radar detection and lidar echo whose origin is fog lies inside a layer that is active at
-//   its step, every target-origin one at the target, every background echo on a background segment
-//   (the chamber as the generator laid it out, not as the run reports it);
+//   its step (a radar fog detection inside the layer it names), every target-origin one at the
+//   target, every background echo on a background segment (the chamber as the generator laid it
+//   out, not as the run reports it);
 // - each sensor's fog loss does not decrease as layers come on (any order, any fogs: each layer's
 //   extinction is >= 0), and every sensor reports the steps 0 .. max_active_layers;
 // - the written scenario.toml reads back to the same text, and run from that text gives the same
@@ -172,11 +173,9 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
   SCOPED_TRACE(describe(o.drawn));
   if (!o.refused.empty()) return;
   const DrawnScenario& d = o.drawn;
-  // Where the chain's attribution is known to contradict the geometry (docs/validation.md): an ADC
-  // that quantises or clips, phase noise, and the rectangular window's far sidelobes.
-  const bool radar_checked = d.ideal_adc && !d.phase_noise && d.window != "rectangular";
-  const std::string* radar_csv = radar_checked ? o.file("radar_detections.csv") : nullptr;
-  if (const std::string* csv = radar_csv) {
+  // Every radar scenario, whatever its ADC, phase noise and window: sidelobe, clipping and noise
+  // detections are not checked against the geometry (they lie anywhere by nature).
+  if (const std::string* csv = o.file("radar_detections.csv")) {
     const double tol_m = (d.window_mainlobe_half_width_bins + 1.0) * d.range_bin_m;
     const double r = d.target_range_m;
     const double multipath_m = std::hypot(r, d.target_height_span_m) - r;
@@ -194,7 +193,24 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
         }
         EXPECT_TRUE(inside) << where << ": outside every layer active at that step (+-" << tol_m
                             << " m)";
-      } else if (origin == "target") {
+        // Its layer: one active at the step, and holding the detection's range.
+        const std::string& text = row.at("layer");
+        ASSERT_FALSE(text.empty()) << where << ": a fog detection without its layer";
+        const auto layer = static_cast<std::size_t>(std::stoul(text));
+        bool active = false;
+        for (std::size_t j = 0; j < k && j < d.switching.size(); ++j)
+          active = active || d.switching[j] == layer;
+        EXPECT_TRUE(active) << where << ": layer " << layer << " is not active at that step";
+        if (active) {
+          const LayerGeometry& l = d.layers[layer];
+          EXPECT_TRUE(range_m >= l.start_m - tol_m && range_m <= l.end_m + tol_m)
+              << where << ": outside its layer " << layer << " [" << l.start_m << ", " << l.end_m
+              << "] m (+-" << tol_m << " m)";
+        }
+      } else {
+        EXPECT_TRUE(row.at("layer").empty()) << where << ": a layer on a detection not of fog";
+      }
+      if (origin == "target") {
         EXPECT_GE(range_m, r - tol_m) << where << ": before the target at " << r << " m";
         EXPECT_LE(range_m, r + d.target_depth_m + multipath_m + tol_m)
             << where << ": behind the target at " << r << " m";

@@ -56,6 +56,33 @@ def test_a_listed_order_gives_the_chain_s_origins():
     assert collections.Counter(chain)["fog"] >= 3
 
 
+def test_fog_detections_name_their_layer_as_the_chain_does():
+    """Order [2, 0, 3, 1]: every fog detection names one of the layers active at its step (the
+    chain's own layer, from the raw kind origin_layers), every other detection -1; the map of
+    layers is -1 exactly where the map of origins is not fog."""
+    order = [2, 0, 3, 1]
+    scenario = fogradar.Scenario.from_dict(dict(WET, **{"experiment.switching_order": order}))
+    chain = []
+
+    def own(m):
+        table = m["detections"]
+        chain.extend(table["layer"])
+        return table[["range_m", "velocity_m_per_s", "range_cell", "doppler_cell"]]
+
+    report = fogradar.stability(scenario, "radar", own, keep="detections", items=10)
+    assert list(report.detections["layer"]) == chain
+    fog = report.detections[report.detections["origin"] == "fog"]
+    assert len(fog) >= 3
+    for step, layer in zip(fog["active_layers"], fog["layer"]):
+        assert layer in order[:step], (step, layer)
+    assert (report.detections.loc[report.detections["origin"] != "fog", "layer"] == -1).all()
+    m = fogradar.Simulator(scenario).measure("radar", 4, 0, keep=("origins", "origin_layers"))
+    fog_code = fogradar._core.origin_labels.index("fog")
+    assert m.origin_layers.dtype == np.int16
+    assert ((m.origin_layers >= 0) == (m.origins == fog_code)).all()
+    assert set(np.unique(m.origin_layers[m.origins == fog_code])) <= set(order)
+
+
 def test_the_layered_example_runs_and_gives_the_chain_s_origins(source_dir):
     """examples/layered_chamber.toml has no layer_length_m: the old rebuild raised KeyError."""
     scenario = fogradar.Scenario.from_file(source_dir / "examples" / "layered_chamber.toml")

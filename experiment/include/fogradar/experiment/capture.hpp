@@ -26,6 +26,7 @@ class RawCapture : public sensor::RawSink {
     std::vector<std::complex<double>> complex128;
     std::vector<double> float64;
     std::vector<std::uint8_t> uint8;
+    std::vector<std::int16_t> int16;
     std::vector<Column> columns;  // table kinds, in the kind's column order
     std::size_t rows = 0;
   };
@@ -38,6 +39,7 @@ class RawCapture : public sensor::RawSink {
   void write(std::size_t kind, std::span<const std::complex<double>> values) override;
   void write(std::size_t kind, std::span<const double> values) override;
   void write(std::size_t kind, std::span<const std::uint8_t> values) override;
+  void write(std::size_t kind, std::span<const std::int16_t> values) override;
   void append_rows(std::size_t kind, std::span<const double> rows) override;
 
   const std::vector<sensor::RawKind>& kinds() const { return kinds_; }

@@ -34,6 +34,9 @@ struct Detection {
   // What dominates the strongest cell (OriginClassifier, attribution.hpp); estimate_detections
   // leaves noise, RadarChain::measure sets it.
   Origin origin = Origin::noise;
+  // For a fog origin, the chamber layer that dominates the fog in the cell (Attribution::layer);
+  // -1 otherwise.
+  std::int16_t layer = -1;
 };
 
 // cos(pi j / N) and sin(pi j / N) for j = 0 .. 2N-1, the rotations from which the Dirichlet

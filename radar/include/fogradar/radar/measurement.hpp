@@ -20,7 +20,7 @@
 namespace fogradar::radar {
 
 struct Measurement {
-  std::vector<Detection> detections;  // each with its origin (target, fog, noise or clipping)
+  std::vector<Detection> detections;  // each with its origin (and, for fog, its layer)
   // The strongest detection within the association gate around the chamber's target range, or
   // nothing: a missed detection is reported as such, never as a made-up value (docs/scenario.md).
   // This is what a tracker associates, whatever its origin: a noise or fog detection in the gate is

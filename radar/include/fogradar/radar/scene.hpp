@@ -4,6 +4,7 @@
 #pragma once
 
 #include <complex>
+#include <cstdint>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -74,12 +75,14 @@ Scene point_target_scene(double rcs_dbsm);
 Scene evt_rear_scene(double rcs_dbsm = 10.0);
 
 // A propagation path as the receiver sees it: two-way path length, complex amplitude (sqrt(W)) at
-// the start of the frame, radial velocity, and what it comes from (target or fog, never noise).
+// the start of the frame, radial velocity, what it comes from (target or fog, never noise) and,
+// for fog, the chamber layer it lies in (the index in chamber.layers, 0-based from the sensor).
 struct Tone {
   double path_length_m;
   std::complex<double> amplitude;
   double radial_velocity_m_per_s;
   Origin origin;
+  std::int16_t layer = -1;  // fog only; -1 for a target path
 };
 
 // The paths of one measurement: every scattering centre (direct, and with the floor the

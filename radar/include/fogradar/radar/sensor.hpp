@@ -37,15 +37,16 @@ std::shared_ptr<const sensor::SensorType> sensor_type();
 
 // The radar's raw data per measurement (docs/data-out.md), by index: the beat signal, the
 // range-Doppler map |X|^2 and the detections, with their axes; the beat's two parts (synthesis.hpp,
-// FrameParts) and the frame's ground truth per cell (OriginClassifier::origin_map) only when asked
-// for by name.
+// FrameParts) and the frame's ground truth per cell (OriginClassifier::origin_map: the origins and
+// the fog layers) only when asked for by name.
 enum RawKindIndex : std::size_t {
   raw_beat = 0,
   raw_range_doppler = 1,
   raw_detections = 2,
   raw_signal = 3,
   raw_noise = 4,
-  raw_origins = 5
+  raw_origins = 5,
+  raw_origin_layers = 6
 };
 std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params);
 

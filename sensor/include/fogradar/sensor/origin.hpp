@@ -15,13 +15,23 @@ namespace fogradar::sensor {
 // a target scattering centre, direct or via the floor); fog: the fog's volume echo of an active
 // layer; background: a static surface of the chamber other than the target (the lidar's walls and
 // barrels); clipping: a product of the ADC's clipping (harmonics and intermodulation of the clipped
-// echoes), in a frame that clipped, where neither target nor fog explains the cell.
-enum class Origin : std::uint8_t { noise = 0, target = 1, fog = 2, background = 3, clipping = 4 };
+// echoes), in a frame that clipped, where neither target nor fog explains the cell; sidelobe: the
+// radar's "sidelobe false alarm", a cell outside the window main lobe of every strong echo where
+// the echoes' leakage (the range and Doppler windows' sidelobes, summed coherently over target
+// and fog) outweighs both the main-lobe echoes and the noise (radar/attribution.hpp).
+enum class Origin : std::uint8_t {
+  noise = 0,
+  target = 1,
+  fog = 2,
+  background = 3,
+  clipping = 4,
+  sidelobe = 5
+};
 
-inline constexpr std::array<std::string_view, 5> origin_names{"noise", "target", "fog",
-                                                              "background", "clipping"};
+inline constexpr std::array<std::string_view, 6> origin_names{"noise",      "target",   "fog",
+                                                              "background", "clipping", "sidelobe"};
 
-// "noise", "target", "fog", "background", "clipping".
+// "noise", "target", "fog", "background", "clipping", "sidelobe".
 constexpr std::string_view to_string(Origin origin) noexcept {
   const auto code = static_cast<std::size_t>(origin);
   return code < origin_names.size() ? origin_names[code] : "?";

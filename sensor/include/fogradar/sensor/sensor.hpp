@@ -114,7 +114,7 @@ struct FogReport {
 // One kind of raw data a sensor can write per item (docs/data-out.md): an array of `shape` per
 // item, or a table of rows per item (element = table). The run's HDF5 file holds it as
 // /<sensor>/<name>, indexed [active_layers, item, ...].
-enum class RawElement { complex128, float64, uint8, table };
+enum class RawElement { complex128, float64, uint8, table, int16 };
 
 struct RawAxis {
   std::string name;  // dataset /<sensor>/<name>, attached to its dimension
@@ -144,7 +144,8 @@ struct RawKind {
   // Kept when no kinds are named (--raw without --raw-select); false: only when asked for by name.
   bool by_default = true;
   // uint8 arrays: non-empty, an enumeration, the value its label's index (the origin maps:
-  // sensor::origin_labels()).
+  // sensor::origin_labels()). int16 arrays hold small signed indices (the radar's fog layer per
+  // cell, -1 where none).
   std::vector<std::string> labels = {};
 
   std::size_t item_values() const;  // product of `shape`
@@ -160,6 +161,7 @@ class RawSink {
   virtual void write(std::size_t kind, std::span<const std::complex<double>> values) = 0;
   virtual void write(std::size_t kind, std::span<const double> values) = 0;
   virtual void write(std::size_t kind, std::span<const std::uint8_t> values) = 0;
+  virtual void write(std::size_t kind, std::span<const std::int16_t> values) = 0;
   // Table rows, row-major, one value per column (integers and labels by their index).
   virtual void append_rows(std::size_t kind, std::span<const double> rows) = 0;
 };
