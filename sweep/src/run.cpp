@@ -648,6 +648,7 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
   const detail::SweepDirectory out(dir, mode, definitions, shard ? shard->index : 0);
   out.write_table("sweep.toml", spec.text);
   detail::write_origin(out, spec.directory);
+  if (options.opened) options.opened();
   // A shard's points: every count-th of the cost order, so that each share has as many costly ones.
   std::vector<std::size_t> mine;
   if (shard) {
