@@ -300,7 +300,8 @@ class SampledPfa {
  public:
   SampledPfa(const CfarConfig& config, const NoiseCorrelation& noise,
              std::span<const std::ptrdiff_t> offsets, double tilt_alpha,
-             std::span<const std::complex<double>> draws) {
+             std::span<const std::complex<double>> draws, const StopToken& stop)
+      : stop_(stop) {
     const std::size_t big_n = offsets.size();
     const auto size = static_cast<Eigen::Index>(big_n);
     std::vector<std::ptrdiff_t> positions(offsets.begin(), offsets.end());
@@ -366,6 +367,7 @@ class SampledPfa {
     std::vector<std::complex<double>> u(big_n);
     std::vector<double> x(big_n), scratch;
     for (std::size_t i = 0; i < kSamples; ++i) {
+      stop.check();
       const std::size_t c = i * components / kSamples;  // contiguous blocks per component
       const std::complex<double>* z = draws.data() + i * big_n;
       std::complex<double> mu = 0.0;
@@ -421,6 +423,7 @@ class SampledPfa {
 
   // log P_fa at factor alpha: log((1/K) sum_i w_i Q_1,i).
   double operator()(double alpha) const {
+    stop_.check();
     LogSum sum;
     for (std::size_t i = 0; i < kSamples; ++i)
       sum.add(log_weight_[i] + log_marcum_q1_tail(lambda_[i], alpha * scaled_noise_[i]));
@@ -428,6 +431,7 @@ class SampledPfa {
   }
 
  private:
+  StopToken stop_;
   std::vector<double> log_weight_;
   std::vector<double> scaled_noise_;
   std::vector<double> lambda_;
@@ -450,31 +454,39 @@ double log_pfa_ca_for(const NoiseCorrelation& noise, std::span<const std::ptrdif
 }
 
 double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise,
-                 std::span<const std::ptrdiff_t> offsets, double independent_factor) {
+                 std::span<const std::ptrdiff_t> offsets, double independent_factor,
+                 const StopToken& stop) {
   std::vector<std::ptrdiff_t> positions{0};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   const Matrix factor = cholesky_factor(correlation_matrix(noise, positions));
-  return solve_threshold_factor([&](double alpha) { return log_pfa_ca_exact(factor, alpha); },
-                      config.false_alarm_probability, independent_factor);
+  return solve_threshold_factor(
+      [&](double alpha) {
+        stop.check();
+        return log_pfa_ca_exact(factor, alpha);
+      },
+      config.false_alarm_probability, independent_factor);
 }
 
 // The factor whose tilts the sampled estimate uses: the kind's independent-cell factor scaled by
 // what the correlation does to CA's exact factor in the same geometry (the sampled factors land
 // within a few % of it, so the tilts sit where the estimate's mass is).
 double tilt_factor(const CfarConfig& config, const NoiseCorrelation& noise,
-                   std::span<const std::ptrdiff_t> offsets, double independent_factor) {
+                   std::span<const std::ptrdiff_t> offsets, double independent_factor,
+                   const StopToken& stop) {
   CfarConfig ca = config;
   ca.kind = CfarKind::ca;
   const double ca_independent = cfar_threshold_factor(ca);
-  return independent_factor * ca_factor(ca, noise, offsets, ca_independent) / ca_independent;
+  return independent_factor * ca_factor(ca, noise, offsets, ca_independent, stop) /
+         ca_independent;
 }
 
 double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise,
                          std::span<const std::ptrdiff_t> offsets, double independent_factor,
-                         std::span<const std::complex<double>> draws) {
-  if (config.kind == CfarKind::ca) return ca_factor(config, noise, offsets, independent_factor);
-  const double start = tilt_factor(config, noise, offsets, independent_factor);
-  const SampledPfa pfa(config, noise, offsets, start, draws);
+                         std::span<const std::complex<double>> draws, const StopToken& stop) {
+  if (config.kind == CfarKind::ca)
+    return ca_factor(config, noise, offsets, independent_factor, stop);
+  const double start = tilt_factor(config, noise, offsets, independent_factor, stop);
+  const SampledPfa pfa(config, noise, offsets, start, draws, stop);
   return solve_threshold_factor([&](double alpha) { return pfa(alpha); },
                                 config.false_alarm_probability, start);
 }
@@ -492,11 +504,12 @@ double correlated_false_alarm_probability(const CfarConfig& config, const NoiseC
     return std::exp(log_pfa_ca_for(noise, offsets, alpha));
   }
   const std::vector<std::complex<double>> draws = standard_draws(offsets.size(), seed);
-  return std::exp(SampledPfa(config, noise, offsets, alpha, draws)(alpha));
+  return std::exp(SampledPfa(config, noise, offsets, alpha, draws, StopToken())(alpha));
 }
 
 CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
-                                                   const NoiseCorrelation& noise) {
+                                                   const NoiseCorrelation& noise,
+                                                   const StopToken& stop) {
   config.validate();
   noise.validate();
   const double independent = cfar_threshold_factor(config);
@@ -517,7 +530,7 @@ CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
     for (const auto& [known, factor] : solved) {
       if (known == offsets) return factor;
     }
-    const double factor = correlated_factor(config, noise, offsets, independent, draws);
+    const double factor = correlated_factor(config, noise, offsets, independent, draws, stop);
     solved.emplace_back(std::move(offsets), factor);
     return factor;
   };

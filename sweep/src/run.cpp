@@ -103,7 +103,7 @@ Table parse_csv(const std::string& text) {
 json run_once(const experiment::Scenario& scenario, const propagation::SegelsteinTable& water,
               experiment::SensorCache& cache, const SweepOptions& options, bool with_curves,
               std::vector<sensor::ResultFile>* keep) {
-  const experiment::Simulation simulation(scenario, water, &cache);
+  const experiment::Simulation simulation(scenario, water, &cache, options.stop);
   const experiment::ExperimentResult result = simulation.run(
       {.threads = options.threads, .progress = {}, .stop = options.stop, .raw = nullptr});
   const experiment::ExperimentSummary summary = experiment::summarize(result);
