@@ -51,6 +51,7 @@ sweep::SweepOptions run_options(const SweepOptions& options, experiment::SensorC
                                 : 0,
       .time_limit_seconds = options.time_limit_s,
       .stop = nullptr,
+      .opened = {},
       .progress = print_progress,
       .cache = &cache};
 }
@@ -94,8 +95,10 @@ void sweep_on_mpi(const SweepOptions& options) {
     job.settle([&] {
       spec = sweep::load_sweep_file(options.sweep_path);
       points = sweep::expand(*spec);
-      std::cout << "sweep: " << sweep::estimate(*spec, points, run).text() << " (on each of "
-                << job.size() << " rank" << (job.size() == 1 ? "" : "s") << ")" << std::endl;
+      const std::string said = "sweep: " + sweep::estimate(*spec, points, run).text() +
+                               " (on each of " + std::to_string(job.size()) + " rank" +
+                               (job.size() == 1 ? "" : "s") + ")";
+      run.opened = [said] { std::cout << said << std::endl; };
     });
   } catch (const InvalidParameter& e) {
     std::cerr << "fogradar: " << e.what() << std::endl;
@@ -148,8 +151,9 @@ void sweep(const SweepOptions& options) {
   const std::vector<sweep::Point> points = sweep::expand(spec);
   experiment::SensorCache cache;
   sweep::SweepOptions run = run_options(options, cache);
-  const sweep::SweepEstimate estimate = sweep::estimate(spec, points, run);
-  std::cout << "sweep: " << estimate.text() << std::endl;
+  const std::string said = "sweep: " + sweep::estimate(spec, points, run).text();
+  // Said once --out is accepted too, so that a refused sweep prints its message alone.
+  run.opened = [said] { std::cout << said << std::endl; };
   const SignalWatch signals;
   run.stop = &signals.stop();
   const sweep::SweepOutcome outcome = interruptible(signals, options.out_dir, [&] {

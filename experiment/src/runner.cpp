@@ -90,7 +90,7 @@ std::string sensor_identity(const Scenario& scenario, const SensorSetting& setti
 
 std::shared_ptr<const sensor::Sensor> SensorCache::sensor(
     const Scenario& scenario, const SensorSetting& setting, const sensor::Context& context,
-    const propagation::SegelsteinTable& water) {
+    const propagation::SegelsteinTable& water, const StopToken& stop) {
   std::string identity = sensor_identity(scenario, setting);
   {
     const std::lock_guard lock(mutex_);
@@ -102,7 +102,8 @@ std::shared_ptr<const sensor::Sensor> SensorCache::sensor(
       return made_.back().second;
     }
   }
-  std::shared_ptr<const sensor::Sensor> made = setting.type->make(setting.params, context, water);
+  std::shared_ptr<const sensor::Sensor> made =
+      setting.type->make_or_stop(setting.params, context, water, stop);
   const std::lock_guard lock(mutex_);
   if (made_.size() == capacity) made_.erase(made_.begin());
   made_.emplace_back(std::move(identity), made);
@@ -113,16 +114,21 @@ Simulation::Simulation(Scenario scenario)
     : Simulation(std::move(scenario), propagation::SegelsteinTable(), nullptr) {}
 
 Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& water,
-                       SensorCache* cache)
+                       SensorCache* cache, const std::atomic<bool>* stop)
     : scenario_(std::move(scenario)) {
   scenario_.validate();
   context_ = scenario_.context();
+  const StopToken token(stop);
   for (const std::string& name : scenario_.experiment.sensors) {
     const SensorSetting& setting = scenario_.setting(name);
-    sensors_.push_back({setting.type,
-                        cache ? cache->sensor(scenario_, setting, context_, water)
-                              : setting.type->make(setting.params, context_, water),
-                        nullptr});
+    try {
+      sensors_.push_back({setting.type,
+                          cache ? cache->sensor(scenario_, setting, context_, water, token)
+                                : setting.type->make_or_stop(setting.params, context_, water, token),
+                          nullptr});
+    } catch (const Stopped&) {
+      throw Interrupted();
+    }
   }
 }
 
@@ -179,7 +185,7 @@ void ItemRun::measure(std::size_t step, std::size_t index, sensor::RawSink* raw)
 }
 
 ExperimentResult run_experiment(const Scenario& scenario, const RunOptions& options) {
-  return Simulation(scenario).run(options);
+  return Simulation(scenario, propagation::SegelsteinTable(), nullptr, options.stop).run(options);
 }
 
 std::string item_nouns(const Scenario& scenario) {

@@ -663,8 +663,10 @@ double cfar_threshold_factor(const CfarConfig& config) {
 
 CfarDetector::CfarDetector(const CfarConfig& config) : CfarDetector(config, NoiseCorrelation{}) {}
 
-CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise) : config_(config) {
-  CfarThresholdFactors factors = design_cfar_threshold_factors(config, noise);
+CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise,
+                           const StopToken& stop)
+    : config_(config) {
+  CfarThresholdFactors factors = design_cfar_threshold_factors(config, noise, stop);
   alpha_ = factors.interior;
   edge_alpha_ = std::move(factors.edge);
   // The scale of the sums' thresholds: CA divides by N, GO/SO by n (the sums are of n cells).

@@ -300,7 +300,8 @@ class SampledPfa {
  public:
   SampledPfa(const CfarConfig& config, const NoiseCorrelation& noise,
              std::span<const std::ptrdiff_t> offsets, double tilt_alpha,
-             std::span<const std::complex<double>> draws) {
+             std::span<const std::complex<double>> draws, const StopToken& stop)
+      : stop_(stop) {
     const std::size_t big_n = offsets.size();
     const auto size = static_cast<Eigen::Index>(big_n);
     std::vector<std::ptrdiff_t> positions(offsets.begin(), offsets.end());
@@ -363,9 +364,27 @@ class SampledPfa {
     scaled_noise_.resize(kSamples);
     lambda_.resize(kSamples);
     FOGRADAR_CHECK(draws.size() == kSamples * big_n);
+    // The products below skip the exact zeros outside each row's nonzero span: the noise itself
+    // has H = I, and Lr, the Cholesky factor of a correlation matrix of finite lag, is banded. A
+    // skipped term is +-0, so the sums' values are the same.
+    std::vector<std::vector<Eigen::Index>> upper_end(upper.size());
+    for (std::size_t c = 0; c < upper.size(); ++c) {
+      for (Eigen::Index j = 0; j < size; ++j) {
+        Eigen::Index end = size;
+        while (end > j + 1 && upper[c](j, end - 1) == 0.0) --end;
+        upper_end[c].push_back(end);
+      }
+    }
+    std::vector<Eigen::Index> lr_begin;
+    for (Eigen::Index j = 0; j < size; ++j) {
+      Eigen::Index begin = 0;
+      while (begin < j && lr(j, begin) == 0.0) ++begin;
+      lr_begin.push_back(begin);
+    }
     std::vector<std::complex<double>> u(big_n);
     std::vector<double> x(big_n), scratch;
     for (std::size_t i = 0; i < kSamples; ++i) {
+      stop.check();
       const std::size_t c = i * components / kSamples;  // contiguous blocks per component
       const std::complex<double>* z = draws.data() + i * big_n;
       std::complex<double> mu = 0.0;
@@ -375,13 +394,14 @@ class SampledPfa {
         for (std::size_t jj = big_n; jj-- > 0;) {
           const auto j = static_cast<Eigen::Index>(jj);
           std::complex<double> value = z[jj];
-          for (Eigen::Index k = j + 1; k < size; ++k)
+          for (Eigen::Index k = j + 1; k < upper_end[c][jj]; ++k)
             value -= ht(j, k) * u[static_cast<std::size_t>(k)];
           u[jj] = value / ht(j, j);
         }
         for (Eigen::Index j = 0; j < size; ++j) {
           std::complex<double> r = 0.0;
-          for (Eigen::Index k = 0; k <= j; ++k) r += lr(j, k) * u[static_cast<std::size_t>(k)];
+          for (Eigen::Index k = lr_begin[static_cast<std::size_t>(j)]; k <= j; ++k)
+            r += lr(j, k) * u[static_cast<std::size_t>(k)];
           x[static_cast<std::size_t>(j)] = std::norm(r);
           mu += l(j) * u[static_cast<std::size_t>(j)];
         }
@@ -421,6 +441,7 @@ class SampledPfa {
 
   // log P_fa at factor alpha: log((1/K) sum_i w_i Q_1,i).
   double operator()(double alpha) const {
+    stop_.check();
     LogSum sum;
     for (std::size_t i = 0; i < kSamples; ++i)
       sum.add(log_weight_[i] + log_marcum_q1_tail(lambda_[i], alpha * scaled_noise_[i]));
@@ -428,6 +449,7 @@ class SampledPfa {
   }
 
  private:
+  StopToken stop_;
   std::vector<double> log_weight_;
   std::vector<double> scaled_noise_;
   std::vector<double> lambda_;
@@ -450,31 +472,39 @@ double log_pfa_ca_for(const NoiseCorrelation& noise, std::span<const std::ptrdif
 }
 
 double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise,
-                 std::span<const std::ptrdiff_t> offsets, double independent_factor) {
+                 std::span<const std::ptrdiff_t> offsets, double independent_factor,
+                 const StopToken& stop) {
   std::vector<std::ptrdiff_t> positions{0};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   const Matrix factor = cholesky_factor(correlation_matrix(noise, positions));
-  return solve_threshold_factor([&](double alpha) { return log_pfa_ca_exact(factor, alpha); },
-                      config.false_alarm_probability, independent_factor);
+  return solve_threshold_factor(
+      [&](double alpha) {
+        stop.check();
+        return log_pfa_ca_exact(factor, alpha);
+      },
+      config.false_alarm_probability, independent_factor);
 }
 
 // The factor whose tilts the sampled estimate uses: the kind's independent-cell factor scaled by
 // what the correlation does to CA's exact factor in the same geometry (the sampled factors land
 // within a few % of it, so the tilts sit where the estimate's mass is).
 double tilt_factor(const CfarConfig& config, const NoiseCorrelation& noise,
-                   std::span<const std::ptrdiff_t> offsets, double independent_factor) {
+                   std::span<const std::ptrdiff_t> offsets, double independent_factor,
+                   const StopToken& stop) {
   CfarConfig ca = config;
   ca.kind = CfarKind::ca;
   const double ca_independent = cfar_threshold_factor(ca);
-  return independent_factor * ca_factor(ca, noise, offsets, ca_independent) / ca_independent;
+  return independent_factor * ca_factor(ca, noise, offsets, ca_independent, stop) /
+         ca_independent;
 }
 
 double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise,
                          std::span<const std::ptrdiff_t> offsets, double independent_factor,
-                         std::span<const std::complex<double>> draws) {
-  if (config.kind == CfarKind::ca) return ca_factor(config, noise, offsets, independent_factor);
-  const double start = tilt_factor(config, noise, offsets, independent_factor);
-  const SampledPfa pfa(config, noise, offsets, start, draws);
+                         std::span<const std::complex<double>> draws, const StopToken& stop) {
+  if (config.kind == CfarKind::ca)
+    return ca_factor(config, noise, offsets, independent_factor, stop);
+  const double start = tilt_factor(config, noise, offsets, independent_factor, stop);
+  const SampledPfa pfa(config, noise, offsets, start, draws, stop);
   return solve_threshold_factor([&](double alpha) { return pfa(alpha); },
                                 config.false_alarm_probability, start);
 }
@@ -492,11 +522,12 @@ double correlated_false_alarm_probability(const CfarConfig& config, const NoiseC
     return std::exp(log_pfa_ca_for(noise, offsets, alpha));
   }
   const std::vector<std::complex<double>> draws = standard_draws(offsets.size(), seed);
-  return std::exp(SampledPfa(config, noise, offsets, alpha, draws)(alpha));
+  return std::exp(SampledPfa(config, noise, offsets, alpha, draws, StopToken())(alpha));
 }
 
 CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
-                                                   const NoiseCorrelation& noise) {
+                                                   const NoiseCorrelation& noise,
+                                                   const StopToken& stop) {
   config.validate();
   noise.validate();
   const double independent = cfar_threshold_factor(config);
@@ -517,7 +548,7 @@ CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
     for (const auto& [known, factor] : solved) {
       if (known == offsets) return factor;
     }
-    const double factor = correlated_factor(config, noise, offsets, independent, draws);
+    const double factor = correlated_factor(config, noise, offsets, independent, draws, stop);
     solved.emplace_back(std::move(offsets), factor);
     return factor;
   };
@@ -540,14 +571,24 @@ double cfar_design_seconds(const CfarConfig& config, const NoiseCorrelation& noi
   // tilt factor and the quadratic tilts) and a fixed overhead.
   const double exact = geometries * (2.2e-5 + 12.0 * 3.8e-10 * cells * cells * cells);
   if (config.kind == CfarKind::ca) return exact;
-  // Per sample: the reference vector (N^2 products) and ~15 evaluations of the conditional tail:
-  // Marcum evaluations where the cell under test is correlated with a reference cell (a lag in
+  // Per sample: the reference vector and ~15 evaluations of the conditional tail: Marcum
+  // evaluations where the cell under test is correlated with a reference cell (a lag in
   // [guard + 1, guard + N]), else the closed form e^-y.
   bool correlated_cut = false;
   for (std::size_t m = std::size_t{config.guard_cells} + 1; m <= config.guard_cells + big_n; ++m)
     correlated_cut = correlated_cut || noise.at(static_cast<std::ptrdiff_t>(m)) != 0.0;
-  const double per_sample = 0.75e-9 * static_cast<double>(big_n * big_n) +
-                            (correlated_cut ? 1.1e-6 : 1.7e-7);
+  // The reference vector's products, averaged over the mixture's components (SampledPfa): the
+  // noise itself one banded product (N x the band, at most N^2 / 2), each tilt a dense back
+  // substitution (N^2 / 2) and the banded product, each quadratic tilt a dense product (N^2 / 2).
+  const double n_cells = static_cast<double>(big_n);
+  const double lags = static_cast<double>(noise.coefficients.size());
+  const double banded = n_cells * std::min(lags, 0.5 * (n_cells + 1.0));
+  const double dense = 0.5 * n_cells * n_cells;
+  const double tilts = config.kind == CfarKind::so ? 2.0 : config.kind == CfarKind::os ? 3.0 : 1.0;
+  const double quadratic = correlated_cut ? tilts : 0.0;
+  const double products =
+      (banded + tilts * (dense + banded) + quadratic * dense) / (1.0 + tilts + quadratic);
+  const double per_sample = 0.75e-9 * products + (correlated_cut ? 1.1e-6 : 1.7e-7);
   return exact + geometries * static_cast<double>(kSamples) * per_sample;
 }
 

@@ -10,13 +10,15 @@ namespace fogradar::radar {
 
 // The CFAR runs along range in every Doppler row, so its cells are correlated by the range window
 // (noise_correlation.hpp); the widest reference geometry spans guard + N cells.
-RadarChain::RadarChain(const RadarParams& params, FftPlanner planner)
+RadarChain::RadarChain(const RadarParams& params, FftPlanner planner, const StopToken& stop)
     : params_(params),
       derived_(derive(params)),
       processor_(params, planner),
-      cfar_(params.cfar, window_noise_correlation(
-                             processor_.range_window(),
-                             std::size_t{params.cfar.guard_cells} + params.cfar.reference_cells())),
+      cfar_(params.cfar,
+            window_noise_correlation(
+                processor_.range_window(),
+                std::size_t{params.cfar.guard_cells} + params.cfar.reference_cells()),
+            stop),
       origin_classifier_(processor_, params_, derived_) {}
 
 void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber& chamber) const {

@@ -317,7 +317,15 @@ class Type : public sensor::SensorType {
   std::shared_ptr<const sensor::Sensor> make(
       const std::any& params, const sensor::Context& context,
       const propagation::SegelsteinTable& water) const override {
-    return std::make_shared<RadarSensor>(sensor::params_of<SensorParams>(params), context, water);
+    return make_or_stop(params, context, water, StopToken());
+  }
+
+  std::shared_ptr<const sensor::Sensor> make_or_stop(const std::any& params,
+                                                     const sensor::Context& context,
+                                                     const propagation::SegelsteinTable& water,
+                                                     const StopToken& stop) const override {
+    return std::make_shared<RadarSensor>(sensor::params_of<SensorParams>(params), context, water,
+                                         stop);
   }
 
  private:
@@ -558,12 +566,12 @@ std::vector<sensor::RawKind> radar_raw_kinds(const SensorParams& params) {
 }
 
 RadarSensor::RadarSensor(const SensorParams& params, const sensor::Context& context,
-                         const propagation::SegelsteinTable& water)
+                         const propagation::SegelsteinTable& water, const StopToken& stop)
     : params_(params),
       context_(context),
       scene_(make_scene(params.target, params.clutter_scatterers_per_bin)),
       chamber_(context.chamber, params.radar.centre_frequency_hz, water),
-      chain_(params.radar) {
+      chain_(params.radar, FftPlanner::shipped_wisdom, stop) {
   chain_.check_compatible(scene_, chamber_);
   for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
   // The films take the water index of the fog next to them, at the sweep centre: its model and

@@ -191,6 +191,7 @@ SweepOutcome run_sweep(MpiJob& job, const SweepSpec& spec, const std::vector<Poi
                                                    definitions);
     out->write_table("sweep.toml", spec.text);
     detail::write_origin(*out, spec.directory);
+    if (options.opened) options.opened();
     if (!options.resume) return;
     std::vector<std::size_t> all(points.size());
     std::iota(all.begin(), all.end(), std::size_t{0});

@@ -103,7 +103,7 @@ Table parse_csv(const std::string& text) {
 json run_once(const experiment::Scenario& scenario, const propagation::SegelsteinTable& water,
               experiment::SensorCache& cache, const SweepOptions& options, bool with_curves,
               std::vector<sensor::ResultFile>* keep) {
-  const experiment::Simulation simulation(scenario, water, &cache);
+  const experiment::Simulation simulation(scenario, water, &cache, options.stop);
   const experiment::ExperimentResult result = simulation.run(
       {.threads = options.threads, .progress = {}, .stop = options.stop, .raw = nullptr});
   const experiment::ExperimentSummary summary = experiment::summarize(result);
@@ -646,6 +646,7 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
   const detail::SweepDirectory out(dir, mode, definitions, shard ? shard->index : 0);
   out.write_table("sweep.toml", spec.text);
   detail::write_origin(out, spec.directory);
+  if (options.opened) options.opened();
   // A shard's points: every count-th of the cost order, so that each share has as many costly ones.
   std::vector<std::size_t> mine;
   if (shard) {

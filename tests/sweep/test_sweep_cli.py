@@ -16,7 +16,8 @@
   the single run's values exactly; with the fog's extinction drawn uniformly (Latin hypercube), the
   quantiles of the radar's loss lie within the bounds the strata give (`fogradar fog` at the edges);
 - a bad sweep file: exit 2, one message with file and line, nothing written; a sweep over the memory
-  limit: exit 2, nothing written; a file of the user's in the output directory: refused, kept.
+  or time limit: exit 2, nothing written; a file of the user's in the output directory, or a file
+  as --out: refused, kept; every refusal prints its one message and nothing on stdout.
 
 Usage: test_sweep_cli.py FOGRADAR SOURCE_DIR"""
 import csv
@@ -271,6 +272,19 @@ high = 1000.0
     done = sweep(forward, mine, expect=2)
     check("--out" in done.stderr and "notes.txt" in done.stderr, f"user's file: {done.stderr!r}")
     check(os.listdir(mine) == ["notes.txt"], f"the user's directory now holds {os.listdir(mine)}")
+    # A refused sweep prints its one message and nothing else: no estimate line before it.
+    check(done.stdout == "" and done.stderr.count("\n") == 1,
+          f"refused --out with the user's file printed {done.stdout!r} {done.stderr!r}")
+    a_file = os.path.join(work, "a-file")
+    with open(a_file, "w") as f:
+        f.write("mine")
+    done = sweep(forward, a_file, expect=2)
+    check(done.stdout == "" and done.stderr.count("\n") == 1
+          and f"--out = '{a_file}'" in done.stderr and "a directory" in done.stderr,
+          f"--out naming a file: {done.stdout!r} {done.stderr!r}")
+    done = sweep(forward, nowhere, "--time-limit", "0.001", expect=2)
+    check(done.stdout == "" and done.stderr.count("\n") == 1 and "--time-limit" in done.stderr
+          and not os.path.exists(nowhere), f"over the time limit: {done.stdout!r} {done.stderr!r}")
 
 print(f"{len(failures)} failures")
 sys.exit(1 if failures else 0)

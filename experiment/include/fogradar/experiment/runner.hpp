@@ -66,10 +66,12 @@ std::string sensor_identity(const Scenario& scenario, const SensorSetting& setti
 class SensorCache {
  public:
   static constexpr std::size_t capacity = 16;
+  // The cached sensor, or one made now (throws Stopped when `stop` is asked for while it is made).
   std::shared_ptr<const sensor::Sensor> sensor(const Scenario& scenario,
                                                const SensorSetting& setting,
                                                const sensor::Context& context,
-                                               const propagation::SegelsteinTable& water);
+                                               const propagation::SegelsteinTable& water,
+                                               const StopToken& stop = StopToken());
 
  private:
   std::mutex mutex_;
@@ -84,8 +86,10 @@ class Simulation {
   // Validates the scenario (InvalidParameter) and makes every sensor experiment.sensors names.
   explicit Simulation(Scenario scenario);
   // The same with a water table made once for many simulations, and sensors from `cache` where it
-  // has them.
-  Simulation(Scenario scenario, const propagation::SegelsteinTable& water, SensorCache* cache);
+  // has them. When `stop` (RunOptions::stop) is set while a sensor is made (the radar's CFAR design
+  // can take a while), throws Interrupted.
+  Simulation(Scenario scenario, const propagation::SegelsteinTable& water, SensorCache* cache,
+             const std::atomic<bool>* stop = nullptr);
 
   const Scenario& scenario() const { return scenario_; }
   const sensor::Context& context() const { return context_; }

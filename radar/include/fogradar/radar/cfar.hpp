@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "fogradar/core/keys.hpp"
+#include "fogradar/core/stop.hpp"
 #include "fogradar/radar/noise_correlation.hpp"
 
 namespace fogradar::radar {
@@ -136,8 +137,10 @@ class CfarDetector {
   explicit CfarDetector(const CfarConfig& config);
   // For profiles whose noise cells are correlated as `noise` says (window_noise_correlation of the
   // range window for a range profile): the factors of design_cfar_threshold_factors, one for the
-  // interior cells and one per edge position. Validates both.
-  CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise);
+  // interior cells and one per edge position. Validates both. Throws Stopped when `stop` is asked
+  // for during the design.
+  CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise,
+               const StopToken& stop = StopToken());
 
   const CfarConfig& config() const noexcept { return config_; }
   // The interior cells' factor.

@@ -45,6 +45,7 @@
 #include <span>
 #include <vector>
 
+#include "fogradar/core/stop.hpp"
 #include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/noise_correlation.hpp"
 
@@ -85,16 +86,21 @@ double log_marcum_q1_tail(double lambda, double y);
 
 // The factors that give the design P_fa in every cell: the independent-cell factor of
 // cfar_threshold_factor everywhere when config.threshold_design is `independent` or the noise is
-// white (then exact for all kinds), else solved per reference geometry (header comment).
+// white (then exact for all kinds), else solved per reference geometry (header comment). Looks at
+// `stop` before every sample it draws and every evaluation of a P_fa, and throws Stopped when it is
+// asked for: within a second while one sample or evaluation takes less (measured up to 512 training
+// cells; docs/radar.md §7).
 CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
-                                                   const NoiseCorrelation& noise);
+                                                   const NoiseCorrelation& noise,
+                                                   const StopToken& stop = StopToken());
 
 // The CPU seconds design_cfar_threshold_factors takes for this config and noise, a cost model for
 // the run-time estimate (constants fitted in Release on the project's shared 2-core machine to
-// within 0.5-2 x for n = 4-24, g = 0 and 2, every window and kind; docs/radar.md §7): 0 where the
+// within 0.54-1.9 x for n = 4-32, g = 0 and 2, every window and kind; docs/radar.md §7): 0 where the
 // iid factors serve; per distinct geometry (n + 1) CA's eigenvalue solves, ~12 x (N + 1)^3, and
-// for GO/SO/OS 2^14 samples x (N^2 products + ~15 conditional tails, Marcum evaluations where the
-// cell under test is correlated with a reference cell).
+// for GO/SO/OS 2^14 samples x (the reference vector's products, N^2 / 2 per tilted component and
+// N x the correlation's band for the noise itself, + ~15 conditional tails, Marcum evaluations
+// where the cell under test is correlated with a reference cell).
 double cfar_design_seconds(const CfarConfig& config, const NoiseCorrelation& noise);
 
 }  // namespace fogradar::radar

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fogradar/core/random.hpp"
+#include "fogradar/core/stop.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/radar/attribution.hpp"
 #include "fogradar/radar/estimation.hpp"
@@ -55,7 +56,9 @@ struct FrameTaps {
 
 class RadarChain {
  public:
-  explicit RadarChain(const RadarParams& params, FftPlanner planner = FftPlanner::shipped_wisdom);
+  // Throws Stopped when `stop` is asked for while the CFAR threshold is designed.
+  explicit RadarChain(const RadarParams& params, FftPlanner planner = FftPlanner::shipped_wisdom,
+                      const StopToken& stop = StopToken());
 
   const RadarParams& params() const { return params_; }
   const RadarDerived& derived() const { return derived_; }

@@ -85,8 +85,9 @@ class RadarReport : public sensor::SensorSummary {
 // (FFT plans, windows, CFAR design), made once and shared by every run and worker.
 class RadarSensor : public sensor::Sensor, public std::enable_shared_from_this<RadarSensor> {
  public:
+  // Throws Stopped when `stop` is asked for while the chain's CFAR threshold is designed.
   RadarSensor(const SensorParams& params, const sensor::Context& context,
-              const propagation::SegelsteinTable& water);
+              const propagation::SegelsteinTable& water, const StopToken& stop = StopToken());
 
   std::size_t items_per_step() const override { return context_.measurements_per_step; }
   std::unique_ptr<sensor::SensorRun> begin_run() const override;

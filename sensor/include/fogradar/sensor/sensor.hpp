@@ -260,6 +260,14 @@ class SensorType {
   // not kept.
   virtual std::shared_ptr<const Sensor> make(const std::any& params, const Context& context,
                                              const propagation::SegelsteinTable& water) const = 0;
+  // The same, honouring `stop` (throws Stopped) inside set-up work that can be long (the radar's
+  // CFAR design); a type whose making is short makes the sensor as above.
+  virtual std::shared_ptr<const Sensor> make_or_stop(const std::any& params, const Context& context,
+                                                     const propagation::SegelsteinTable& water,
+                                                     const StopToken& stop) const {
+    stop.check();
+    return make(params, context, water);
+  }
 };
 
 // A sensor's parameters inside the std::any experiment/ carries.

@@ -45,6 +45,9 @@ struct SweepOptions {
   double time_limit_seconds = 0.0;
   // Set by another thread (a signal): the sweep stops at its next item; experiment::Interrupted.
   const std::atomic<bool>* stop = nullptr;
+  // Once the output directory is accepted, before any point runs (on rank 0 under MPI): where a
+  // caller says what the sweep will do, so that a refused sweep prints its message alone.
+  std::function<void()> opened;
   // After each point: (points committed, points in all, seconds so far of this invocation's
   // points).
   std::function<void(std::size_t, std::size_t, double)> progress;
