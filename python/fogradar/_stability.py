@@ -17,8 +17,9 @@ class StabilityReport:
     table       a DataFrame, a row per step: items, detection_rate (items with a target-origin
                 detection within the gate of the target's range), false_alarms_per_item (fog,
                 noise, sidelobe and clipping detections) with its fog_, noise_ and
-                sidelobe_false_alarms_per_item and clipping_detections_per_item parts, background_detections_per_item (static
-                surfaces such as the lidar's walls: real echoes, not false alarms), the spread of
+                sidelobe_false_alarms_per_item and clipping_detections_per_item parts,
+                background_detections_per_item (static surfaces such as the lidar's walls: real
+                echoes, not false alarms), the spread of
                 the target detections' values (value_n, value_median, value_q1, value_q3,
                 value_std, value_min, value_max; fogradar's type-7 box-plot statistics) and, where
                 the measurements kept a detection table with an ``associated`` column,
