@@ -189,11 +189,12 @@ void radar_chain() {
   }
   report("radar chain (radar sensor.cpp chain_seconds)", "chain", "cell", cases);
   // The design's own cost model (cfar_design.hpp, cfar_design_seconds) as the one count: a fitted
-  // scale near 1 says its constants still hold on this machine, for guard_cells 0 and 2.
+  // scale near 1 says its constants still hold on this machine, for guard_cells 0 and 2, solved at
+  // n (4-16 training cells) and at an anchor (64 and 128).
   for (const auto kind : {radar::CfarKind::ca, radar::CfarKind::go}) {
     std::vector<Case> design;
     for (const unsigned guard : {0u, 2u}) {
-      for (const unsigned training : {4u, 8u, 16u}) {
+      for (const unsigned training : {4u, 8u, 16u, 64u, 128u}) {
         experiment::Scenario s = only("radar");
         radar::RadarParams& p = radar_of(s).radar;
         p.cfar.kind = kind;
@@ -209,7 +210,7 @@ void radar_chain() {
         c.modelled = radar::cfar_design_seconds(
             p.cfar, radar::window_noise_correlation(
                         radar::make_window(p.window, p.samples_per_chirp),
-                        std::size_t{p.cfar.guard_cells} + p.cfar.reference_cells()));
+                        radar::cfar_correlation_lags(p.cfar)));
         c.x1 = c.modelled;
         design.push_back(c);
       }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fogradar/core/error.hpp"
+#include "fogradar/radar/cfar_design.hpp"
 
 namespace fogradar::radar {
 
@@ -17,7 +18,7 @@ RadarChain::RadarChain(const RadarParams& params, FftPlanner planner, const Stop
       cfar_(params.cfar,
             window_noise_correlation(
                 processor_.range_window(),
-                std::size_t{params.cfar.guard_cells} + params.cfar.reference_cells()),
+                cfar_correlation_lags(params.cfar)),
             stop),
       origin_classifier_(processor_, params_, derived_) {}
 

@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "fogradar/core/error.hpp"
 
@@ -43,15 +44,25 @@ NoiseCorrelation window_noise_correlation(std::span<const double> window, std::s
   NoiseCorrelation result;
   result.coefficients.assign(lags, 0.0);
   result.coefficients[0] = 1.0;
+  // The twiddles e^{-i 2 pi k / N} for k = m j mod N (which keeps the argument in [0, 2 pi) at full
+  // precision), tabulated once: a lag costs N multiply-adds, not N sines and cosines.
+  std::vector<double> cosines(n), sines(n), power(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double phase =
+        2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
+    cosines[k] = std::cos(phase);
+    sines[k] = std::sin(phase);
+    power[k] = window[k] * window[k];
+  }
   for (std::size_t m = 1; m < lags; ++m) {
     double real = 0.0;
     double imaginary = 0.0;
+    std::size_t k = 0;  // m j mod N
     for (std::size_t j = 0; j < n; ++j) {
-      // The phase from (m j mod N) keeps the argument in [0, 2 pi) at full precision.
-      const double phase =
-          2.0 * std::numbers::pi * static_cast<double>((m * j) % n) / static_cast<double>(n);
-      real += window[j] * window[j] * std::cos(phase);
-      imaginary += window[j] * window[j] * std::sin(phase);
+      real += power[j] * cosines[k];
+      imaginary += power[j] * sines[k];
+      k += m;
+      if (k >= n) k -= n;
     }
     // DFT-even windows have vanishing sine sums up to rounding (N eps of the energy).
     if (std::abs(imaginary) > 1e-10 * energy) {

@@ -41,6 +41,14 @@ constexpr double frame_seconds_per_cell_and_object = 3.22e-10;
 // chirp's samples (synthesis.cpp), so the fog's clutter adds per tone and sample.
 constexpr double frame_seconds_per_tone_sample = 3.38e-10;
 
+// Wide CFAR windows (bench/estimate_calibration does not reach them; measured with profiles of
+// 4096-65536 cells and n = 1000-32767, GO and OS, Blackman-Harris): CA, GO and SO add the N
+// reference cells of each of a row's 2 (guard + n) edge cells one by one (cfar.cpp, edge_halves),
+// 21 s for 10 rows of 4.3e9 additions; OS moves up to N sorted values per cell as its window slides
+// (a memmove per cell), ~0.05 s per row of 65536 cells with N = 65534.
+constexpr double frame_seconds_per_edge_reference = 4.9e-10;
+constexpr double frame_seconds_per_sorted_reference = 1.3e-11;
+
 // The fog clutter's tones of a frame, averaged over the steps: clutter_scatterers_per_bin in every
 // range bin of every active layer that holds water (scene.cpp, add_fog_clutter).
 double mean_clutter_tones(const SensorParams& p, const sensor::Context& context) {
@@ -242,6 +250,17 @@ class Type : public sensor::SensorType {
     const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
     const double tones = mean_clutter_tones(sensor::params_of<SensorParams>(params), context);
     const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
+    const double reference_cells = static_cast<double>(p.cfar.reference_cells());
+    const double edge_references =
+        p.cfar.kind == CfarKind::os
+            ? 0.0
+            : static_cast<double>(p.chirps_per_frame) * 2.0 *
+                  static_cast<double>(std::size_t{p.cfar.guard_cells} + p.cfar.training_cells) *
+                  reference_cells;
+    const double edge_seconds =
+        p.cfar.kind == CfarKind::os
+            ? cells * reference_cells * frame_seconds_per_sorted_reference
+            : edge_references * frame_seconds_per_edge_reference;
     std::ostringstream detail;
     detail.precision(6);
     detail << "radar.samples_per_chirp = " << p.samples_per_chirp
@@ -251,14 +270,18 @@ class Type : public sensor::SensorType {
            << " x cells), about " << tones
            << " fog clutter tones (fog.clutter_scatterers_per_bin = "
            << sensor::params_of<SensorParams>(params).clutter_scatterers_per_bin
-           << " per range bin of the active layers)";
-    return {.item_seconds = cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
-                                     objects * frame_seconds_per_cell_and_object) +
-                            tones * static_cast<double>(p.samples_per_chirp) *
-                                frame_seconds_per_tone_sample,
+           << " per range bin of the active layers), " << edge_references
+           << " CFAR edge-cell additions (2 x (processing.cfar.guard_cells + training_cells) x N "
+              "per Doppler row)";
+    const double rest = cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
+                                 objects * frame_seconds_per_cell_and_object) +
+                        tones * static_cast<double>(p.samples_per_chirp) *
+                            frame_seconds_per_tone_sample;
+    return {.item_seconds = rest + edge_seconds,
             .detail = detail.str(),
-            .key = p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
-                                                             : "radar.chirps_per_frame",
+            .key = edge_seconds > rest                       ? "processing.cfar.training_cells"
+                   : p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
+                                                               : "radar.chirps_per_frame",
             .items_key = "experiment.measurements_per_step"};
   }
 
@@ -380,8 +403,7 @@ SetupCost setup_cost(const SensorParams& params, const sensor::Context& context)
           .chain_seconds = chain_seconds + cells * chain_seconds_per_cell,
           .cfar_design_seconds = cfar_design_seconds(
               r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
-                                               std::size_t{r.cfar.guard_cells} +
-                                                   r.cfar.reference_cells())),
+                                               cfar_correlation_lags(r.cfar))),
           .summary_seconds = steps * per_step *
                              (summary_seconds_per_measurement + per_step * summary_seconds_per_pair),
           .report_seconds = fog_seconds + steps * per_step * files_seconds_per_measurement};

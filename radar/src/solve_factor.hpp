@@ -2,6 +2,7 @@
 // and the correlated-cell (cfar_design.cpp) CFAR designs.
 #pragma once
 
+#include <algorithm>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
@@ -79,6 +80,43 @@ double solve_threshold_factor(const LogPfa& log_pfa, double design, double start
     }
   }
   return 0.5 * (lower + upper);
+}
+
+// The same root for an estimate whose evaluations are expensive and whose own error is far above
+// `tolerance` (relative, in alpha): log P_fa is smooth and close to linear in log alpha, so the
+// secant method on u = log alpha from start and a point 2 % beside it needs 3-4 more evaluations.
+// Once the root is bracketed a secant step that leaves the bracket is replaced by bisection; before,
+// steps are limited to a factor 2.
+template <class LogPfa>
+double solve_smooth_threshold_factor(const LogPfa& log_pfa, double design, double start,
+                                     double tolerance) {
+  const double target = std::log(design);
+  const auto residual = [&](double u) { return log_pfa(std::exp(u)) - target; };
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  double below = -kInfinity, above = kInfinity;  // residual(below) > 0 > residual(above)
+  const auto note = [&](double u, double f) { (f > 0.0 ? below : above) = u; };
+  double u0 = std::log(start), f0 = residual(u0);
+  if (f0 == 0.0) return start;
+  note(u0, f0);
+  double u1 = u0 + (f0 > 0.0 ? 0.02 : -0.02), f1 = residual(u1);
+  note(u1, f1);
+  for (int step = 0; step < 100 && f1 != 0.0; ++step) {
+    double u2 = u1 - f1 * (u1 - u0) / (f1 - f0);
+    if (!std::isfinite(u2)) u2 = u1 + (f1 > 0.0 ? 0.7 : -0.7);  // a flat or infinite residual
+    if (std::isfinite(below) && std::isfinite(above)) {
+      if (!(u2 > std::min(below, above) && u2 < std::max(below, above))) u2 = 0.5 * (below + above);
+    } else {
+      u2 = std::clamp(u2, u1 - 0.7, u1 + 0.7);
+    }
+    if (std::abs(u2 - u1) < tolerance) return std::exp(u2);
+    u0 = u1;
+    f0 = f1;
+    u1 = u2;
+    f1 = residual(u1);
+    FOGRADAR_CHECK(std::isfinite(f1) || f1 == -kInfinity);
+    note(u1, f1);
+  }
+  return std::exp(u1);
 }
 
 }  // namespace fogradar::radar
