@@ -615,7 +615,7 @@ double solve_seconds(const CfarConfig& config, const NoiseCorrelation& noise, st
   const double quadratic = correlated_cut ? tilts : 0.0;
   const double products =
       (banded + tilts * (dense + banded) + quadratic * dense) / (1.0 + tilts + quadratic);
-  const double per_sample = 0.75e-9 * products + (correlated_cut ? 1.1e-6 : 1.7e-7);
+  const double per_sample = 0.75e-9 * products + (correlated_cut ? 0.7e-6 : 1.7e-7);
   return exact + geometries * static_cast<double>(kSamples) * per_sample;
 }
 

@@ -583,8 +583,8 @@ INSTANTIATE_TEST_SUITE_P(HannAndBlackmanHarris, ChainRealisedPfaWithoutGuardCell
 
 // A window past the design's budget (cfar_design.hpp): 64 training cells per side with no guard
 // cells, Blackman-Harris (the cell under test correlated with its neighbours; the design solves at
-// an anchor of 11 cells, 76 for CA, and scales), every kind. 2000 frames give 7.7e5 interior cells
-// and 2.6e5 edge cells. Acceptance: the 99.9 % interval around the design value x [1/1.5, 1.5]:
+// an anchor of 13-14 cells, 76 for CA, and scales), every kind. 2000 frames give 7.7e5 interior
+// cells and 2.6e5 edge cells. Acceptance: the 99.9 % interval around the design value x [1/1.5, 1.5]:
 // the scaling's factor error against full designs at 1e-3 is at most 6 % (docs/radar.md §7), and
 // at 1e-3 a factor error e moves P_fa by about e x 7. At n = 64 the correlation moves the factor
 // by only 1-7 %, so this checks the chain end to end rather than the scaling (which
@@ -763,7 +763,7 @@ TEST(CorrelatedDesignBound, AnchoredCaKeepsTheDesignPfa) {
   }
 }
 
-// The same for GO, SO and OS, n = 32 (anchors 9-18 with no guard cells, 11-13 with Blackman-Harris
+// The same for GO, SO and OS, n = 32 (anchors 13-26 with no guard cells, 13-14 with Blackman-Harris
 // and 2): the sampled P_fa (an independent seed) of the interior and four edge geometries at their
 // designed factors, design 1e-3. Acceptance [0.7, 1.43] x: the scaling's factor error against full
 // designs at 1e-3 is at most 4 % (docs/radar.md §7), which moves P_fa by about 4 % x 7, and the

@@ -124,13 +124,13 @@ CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
 
 // The CPU seconds design_cfar_threshold_factors takes for this config and noise, a cost model for
 // the run-time estimate and the anchor (on the project's shared 2-core machine, Release, the
-// measured CPU time is 0.4-1.6 x the model for n = 4-64, g = 0 and 2, every window, GO/SO/OS;
+// measured CPU time is 0.52-1.7 x the model for n = 4-64, g = 0 and 2, every window, GO/SO/OS;
 // docs/radar.md §7): 0 where the iid factors serve; per solved geometry (at most 2 K + 2) CA's eigenvalue
 // solves, ~12 x (N + 1)^3, and for GO/SO/OS 2^14 samples x (the reference vector's products, N^2 /
 // 2 per tilted component and N x the correlation's band for the noise itself, + ~15 conditional
 // tails, Marcum evaluations where the cell under test is correlated with a reference cell), at the
-// anchor's N. At most kCfarDesignBudgetSeconds unless the anchor's floor 2 K + 1 needs more (at
-// most 0.27 s for the chain's windows).
+// anchor's N. At most kCfarDesignBudgetSeconds unless the anchor's floor 2 K + 1 needs more
+// (not for the chain's windows).
 double cfar_design_seconds(const CfarConfig& config, const NoiseCorrelation& noise);
 
 }  // namespace fogradar::radar
