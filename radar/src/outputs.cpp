@@ -179,6 +179,21 @@ std::string counted(std::size_t count, std::string_view noun) {
   return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
 }
 
+// " 0.200 per frame at 0 active layers, 0.100 per frame at 1 active layer": `rate` of each step
+// `shown` picks, for the notes under the printed table.
+template <class Shown, class Rate>
+std::string per_frame_at(const std::vector<StepSummary>& steps, Shown shown, Rate rate) {
+  std::string text;
+  char line[128];
+  for (const StepSummary& s : steps) {
+    if (!shown(s)) continue;
+    std::snprintf(line, sizeof line, "%s%.3f per frame at %s", text.empty() ? " " : ", ", rate(s),
+                  counted(s.active_layers, "active layer").c_str());
+    text += line;
+  }
+  return text;
+}
+
 // A step where fewer than half the measurements detected the target, but some did: its RCS
 // statistics describe the surviving detections only, a sample biased towards strong echoes.
 bool survivors_only(const StepSummary& s) { return s.detections > 0 && s.detection_rate < 0.5; }
@@ -517,31 +532,20 @@ std::string summary_table(const RadarSummary& summary) {
           << counted(s.active_layers, "active layer");
       first = false;
     }
-    out << "\nclipping detections (its harmonics and intermodulation products, not false alarms):";
-    first = true;
-    for (const StepSummary& s : summary.steps) {
-      if (s.adc_clipped_fraction <= 0.0) continue;
-      std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
-                    s.clipping_detections_per_frame,
-                    counted(s.active_layers, "active layer").c_str());
-      out << line;
-      first = false;
-    }
-    out << '\n';
+    out << "\nclipping detections (its harmonics and intermodulation products, not false alarms):"
+        << per_frame_at(
+               summary.steps, [](const StepSummary& s) { return s.adc_clipped_fraction > 0.0; },
+               [](const StepSummary& s) { return s.clipping_detections_per_frame; })
+        << '\n';
   }
   if (std::any_of(summary.steps.begin(), summary.steps.end(),
                   [](const StepSummary& s) { return s.sidelobe_detections_per_frame > 0.0; })) {
     // "sidelobe false alarms (...): 0.200 per frame at 1 active layer, ...".
-    out << "sidelobe false alarms (echoes' leakage outside their window main lobes):";
-    bool first = true;
-    for (const StepSummary& s : summary.steps) {
-      std::snprintf(line, sizeof line, "%s%.3f per frame at %s", first ? " " : ", ",
-                    s.sidelobe_detections_per_frame,
-                    counted(s.active_layers, "active layer").c_str());
-      out << line;
-      first = false;
-    }
-    out << '\n';
+    out << "sidelobe false alarms (echoes' leakage outside their window main lobes):"
+        << per_frame_at(
+               summary.steps, [](const StepSummary&) { return true; },
+               [](const StepSummary& s) { return s.sidelobe_detections_per_frame; })
+        << '\n';
   }
   if (summary.velocity_fold)
     out << "velocity folded: " << velocity_fold_text(*summary.velocity_fold) << '\n';
