@@ -5,7 +5,7 @@
 #   <!-- end generated -->
 # in docs/*.md gets the output of `fogradar ARGS` (e.g. `scenario --keys radar`: the key table of
 # [radar] from the keys' declarations). With --check nothing is written: it names each stale file
-# and fails (the test cli.end_to_end runs it so).
+# and fails (the test cli.scenario runs it so).
 # Usage: scripts/update-docs.sh [--check] [FOGRADAR_BINARY]  (default: build/release/cli/fogradar)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

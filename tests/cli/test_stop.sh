@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A stop is honoured within a second whatever the workload, and a run's time is estimated before it
-# starts (issue 27; docs/scenario.md, "Time limit"):
+# starts (docs/scenario.md, "Time limit"):
 # (a) SIGTERM one second into a lidar scan of 36001 beams x 667129 samples (about 33 s on the
 #     project's 2-core VM): exit 143 within 1.5 s of the signal, the interrupted message, no result
 #     set;

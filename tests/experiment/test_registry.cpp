@@ -1,4 +1,4 @@
-// The sensor interface's proof (issue 26): a fourth sensor declared in this file alone,
+// The sensor interface's proof: a fourth sensor declared in this file alone,
 // an ideal optical range finder, is registered beside the study's three and runs through
 // run_experiment on the same chamber with them; it gets its keys read, refused and written back,
 // its table, files, benchmark curve and limit, and the three others' files do not change by a byte.

@@ -401,7 +401,7 @@ INSTANTIATE_TEST_SUITE_P(
       return std::string(param_info.param.name);
     });
 
-// The exact message for each kind of bad value (issue 27): the key as written, the value as typed
+// The exact message for each kind of bad value: the key as written, the value as typed
 // (not as a double prints it), and the true range or set, for a value of the wrong type too.
 TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
   const std::pair<const char*, const char*> cases[] = {

@@ -220,7 +220,7 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
   // Every lidar echo is checked, merged ones included. The range checked is the one the echo
   // reports, range_m (its leading edge, the range a user reads in lidar_echoes.csv), not its
   // attributed_range_m (where the origin is taken; the raw echoes carry it, and
-  // tests/experiment/test_raw_h5.py checks it against the ground truth): the origin and layer are
+  // tests/python/raw_h5_check.py checks it against the ground truth): the origin and layer are
   // attributed at the peak of the return whose leading edge made the echo (lidar/waveform.hpp,
   // attribution_sample), so the reported range must lie on that return, before its surface or
   // layer by at most the pulse's rise. That is the stronger claim: an attribution at any later

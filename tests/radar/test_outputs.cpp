@@ -14,7 +14,7 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/radar/outputs.hpp"
-#include "sensors.hpp"
+#include "radar_sensor.hpp"
 
 namespace fogradar::experiment {
 namespace {

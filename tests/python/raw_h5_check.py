@@ -22,7 +22,7 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
   every HDF5 dataset, table field and `dimensions` attribute say `active_layers` and `item`, never
   `step`, `measurement`, `scan` or `frame`.
 
-Usage: test_raw_h5.py FOGRADAR_BINARY SOURCE_DIR
+Usage: raw_h5_check.py FOGRADAR_BINARY SOURCE_DIR
 """
 import csv
 import os

@@ -2,18 +2,11 @@
 #pragma once
 
 #include "fogradar/camera/sensor.hpp"
-#include "fogradar/experiment/runner.hpp"
-#include "fogradar/experiment/scenario.hpp"
-#include "fogradar/experiment/summary.hpp"
 #include "fogradar/lidar/sensor.hpp"
-#include "fogradar/radar/sensor.hpp"
+#include "radar_sensor.hpp"
 
 namespace fogradar::experiment {
 
-inline radar::SensorParams& radar_of(Scenario& s) { return s.params<radar::SensorParams>("radar"); }
-inline const radar::SensorParams& radar_of(const Scenario& s) {
-  return s.params<radar::SensorParams>("radar");
-}
 inline lidar::LidarParams& lidar_of(Scenario& s) { return s.params<lidar::LidarParams>("lidar"); }
 inline const lidar::LidarParams& lidar_of(const Scenario& s) {
   return s.params<lidar::LidarParams>("lidar");
@@ -25,14 +18,6 @@ inline const camera::CameraParams& camera_of(const Scenario& s) {
   return s.params<camera::CameraParams>("camera");
 }
 
-// The radar's run: its chain and its records, step by step.
-inline const radar::RadarRun& radar_run(const ExperimentResult& r) {
-  return dynamic_cast<const radar::RadarRun&>(r.run("radar"));
-}
-
-inline const radar::RadarReport& radar_report(const ExperimentSummary& s) {
-  return s.of<radar::RadarReport>("radar");
-}
 inline const lidar::LidarReport& lidar_report(const ExperimentSummary& s) {
   return s.of<lidar::LidarReport>("lidar");
 }

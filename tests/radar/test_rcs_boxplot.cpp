@@ -13,7 +13,7 @@
 
 #include "fogradar/radar/outputs.hpp"
 #include "fogradar/stats/box_plot.hpp"
-#include "sensors.hpp"
+#include "radar_sensor.hpp"
 #include "svg_check.hpp"
 
 namespace fogradar::experiment {
