@@ -336,6 +336,33 @@ void expect_ks(const std::string& id, const std::string& quantity, const std::st
             .confidence = "99.9 % Kolmogorov-Smirnov (alpha = 0.001)"});
 }
 
+// A bound check of this file's group: `value` at most (or at least) `bound`, with no tolerance
+// beyond the bound itself.
+struct BoundCheck {
+  std::string id;
+  std::string quantity;
+  std::string unit;
+  std::string conditions;
+  double bound = 0.0;
+  std::string source;
+  double value = 0.0;
+};
+
+void expect_bound(const BoundCheck& c, Tolerance kind) {
+  validate({.id = c.id,
+            .group = kGroup,
+            .quantity = c.quantity,
+            .unit = c.unit,
+            .conditions = c.conditions,
+            .reference = c.bound,
+            .source = c.source,
+            .value = c.value,
+            .tolerance = 0.0,
+            .kind = kind});
+}
+void expect_at_most(const BoundCheck& c) { expect_bound(c, Tolerance::at_most); }
+void expect_at_least(const BoundCheck& c) { expect_bound(c, Tolerance::at_least); }
+
 // ---------------------------------------------------------------------------------------------
 // 1. Kernels against libm
 
@@ -348,27 +375,21 @@ void expect_log_within_tolerance(const UlpStats& stats, const char* argument,
   ::testing::Test::RecordProperty("max_ulp_vs_log", sci(stats.max_vs_libm));
   ::testing::Test::RecordProperty("max_ulp_vs_logl", sci(stats.max_vs_extended));
   ::testing::Test::RecordProperty("fraction_equal_to_log", sci(stats.fraction_equal()));
-  validate({.id = "core.ziggurat.log_positive." + arguments + ".ulp_vs_log",
-            .group = kGroup,
-            .quantity = "largest error of log_positive",
-            .unit = "ulp",
-            .conditions = arguments + " arguments (" + std::to_string(stats.count) +
-                          "), worst at " + argument + " = " + sci(stats.worst_argument, 17),
-            .reference = kKernelMaxUlp,
-            .source = "[libm] glibc std::log (double); fdlibm documents < 1 ulp",
-            .value = stats.max_vs_libm,
-            .tolerance = 0.0,
-            .kind = Tolerance::at_most});
-  validate({.id = "core.ziggurat.log_positive." + arguments + ".ulp_vs_logl",
-            .group = kGroup,
-            .quantity = "largest error of log_positive",
-            .unit = "ulp",
-            .conditions = arguments + " arguments (" + std::to_string(stats.count) + ")",
-            .reference = kKernelMaxUlp,
-            .source = "[libm] glibc logl (x87 extended precision)",
-            .value = stats.max_vs_extended,
-            .tolerance = 0.0,
-            .kind = Tolerance::at_most});
+  expect_at_most({.id = "core.ziggurat.log_positive." + arguments + ".ulp_vs_log",
+                  .quantity = "largest error of log_positive",
+                  .unit = "ulp",
+                  .conditions = arguments + " arguments (" + std::to_string(stats.count) +
+                                "), worst at " + argument + " = " + sci(stats.worst_argument, 17),
+                  .bound = kKernelMaxUlp,
+                  .source = "[libm] glibc std::log (double); fdlibm documents < 1 ulp",
+                  .value = stats.max_vs_libm});
+  expect_at_most({.id = "core.ziggurat.log_positive." + arguments + ".ulp_vs_logl",
+                  .quantity = "largest error of log_positive",
+                  .unit = "ulp",
+                  .conditions = arguments + " arguments (" + std::to_string(stats.count) + ")",
+                  .bound = kKernelMaxUlp,
+                  .source = "[libm] glibc logl (x87 extended precision)",
+                  .value = stats.max_vs_extended});
 }
 
 TEST(ZigguratKernels, MantissaInOneTwoTakesTheTop52Bits) {
@@ -539,16 +560,13 @@ TEST(ZigguratTable, LibmBisectionReproducesTheConstantRFor2048Layers) {
             .value = top_layer_excess(detail::ziggurat_r * (1.0 - 1e-13), ziggurat_layers),
             .tolerance = 0.0,
             .kind = Tolerance::at_most});
-  validate({.id = "core.ziggurat.r.2048_layers.residual_above",
-            .group = kGroup,
-            .quantity = "top layer's area excess at r (1 + 1e-13)",
-            .unit = "1",
-            .conditions = "2048 layers, f(x) = exp(-x)",
-            .reference = 0.0,
-            .source = source,
-            .value = top_layer_excess(detail::ziggurat_r * (1.0 + 1e-13), ziggurat_layers),
-            .tolerance = 0.0,
-            .kind = Tolerance::at_least});
+  expect_at_least({.id = "core.ziggurat.r.2048_layers.residual_above",
+                   .quantity = "top layer's area excess at r (1 + 1e-13)",
+                   .unit = "1",
+                   .conditions = "2048 layers, f(x) = exp(-x)",
+                   .bound = 0.0,
+                   .source = source,
+                   .value = top_layer_excess(detail::ziggurat_r * (1.0 + 1e-13), ziggurat_layers)});
 }
 
 // ziggurat_r, ziggurat_f_r = exp(-r) and ziggurat_v = (r + 1) exp(-r) [MT00].
@@ -596,16 +614,13 @@ TEST(ZigguratTable, ConstantsAreTheCorrectlyRoundedValuesAtTheRoot) {
        "[libm] std::exp at the double r; f's error plus two roundings"},
   };
   for (const auto& c : constants) {
-    validate({.id = std::string("core.ziggurat.constant.") + c.id,
-              .group = kGroup,
-              .quantity = c.quantity,
-              .unit = "ulp",
-              .conditions = "2048 layers",
-              .reference = c.bound,
-              .source = c.source,
-              .value = c.ulps,
-              .tolerance = 0.0,
-              .kind = Tolerance::at_most});
+    expect_at_most({.id = std::string("core.ziggurat.constant.") + c.id,
+                    .quantity = c.quantity,
+                    .unit = "ulp",
+                    .conditions = "2048 layers",
+                    .bound = c.bound,
+                    .source = c.source,
+                    .value = c.ulps});
   }
 }
 
@@ -631,17 +646,15 @@ TEST(ZigguratTable, EveryLayerHasAreaV) {
   }
   RecordProperty("max_relative", sci(worst_relative));
   RecordProperty("max_fraction_of_bound", sci(worst_fraction_of_bound));
-  validate({.id = "core.ziggurat.layer_area.layers_over_bound",
-            .group = kGroup,
-            .quantity = "layers 1..2046 whose area x_i (f_{i+1} - f_i) is off v by more than "
-                        "2^-53 (3 + f_{i+1} x_i / v) relative",
-            .unit = "layers",
-            .conditions = "2048 layers; worst " + sci(worst_fraction_of_bound) + " of the bound",
-            .reference = 0.0,
-            .source = "[MT00] equal-area layers x_i (f_{i+1} - f_i) = v",
-            .value = static_cast<double>(over_bound),
-            .tolerance = 0.0,
-            .kind = Tolerance::at_most});
+  expect_at_most(
+      {.id = "core.ziggurat.layer_area.layers_over_bound",
+       .quantity = "layers 1..2046 whose area x_i (f_{i+1} - f_i) is off v by more than "
+                   "2^-53 (3 + f_{i+1} x_i / v) relative",
+       .unit = "layers",
+       .conditions = "2048 layers; worst " + sci(worst_fraction_of_bound) + " of the bound",
+       .bound = 0.0,
+       .source = "[MT00] equal-area layers x_i (f_{i+1} - f_i) = v",
+       .value = static_cast<double>(over_bound)});
 }
 
 // The closure: r solves "the top layer [0, x_2047] x [f_2047, 1] has area v", so its area
@@ -654,16 +667,14 @@ TEST(ZigguratTable, TopLayerClosesWithAreaV) {
   const double relative =
       static_cast<double>(std::fabs(area / static_cast<long double>(detail::ziggurat_v) - 1.0L));
   RecordProperty("top_layer_relative", sci(relative));
-  validate({.id = "core.ziggurat.top_layer_area",
-            .group = kGroup,
-            .quantity = "relative difference of the top layer's area x_2047 (1 - f_2047) from v",
-            .unit = "1",
-            .conditions = "2048 layers",
-            .reference = 1e-11,
-            .source = "[MT00] closure: r solves top layer area = v",
-            .value = relative,
-            .tolerance = 0.0,
-            .kind = Tolerance::at_most});
+  expect_at_most(
+      {.id = "core.ziggurat.top_layer_area",
+       .quantity = "relative difference of the top layer's area x_2047 (1 - f_2047) from v",
+       .unit = "1",
+       .conditions = "2048 layers",
+       .bound = 1e-11,
+       .source = "[MT00] closure: r solves top layer area = v",
+       .value = relative});
 }
 
 // f_i = exp(-x_i) at every width (the layer heights sit on the curve). Reference [libm] expl of
@@ -685,17 +696,15 @@ TEST(ZigguratTable, HeightsAreTheDensityAtTheWidths) {
   }
   RecordProperty("max_absolute", sci(worst_absolute));
   RecordProperty("max_fraction_of_bound", sci(worst_fraction_of_bound));
-  validate({.id = "core.ziggurat.heights.layers_over_bound",
-            .group = kGroup,
-            .quantity = "layers 1..2048 whose |f_i - exp(-x_i)| exceeds "
-                        "2 2^-52 f_i |ln f_i| + 2^-60",
-            .unit = "layers",
-            .conditions = "2048 layers; worst " + sci(worst_fraction_of_bound) + " of the bound",
-            .reference = 0.0,
-            .source = "[libm] expl of the table's own x_i",
-            .value = static_cast<double>(over_bound),
-            .tolerance = 0.0,
-            .kind = Tolerance::at_most});
+  expect_at_most(
+      {.id = "core.ziggurat.heights.layers_over_bound",
+       .quantity = "layers 1..2048 whose |f_i - exp(-x_i)| exceeds "
+                   "2 2^-52 f_i |ln f_i| + 2^-60",
+       .unit = "layers",
+       .conditions = "2048 layers; worst " + sci(worst_fraction_of_bound) + " of the bound",
+       .bound = 0.0,
+       .source = "[libm] expl of the table's own x_i",
+       .value = static_cast<double>(over_bound)});
   validate({.id = "core.ziggurat.heights.max_absolute",
             .group = kGroup,
             .quantity = "largest |f_i - exp(-x_i)|",
@@ -908,16 +917,13 @@ const SamplerRun& sampler_run() {
 TEST(ZigguratExponential, SamplesAreExponentialByKs) {
   const SamplerRun& run = sampler_run();
   ASSERT_TRUE(std::is_sorted(run.sorted.begin(), run.sorted.end()));
-  validate({.id = "core.ziggurat.exponential.smallest",
-            .group = kGroup,
-            .quantity = "smallest of 2^24 samples",
-            .unit = "1",
-            .conditions = "2^24 samples, xoshiro256++ seed 0x21660001",
-            .reference = 0.0,
-            .source = "support of Exp(1): x >= 0",
-            .value = static_cast<double>(run.sorted.front()),
-            .tolerance = 0.0,
-            .kind = Tolerance::at_least});
+  expect_at_least({.id = "core.ziggurat.exponential.smallest",
+                   .quantity = "smallest of 2^24 samples",
+                   .unit = "1",
+                   .conditions = "2^24 samples, xoshiro256++ seed 0x21660001",
+                   .bound = 0.0,
+                   .source = "support of Exp(1): x >= 0",
+                   .value = static_cast<double>(run.sorted.front())});
   const double n = static_cast<double>(run.sorted.size());
   const double d = ks_of_sorted<float>(run.sorted, exponential_cdf);
   RecordProperty("ks", sci(d));
@@ -1107,16 +1113,14 @@ TEST(Phase, QuadrantBitsTileTheCircleWithTheLattice) {
     }
   }
   RecordProperty("max_angle_error", sci(worst));
-  validate({.id = "core.phase.quadrant_lattice",
-            .group = kGroup,
-            .quantity = "largest angle error against the lattice (j + 1/2) 2 pi / 2^24 - pi/4",
-            .unit = "rad",
-            .conditions = "2^16 random k, each of the four quadrant bit patterns",
-            .reference = 3e-7,
-            .source = "[libm] std::atan2 of the sample against the lattice angle",
-            .value = worst,
-            .tolerance = 0.0,
-            .kind = Tolerance::at_most});
+  expect_at_most(
+      {.id = "core.phase.quadrant_lattice",
+       .quantity = "largest angle error against the lattice (j + 1/2) 2 pi / 2^24 - pi/4",
+       .unit = "rad",
+       .conditions = "2^16 random k, each of the four quadrant bit patterns",
+       .bound = 3e-7,
+       .source = "[libm] std::atan2 of the sample against the lattice angle",
+       .value = worst});
   EXPECT_EQ(radius_errors, 0U);
 }
 

@@ -80,6 +80,54 @@ std::string id_slug(const std::string& text) {
   return slug;
 }
 
+// --- Read-back checks ------------------------------------------------------------------------
+// A detection read back against what the test set: the three records share their group, quantity,
+// unit and source wherever the reference is the set value itself. `prefix` + ".rcs" etc. is the id.
+
+void validate_set_rcs(const std::string& prefix, const std::string& conditions, double set_rcs_dbsm,
+                      double rcs_dbsm, double tolerance_db) {
+  fogradar::testing::validate({.id = prefix + ".rcs",
+                               .group = "radar: RCS",
+                               .quantity = "RCS read back",
+                               .unit = "dBsm",
+                               .conditions = conditions,
+                               .reference = set_rcs_dbsm,
+                               .source = "the set RCS",
+                               .value = rcs_dbsm,
+                               .tolerance = tolerance_db,
+                               .kind = Tolerance::absolute});
+}
+
+void validate_set_range(const std::string& prefix, const std::string& conditions,
+                        double set_range_m, double range_m, double tolerance_m) {
+  fogradar::testing::validate({.id = prefix + ".range",
+                               .group = "radar: signal processing",
+                               .quantity = "range read back",
+                               .unit = "m",
+                               .conditions = conditions,
+                               .reference = set_range_m,
+                               .source = "the set range",
+                               .value = range_m,
+                               .tolerance = tolerance_m,
+                               .kind = Tolerance::absolute});
+}
+
+// `unit` is "m/s", or "velocity bins" where both values are divided by the bin width.
+void validate_set_velocity(const std::string& prefix, const std::string& conditions,
+                           const std::string& unit, double set_velocity, double velocity,
+                           double tolerance) {
+  fogradar::testing::validate({.id = prefix + ".velocity",
+                               .group = "radar: Doppler",
+                               .quantity = "radial velocity read back",
+                               .unit = unit,
+                               .conditions = conditions,
+                               .reference = set_velocity,
+                               .source = "the set velocity",
+                               .value = velocity,
+                               .tolerance = tolerance,
+                               .kind = Tolerance::absolute});
+}
+
 // --- Statistics helpers -----------------------------------------------------------------------
 
 // Two-sided 99.9 % acceptance interval for the count of a Binomial(n, p).
@@ -518,26 +566,8 @@ void check_calibration(const RadarParams& params_in, const char* label,
             std::string(label) + ", " + std::string(to_string(params.window)) + " window, " +
             std::string(to_string(direction)) + "-chirp, noise off, range " + id_number(range_m) +
             " m (" + id_number(0.05 * j) + " bin past a bin centre)";
-        fogradar::testing::validate({.id = id + ".rcs",
-                                     .group = "radar: RCS",
-                                     .quantity = "RCS read back",
-                                     .unit = "dBsm",
-                                     .conditions = conditions,
-                                     .reference = kRcsDbsm,
-                                     .source = "the set RCS",
-                                     .value = det->rcs_dbsm,
-                                     .tolerance = kRcsTolDb,
-                                     .kind = Tolerance::absolute});
-        fogradar::testing::validate({.id = id + ".range",
-                                     .group = "radar: signal processing",
-                                     .quantity = "range read back",
-                                     .unit = "m",
-                                     .conditions = conditions,
-                                     .reference = range_m,
-                                     .source = "the set range",
-                                     .value = det->range_m,
-                                     .tolerance = kRangeTolM,
-                                     .kind = Tolerance::absolute});
+        validate_set_rcs(id, conditions, kRcsDbsm, det->rcs_dbsm, kRcsTolDb);
+        validate_set_range(id, conditions, range_m, det->range_m, kRangeTolM);
         worst_db = std::max(worst_db, std::abs(err_db));
         worst_m = std::max(worst_m, std::abs(err_m));
         ++count;
@@ -599,26 +629,8 @@ TEST(PointTargetCalibration, FullPaperFrameAndSnr) {
       range_m, det->rcs_dbsm, det->range_m, det->snr_db, expected_snr_db);
   const std::string conditions = "paper frame 64 x 512, Hann, noise off, 10 dBsm at " +
                                  id_number(range_m) + " m (half-bin offset)";
-  fogradar::testing::validate({.id = "radar.chain.full_paper_frame.rcs",
-                               .group = "radar: RCS",
-                               .quantity = "RCS read back",
-                               .unit = "dBsm",
-                               .conditions = conditions,
-                               .reference = 10.0,
-                               .source = "the set RCS",
-                               .value = det->rcs_dbsm,
-                               .tolerance = 0.2,
-                               .kind = Tolerance::absolute});
-  fogradar::testing::validate({.id = "radar.chain.full_paper_frame.range",
-                               .group = "radar: signal processing",
-                               .quantity = "range read back",
-                               .unit = "m",
-                               .conditions = conditions,
-                               .reference = range_m,
-                               .source = "the set range",
-                               .value = det->range_m,
-                               .tolerance = 0.02,
-                               .kind = Tolerance::absolute});
+  validate_set_rcs("radar.chain.full_paper_frame", conditions, 10.0, det->rcs_dbsm, 0.2);
+  validate_set_range("radar.chain.full_paper_frame", conditions, range_m, det->range_m, 0.02);
   fogradar::testing::validate(
       {.id = "radar.chain.full_paper_frame.snr",
        .group = "radar: SNR",
@@ -1349,16 +1361,8 @@ TEST_P(Motion, MovingTargetVelocityAndCouplingCorrectedRange) {
            .value = m.target->doppler_bin,
            .tolerance = 0.01,
            .kind = Tolerance::absolute});
-      fogradar::testing::validate({.id = id + ".velocity",
-                                   .group = "radar: Doppler",
-                                   .quantity = "radial velocity read back",
-                                   .unit = "m/s",
-                                   .conditions = conditions,
-                                   .reference = v,
-                                   .source = "the set velocity",
-                                   .value = m.target->radial_velocity_m_per_s,
-                                   .tolerance = 0.01 * v_bin,
-                                   .kind = Tolerance::absolute});
+      validate_set_velocity(id, conditions, "m/s", v, m.target->radial_velocity_m_per_s,
+                            0.01 * v_bin);
       fogradar::testing::validate({.id = id + ".range",
                                    .group = "radar: Doppler",
                                    .quantity = "range read back, corrected for range-Doppler "
@@ -1371,16 +1375,7 @@ TEST_P(Motion, MovingTargetVelocityAndCouplingCorrectedRange) {
                                    .tolerance = 0.002,
                                    .kind = Tolerance::absolute});
       EXPECT_GT(coupling_m, 0.005);
-      fogradar::testing::validate({.id = id + ".rcs",
-                                   .group = "radar: RCS",
-                                   .quantity = "RCS read back",
-                                   .unit = "dBsm",
-                                   .conditions = conditions,
-                                   .reference = 10.0,
-                                   .source = "the set RCS",
-                                   .value = m.target->rcs_dbsm,
-                                   .tolerance = 0.2,
-                                   .kind = Tolerance::absolute});
+      validate_set_rcs(id, conditions, 10.0, m.target->rcs_dbsm, 0.2);
     }
   }
 }
@@ -1420,36 +1415,10 @@ TEST(Estimation, NewtonPolishReadsBackToRoundingLevel) {
       const std::string conditions = "paper frame 64 x 512, Hann, noise off, 10 dBsm at " +
                                      id_number(range_m) + " m (" + id_number(offset_bins) +
                                      " bin offset), v = " + id_number(v) + " m/s";
-      fogradar::testing::validate({.id = id + ".rcs",
-                                   .group = "radar: RCS",
-                                   .quantity = "RCS read back",
-                                   .unit = "dBsm",
-                                   .conditions = conditions,
-                                   .reference = 10.0,
-                                   .source = "the set RCS",
-                                   .value = det->rcs_dbsm,
-                                   .tolerance = 1e-10,
-                                   .kind = Tolerance::absolute});
-      fogradar::testing::validate({.id = id + ".range",
-                                   .group = "radar: signal processing",
-                                   .quantity = "range read back",
-                                   .unit = "m",
-                                   .conditions = conditions,
-                                   .reference = range_m,
-                                   .source = "the set range",
-                                   .value = det->range_m,
-                                   .tolerance = 1e-11,
-                                   .kind = Tolerance::absolute});
-      fogradar::testing::validate({.id = id + ".velocity",
-                                   .group = "radar: Doppler",
-                                   .quantity = "radial velocity read back",
-                                   .unit = "velocity bins",
-                                   .conditions = conditions,
-                                   .reference = v / v_bin,
-                                   .source = "the set velocity",
-                                   .value = det->radial_velocity_m_per_s / v_bin,
-                                   .tolerance = 1e-10,
-                                   .kind = Tolerance::absolute});
+      validate_set_rcs(id, conditions, 10.0, det->rcs_dbsm, 1e-10);
+      validate_set_range(id, conditions, range_m, det->range_m, 1e-11);
+      validate_set_velocity(id, conditions, "velocity bins", v / v_bin,
+                            det->radial_velocity_m_per_s / v_bin, 1e-10);
       worst_db = std::max(worst_db, std::abs(det->rcs_dbsm - 10.0));
       worst_m = std::max(worst_m, std::abs(det->range_m - range_m));
       worst_bin = std::max(worst_bin, std::abs(det->radial_velocity_m_per_s - v) / v_bin);
@@ -1501,36 +1470,10 @@ TEST(Estimation, ManyObjectsInOneFrameEachReadBack) {
     const std::string conditions =
         "nine targets in one paper frame, Blackman-Harris, noise off, target at " +
         id_number(range_m) + " m, " + id_number(centre.radial_velocity_m_per_s) + " m/s";
-    fogradar::testing::validate({.id = id + ".rcs",
-                                 .group = "radar: RCS",
-                                 .quantity = "RCS read back",
-                                 .unit = "dBsm",
-                                 .conditions = conditions,
-                                 .reference = 10.0,
-                                 .source = "the set RCS",
-                                 .value = match->rcs_dbsm,
-                                 .tolerance = 0.01,
-                                 .kind = Tolerance::absolute});
-    fogradar::testing::validate({.id = id + ".range",
-                                 .group = "radar: signal processing",
-                                 .quantity = "range read back",
-                                 .unit = "m",
-                                 .conditions = conditions,
-                                 .reference = range_m,
-                                 .source = "the set range",
-                                 .value = match->range_m,
-                                 .tolerance = 0.002,
-                                 .kind = Tolerance::absolute});
-    fogradar::testing::validate({.id = id + ".velocity",
-                                 .group = "radar: Doppler",
-                                 .quantity = "radial velocity read back",
-                                 .unit = "m/s",
-                                 .conditions = conditions,
-                                 .reference = centre.radial_velocity_m_per_s,
-                                 .source = "the set velocity",
-                                 .value = match->radial_velocity_m_per_s,
-                                 .tolerance = 0.01 * v_bin,
-                                 .kind = Tolerance::absolute});
+    validate_set_rcs(id, conditions, 10.0, match->rcs_dbsm, 0.01);
+    validate_set_range(id, conditions, range_m, match->range_m, 0.002);
+    validate_set_velocity(id, conditions, "m/s", centre.radial_velocity_m_per_s,
+                          match->radial_velocity_m_per_s, 0.01 * v_bin);
 
     Scene alone = scene;
     alone.centres = {centre};
