@@ -511,7 +511,7 @@ const PaperRun& paper_run() {
 // intensity drops to 0 with "a few outliers" (here: at most 10 of the 40 scans see it); from 2
 // layers on "no signal is received from the EVT" (no target-origin echo in any beam of any scan).
 // The sensor limit is 1 layer.
-// A [[lidar.background]] segment has no defaults (issue 27: one with only x0_m ran with the other
+// A [[lidar.background]] segment has no defaults (one with only x0_m ran with the other
 // coordinates 0 and reflectivity 0.5). Segments are set as the scenario reader sets them, through
 // the key table onto freshly resized elements; each missing key is refused naming it as the user
 // writes it, and the message says it is missing and what it must be.

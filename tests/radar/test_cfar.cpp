@@ -302,7 +302,7 @@ TEST(CfarThreshold, SingleCellPerSideClosedForms) {
   }
 }
 
-// Issue 27: the design P_fa down to the smallest positive double (the key's range is (0, 1)).
+// The design P_fa down to the smallest positive double (the key's range is (0, 1)).
 // log P_fa at the solved factor by the published closed forms, written out in long double log
 // space here: CA N = 16 and OS N = 16, k = 12 [R83] (default n = 8), SO n = 8 [GK88]
 // 2 sum_{k<n} C(n-1+k, k) (2+t)^-(n+k), and GO at n = 1, where 2 (1+t)^-1 - 2 (2+t)^-1 [GK88]

@@ -360,7 +360,7 @@ TEST(CorrelatedPfa, CaExactEqualsDeterminantFormWhenCellUnderTestIsUncorrelated)
   }
 }
 
-// Issue 27: the correlated design at design P_fa 1e-300, 1e-310 and the smallest double, for
+// The correlated design at design P_fa 1e-300, 1e-310 and the smallest double, for
 // every kind (Hann, 8 training and 2 guard cells per side), runs and gives finite factors; CA's
 // interior factor (cell under test uncorrelated with its reference cells) satisfies
 // log P_fa = -log det(I + (alpha/N) C), C by cell_correlation, Gaussian elimination in long double

@@ -307,7 +307,7 @@ TEST(NiceAxisTicks, OneTwoFiveSteps) {  // hand-worked: smallest 1-2-5 step with
   EXPECT_EQ(t.decimals, 8);
 }
 
-// Tick labels of any finite scale (issue 27: a lidar.intensity_scale of 1e-20 made the box plot
+// Tick labels of any finite scale (a lidar.intensity_scale of 1e-20 made the box plot
 // ask for 20 fixed-point decimals and fail after the run). Each label reads back to its tick within
 // 1e-12 of the larger of the tick's magnitude and the step (labels round only the ticks' arithmetic
 // residue, ~1e-16 relative), and no two ticks share a label.
