@@ -166,7 +166,7 @@ propagation::FogSpec fog_spec_from(const FogOptions& o) {
     spec.density = propagation::Visibility{*o.visibility_m};
   }
   spec.droplets = droplets_from(o);
-  spec.water_model = propagation::parse_water_model(o.water_model, "--water-model");
+  spec.water_model = propagation::water_model_names.parse(o.water_model, "--water-model");
   if (spec.water_model == propagation::WaterModel::segelstein) {
     spec.temperature_c = propagation::segelstein_table_temperature_c;
     if (o.temperature_c && *o.temperature_c != spec.temperature_c) {

@@ -1,71 +1,18 @@
 #include "fogradar/camera/params.hpp"
 
 #include <algorithm>
-#include <array>
 #include <functional>
 #include <string>
-#include <utility>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/water_film.hpp"
 
 namespace fogradar::camera {
-namespace {
-
-constexpr std::array<std::pair<Band, std::string_view>, 3> kBandNames{{
-    {Band::photopic, "photopic"},
-    {Band::rgb, "rgb"},
-    {Band::monochromatic, "monochromatic"},
-}};
-constexpr std::array<std::pair<ExposureMode, std::string_view>, 2> kExposureNames{{
-    {ExposureMode::fixed, "fixed"},
-    {ExposureMode::automatic, "auto"},
-}};
-constexpr std::array<std::pair<TransferCurve, std::string_view>, 2> kTransferNames{{
-    {TransferCurve::srgb, "srgb"},
-    {TransferCurve::gamma, "gamma"},
-}};
-
-template <class Enum, std::size_t N>
-std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>& names,
-                         Enum value) {
-  for (const auto& [candidate, name] : names) {
-    if (candidate == value) return name;
-  }
-  return "?";
-}
-
-template <class Enum, std::size_t N>
-Enum parse_name(const std::array<std::pair<Enum, std::string_view>, N>& names,
-                std::string_view text, std::string_view field, std::string_view allowed) {
-  for (const auto& [value, name] : names) {
-    if (name == text) return value;
-  }
-  throw_invalid(field, text, allowed);
-}
-
-}  // namespace
-
-std::string_view to_string(Band band) noexcept { return name_of(kBandNames, band); }
-std::string_view to_string(ExposureMode mode) noexcept { return name_of(kExposureNames, mode); }
-std::string_view to_string(TransferCurve curve) noexcept { return name_of(kTransferNames, curve); }
-
-Band parse_band(std::string_view text, std::string_view field) {
-  return parse_name(kBandNames, text, field, "one of photopic, rgb, monochromatic");
-}
-ExposureMode parse_exposure_mode(std::string_view text, std::string_view field) {
-  return parse_name(kExposureNames, text, field, "one of fixed, auto");
-}
-TransferCurve parse_transfer_curve(std::string_view text, std::string_view field) {
-  return parse_name(kTransferNames, text, field, "one of srgb, gamma");
-}
 
 KeyTable<CameraParams> camera_keys() {
   KeyTable<CameraParams> keys("camera.");
   keys.choice(
-      "band", FOGRADAR_KEY_FIELD(band), {"photopic", "rgb", "monochromatic"},
-      [](std::string_view text, std::string_view key) { return parse_band(text, key); },
-      [](Band b) { return to_string(b); },
+      "band", FOGRADAR_KEY_FIELD(band), band_names,
       "spectral weighting: CIE photopic V(λ) (one grey channel), sRGB primaries to grey, "
       "or one wavelength; the study's images are \"converted into gray scale\", and V(λ) "
       "is the luminance weighting of a grey image");
@@ -84,9 +31,7 @@ KeyTable<CameraParams> camera_keys() {
       .when(std::not_fn(monochromatic),
             "with camera.band = \"photopic\" or \"rgb\" (one wavelength has no spacing)");
   keys.choice(
-      "transfer", FOGRADAR_KEY_FIELD(transfer), {"srgb", "gamma"},
-      [](std::string_view text, std::string_view key) { return parse_transfer_curve(text, key); },
-      [](TransferCurve c) { return to_string(c); },
+      "transfer", FOGRADAR_KEY_FIELD(transfer), transfer_curve_names,
       "output encoding: IEC 61966-2-1 sRGB, the usual 8-bit encoding (assumption), or a "
       "power law");
   keys.number("gamma", FOGRADAR_KEY_FIELD(gamma), closed(1.0, 4.0),
@@ -107,9 +52,7 @@ KeyTable<CameraParams> camera_keys() {
   keys.boolean("write_roi_images", FOGRADAR_KEY_FIELD(write_roi_images),
                "keep the first frame of each step as camera_roi_<step>.pgm (Fig. 8)");
   keys.choice(
-      "exposure.mode", FOGRADAR_KEY_FIELD(exposure.mode), {"fixed", "auto"},
-      [](std::string_view text, std::string_view key) { return parse_exposure_mode(text, key); },
-      [](ExposureMode m) { return to_string(m); },
+      "exposure.mode", FOGRADAR_KEY_FIELD(exposure.mode), exposure_mode_names,
       "fixed, or per step so that the noise-free ROI mean grey is auto_target_grey; the "
       "study's means rise with fog: no ROI auto-exposure");
   const auto automatic = [](const CameraParams& p) {

@@ -69,8 +69,7 @@ KeyTable<FogSpec> fog_keys(std::string prefix) {
       })
       .documented_as("[-20, 50] with `liebe`; only 25 with `segelstein`");
   keys.choice(
-      "water_model", FOGRADAR_KEY_FIELD(water_model), {"liebe", "segelstein"}, parse_water_model,
-      [](WaterModel m) { return to_string(m); },
+      "water_model", FOGRADAR_KEY_FIELD(water_model), water_model_names,
       "water index at the radar frequency: `liebe` (Liebe 1991 / ITU-R P.840, "
       "temperature dependent, up to 1 THz) or `segelstein` (a table for about 25 °C "
       "without temperature dependence)");

@@ -115,25 +115,6 @@ std::complex<double> debye_term(double delta, double frequency_ghz, double relax
 
 }  // namespace
 
-// ---- Model names ----------------------------------------------------------------------------
-
-std::string_view to_string(WaterModel model) {
-  switch (model) {
-    case WaterModel::segelstein:
-      return "segelstein";
-    case WaterModel::liebe:
-      return "liebe";
-  }
-  check_failed("WaterModel has a value outside the enum", __FILE__, __LINE__);
-}
-
-WaterModel parse_water_model(std::string_view text, std::string_view field) {
-  for (const WaterModel model : {WaterModel::segelstein, WaterModel::liebe}) {
-    if (text == to_string(model)) return model;
-  }
-  throw_invalid(field, text, "one of 'segelstein', 'liebe'");
-}
-
 // ---- Segelstein table -----------------------------------------------------------------------
 
 // Interpolators are built once here and only read afterwards, so concurrent const calls are safe.

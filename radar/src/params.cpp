@@ -1,11 +1,9 @@
 #include "fogradar/radar/params.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
-#include <utility>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
@@ -16,26 +14,7 @@ namespace {
 
 constexpr double degree_rad = pi / 180.0;
 
-constexpr std::array<std::pair<SweepDirection, std::string_view>, 2> kDirectionNames{{
-    {SweepDirection::up, "up"},
-    {SweepDirection::down, "down"},
-}};
-
 }  // namespace
-
-std::string_view to_string(SweepDirection direction) noexcept {
-  for (const auto& [value, name] : kDirectionNames) {
-    if (value == direction) return name;
-  }
-  return "?";
-}
-
-SweepDirection parse_sweep_direction(std::string_view text, std::string_view field) {
-  for (const auto& [value, name] : kDirectionNames) {
-    if (name == text) return value;
-  }
-  throw_invalid(field, text, "one of up, down");
-}
 
 KeyTable<RadarParams> radar_param_keys() {
   KeyTable<RadarParams> keys;
@@ -51,8 +30,7 @@ KeyTable<RadarParams> radar_param_keys() {
       "echoes sharing a range cell, and the frequency the chamber's fog is resolved at; "
       "the water models cover it");
   keys.choice(
-      "radar.sweep_direction", FOGRADAR_KEY_FIELD(sweep_direction), {"up", "down"},
-      parse_sweep_direction, [](SweepDirection d) { return to_string(d); },
+      "radar.sweep_direction", FOGRADAR_KEY_FIELD(sweep_direction), sweep_direction_names,
       "up: f_c − B/2 → f_c + B/2 (most automotive front ends); down: the reverse "
       "(docs/radar.md §3.2)");
   // B <= f_c / 2 keeps the whole sweep above 3 f_c / 4.
@@ -135,9 +113,8 @@ KeyTable<RadarParams> radar_param_keys() {
               "water film on the radome's outer face (the study's water-covered sensor), with the "
               "water model and temperature of the first layer's fog; also without a radome");
   keys.choice(
-      "processing.window", FOGRADAR_KEY_FIELD(window),
-      {"rectangular", "hann", "hamming", "blackman_harris", "chebyshev"}, parse_window_type,
-      [](WindowType w) { return to_string(w); }, "range and Doppler window");
+      "processing.window", FOGRADAR_KEY_FIELD(window), window_type_names,
+      "range and Doppler window");
   keys.number("processing.association_gate_m", FOGRADAR_KEY_FIELD(association_gate_m),
               closed(0.0, 1e3),
               "the tracked target is the strongest detection within this of the chamber's target "

@@ -119,25 +119,6 @@ void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
 
 }  // namespace
 
-std::string_view to_string(Swerling model) {
-  switch (model) {
-    case Swerling::zero:
-      return "0";
-    case Swerling::one:
-      return "1";
-    case Swerling::three:
-      return "3";
-  }
-  return "?";
-}
-
-Swerling parse_swerling(std::string_view text, std::string_view field) {
-  if (text == "0") return Swerling::zero;
-  if (text == "1") return Swerling::one;
-  if (text == "3") return Swerling::three;
-  throw_invalid(field, text, "one of: 0, 1, 3");
-}
-
 void Scene::validate() const {
   if (centres.empty() || centres.size() > 10000) {
     throw_invalid("target.centres", static_cast<double>(centres.size()), "a count in [1, 10000]");

@@ -4,16 +4,6 @@
 
 namespace fogradar::radar {
 
-std::string_view to_string(TargetModel model) noexcept {
-  return model == TargetModel::evt ? "evt" : "point";
-}
-
-TargetModel parse_target_model(std::string_view text, std::string_view field) {
-  if (text == "evt") return TargetModel::evt;
-  if (text == "point") return TargetModel::point;
-  throw_invalid(field, text, "one of 'evt', 'point'");
-}
-
 KeyTable<TargetSpec> target_keys() {
   KeyTable<TargetSpec> keys("target.");
   // The EVT's five centres have heights of their own and a steady RCS: these keys would do nothing.
@@ -22,8 +12,7 @@ KeyTable<TargetSpec> target_keys() {
       "with target.model = \"point\" (the EVT's five centres have heights of their own and a "
       "steady RCS)";
   keys.choice(
-      "model", FOGRADAR_KEY_FIELD(model), {"evt", "point"}, parse_target_model,
-      [](TargetModel m) { return to_string(m); },
+      "model", FOGRADAR_KEY_FIELD(model), target_model_names,
       "EVT rear as five scattering centres, or one point");
   keys.number("rcs_dbsm", FOGRADAR_KEY_FIELD(rcs_dbsm), closed(-60.0, 60.0),
               "mean RCS (sum over the EVT's centres)");
@@ -31,7 +20,7 @@ KeyTable<TargetSpec> target_keys() {
   keys.integer(
           "swerling", [](const TargetSpec& t) { return static_cast<std::int64_t>(t.swerling); },
           [](TargetSpec& t, std::int64_t v) {
-            t.swerling = parse_swerling(std::to_string(v), "target.swerling");
+            t.swerling = swerling_names.parse(std::to_string(v), "target.swerling");
           },
           "integer 0, 1, 3", "point target fluctuation from measurement to measurement")
       .when(is_point, point_only);

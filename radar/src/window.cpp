@@ -16,14 +16,6 @@ namespace fogradar::radar {
 
 namespace {
 
-constexpr std::array<std::pair<WindowType, std::string_view>, 5> kWindowNames{{
-    {WindowType::rectangular, "rectangular"},
-    {WindowType::hann, "hann"},
-    {WindowType::hamming, "hamming"},
-    {WindowType::blackman_harris, "blackman_harris"},
-    {WindowType::chebyshev, "chebyshev"},
-}};
-
 // frame[c][i] *= doppler[c] * range_pairs[i] over the interleaved (re, im) values of each chirp:
 // the same products as scaling each complex sample by w_d[c] w_r[n], written over doubles so that
 // the clones vectorise it (std::complex<double> *= double was not), about a third faster.
@@ -110,20 +102,6 @@ std::vector<double> dolph_chebyshev_symmetric(std::size_t m, double attenuation_
 }
 
 }  // namespace
-
-std::string_view to_string(WindowType type) noexcept {
-  for (const auto& [value, name] : kWindowNames) {
-    if (value == type) return name;
-  }
-  return "unknown";
-}
-
-WindowType parse_window_type(std::string_view text, std::string_view field) {
-  for (const auto& [value, name] : kWindowNames) {
-    if (name == text) return value;
-  }
-  throw_invalid(field, text, "one of rectangular, hann, hamming, blackman_harris, chebyshev");
-}
 
 std::vector<double> make_window(WindowType type, std::size_t n, double chebyshev_sidelobe_db,
                                 WindowSymmetry symmetry) {

@@ -13,8 +13,8 @@ expect_bad fog-visibility-inf "--visibility-m = 'inf'" "[1e-3, 1e7]" fog --visib
 expect_bad fog-diameter-empty "--diameter-um = ''" "[0.01, 1000]" fog --diameter-um ""
 expect_bad fog-temperature-empty "--temperature-c = ''" "[-20, 50] with --water-model liebe" fog --temperature-c ""
 expect_bad fog-frequency-empty "--frequency-ghz = ''" "[0.03, 1000] with --water-model liebe" fog --frequency-ghz ""
-expect_bad fog-model --water-model "one of 'segelstein', 'liebe'" fog --water-model mie
-expect_bad fog-model-empty "--water-model = ''" "one of 'segelstein', 'liebe'" fog --water-model ""
+expect_bad fog-model --water-model "one of liebe, segelstein" fog --water-model mie
+expect_bad fog-model-empty "--water-model = ''" "one of liebe, segelstein" fog --water-model ""
 expect_bad fog-two-densities --visibility-m "excludes" fog --lwc 1 --visibility-m 3
 expect_bad fog-frequency --frequency-ghz "[0.03, 1000] with --water-model liebe" fog --frequency-ghz 1e9
 expect_bad fog-liebe-frequency "--frequency-ghz = '2000'" \

@@ -280,7 +280,7 @@ expect_bad_run nan-lwc "nan.toml:2: fog.lwc_g_per_m3 = nan" "[0, 100]" --scenari
 expect_bad_run malformed malformed.toml:1 "malformed TOML" --scenario "$work/malformed.toml"
 expect_bad_run empty-window "empty-window.toml:2: processing.window = ''" "one of rectangular, hann" \
   --scenario "$work/empty-window.toml"
-expect_bad_run empty-water-model "empty-water.toml:2: fog.water_model = ''" "one of 'segelstein', 'liebe'" \
+expect_bad_run empty-water-model "empty-water.toml:2: fog.water_model = ''" "one of liebe, segelstein" \
   --scenario "$work/empty-water.toml"
 expect_bad_run integer-documented-range "radar.samples_per_chirp = 5000000000" "an integer in [16, 65536]" \
   --scenario "$work/huge-samples.toml"

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/keys.hpp"
 
@@ -187,6 +188,42 @@ TEST(Keys, ACrossKeyBoundThatNoValueMeetsSaysSo) {
   EXPECT_EQ(bound(open_closed(7.0, 5.0), false).constraint(),
             "a number > q = 7 and <= 5; no number is both: the keys named leave it no value");
   EXPECT_EQ(bound(open_closed(1.0, 5.0), false).constraint(), "in (q = 7, 5]");
+}
+
+// One table of names gives the printing, the parsing and the key's choices. The names, the refusal
+// message and the documented set are written here independently of the table.
+enum class Shade { light, dark, dim };
+constexpr auto kShadeNames =
+    enum_names<Shade>({{Shade::dark, "dark"}, {Shade::light, "light"}, {Shade::dim, "dim"}});
+static_assert(kShadeNames.name(Shade::light) == "light");
+static_assert(kShadeNames.name(static_cast<Shade>(7)) == "?");
+
+struct Lamp {
+  Shade shade = Shade::light;
+};
+
+TEST(EnumNames, ParseNameAndKeyShareOneTable) {
+  for (const Shade s : {Shade::light, Shade::dark, Shade::dim}) {
+    EXPECT_EQ(kShadeNames.parse(kShadeNames.name(s), "lamp.shade"), s);
+  }
+  EXPECT_EQ(kShadeNames.allowed(), "one of dark, light, dim");
+  EXPECT_EQ(kShadeNames.names(), (std::vector<std::string>{"dark", "light", "dim"}));
+  try {
+    kShadeNames.parse("Dark", "lamp.shade");
+    ADD_FAILURE() << "accepted a name in another case";
+  } catch (const InvalidParameter& error) {
+    EXPECT_EQ(error.field(), "lamp.shade");
+    EXPECT_STREQ(error.what(), "lamp.shade = 'Dark': must be one of dark, light, dim");
+  }
+  KeyTable<Lamp> keys("lamp.");
+  const Key<Lamp>& key = keys.choice("shade", FOGRADAR_KEY_FIELD(shade), kShadeNames, "its shade");
+  EXPECT_EQ(key.allowed, "`dark`, `light`, `dim`");
+  EXPECT_EQ(key.choices, (std::vector<std::string>{"dark", "light", "dim"}));
+  Lamp lamp;
+  key.set_text(lamp, "dim");
+  EXPECT_EQ(lamp.shade, Shade::dim);
+  EXPECT_EQ(key.get_text(lamp), "dim");
+  EXPECT_THROW(key.set_text(lamp, "bright"), InvalidParameter);
 }
 
 }  // namespace

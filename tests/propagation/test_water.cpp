@@ -452,7 +452,7 @@ TEST(WaterOpticsTest, DispatchesToTheChosenModel) {
 
 TEST(WaterModelNamesTest, RoundTripsThroughStrings) {
   for (const WaterModel model : {WaterModel::segelstein, WaterModel::liebe}) {
-    EXPECT_EQ(parse_water_model(to_string(model)), model);
+    EXPECT_EQ(water_model_names.parse(to_string(model), "water_model"), model);
   }
   EXPECT_EQ(to_string(WaterModel::segelstein), "segelstein");
   EXPECT_EQ(to_string(WaterModel::liebe), "liebe");
@@ -519,11 +519,11 @@ TEST(WaterInputValidationTest, LiebeOpticsRejectsWavelengthsBelowOneTerahertz) {
 }
 
 TEST(WaterInputValidationTest, RejectsUnknownModelNames) {
-  EXPECT_TRUE(throws_invalid_naming([] { parse_water_model("mie"); }, "water_model"));
-  EXPECT_TRUE(throws_invalid_naming([] { parse_water_model("Liebe"); }, "water_model"));
-  EXPECT_TRUE(throws_invalid_naming([] { parse_water_model(""); }, "water_model"));
+  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("mie", "water_model"); }, "water_model"));
+  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("Liebe", "water_model"); }, "water_model"));
+  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("", "water_model"); }, "water_model"));
   EXPECT_TRUE(
-      throws_invalid_naming([] { parse_water_model("ray", "--water-model"); }, "--water-model"));
+      throws_invalid_naming([] { water_model_names.parse("ray", "--water-model"); }, "--water-model"));
 }
 
 }  // namespace

@@ -239,13 +239,13 @@ TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
 // The sweep direction's names round-trip; anything else is refused naming the field.
 TEST(RadarParams, SweepDirectionNames) {
   for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down}) {
-    EXPECT_EQ(parse_sweep_direction(to_string(direction)), direction);
+    EXPECT_EQ(sweep_direction_names.parse(to_string(direction), "radar.sweep_direction"), direction);
   }
   EXPECT_EQ(to_string(SweepDirection::up), "up");
   EXPECT_EQ(to_string(SweepDirection::down), "down");
-  EXPECT_EQ(test_support::rejected_field([] { parse_sweep_direction("Up"); }),
+  EXPECT_EQ(test_support::rejected_field([] { sweep_direction_names.parse("Up", "radar.sweep_direction"); }),
             "radar.sweep_direction");
-  EXPECT_EQ(test_support::rejected_field([] { parse_sweep_direction("sawtooth", "x.dir"); }),
+  EXPECT_EQ(test_support::rejected_field([] { sweep_direction_names.parse("sawtooth", "x.dir"); }),
             "x.dir");
 }
 
@@ -394,9 +394,9 @@ TEST(TargetKeys, RejectsAnInvalidWaterFilm) {
 
 TEST(Scene, SwerlingNamesRoundTrip) {
   for (const Swerling s : {Swerling::zero, Swerling::one, Swerling::three})
-    EXPECT_EQ(parse_swerling(to_string(s)), s);
+    EXPECT_EQ(swerling_names.parse(to_string(s), "target.swerling"), s);
   try {
-    parse_swerling("2", "target.centres[1].swerling");
+    swerling_names.parse("2", "target.centres[1].swerling");
     ADD_FAILURE() << "accepted Swerling 2";
   } catch (const InvalidParameter& error) {
     EXPECT_EQ(error.field(), "target.centres[1].swerling");

@@ -380,9 +380,9 @@ TEST(FrameWindow, ScalesEachSampleByBothWeights) {
 }
 
 TEST(Window, NamesRoundTrip) {
-  for (const WindowType type : kAllWindows) EXPECT_EQ(parse_window_type(to_string(type)), type);
+  for (const WindowType type : kAllWindows) EXPECT_EQ(window_type_names.parse(to_string(type), "window"), type);
   try {
-    parse_window_type("Hanning", "processing.range_window");
+    window_type_names.parse("Hanning", "processing.range_window");
     ADD_FAILURE() << "accepted an unknown window name";
   } catch (const InvalidParameter& error) {
     EXPECT_EQ(error.field(), "processing.range_window");

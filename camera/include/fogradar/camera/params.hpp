@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/keys.hpp"
 
 namespace fogradar::camera {
@@ -20,15 +21,19 @@ enum class ExposureMode { fixed, automatic };
 // The sensor's transfer (encoding) curve: IEC 61966-2-1 sRGB, or a pure power law v^(1/gamma).
 enum class TransferCurve { srgb, gamma };
 
-std::string_view to_string(Band band) noexcept;
-std::string_view to_string(ExposureMode mode) noexcept;
-std::string_view to_string(TransferCurve curve) noexcept;
-// Inverses of to_string; throw InvalidParameter naming `field` otherwise.
-Band parse_band(std::string_view text, std::string_view field = "camera.band");
-ExposureMode parse_exposure_mode(std::string_view text,
-                                 std::string_view field = "camera.exposure.mode");
-TransferCurve parse_transfer_curve(std::string_view text,
-                                   std::string_view field = "camera.transfer");
+inline constexpr auto band_names = enum_names<Band>(
+    {{Band::photopic, "photopic"}, {Band::rgb, "rgb"}, {Band::monochromatic, "monochromatic"}});
+inline constexpr auto exposure_mode_names =
+    enum_names<ExposureMode>({{ExposureMode::fixed, "fixed"}, {ExposureMode::automatic, "auto"}});
+inline constexpr auto transfer_curve_names =
+    enum_names<TransferCurve>({{TransferCurve::srgb, "srgb"}, {TransferCurve::gamma, "gamma"}});
+constexpr std::string_view to_string(Band band) noexcept { return band_names.name(band); }
+constexpr std::string_view to_string(ExposureMode mode) noexcept {
+  return exposure_mode_names.name(mode);
+}
+constexpr std::string_view to_string(TransferCurve curve) noexcept {
+  return transfer_curve_names.name(curve);
+}
 
 struct ExposureParams {
   ExposureMode mode = ExposureMode::fixed;  // TOML "fixed" | "auto"

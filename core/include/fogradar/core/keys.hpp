@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/error.hpp"
 
 // A field accessor for KeyTable: a generic lambda returning a reference to `member` of the struct
@@ -306,6 +307,15 @@ class KeyTable {
       field(p) = parse(text, key_name);
     };
     return key;
+  }
+  // A choice among the names of one EnumNames table: its parse, its name_of and its set.
+  template <class Field, class Enum, std::size_t N>
+  Key<P>& choice(std::string_view name, Field field, const EnumNames<Enum, N>& names,
+                 std::string meaning) {
+    return choice(
+        name, field, names.names(),
+        [names](std::string_view text, std::string_view key) { return names.parse(text, key); },
+        [names](Enum value) { return names.name(value); }, std::move(meaning));
   }
   // A choice read and written through functions (a variant's alternative selected by name).
   Key<P>& choice(std::string_view name, std::function<std::string(const P&)> get,

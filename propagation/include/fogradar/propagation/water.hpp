@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/core/enum_names.hpp"
+
 namespace fogradar::propagation {
 
 enum class WaterModel { segelstein, liebe };
@@ -16,9 +18,11 @@ enum class WaterModel { segelstein, liebe };
 // temperature dependence: a water temperature is accepted with it only at this value.
 inline constexpr double segelstein_table_temperature_c = 25.0;
 
-std::string_view to_string(WaterModel model);
-// Parses "segelstein" or "liebe"; throws InvalidParameter naming `field` otherwise.
-WaterModel parse_water_model(std::string_view text, std::string_view field = "water_model");
+inline constexpr auto water_model_names =
+    enum_names<WaterModel>({{WaterModel::liebe, "liebe"}, {WaterModel::segelstein, "segelstein"}});
+constexpr std::string_view to_string(WaterModel model) noexcept {
+  return water_model_names.name(model);
+}
 
 // The Segelstein 1981 table (data/segelstein81_index.txt, compiled into the library), interpolated
 // monotonically (PCHIP) in log(lambda) -> log(n), log(k). Immutable after construction; safe to share

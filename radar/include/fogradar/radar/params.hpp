@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/keys.hpp"
 #include "fogradar/radar/cfar.hpp"
 #include "fogradar/radar/window.hpp"
@@ -15,10 +16,11 @@ namespace fogradar::radar {
 // Direction of the linear frequency sweep of each chirp: up from f_c - B/2 to f_c + B/2, or down
 // from f_c + B/2 to f_c - B/2 (docs/radar.md §3.2).
 enum class SweepDirection { up, down };
-std::string_view to_string(SweepDirection direction) noexcept;
-// Inverse of to_string ("up", "down"); throws InvalidParameter naming `field` otherwise.
-SweepDirection parse_sweep_direction(std::string_view text,
-                                     std::string_view field = "radar.sweep_direction");
+inline constexpr auto sweep_direction_names =
+    enum_names<SweepDirection>({{SweepDirection::up, "up"}, {SweepDirection::down, "down"}});
+constexpr std::string_view to_string(SweepDirection direction) noexcept {
+  return sweep_direction_names.name(direction);
+}
 
 // The radar's radome and the water film on its outer face (the study's water-covered sensor): flat
 // slabs at normal incidence in the transfer-matrix model (propagation/water_film.hpp). Thickness 0:

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/radar/origin.hpp"
@@ -20,8 +21,9 @@ namespace fogradar::radar {
 // 1 exponential (many equal scatterers), 3 chi-square with 4 degrees of freedom (one dominant
 // scatterer plus many small). Swerling 1957; Skolnik, Introduction to Radar Systems, sec. 2.8.
 enum class Swerling { zero = 0, one = 1, three = 3 };
-std::string_view to_string(Swerling model);
-Swerling parse_swerling(std::string_view text, std::string_view field = "target.swerling");
+inline constexpr auto swerling_names =
+    enum_names<Swerling>({{Swerling::zero, "0"}, {Swerling::one, "1"}, {Swerling::three, "3"}});
+constexpr std::string_view to_string(Swerling model) noexcept { return swerling_names.name(model); }
 
 // A scattering centre relative to the target reference point, which sits on the radar boresight at
 // the chamber's target range (sensor to target plane).

@@ -6,15 +6,18 @@
 #include <string>
 #include <string_view>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/keys.hpp"
 #include "fogradar/radar/scene.hpp"
 
 namespace fogradar::radar {
 
 enum class TargetModel { evt, point };
-std::string_view to_string(TargetModel model) noexcept;  // "evt", "point"
-// Inverse of to_string; throws InvalidParameter naming `field` otherwise.
-TargetModel parse_target_model(std::string_view text, std::string_view field = "target.model");
+inline constexpr auto target_model_names =
+    enum_names<TargetModel>({{TargetModel::evt, "evt"}, {TargetModel::point, "point"}});
+constexpr std::string_view to_string(TargetModel model) noexcept {
+  return target_model_names.name(model);
+}
 
 struct TargetSpec {
   TargetModel model = TargetModel::evt;

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/core/enum_names.hpp"
+
 namespace fogradar::radar {
 
 enum class WindowType { rectangular, hann, hamming, blackman_harris, chebyshev };
@@ -25,11 +27,16 @@ enum class WindowType { rectangular, hann, hamming, blackman_harris, chebyshev }
 // Default: periodic, used by the radar chain.
 enum class WindowSymmetry { periodic, symmetric };
 
-// "rectangular", "hann", "hamming", "blackman_harris", "chebyshev".
-std::string_view to_string(WindowType type) noexcept;
-// Inverse of to_string (exact, lower case). Throws InvalidParameter naming `field` with the list
-// of accepted names.
-WindowType parse_window_type(std::string_view text, std::string_view field = "window");
+inline constexpr auto window_type_names = enum_names<WindowType>({
+    {WindowType::rectangular, "rectangular"},
+    {WindowType::hann, "hann"},
+    {WindowType::hamming, "hamming"},
+    {WindowType::blackman_harris, "blackman_harris"},
+    {WindowType::chebyshev, "chebyshev"},
+});
+constexpr std::string_view to_string(WindowType type) noexcept {
+  return window_type_names.name(type);
+}
 
 // N samples of a window with the published coefficients (cosine windows are not renormalised:
 // their peak is 1 where a sample falls on the window centre, i.e. periodic with even N or
