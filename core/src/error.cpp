@@ -6,8 +6,28 @@
 
 namespace fogradar {
 
-InvalidParameter::InvalidParameter(std::string field, const std::string& message)
-    : std::invalid_argument(message), field_(std::move(field)) {}
+namespace {
+
+std::string located(const std::string& message, const InputLocation& location) {
+  if (location.empty()) return message;
+  std::string text = location.source;
+  if (location.line != 0) {
+    text.push_back(':');
+    text.append(std::to_string(location.line));
+  }
+  text.append(": ");
+  text.append(message);
+  return text;
+}
+
+}  // namespace
+
+InvalidParameter::InvalidParameter(std::string field, const std::string& message,
+                                   InputLocation location)
+    : std::invalid_argument(located(message, location)),
+      field_(std::move(field)),
+      message_(message),
+      location_(std::move(location)) {}
 
 std::string message_number(double value) {
   if (std::isnan(value)) return "nan";

@@ -39,11 +39,7 @@ using KeyLines = std::map<std::string, std::size_t>;
 // Line 0: the message names the source and the key alone.
 [[noreturn]] void throw_at(std::string_view source, std::size_t line, const std::string& key,
                            const std::string& message) {
-  std::ostringstream out;
-  out << source;
-  if (line != 0) out << ':' << line;
-  out << ": " << message;
-  throw InvalidParameter(key, out.str());
+  throw InvalidParameter(key, message, {std::string(source), line});
 }
 
 // A value as TOML writes it, for messages about a value of the wrong type. Arrays and tables are
@@ -515,7 +511,7 @@ class Reader {
       key.check_alone(probe);
       if (whole) probe.validate();
     } catch (const InvalidParameter& e) {
-      const std::string_view what = e.what(), must = ": must be ";
+      const std::string_view what = e.message(), must = ": must be ";
       const std::size_t at = what.find(must);
       if (e.field() == key.name && at != std::string_view::npos) {
         return std::string(what.substr(at + must.size()));
@@ -896,13 +892,14 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     // Without line numbers, the other keys a message names are not pointed at either.
     const KeyLines& lines = line_numbers == LineNumbers::shown ? reader.lines() : KeyLines{};
     // A reader's error already names its key and line; it may name keys read before it.
-    if (std::string_view(e.what()).rfind(std::string(source_name) + ":", 0) == 0) {
-      throw InvalidParameter(e.field(), e.what() + other_key_lines(e.what(), e.field(), lines));
+    if (e.location().source == source_name) {
+      throw InvalidParameter(e.field(), e.message() + other_key_lines(e.message(), e.field(), lines),
+                             e.location());
     }
     // A range check: point at the key as the user wrote it, and its line.
     const std::string& key = e.field();
     const std::string message =
-        as_typed(e.what(), key, reader.typed_numbers()) + other_key_lines(e.what(), key, lines);
+        as_typed(e.message(), key, reader.typed_numbers()) + other_key_lines(e.message(), key, lines);
     // A key the file does not give keeps its paper value; a check combining it with keys the file
     // gives points at the first of those.
     std::size_t line = 0;
@@ -918,11 +915,10 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
       line = given->second;
     } else if (line == 0) {
       for (const auto& [other, other_line] : lines) {
-        if (!key_positions(e.what(), other).empty() && (line == 0 || other_line < line))
+        if (!key_positions(e.message(), other).empty() && (line == 0 || other_line < line))
           line = other_line;
       }
     }
-    if (line == 0) throw InvalidParameter(key, std::string(source_name) + ": " + message);
     throw_at(source_name, line, key, message);
   }
   return s;

@@ -11,9 +11,7 @@ namespace {
 
 [[noreturn]] void refuse(std::string_view source_name, std::size_t line,
                          const std::string& message) {
-  std::ostringstream out;
-  out << source_name << ':' << line << ": " << message;
-  throw InvalidParameter("toml", out.str());
+  throw InvalidParameter("toml", message, {std::string(source_name), line});
 }
 
 // Length of the well-formed UTF-8 sequence at text[i] (RFC 3629, section 4: no overlong forms, no

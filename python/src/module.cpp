@@ -40,29 +40,14 @@ namespace {
 
 using experiment::Scenario;
 
-// The line a scenario message points at: "<source>:<line>: ..." (experiment/scenario.hpp).
-std::optional<long> line_of(std::string_view message, std::string_view source) {
-  if (source.empty() || message.size() <= source.size() || !message.starts_with(source) ||
-      message[source.size()] != ':') {
-    return std::nullopt;
-  }
-  long line = 0;
-  std::size_t i = source.size() + 1;
-  const std::size_t first = i;
-  for (; i < message.size() && message[i] >= '0' && message[i] <= '9'; ++i) {
-    line = line * 10 + (message[i] - '0');
-  }
-  if (i == first || i >= message.size() || message[i] != ':') return std::nullopt;
-  return line;
-}
-
 // fogradar.InvalidParameter (a ValueError, python/fogradar/_errors.py) with the message word for
 // word, the key and, for a scenario text, its line.
 [[noreturn]] void raise_invalid(const InvalidParameter& e, std::string_view source = {}) {
   const py::object type = py::module_::import("fogradar._errors").attr("InvalidParameter");
-  const std::optional<long> line = line_of(e.what(), source);
+  const InputLocation& at = e.location();
+  const bool has_line = !source.empty() && at.source == source && at.line != 0;
   const py::object error =
-      type(e.what(), e.field(), line ? py::object(py::int_(*line)) : py::object(py::none()));
+      type(e.what(), e.field(), has_line ? py::object(py::int_(at.line)) : py::object(py::none()));
   PyErr_SetObject(type.ptr(), error.ptr());
   throw py::error_already_set();
 }

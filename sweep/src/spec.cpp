@@ -31,9 +31,7 @@ constexpr std::size_t max_points = 1000000;
 
 [[noreturn]] void fail(std::string_view source, std::size_t line, const std::string& key,
                        const std::string& message) {
-  std::ostringstream out;
-  out << source << ':' << line << ": " << message;
-  throw InvalidParameter(key, out.str());
+  throw InvalidParameter(key, message, {std::string(source), line});
 }
 
 std::size_t line_of(const toml::node& node) { return node.source().begin.line; }
@@ -663,13 +661,6 @@ void set_element_values(experiment::Scenario& scenario,
   scenario.validate();
 }
 
-// The scenario message without its "<source>:<line>: " (the sweep's own location replaces it).
-std::string without_location(const std::string& message, const std::string& source) {
-  if (message.rfind(source + ":", 0) != 0) return message;
-  const std::size_t colon = message.find(": ", source.size() + 1);
-  return colon == std::string::npos ? message : message.substr(colon + 2);
-}
-
 }  // namespace
 
 double Distribution::quantile(double u) const {
@@ -888,7 +879,8 @@ std::vector<Point> expand(const SweepSpec& spec) {
         set_element_values(scenario, values);
         return scenario;
       } catch (const InvalidParameter& e) {
-        const std::string message = without_location(e.what(), label);
+        // The sweep's own location replaces the point's.
+        const std::string& message = e.message();
         for (std::size_t a = 0; a < spec.axes.size(); ++a) {
           const Axis& axis = spec.axes[a];
           if (std::find(axis.keys.begin(), axis.keys.end(), e.field()) == axis.keys.end()) continue;

@@ -66,6 +66,23 @@ TEST(Error, StringValuesAreQuoted) {
   EXPECT_EQ(m, "water_model = 'mie': must be one of: segelstein, liebe");
 }
 
+// Where a value was given is data of the error, not text to be parsed back: the full message
+// puts it in front ("<source>:<line>: "), the bare message and the location stay apart.
+TEST(Error, LocationIsKeptApartFromTheMessage) {
+  const InvalidParameter at_line("radar.tx_power_dbm",
+                                 "radar.tx_power_dbm = 90: must be in [-30, 50]", {"my.toml", 7});
+  EXPECT_STREQ(at_line.what(), "my.toml:7: radar.tx_power_dbm = 90: must be in [-30, 50]");
+  EXPECT_EQ(at_line.message(), "radar.tx_power_dbm = 90: must be in [-30, 50]");
+  EXPECT_EQ(at_line.field(), "radar.tx_power_dbm");
+  EXPECT_EQ(at_line.location().source, "my.toml");
+  EXPECT_EQ(at_line.location().line, 7U);
+  const InvalidParameter no_line("toml", "malformed", {"<scenario>", 0});
+  EXPECT_STREQ(no_line.what(), "<scenario>: malformed");
+  const InvalidParameter nowhere("--seed", "--seed = '-1': must be an integer");
+  EXPECT_STREQ(nowhere.what(), "--seed = '-1': must be an integer");
+  EXPECT_TRUE(nowhere.location().empty());
+}
+
 TEST(Error, CheckIsAnInternalError) {
   EXPECT_THROW(FOGRADAR_CHECK(1 + 1 == 3), InternalError);
   EXPECT_NO_THROW(FOGRADAR_CHECK(1 + 1 == 2));

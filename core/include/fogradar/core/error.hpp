@@ -3,21 +3,38 @@
 // FOGRADAR_CHECK.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 namespace fogradar {
 
+// Where a refused value was given: a text the user wrote (a scenario or sweep file, "<scenario>")
+// and its line there. Empty for a value set in code or on the command line; line 0 where the
+// text has no one line for it.
+struct InputLocation {
+  std::string source;
+  std::size_t line = 0;
+
+  bool empty() const noexcept { return source.empty(); }
+};
+
 // Bad input: a parameter outside its allowed range. `field()` names it ("Fog.lwc_g_per_m3",
-// "--frequency-ghz", "radar.centre_frequency_hz"), `what()` is the full one-line message.
+// "--frequency-ghz", "radar.centre_frequency_hz"), `message()` says what is wrong with it, and
+// `location()` where it was given; `what()` is the full one-line message,
+// "<source>:<line>: <message>" where there is a location.
 class InvalidParameter : public std::invalid_argument {
  public:
-  InvalidParameter(std::string field, const std::string& message);
+  InvalidParameter(std::string field, const std::string& message, InputLocation location = {});
   const std::string& field() const noexcept { return field_; }
+  const std::string& message() const noexcept { return message_; }
+  const InputLocation& location() const noexcept { return location_; }
 
  private:
   std::string field_;
+  std::string message_;
+  InputLocation location_;
 };
 
 // A number as bad-input messages write it: ten significant digits, "1e+09"; NaN and the
