@@ -1,7 +1,6 @@
 #include "toml_bytes.hpp"
 
 #include <cstddef>
-#include <sstream>
 #include <string>
 
 #include "fogradar/core/error.hpp"
