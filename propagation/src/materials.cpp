@@ -168,7 +168,7 @@ std::optional<WavelengthRangeNm> optical_wavelength_range(Material material,
 std::string_view optical_index_source(Material material) {
   switch (material) {
     case Material::water: return "Segelstein 1981 table";
-    case Material::glass: return "fused silica, Malitson 1965 Sellmeier fit (absorption neglected)";
+    case Material::glass: return "fused silica, Malitson 1965 Sellmeier fit, absorption neglected";
     case Material::metal: return "aluminium, Rakic et al. 1998 Lorentz-Drude fit";
     default: return "";
   }
