@@ -70,8 +70,8 @@ std::string number(double value) {
 }
 
 std::string complex_text(complex value) {
-  return number(value.real()) + (value.imag() < 0 ? " - " : " + ") + number(std::abs(value.imag())) +
-         "i";
+  return number(value.real()) + (value.imag() < 0 ? " - " : " + ") +
+         number(std::abs(value.imag())) + "i";
 }
 
 double phase_deg(complex value) { return std::arg(value) * 180.0 / pi; }
@@ -130,13 +130,14 @@ void run_room(const RoomOptions& o) {
         propagation::optical_wavelength_range(material, table);
     if (!range) {
       throw_invalid("--material", o.material,
-                    optical_names_text() + " with --wavelength-nm (the materials with optical "
-                                           "data)");
+                    optical_names_text() +
+                        " with --wavelength-nm (the materials with optical "
+                        "data)");
     }
     if (!(*o.wavelength_nm >= range->min_nm && *o.wavelength_nm <= range->max_nm)) {
       throw_invalid("--wavelength-nm", o.wavelength_typed,
-                    "in [" + message_number(range->min_nm) + ", " +
-                        message_number(range->max_nm) + "] for material '" + o.material + "' (" +
+                    "in [" + message_number(range->min_nm) + ", " + message_number(range->max_nm) +
+                        "] for material '" + o.material + "' (" +
                         std::string(propagation::optical_index_source(material)) + ")");
     }
     const complex index =

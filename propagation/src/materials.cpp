@@ -38,22 +38,37 @@ constexpr std::array<MaterialName, 16> names = {{
 // glass and ceiling board are left out (no sensor of this project works there).
 ItuP2040Fit p2040_row(Material material) {
   switch (material) {
-    case Material::concrete: return {5.24, 0.0, 0.0462, 0.7822, 1.0, 100.0};
-    case Material::brick: return {3.91, 0.0, 0.0238, 0.16, 1.0, 40.0};
-    case Material::plasterboard: return {2.73, 0.0, 0.0085, 0.9395, 1.0, 100.0};
-    case Material::wood: return {1.99, 0.0, 0.0047, 1.0718, 0.001, 100.0};
-    case Material::glass: return {6.31, 0.0, 0.0036, 1.3394, 0.1, 100.0};
-    case Material::ceiling_board: return {1.48, 0.0, 0.0011, 1.0750, 1.0, 100.0};
-    case Material::chipboard: return {2.58, 0.0, 0.0217, 0.7800, 1.0, 100.0};
-    case Material::plywood: return {2.71, 0.0, 0.33, 0.0, 1.0, 40.0};
-    case Material::marble: return {7.074, 0.0, 0.0055, 0.9262, 1.0, 60.0};
-    case Material::floorboard: return {3.66, 0.0, 0.0044, 1.3515, 50.0, 100.0};
-    case Material::metal: return {1.0, 0.0, 1e7, 0.0, 1.0, 100.0};
-    case Material::very_dry_ground: return {3.0, 0.0, 0.00015, 2.52, 1.0, 10.0};
-    case Material::medium_dry_ground: return {15.0, -0.1, 0.035, 1.63, 1.0, 10.0};
-    case Material::wet_ground: return {30.0, -0.4, 0.15, 1.30, 1.0, 10.0};
+    case Material::concrete:
+      return {5.24, 0.0, 0.0462, 0.7822, 1.0, 100.0};
+    case Material::brick:
+      return {3.91, 0.0, 0.0238, 0.16, 1.0, 40.0};
+    case Material::plasterboard:
+      return {2.73, 0.0, 0.0085, 0.9395, 1.0, 100.0};
+    case Material::wood:
+      return {1.99, 0.0, 0.0047, 1.0718, 0.001, 100.0};
+    case Material::glass:
+      return {6.31, 0.0, 0.0036, 1.3394, 0.1, 100.0};
+    case Material::ceiling_board:
+      return {1.48, 0.0, 0.0011, 1.0750, 1.0, 100.0};
+    case Material::chipboard:
+      return {2.58, 0.0, 0.0217, 0.7800, 1.0, 100.0};
+    case Material::plywood:
+      return {2.71, 0.0, 0.33, 0.0, 1.0, 40.0};
+    case Material::marble:
+      return {7.074, 0.0, 0.0055, 0.9262, 1.0, 60.0};
+    case Material::floorboard:
+      return {3.66, 0.0, 0.0044, 1.3515, 50.0, 100.0};
+    case Material::metal:
+      return {1.0, 0.0, 1e7, 0.0, 1.0, 100.0};
+    case Material::very_dry_ground:
+      return {3.0, 0.0, 0.00015, 2.52, 1.0, 10.0};
+    case Material::medium_dry_ground:
+      return {15.0, -0.1, 0.035, 1.63, 1.0, 10.0};
+    case Material::wet_ground:
+      return {30.0, -0.4, 0.15, 1.30, 1.0, 10.0};
     case Material::water:
-    case Material::plastic: break;
+    case Material::plastic:
+      break;
   }
   FOGRADAR_CHECK(false);
   return {};
@@ -157,20 +172,27 @@ std::span<const Material> optical_materials() { return with_optical_data; }
 std::optional<WavelengthRangeNm> optical_wavelength_range(Material material,
                                                           const SegelsteinTable& table) {
   switch (material) {
-    case Material::water: return WavelengthRangeNm{table.min_wavelength_m() * 1e9,
-                                                   table.max_wavelength_m() * 1e9};
-    case Material::glass: return malitson_range;
-    case Material::metal: return rakic_window;
-    default: return std::nullopt;
+    case Material::water:
+      return WavelengthRangeNm{table.min_wavelength_m() * 1e9, table.max_wavelength_m() * 1e9};
+    case Material::glass:
+      return malitson_range;
+    case Material::metal:
+      return rakic_window;
+    default:
+      return std::nullopt;
   }
 }
 
 std::string_view optical_index_source(Material material) {
   switch (material) {
-    case Material::water: return "Segelstein 1981 table";
-    case Material::glass: return "fused silica, Malitson 1965 Sellmeier fit, absorption neglected";
-    case Material::metal: return "aluminium, Rakic et al. 1998 Lorentz-Drude fit";
-    default: return "";
+    case Material::water:
+      return "Segelstein 1981 table";
+    case Material::glass:
+      return "fused silica, Malitson 1965 Sellmeier fit, absorption neglected";
+    case Material::metal:
+      return "aluminium, Rakic et al. 1998 Lorentz-Drude fit";
+    default:
+      return "";
   }
 }
 
@@ -194,10 +216,8 @@ complex rakic_aluminium_permittivity(double wavelength_m) {
     double gamma_ev;
     double resonance_ev;
   };
-  constexpr std::array<Oscillator, 4> oscillators = {{{0.227, 0.333, 0.162},
-                                                      {0.050, 0.312, 1.544},
-                                                      {0.166, 1.351, 1.808},
-                                                      {0.030, 3.382, 3.473}}};
+  constexpr std::array<Oscillator, 4> oscillators = {
+      {{0.227, 0.333, 0.162}, {0.050, 0.312, 1.544}, {0.166, 1.351, 1.808}, {0.030, 3.382, 3.473}}};
   const double wp2 = plasma_ev * plasma_ev;
   complex eps = 1.0 - f0 * wp2 / (w * complex(w, gamma0_ev));
   for (const Oscillator& o : oscillators) {
@@ -223,11 +243,14 @@ complex optical_refractive_index(Material material, double wavelength_m,
                       std::string(optical_index_source(material)) + ")");
   }
   switch (material) {
-    case Material::water: return table.refractive_index(wavelength_m);
-    case Material::glass: return {malitson_fused_silica_index(wavelength_m), 0.0};
+    case Material::water:
+      return table.refractive_index(wavelength_m);
+    case Material::glass:
+      return {malitson_fused_silica_index(wavelength_m), 0.0};
     case Material::metal:
       return refractive_index_from_permittivity(rakic_aluminium_permittivity(wavelength_m));
-    default: break;
+    default:
+      break;
   }
   FOGRADAR_CHECK(false);
   return {};

@@ -43,12 +43,12 @@ struct TableValue {
 constexpr TableValue table_values[] = {
     {Material::concrete, 77.0, 5.24, 1.381195074, 0.3225180186},  // 5.24, 0, 0.0462, 0.7822
     {Material::concrete, 24.0, 5.24, 0.5549363953, 0.4157398495},
-    {Material::brick, 24.0, 3.91, 0.03957407347, 0.02964757671},           // 3.91, 0, 0.0238, 0.16
-    {Material::plasterboard, 77.0, 2.73, 0.5032420954, 0.1175102971},      // 2.73, 0, 0.0085, 0.9395
-    {Material::wood, 77.0, 1.99, 0.4943546427, 0.1154350192},              // 1.99, 0, 0.0047, 1.0718
-    {Material::glass, 77.0, 6.31, 1.210788195, 0.2827269058},              // 6.31, 0, 0.0036, 1.3394
-    {Material::floorboard, 77.0, 3.66, 1.559713717, 0.3642032809},         // 3.66, 0, 0.0044, 1.3515
-    {Material::metal, 77.0, 1.0, 1e7, 2335064.935},                        // 1, 0, 1e7, 0
+    {Material::brick, 24.0, 3.91, 0.03957407347, 0.02964757671},       // 3.91, 0, 0.0238, 0.16
+    {Material::plasterboard, 77.0, 2.73, 0.5032420954, 0.1175102971},  // 2.73, 0, 0.0085, 0.9395
+    {Material::wood, 77.0, 1.99, 0.4943546427, 0.1154350192},          // 1.99, 0, 0.0047, 1.0718
+    {Material::glass, 77.0, 6.31, 1.210788195, 0.2827269058},          // 6.31, 0, 0.0036, 1.3394
+    {Material::floorboard, 77.0, 3.66, 1.559713717, 0.3642032809},     // 3.66, 0, 0.0044, 1.3515
+    {Material::metal, 77.0, 1.0, 1e7, 2335064.935},                    // 1, 0, 1e7, 0
     {Material::medium_dry_ground, 5.0, 12.77009884, 0.4823798425, 1.734637914},  // 15, -0.1, ...
 };
 
@@ -81,8 +81,7 @@ TEST(Materials, OutsideTheFitIsRefusedNamingMaterialAndRange) {
   EXPECT_NE(brick.find("frequency_hz = 7.7e+10"), std::string::npos) << brick;
   EXPECT_NE(brick.find("'brick'"), std::string::npos) << brick;
   EXPECT_NE(brick.find("[1000000000, 4e+10] Hz"), std::string::npos) << brick;
-  EXPECT_EQ(rejected_field([] { radio_permittivity(Material::floorboard, 24e9); }),
-            "frequency_hz");
+  EXPECT_EQ(rejected_field([] { radio_permittivity(Material::floorboard, 24e9); }), "frequency_hz");
   EXPECT_EQ(rejected_field([] { radio_permittivity(Material::concrete, 100e9); }), "accepted");
   EXPECT_EQ(rejected_field([] { radio_permittivity(Material::concrete, 100.1e9); }),
             "frequency_hz");
@@ -148,9 +147,9 @@ TEST(Fresnel, BrewsterAngleForTm) {
 }
 
 // P.2040's metal (sigma = 1e7 S/m, |eps| ~ 2e6 at 77 GHz) against the surface-impedance
-// (Leontovich) limit of a good conductor, Z = 1 / sqrt(eps): TE = (Z sin psi - 1) / (Z sin psi + 1),
-// TM = (sin psi - Z) / (sin psi + Z), exact to O(1 / |eps|) (Senior & Volakis, Approximate Boundary
-// Conditions in Electromagnetics, 1995, ch. 2). From 10 deg up both are 1 to 1e-2; TM dips
+// (Leontovich) limit of a good conductor, Z = 1 / sqrt(eps): TE = (Z sin psi - 1) / (Z sin psi +
+// 1), TM = (sin psi - Z) / (sin psi + Z), exact to O(1 / |eps|) (Senior & Volakis, Approximate
+// Boundary Conditions in Electromagnetics, 1995, ch. 2). From 10 deg up both are 1 to 1e-2; TM dips
 // only near its pseudo-Brewster angle, sin psi ~ |Z| (0.04 deg here).
 TEST(Fresnel, MetalReflectsAlmostAll) {
   const complex eps = radio_permittivity(Material::metal, 77e9);

@@ -74,8 +74,8 @@ complex integrate(const std::function<complex(double)>& f, double low, double hi
 // Panels enough for a phase that turns by `phase_span` radians: one per radian, at least 8.
 int panels_for(double phase_span) { return 8 + static_cast<int>(std::ceil(std::abs(phase_span))); }
 
-// The plate in the z = 0 plane, width along x; i = (sin t cos p, sin t sin p, cos t); n . i = cos t.
-// The integrand separates in x and y.
+// The plate in the z = 0 plane, width along x; i = (sin t cos p, sin t sin p, cos t); n . i = cos
+// t. The integrand separates in x and y.
 double plate_po_integral_m2(const RectangularPlate& plate, double wavelength_m, double theta,
                             double phi) {
   const double k = 2.0 * pi / wavelength_m;
@@ -105,21 +105,21 @@ double cylinder_po_integral_m2(const Cylinder& c, double wavelength_m, double th
       -pi / 2, pi / 2, panels_for(4.0 * k * a * ct));
   const double st = std::sin(theta);
   const complex along =
-      integrate([&](double z) { return std::exp(complex(0.0, 2.0 * k * z * st)); },
-                -c.length_m / 2, c.length_m / 2, panels_for(2.0 * k * st * c.length_m));
+      integrate([&](double z) { return std::exp(complex(0.0, 2.0 * k * z * st)); }, -c.length_m / 2,
+                c.length_m / 2, panels_for(2.0 * k * st * c.length_m));
   return 4.0 * pi / (wavelength_m * wavelength_m) * std::norm(around * along);
 }
 
 // The closed form is the PO integral itself, done exactly: agreement to the quadrature's accuracy,
 // 1e-9 of the specular value, at angles on the lobes and between them.
 TEST(ObjectRcs, PlateFollowsItsPoIntegral) {
-  for (const RectangularPlate plate : {RectangularPlate{0.1, 0.1}, RectangularPlate{0.5, 0.2},
-                                       RectangularPlate{0.03, 0.6}}) {
+  for (const RectangularPlate plate :
+       {RectangularPlate{0.1, 0.1}, RectangularPlate{0.5, 0.2}, RectangularPlate{0.03, 0.6}}) {
     const double peak = plate_rcs_m2(plate, wavelength_77ghz_m, 0.0, 0.0);
     for (const double theta_deg : {0.0, 0.1, 0.37, 1.0, 3.0, 10.0, 30.0, 60.0}) {
       for (const double phi_deg : {0.0, 30.0, 90.0}) {
-        const double closed = plate_rcs_m2(plate, wavelength_77ghz_m, theta_deg * deg,
-                                           phi_deg * deg);
+        const double closed =
+            plate_rcs_m2(plate, wavelength_77ghz_m, theta_deg * deg, phi_deg * deg);
         const double numeric =
             plate_po_integral_m2(plate, wavelength_77ghz_m, theta_deg * deg, phi_deg * deg);
         EXPECT_NEAR(closed, numeric, 1e-9 * peak)
@@ -131,7 +131,8 @@ TEST(ObjectRcs, PlateFollowsItsPoIntegral) {
 
 // The closed form takes the circumference integral by stationary phase, which errs by O(1 / (k a))
 // (Knott sec. 5.3); the tolerance is 0.1 / (k a) of the integral, at every angle. Measured: at most
-// 0.084 % at k a = 81 (0.1 / ka = 0.12 %), 0.013 % at 242, 0.005 % at 484: the error falls as 1 / ka.
+// 0.084 % at k a = 81 (0.1 / ka = 0.12 %), 0.013 % at 242, 0.005 % at 484: the error falls as 1 /
+// ka.
 TEST(ObjectRcs, CylinderFollowsItsPoIntegral) {
   for (const Cylinder cylinder : {Cylinder{0.05, 0.3}, Cylinder{0.3, 0.9}, Cylinder{0.15, 0.1}}) {
     const double ka = 2.0 * pi / wavelength_77ghz_m * cylinder.radius_m;
@@ -146,7 +147,8 @@ TEST(ObjectRcs, CylinderFollowsItsPoIntegral) {
 
 TEST(ObjectRcs, SpecularLimits) {
   const double lambda = wavelength_77ghz_m;
-  EXPECT_NEAR(plate_rcs_m2({0.2, 0.3}, lambda, 0.0, 0.7), 4.0 * pi * 0.06 * 0.06 / (lambda * lambda),
+  EXPECT_NEAR(plate_rcs_m2({0.2, 0.3}, lambda, 0.0, 0.7),
+              4.0 * pi * 0.06 * 0.06 / (lambda * lambda),
               1e-12 * 4.0 * pi * 0.06 * 0.06 / (lambda * lambda));
   EXPECT_NEAR(cylinder_rcs_m2({0.3, 0.9}, lambda, 0.0), 2.0 * pi * 0.3 * 0.81 / lambda,
               1e-12 * 2.0 * pi * 0.3 * 0.81 / lambda);

@@ -1,8 +1,8 @@
 // Surfaces of a room: the complex relative permittivity of building materials at radio frequencies
 // (ITU-R P.2040-3, 08/2023, Table 3 fits), of water and of a plastic; the complex refractive
 // index of the few materials with published optical data at a wavelength; and the Fresnel amplitude
-// reflection coefficients of a smooth half-space. Convention as water.hpp: eps = eps' + i eps'' with
-// eps'' >= 0 (time dependence exp(-i w t)); P.2040 writes eps' - j eps'' (exp(j w t)), so its
+// reflection coefficients of a smooth half-space. Convention as water.hpp: eps = eps' + i eps''
+// with eps'' >= 0 (time dependence exp(-i w t)); P.2040 writes eps' - j eps'' (exp(j w t)), so its
 // reflection phases are the negatives of the ones here.
 #pragma once
 
@@ -119,9 +119,9 @@ std::complex<double> optical_refractive_index(Material material, double waveleng
 // vacuum at grazing angle psi (from the surface):
 // TE (horizontal) = (sin psi - sqrt(eps - cos^2 psi)) / (sin psi + sqrt(eps - cos^2 psi)),
 // TM (vertical) = (eps sin psi - sqrt(eps - cos^2 psi)) / (eps sin psi + sqrt(eps - cos^2 psi))
-// (ITU-R P.2040-3's Fresnel coefficients with cos theta = sin psi; Born & Wolf, 7th ed., sec. 1.5.2).
-// Both tend to -1 at grazing incidence; at normal incidence TM = -TE, the ground-reflection sign
-// convention (the TM field's reference direction turns with the ray).
+// (ITU-R P.2040-3's Fresnel coefficients with cos theta = sin psi; Born & Wolf, 7th ed.,
+// sec. 1.5.2). Both tend to -1 at grazing incidence; at normal incidence TM = -TE, the
+// ground-reflection sign convention (the TM field's reference direction turns with the ray).
 struct FresnelCoefficients {
   std::complex<double> te;
   std::complex<double> tm;

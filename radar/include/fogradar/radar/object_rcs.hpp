@@ -1,9 +1,9 @@
 // Closed-form physical-optics (PO) radar cross sections of the simple static objects of a room: a
 // flat rectangular plate and a right circular cylinder, perfectly conducting, in the far field,
-// monostatic. PO keeps the specular lobe and its sidelobes; edge diffraction, creeping waves and the
-// cylinder's end caps are left out, so the values hold for sizes of many wavelengths (ka >> 1) and
-// near the specular direction (Knott, Shaeffer & Tuley, Radar Cross Section, 2nd ed., 1993, ch. 5
-// and Table 5.1; Ross 1966, IEEE Trans. AP-14, 329).
+// monostatic. PO keeps the specular lobe and its sidelobes; edge diffraction, creeping waves and
+// the cylinder's end caps are left out, so the values hold for sizes of many wavelengths (ka >> 1)
+// and near the specular direction (Knott, Shaeffer & Tuley, Radar Cross Section, 2nd ed., 1993,
+// ch. 5 and Table 5.1; Ross 1966, IEEE Trans. AP-14, 329).
 #pragma once
 
 namespace fogradar::radar {
