@@ -198,8 +198,8 @@ Action add_room_command(CLI::App& app) {
   auto* wavelength =
       room->add_option("--wavelength-nm", options->wavelength_nm,
                        "Optical wavelength in nm, for water, glass or metal (e.g. 905, 1550)")
-          ->check(number_in("--wavelength-nm", 1.0, 1e9,
-                            "in [1, 1e9], and inside the material's own range"))
+          ->check(number_in("--wavelength-nm", 1.0, 1e10,
+                            "in [1, 1e10], and inside the material's own range"))
           ->check(keep_text(&options->wavelength_typed));
   frequency->excludes(wavelength);
   room->add_option("--grazing-deg", options->grazing_deg,
