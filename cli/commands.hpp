@@ -25,6 +25,7 @@ class Interrupted : public std::runtime_error {
 };
 
 Action add_fog_command(CLI::App& app);
+Action add_room_command(CLI::App& app);
 Action add_run_command(CLI::App& app);
 Action add_scenario_command(CLI::App& app);
 Action add_sweep_command(CLI::App& app);

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   const fogradar::cli::Action scenario = fogradar::cli::add_scenario_command(app);
   const fogradar::cli::Action fog = fogradar::cli::add_fog_command(app);
   const fogradar::cli::Action sweep = fogradar::cli::add_sweep_command(app);
+  const fogradar::cli::Action room = fogradar::cli::add_room_command(app);
   // CLI11 answers a word that is no subcommand with "A subcommand is required", not naming it.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string word = argv[1];
@@ -39,7 +40,7 @@ int main(int argc, char** argv) {
         app.get_subcommands([&word](CLI::App* sub) { return sub->check_name(word); });
     if (known.empty()) {
       err << "fogradar: unknown subcommand '" << word
-          << "': must be one of run, scenario, fog, sweep\n"
+          << "': must be one of run, scenario, fog, sweep, room\n"
           << "(run 'fogradar --help' for usage)\n";
       return refuse();
     }
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("scenario")) scenario();
     if (app.got_subcommand("fog")) fog();
     if (app.got_subcommand("sweep")) sweep();
+    if (app.got_subcommand("room")) room();
   } catch (const fogradar::sweep::RefusedOnRankZero&) {
     return bad_input;
   } catch (const fogradar::cli::Interrupted& e) {
