@@ -79,7 +79,9 @@ std::string_view radio_permittivity_source(Material material);
 inline constexpr double material_water_temperature_k = 293.15;
 
 // High-density polyethylene (the rain barrels' plastic), eps' = n^2 with n = 1.526 and
-// tan(delta) = 3e-4 (Lamb 1996, Int. J. Infrared Millim. Waves 17, 1997, HDPE); constant over
+// tan(delta) = 3e-4: an assumption, the values quoted for HDPE from Lamb 1996 (Int. J. Infrared
+// Millim. Waves 17, pp. 1997-2034), which this project has not checked against the paper; the
+// far-infrared measurement 1.518-1.521 (Smith & Loewenstein 1975) puts n near 1.52. Constant over
 // 10-300 GHz, where non-polar polyethylene has no dispersion of note.
 inline constexpr double plastic_refractive_index = 1.526;
 inline constexpr double plastic_loss_tangent = 3e-4;
