@@ -33,22 +33,11 @@ struct RoomOptions {
   bool json = false;
 };
 
-std::string names_text() {
-  std::string allowed;
-  for (const propagation::MaterialName& entry : propagation::material_names()) {
-    allowed += allowed.empty() ? "one of '" : ", '";
-    allowed += entry.name;
-    allowed += "'";
-  }
-  return allowed;
-}
-
 std::string optical_names_text() {
   std::string allowed;
   for (const propagation::Material material : propagation::optical_materials()) {
-    allowed += allowed.empty() ? "one of '" : ", '";
+    allowed += allowed.empty() ? "one of " : ", ";
     allowed += propagation::to_string(material);
-    allowed += "'";
   }
   return allowed;
 }
@@ -93,7 +82,7 @@ void run_room(const RoomOptions& o) {
                            "--frequency-ghz / --wavelength-nm: give exactly one of them (a radio "
                            "frequency in GHz or an optical wavelength in nm)");
   }
-  const propagation::Material material = propagation::parse_material(o.material, "--material");
+  const propagation::Material material = propagation::material_names.parse(o.material, "--material");
   nlohmann::json out;
   out["material"] = o.material;
   std::ostringstream text;
@@ -181,11 +170,11 @@ Action add_room_command(CLI::App& app) {
       "room",
       "A surface material's complex permittivity (ITU-R P.2040-3 fits, water, plastic) or optical "
       "index, and its Fresnel TE and TM amplitude reflection coefficients at a grazing angle");
-  room->add_option("--material", options->material, "Material: " + names_text())
+  room->add_option("--material", options->material, "Material: " + propagation::material_names.allowed())
       ->required()
       ->check(CLI::Validator(
           [](const std::string& text) {
-            propagation::parse_material(text, "--material");
+            propagation::material_names.parse(text, "--material");
             return std::string();
           },
           "", ""));

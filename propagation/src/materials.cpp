@@ -15,25 +15,6 @@ namespace {
 
 using complex = std::complex<double>;
 
-constexpr std::array<MaterialName, 16> names = {{
-    {"concrete", Material::concrete},
-    {"brick", Material::brick},
-    {"plasterboard", Material::plasterboard},
-    {"wood", Material::wood},
-    {"glass", Material::glass},
-    {"ceiling_board", Material::ceiling_board},
-    {"chipboard", Material::chipboard},
-    {"plywood", Material::plywood},
-    {"marble", Material::marble},
-    {"floorboard", Material::floorboard},
-    {"metal", Material::metal},
-    {"very_dry_ground", Material::very_dry_ground},
-    {"medium_dry_ground", Material::medium_dry_ground},
-    {"wet_ground", Material::wet_ground},
-    {"water", Material::water},
-    {"plastic", Material::plastic},
-}};
-
 // ITU-R P.2040-3 (08/2023) Table 3, the first frequency range of each row; the 220-450 GHz rows of
 // glass and ceiling board are left out (no sensor of this project works there).
 ItuP2040Fit p2040_row(Material material) {
@@ -91,35 +72,13 @@ std::string range_text(double low, double high, std::string_view unit) {
 std::string optical_names() {
   std::string text;
   for (const Material material : with_optical_data) {
-    text += text.empty() ? "'" : ", '";
+    text += text.empty() ? "" : ", ";
     text += to_string(material);
-    text += "'";
   }
   return text;
 }
 
 }  // namespace
-
-std::span<const MaterialName> material_names() { return names; }
-
-std::string_view to_string(Material material) {
-  for (const MaterialName& entry : names) {
-    if (entry.material == material) return entry.name;
-  }
-  FOGRADAR_CHECK(false);
-  return {};
-}
-
-Material parse_material(std::string_view text, std::string_view field) {
-  std::string allowed;
-  for (const MaterialName& entry : names) {
-    if (entry.name == text) return entry.material;
-    allowed += allowed.empty() ? "one of '" : ", '";
-    allowed += entry.name;
-    allowed += "'";
-  }
-  throw_invalid(field, text, allowed);
-}
 
 std::optional<ItuP2040Fit> itu_p2040_fit(Material material) {
   if (material == Material::water || material == Material::plastic) return std::nullopt;

@@ -75,7 +75,7 @@ expect_bad() {
   if [ -s "$work/stdout" ]; then fail "$name: printed besides its message: $(cat "$work/stdout")"; return; fi
   pass
 }
-expect_bad "unknown material" "--material = 'steel'" "one of 'concrete', 'brick', 'plasterboard', 'wood', 'glass'" \
+expect_bad "unknown material" "--material = 'steel'" "one of concrete, brick, plasterboard, wood, glass" \
   room --material steel --frequency-ghz 77 --grazing-deg 30
 expect_bad "material outside its fit" "--frequency-ghz = '77'" "in [1, 40] for material 'brick'" \
   room --material brick --frequency-ghz 77 --grazing-deg 30
@@ -93,7 +93,7 @@ expect_bad "both frequency and wavelength" "--frequency-ghz" "--wavelength-nm" \
   room --material water --frequency-ghz 77 --wavelength-nm 905 --grazing-deg 30
 expect_bad "neither frequency nor wavelength" "--frequency-ghz" "give exactly one of them" \
   room --material water --grazing-deg 30
-expect_bad "no optical data" "--material = 'concrete'" "one of 'water', 'glass', 'metal' with --wavelength-nm" \
+expect_bad "no optical data" "--material = 'concrete'" "one of water, glass, metal with --wavelength-nm" \
   room --material concrete --wavelength-nm 905 --grazing-deg 30
 expect_bad "wavelength outside the fit" "--wavelength-nm = '5000'" "in [210, 3710] for material 'glass'" \
   room --material glass --wavelength-nm 5000 --grazing-deg 30

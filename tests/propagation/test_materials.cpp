@@ -89,15 +89,15 @@ TEST(Materials, OutsideTheFitIsRefusedNamingMaterialAndRange) {
 }
 
 TEST(Materials, NamesReadBackAndUnknownNamesAreListed) {
-  for (const MaterialName& entry : material_names()) {
-    EXPECT_EQ(parse_material(entry.name), entry.material);
-    EXPECT_EQ(to_string(entry.material), entry.name);
+  const std::vector<std::string> names = material_names.names();
+  EXPECT_EQ(names.size(), 16u);
+  for (const std::string& name : names) {
+    EXPECT_EQ(to_string(material_names.parse(name, "material")), name);
   }
-  EXPECT_EQ(material_names().size(), 16u);
-  const std::string message = message_of([] { parse_material("steel", "--material"); });
+  const std::string message = message_of([] { material_names.parse("steel", "--material"); });
   EXPECT_NE(message.find("--material = 'steel'"), std::string::npos) << message;
-  EXPECT_NE(message.find("'concrete'"), std::string::npos) << message;
-  EXPECT_NE(message.find("'plastic'"), std::string::npos) << message;
+  EXPECT_NE(message.find("concrete"), std::string::npos) << message;
+  EXPECT_NE(message.find("plastic"), std::string::npos) << message;
 }
 
 // ITU-R P.840's double-Debye model gives m = 3.67 + 2.16i for water at 77 GHz and 20 C (three
@@ -217,7 +217,7 @@ TEST(OpticalIndex, WaterIsSegelsteinAndOthersAreRefused) {
     return std::string("accepted");
   }();
   EXPECT_NE(message.find("'concrete'"), std::string::npos) << message;
-  EXPECT_NE(message.find("'water', 'glass', 'metal'"), std::string::npos) << message;
+  EXPECT_NE(message.find("water, glass, metal"), std::string::npos) << message;
   EXPECT_EQ(rejected_field([&table] { optical_refractive_index(Material::metal, 300e-9, table); }),
             "wavelength_m");
   EXPECT_EQ(rejected_field([&table] { optical_refractive_index(Material::glass, 4e-6, table); }),

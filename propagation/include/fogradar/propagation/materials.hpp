@@ -11,6 +11,7 @@
 #include <span>
 #include <string_view>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/propagation/water.hpp"
 
 namespace fogradar::propagation {
@@ -34,16 +35,28 @@ enum class Material {
   plastic,
 };
 
-struct MaterialName {
-  std::string_view name;
-  Material material;
-};
-
 // Every material with the name a user types, in the order above.
-std::span<const MaterialName> material_names();
-std::string_view to_string(Material material);
-// Parses a name of material_names(); throws InvalidParameter naming `field` and listing the names.
-Material parse_material(std::string_view text, std::string_view field = "material");
+inline constexpr auto material_names = enum_names<Material>({
+    {Material::concrete, "concrete"},
+    {Material::brick, "brick"},
+    {Material::plasterboard, "plasterboard"},
+    {Material::wood, "wood"},
+    {Material::glass, "glass"},
+    {Material::ceiling_board, "ceiling_board"},
+    {Material::chipboard, "chipboard"},
+    {Material::plywood, "plywood"},
+    {Material::marble, "marble"},
+    {Material::floorboard, "floorboard"},
+    {Material::metal, "metal"},
+    {Material::very_dry_ground, "very_dry_ground"},
+    {Material::medium_dry_ground, "medium_dry_ground"},
+    {Material::wet_ground, "wet_ground"},
+    {Material::water, "water"},
+    {Material::plastic, "plastic"},
+});
+constexpr std::string_view to_string(Material material) noexcept {
+  return material_names.name(material);
+}
 
 // One row of ITU-R P.2040-3 Table 3: eps' = a f^b, sigma = c f^d (f in GHz, sigma in S/m), valid
 // for min_frequency_ghz <= f <= max_frequency_ghz.
