@@ -27,8 +27,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 matplotlib.rcParams.update({"svg.fonttype": "path", "font.size": 10, "svg.hashsalt": "fogradar"})
 
 PAPER = "paper comparison"
-GROUP_ORDER = [PAPER, "physics: water", "physics: droplets", "physics: fog", "physics: chamber",
-               "radar: SNR", "radar: CFAR", "radar: detection", "radar: RCS", "radar: Doppler",
+GROUP_ORDER = [PAPER, "physics: water", "physics: materials", "physics: droplets", "physics: fog",
+               "physics: chamber", "radar: SNR", "radar: CFAR", "radar: detection", "radar: RCS", "radar: Doppler",
                "radar: signal processing", "lidar", "lidar: optics", "camera",
                "experiment: geometry and Doppler", "experiment: layers", "experiment: statistics"]
 COLUMNS = ('<colgroup><col class="id"><col class="q"><col class="c"><col class="r">'

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <complex>
 #include <string>
 
@@ -13,12 +14,22 @@
 #include "fogradar/propagation/materials.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::propagation {
 namespace {
 
 using complex = std::complex<double>;
 using fogradar::test_support::rejected_field;
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
+
+// A number as check ids and conditions show it ("77", "0.5").
+std::string id_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 constexpr double deg = pi / 180.0;
 
@@ -56,8 +67,32 @@ TEST(Materials, PermittivityFollowsP2040Table3) {
   for (const TableValue& row : table_values) {
     SCOPED_TRACE(std::string(to_string(row.material)));
     const complex eps = radio_permittivity(row.material, row.frequency_ghz * 1e9);
-    EXPECT_NEAR(eps.real(), row.eps_real, 1e-9 * row.eps_real);
-    EXPECT_NEAR(eps.imag(), row.eps_imag, 1e-9 * row.eps_imag);
+    const std::string name(to_string(row.material));
+    const std::string id = "propagation.materials.p2040." + name + "." +
+                           id_number(row.frequency_ghz) + "GHz";
+    const std::string conditions = name + ", " + id_number(row.frequency_ghz) + " GHz";
+    const std::string source =
+        "ITU-R P.2040-3 Table 3: eps' = a f^b, eps'' = 17.98 c f^d / f (evaluated by hand)";
+    validate({.id = id + ".eps_real",
+              .group = "physics: materials",
+              .quantity = "real relative permittivity eps'",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = row.eps_real,
+              .source = source,
+              .value = eps.real(),
+              .tolerance = 1e-9,
+              .kind = Tolerance::relative});
+    validate({.id = id + ".eps_imag",
+              .group = "physics: materials",
+              .quantity = "imaginary relative permittivity eps''",
+              .unit = "1",
+              .conditions = conditions,
+              .reference = row.eps_imag,
+              .source = source,
+              .value = eps.imag(),
+              .tolerance = 1e-9,
+              .kind = Tolerance::relative});
     const std::optional<ItuP2040Fit> fit = itu_p2040_fit(row.material);
     ASSERT_TRUE(fit);
     EXPECT_NEAR(itu_p2040_conductivity_s_per_m(*fit, row.frequency_ghz), row.sigma_s_per_m,
@@ -139,7 +174,17 @@ TEST(Fresnel, GrazingTendsToMinusOne) {
 TEST(Fresnel, BrewsterAngleForTm) {
   for (const double eps : {2.25, 4.0, 6.31}) {
     const double brewster = std::atan(1.0 / std::sqrt(eps));
-    EXPECT_NEAR(std::abs(fresnel_reflection(eps, brewster).tm), 0.0, 1e-14);
+    validate({.id = "propagation.materials.fresnel.brewster.eps" + id_number(eps),
+              .group = "physics: materials",
+              .quantity = "|Gamma_TM| at Brewster's grazing angle",
+              .unit = "1",
+              .conditions = "real eps = " + id_number(eps) + ", psi_B = atan(1/sqrt(eps)) = " +
+                            id_number(brewster / deg) + " deg",
+              .reference = 0.0,
+              .source = "Brewster's angle, Born & Wolf 7th ed. sec. 1.5.3",
+              .value = std::abs(fresnel_reflection(eps, brewster).tm),
+              .tolerance = 1e-14,
+              .kind = Tolerance::absolute});
     EXPECT_GT(std::abs(fresnel_reflection(eps, brewster - 2.0 * deg).tm), 0.01);
     EXPECT_GT(std::abs(fresnel_reflection(eps, brewster + 2.0 * deg).tm), 0.01);
     EXPECT_GT(std::abs(fresnel_reflection(eps, brewster).te), 0.2);
