@@ -31,7 +31,7 @@ expect_bad fog-liebe-temperature "--temperature-c = '60'" "[-20, 50]" fog --temp
 # The documented bounds themselves are accepted (checked in C, before the conversion to K).
 "$fogradar" fog --lwc 1 --temperature-c -20 >/dev/null 2>&1 && pass || fail "fog at -20 C refused"
 "$fogradar" fog --lwc 1 --temperature-c 50 >/dev/null 2>&1 && pass || fail "fog at 50 C refused"
-# --- fog --json carries the documented keys (README) ----------------------------------------------------------
+# --- fog --json carries the documented keys (docs/cli.md) ----------------------------------------------------------
 json=$("$fogradar" fog --frequency-ghz 77 --lwc 1 --temperature-c 20 --json)
 for key in frequency_hz wavelength_m refractive_index_n refractive_index_k lwc_g_per_m3 \
   specific_attenuation_db_per_km volume_backscatter_m2_per_m3 optical_extinction_per_km visibility_m \

@@ -81,7 +81,7 @@ for mine in camera_roi_1.pgm camera_roi_01.pgm camera_roi_999.pgm; do
   rm -f "$work/roi/$mine"
 done
 
-# --- the result set is replaced whole or not at all (README, docs/scenario.md Results) ---------------
+# --- the result set is replaced whole or not at all (docs/cli.md, docs/scenario.md Results) ---------------
 # Each case works in a parent of its own so that "no temporary files" means an empty listing besides DIR.
 small="$src/tests/cli/small.toml"
 # The paper scenario with 5000 measurements per step runs for many seconds: still going when signalled.
