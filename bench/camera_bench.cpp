@@ -12,9 +12,13 @@
 // For each fog reading (beta = 900 /km at 550 nm; V = 5.74 m) it calibrates the two keys the 0- and
 // 2-layer means pin down (calibrate_to_means), then runs the 5 steps with noise (seed 1) and prints
 // the per-step table, the noise-free means and the 4-layer prediction. Timing: Camera construction
-// (Mie over the band, once per fog) and the 5 steps x frames at one thread, median of R repeats.
+// (Mie over the band, once per fog) and the 5 steps x frames at one thread, median of R repeats,
+// each repeat followed by the camera's floor (docs/performance.md): the standard normals the same
+// frames need (pixels x channels, drawn as Camera::frame draws them, one ComplexNormalGenerator
+// call per frame) and nothing else; the ratio is taken repeat by repeat.
 #include <algorithm>
 #include <chrono>
+#include <complex>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -25,6 +29,8 @@
 #include "fogradar/camera/calibration.hpp"
 #include "fogradar/camera/camera.hpp"
 #include "fogradar/camera/spectral.hpp"
+#include "fogradar/core/complex_normal_generator.hpp"
+#include "fogradar/core/random.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/visibility.hpp"
 
@@ -168,8 +174,10 @@ int main(int argc, char** argv) {
     }
     std::printf("\n");
 
-    std::vector<double> run_s;
+    std::vector<double> run_s, floor_s, ratios;
     std::vector<camera::CameraStepResult> steps;
+    const std::size_t normals = params.roi.width_px * params.roi.height_px * camera.channel_count();
+    std::vector<std::complex<double>> noise((normals + 1) / 2);
     for (int r = 0; r < repeats; ++r) {
       steps.clear();
       const auto start = Clock::now();
@@ -178,6 +186,16 @@ int main(int argc, char** argv) {
             camera.measure_step(n, propagation::first_layers_active(n, camera.layer_count()), 1));
       }
       run_s.push_back(seconds_since(start));
+      const auto floor_start = Clock::now();
+      for (std::size_t f = 0; f < (camera.layer_count() + 1) * frames; ++f) {
+        RandomStream stream(1, f);
+        ComplexNormalGenerator generator(stream);
+        std::fill(noise.begin(), noise.end(), std::complex<double>{});
+        generator.add(noise, 2.0);
+        if (noise[0].real() == 12345.0) std::printf(" ");  // keeps the draws
+      }
+      floor_s.push_back(seconds_since(floor_start));
+      ratios.push_back(run_s.back() / floor_s.back());
     }
     // The whole camera part as `fogradar run` would do it (construction, 5 steps, summary), in CPU
     // time of this process: comparable with the radar run's user time on a loaded machine.
@@ -205,6 +223,11 @@ int main(int argc, char** argv) {
         camera::mie_wavelengths_m(params.band, params.wavelength_nm, params.mie_step_nm).size(),
         camera.band_wavelengths_m().size(), build_s, calibration_s, steps.size(), frames,
         params.roi.width_px, params.roi.height_px, median(run_s), repeats);
+    std::printf("floor (the same frames' %zu standard normals each): median %.4f s; the steps "
+                "over the floor, repeat by repeat: median %.2f [%.2f, %.2f]\n\n",
+                normals, median(floor_s), median(ratios),
+                *std::min_element(ratios.begin(), ratios.end()),
+                *std::max_element(ratios.begin(), ratios.end()));
     if (sensitivity) print_sensitivity(params, chamber, table);
     if (!out_dir.empty()) {
       const std::string folder = out_dir + "/" + reading.folder + "/";

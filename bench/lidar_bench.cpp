@@ -2,17 +2,23 @@
 // (LidarParams defaults, 361 beams over 90 deg) through 0, 1 and 4 active layers, in beams per
 // second; one paper radar frame (RadarChain::measure, all four layers on, the EVT with floor
 // multipath: chain_bench's BM_Measure) for the ratio; and the paper scenario's lidar part, 5 steps
-// x 40 scans, at one thread. Run interleaved so the ratio is stable on a loaded machine:
+// x 40 scans, at one thread; and the lidar's floor (docs/performance.md): the receiver noise every
+// waveform sample of a scan needs, drawn as the scan draws it (one ComplexNormalGenerator call of
+// ceil(samples / 2) complex values per beam into a reused buffer), and nothing else. Run
+// interleaved so the ratio is stable on a loaded machine:
 //   ./build/release/bench/lidar_bench --benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <complex>
 #include <cstdint>
 #include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "fogradar/core/complex_normal_generator.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/propagation/chamber.hpp"
@@ -45,6 +51,23 @@ void BM_LidarScan(benchmark::State& state) {
     RandomStream stream = sensor_stream(1, lidar::stream_key, layers, i);
     benchmark::DoNotOptimize(sensor.measure(active, fog.scan(i % 40), stream));
     ++i;
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sensor.beam_count()));
+  state.SetLabel("items = beams");
+}
+
+void BM_LidarNoiseFloor(benchmark::State& state) {
+  const lidar::Lidar& sensor = paper_lidar();
+  std::vector<std::complex<double>> noise((sensor.samples_per_beam() + 1) / 2);
+  std::uint64_t i = 0;
+  for (auto _ : state) {
+    RandomStream stream = sensor_stream(1, lidar::stream_key, 0, i++);
+    ComplexNormalGenerator generator(stream);
+    for (std::size_t beam = 0; beam < sensor.beam_count(); ++beam) {
+      std::fill(noise.begin(), noise.end(), std::complex<double>{});
+      generator.add(noise, 1.0);
+      benchmark::DoNotOptimize(noise.data());
+    }
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sensor.beam_count()));
   state.SetLabel("items = beams");
@@ -85,6 +108,7 @@ void BM_PaperLidarPart(benchmark::State& state) {
 }
 
 BENCHMARK(BM_LidarScan)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LidarNoiseFloor)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RadarFrame)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PaperLidarPart)->Unit(benchmark::kMillisecond);
 
@@ -106,6 +130,15 @@ class RatioReporter : public benchmark::ConsoleReporter {
     std::printf("\nCPU time as a ratio to one paper radar frame (%.1f us):\n", frame_s * 1e6);
     for (const auto& [key, time_s] : seconds) {
       std::printf("  %-22s %12.1f us  %8.2f frames\n", key.c_str(), time_s * 1e6, time_s / frame_s);
+    }
+    const auto floor = seconds.find("BM_LidarNoiseFloor");
+    if (floor != seconds.end()) {
+      std::printf("\nCPU time as a ratio to the lidar's floor (the scan's noise, %.1f us):\n",
+                  floor->second * 1e6);
+      for (const auto& [key, time_s] : seconds) {
+        if (key.starts_with("BM_LidarScan"))
+          std::printf("  %-22s %8.2f x the floor\n", key.c_str(), time_s / floor->second);
+      }
     }
     const auto part = seconds.find("BM_PaperLidarPart");
     if (part != seconds.end()) {
