@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Shared by the `fogradar` command's end-to-end checks (test_run.sh, test_fog.sh, test_scenario.sh):
-# the arguments, a scratch directory, the pass/fail counts and the bad-input checks. Sourced, with
-# the checks' arguments FOGRADAR_BINARY SOURCE_DIR.
+# Shared by the `fogradar` command's end-to-end checks, one script per subcommand (test_run.sh,
+# test_fog.sh, test_scenario.sh, test_room.sh): the arguments, a scratch directory, the pass/fail
+# counts and the bad-input checks. Sourced, with the checks' arguments FOGRADAR_BINARY SOURCE_DIR.
 set -u
 fogradar=$(realpath "$1")  # absolute: some cases run it from another directory
 src=$(realpath "$2")

@@ -3,15 +3,8 @@
 # (ITU-R P.2040-3 Table 3's concrete evaluated by hand, and numpy's Fresnel coefficients, as in
 # tests/propagation/test_materials.cpp), and bad input -> exit status 2 with one message naming the
 # option as written, the value and the allowed range.
-# Usage: test_room.sh FOGRADAR_BINARY
-set -u
-fogradar=$(realpath "$1")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-passes=0
-pass() { passes=$((passes + 1)); }
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+# Usage: test_room.sh FOGRADAR_BINARY SOURCE_DIR
+. "$(dirname "$0")/cli_test_support.sh"
 
 # --- outputs -------------------------------------------------------------------------------------
 # Concrete at 77 GHz: eps' = 5.24, sigma = 0.0462 * 77^0.7822 = 1.3812 S/m, eps'' = 0.322518; at
@@ -59,22 +52,6 @@ if [ -x /usr/bin/python3 ]; then
 fi
 
 # --- bad input -----------------------------------------------------------------------------------
-# expect_bad NAME KEY ALLOWED ARGS...: exit 2, one message (a CLI11 usage error adds the "run
-# 'fogradar --help'" line) naming KEY and stating ALLOWED, nothing on stdout.
-expect_bad() {
-  local name=$1 key=$2 allowed=$3
-  shift 3
-  timeout 20 "$fogradar" "$@" >"$work/stdout" 2>"$work/stderr"
-  local rc=$?
-  if [ "$rc" -ne 2 ]; then fail "$name: exit $rc, expected 2 ($(cat "$work/stderr"))"; return; fi
-  if ! grep -qF -- "$key" "$work/stderr"; then fail "$name: message does not name '$key': $(cat "$work/stderr")"; return; fi
-  if ! grep -qF -- "$allowed" "$work/stderr"; then fail "$name: message does not state '$allowed': $(cat "$work/stderr")"; return; fi
-  if [ "$(grep -vc "^(run 'fogradar --help' for usage)$" "$work/stderr")" -ne 1 ]; then
-    fail "$name: not exactly one message: $(cat "$work/stderr")"; return
-  fi
-  if [ -s "$work/stdout" ]; then fail "$name: printed besides its message: $(cat "$work/stdout")"; return; fi
-  pass
-}
 expect_bad "unknown material" "--material = 'steel'" "one of concrete, brick, plasterboard, wood, glass" \
   room --material steel --frequency-ghz 77 --grazing-deg 30
 expect_bad "material outside its fit" "--frequency-ghz = '77'" "in [1, 40] for material 'brick'" \
@@ -99,5 +76,4 @@ expect_bad "wavelength outside the fit" "--wavelength-nm = '5000'" "in [210, 371
   room --material glass --wavelength-nm 5000 --grazing-deg 30
 expect_bad "no material" "--material" "required" room --frequency-ghz 77 --grazing-deg 30
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish
