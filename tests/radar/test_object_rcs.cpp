@@ -16,12 +16,15 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/object_rcs.hpp"
 #include "rejected_field.hpp"
+#include "validation.hpp"
 
 namespace fogradar::radar {
 namespace {
 
 using complex = std::complex<double>;
 using fogradar::test_support::rejected_field;
+using fogradar::testing::Tolerance;
+using fogradar::testing::validate;
 
 constexpr double deg = pi / 180.0;
 constexpr double wavelength_77ghz_m = speed_of_light_m_per_s / 77e9;
@@ -145,13 +148,31 @@ TEST(ObjectRcs, CylinderFollowsItsPoIntegral) {
   }
 }
 
+// The specular values are the textbook closed forms (Knott, Shaeffer & Tuley, Radar Cross Section,
+// 2nd ed., 1993, Table 5.1): a flat plate of area A at normal incidence 4 pi A^2 / lambda^2, a cylinder of
+// radius a and length L at broadside 2 pi a L^2 / lambda.
 TEST(ObjectRcs, SpecularLimits) {
   const double lambda = wavelength_77ghz_m;
-  EXPECT_NEAR(plate_rcs_m2({0.2, 0.3}, lambda, 0.0, 0.7),
-              4.0 * pi * 0.06 * 0.06 / (lambda * lambda),
-              1e-12 * 4.0 * pi * 0.06 * 0.06 / (lambda * lambda));
-  EXPECT_NEAR(cylinder_rcs_m2({0.3, 0.9}, lambda, 0.0), 2.0 * pi * 0.3 * 0.81 / lambda,
-              1e-12 * 2.0 * pi * 0.3 * 0.81 / lambda);
+  validate({.id = "radar.object_rcs.plate.normal_incidence",
+            .group = "radar: RCS",
+            .quantity = "RCS of a 0.2 m x 0.3 m flat plate at normal incidence",
+            .unit = "m^2",
+            .conditions = "77 GHz, physical optics",
+            .reference = 4.0 * pi * 0.06 * 0.06 / (lambda * lambda),
+            .source = "4 pi A^2 / lambda^2 (Knott et al., Radar Cross Section, 2nd ed., Table 5.1)",
+            .value = plate_rcs_m2({0.2, 0.3}, lambda, 0.0, 0.7),
+            .tolerance = 1e-12,
+            .kind = Tolerance::relative});
+  validate({.id = "radar.object_rcs.cylinder.broadside",
+            .group = "radar: RCS",
+            .quantity = "RCS of a cylinder, radius 0.3 m, length 0.9 m, at broadside",
+            .unit = "m^2",
+            .conditions = "77 GHz, physical optics",
+            .reference = 2.0 * pi * 0.3 * 0.81 / lambda,
+            .source = "2 pi a L^2 / lambda (Knott et al., Radar Cross Section, 2nd ed., Table 5.1)",
+            .value = cylinder_rcs_m2({0.3, 0.9}, lambda, 0.0),
+            .tolerance = 1e-12,
+            .kind = Tolerance::relative});
   // The first null of each pattern, sin(theta) = lambda / (2 L): the sidelobes fall to zero there.
   const double plate_null = std::asin(lambda / (2.0 * 0.2));
   EXPECT_LT(plate_rcs_m2({0.2, 0.3}, lambda, plate_null, 0.0),
