@@ -67,7 +67,7 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode,
   }
   if (mode != Mode::shard) {
     lock_ =
-        std::make_unique<experiment::detail::PathLock>(dir_, option, given, "a sweep directory");
+        std::make_unique<experiment::PathLock>(dir_, option, given, "a sweep directory");
   }
   const auto refuse = [&](const fs::path& path) {
     throw_invalid(option, given,
@@ -103,7 +103,7 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode,
   }
   // Shards of one sweep run side by side: each holds its own lock, the others' points stay.
   if (mode == Mode::shard) {
-    lock_ = std::make_unique<experiment::detail::PathLock>(
+    lock_ = std::make_unique<experiment::PathLock>(
         dir_ / state_dir / ("shard-" + std::to_string(shard)), option, given, "a sweep directory");
   }
   // A crash's temporary files go; without --resume an earlier sweep's files, with it the pieces of
@@ -148,7 +148,7 @@ void SweepDirectory::commit(const json& piece) const {
 
 void SweepDirectory::write_table(std::string_view name, std::string_view content) const {
   const fs::path path = dir_ / name;
-  if (!experiment::detail::write_file_atomically(path, content)) {
+  if (!experiment::write_file_atomically(path, content)) {
     throw_invalid("--out", dir_.string(),
                   "a directory that can be written (" + path.filename().string() + ": " +
                       experiment::detail::errno_text() + ")");

@@ -52,7 +52,7 @@ class SweepDirectory {
 
  private:
   std::filesystem::path dir_;
-  std::unique_ptr<experiment::detail::PathLock> lock_;
+  std::unique_ptr<experiment::PathLock> lock_;
 };
 
 // A hash of everything point `point`'s numbers depend on: its scenarios, resolved (seed
