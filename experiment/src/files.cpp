@@ -10,7 +10,8 @@
 
 #include "fogradar/core/error.hpp"
 
-namespace fogradar::experiment::detail {
+namespace fogradar::experiment {
+namespace detail {
 
 Descriptor::~Descriptor() {
   if (fd >= 0) ::close(fd);
@@ -23,6 +24,12 @@ bool sync_path(const std::filesystem::path& path, bool directory) {
       ::open(path.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDWR) | O_CLOEXEC));
   return file.fd >= 0 && ::fsync(file.fd) == 0;
 }
+
+}  // namespace detail
+
+using detail::Descriptor;
+using detail::errno_text;
+using detail::sync_path;
 
 bool write_file_atomically(const std::filesystem::path& path, std::string_view content) {
   std::string temporary = path.parent_path() / ".";
@@ -99,4 +106,4 @@ PathLock::~PathLock() {
   ::close(fd_);
 }
 
-}  // namespace fogradar::experiment::detail
+}  // namespace fogradar::experiment

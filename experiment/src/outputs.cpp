@@ -246,7 +246,7 @@ OutputDirectory::OutputDirectory(fs::path dir, ResultFileNames names) : names_(s
     fs::create_directories(parent_, error);
     if (error) refuse(given, "a directory that can be created (" + error.message() + ")");
 
-    lock_ = std::make_unique<detail::PathLock>(dir_, "--out", given.string(), "a directory");
+    lock_ = std::make_unique<PathLock>(dir_, "--out", given.string(), "a directory");
     previous_set(dir_, given, names_);
     std::string staging =
         (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();

@@ -192,7 +192,7 @@ class RawFile::Impl {
     if (error)
       throw_invalid("--raw", given,
                     "a file whose directory can be created (" + error.message() + ")");
-    lock_ = std::make_unique<detail::PathLock>(final_, "--raw", given, "a file");
+    lock_ = std::make_unique<PathLock>(final_, "--raw", given, "a file");
     require_replaceable(given);
     const std::string name = final_.filename().string();
     std::string temporary =
@@ -598,7 +598,7 @@ class RawFile::Impl {
  private:
   const RawPlan& plan_;
   fs::path final_, temporary_;
-  std::unique_ptr<detail::PathLock> lock_;
+  std::unique_ptr<PathLock> lock_;
   Handle file_;
   std::vector<std::ptrdiff_t> step_position_;  // step -> position in plan_.steps, -1: not kept
   std::vector<SensorOut> sensors_;             // in the plan's order

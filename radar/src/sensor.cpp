@@ -43,7 +43,7 @@ constexpr double frame_seconds_per_tone_sample = 3.38e-10;
 
 // Wide CFAR windows (bench/estimate_calibration does not reach them; measured with profiles of
 // 4096-65536 cells and n = 1000-32767, GO and OS, Blackman-Harris): CA, GO and SO add the N
-// reference cells of each of a row's 2 (guard + n) edge cells one by one (cfar.cpp, edge_halves),
+// reference cells of each of a row's 2 (guard + n) edge cells one by one (cfar_kernels.cpp, edge_halves),
 // 21 s for 10 rows of 4.3e9 additions; OS moves up to N sorted values per cell as its window slides
 // (a memmove per cell), ~0.05 s per row of 65536 cells with N = 65534.
 constexpr double frame_seconds_per_edge_reference = 4.9e-10;

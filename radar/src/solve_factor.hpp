@@ -1,4 +1,4 @@
-// The threshold-factor root finder and log-space sum shared by the independent-cell (cfar.cpp)
+// The threshold-factor root finder and log-space sum shared by the independent-cell (cfar_theory.cpp)
 // and the correlated-cell (cfar_design.cpp) CFAR designs.
 #pragma once
 

@@ -1,5 +1,6 @@
-// The sweep's parts that its serial, sharded, merged and MPI runs share (run.cpp, mpi.cpp), and
-// the reading of the pieces and the plots (pieces.cpp, plots.cpp).
+// The sweep's parts that its serial, sharded, merged and MPI runs share (run.cpp, directory.cpp,
+// mpi.cpp), the tables and their CSV (tables.cpp, envelope.cpp, csv.cpp), and the reading of the
+// pieces and the plots (pieces.cpp, plots.cpp).
 #pragma once
 
 #include <cstddef>
@@ -51,7 +52,7 @@ class SweepDirectory {
 
  private:
   std::filesystem::path dir_;
-  std::unique_ptr<experiment::detail::PathLock> lock_;
+  std::unique_ptr<experiment::PathLock> lock_;
 };
 
 // A hash of everything point `point`'s numbers depend on: its scenarios, resolved (seed
@@ -96,5 +97,28 @@ std::string envelope_svg(const SweepSpec& spec, const std::vector<Point>& points
 // The sweep file's directory, kept in DIR so that `--merge DIR` reads its base as the sweep did.
 void write_origin(const SweepDirectory& out, const std::filesystem::path& sweep_directory);
 SweepSpec read_spec(const std::filesystem::path& dir);
+
+// The CSV writer and parser (csv.cpp).
+// A number in the fewest digits that read back as it (std::to_chars).
+std::string shortest(double value);
+// RFC 4180: a field with a comma, a quote or a line break is quoted, its quotes doubled.
+std::string csv_field(std::string_view text);
+// A sensor's summary CSV (no quoted fields: the sensors write none).
+struct Table {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+};
+Table parse_csv(const std::string& text);
+
+// Whether a summary column is the step (the active layers), not a statistic (tables.cpp).
+bool is_step_column(const std::string& column);
+
+// The envelope's tables (envelope.cpp): per point x sensor x step x statistic, how many setups
+// gave a value and its quantiles; and the same of the limits.
+std::string envelope_csv(const std::vector<nlohmann::json>& pieces);
+std::string envelope_limits_csv(const std::vector<nlohmann::json>& pieces);
+
+// `scenario` with experiment.seed = `seed` as TOML holds it (run.cpp).
+experiment::Scenario with_seed(experiment::Scenario scenario, std::uint64_t seed);
 
 }  // namespace fogradar::sweep::detail

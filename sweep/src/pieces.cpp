@@ -1,4 +1,4 @@
-// Reading the points' committed pieces: their numbers, their sensors (run.cpp, plots.cpp).
+// Reading the points' committed pieces: their numbers, their sensors (envelope.cpp, tables.cpp, plots.cpp).
 #include <algorithm>
 #include <charconv>
 #include <nlohmann/json.hpp>

@@ -1,27 +1,13 @@
-// What writing a result set, a raw-data file and a sweep's directory have in common: closing
-// descriptors, syncing, writing a file whole or not at all, and the lock one run holds on the path
-// it writes.
+// What writing a result set, a raw-data file and a sweep's directory have in common: writing a file
+// whole or not at all and the lock one run holds on the path it writes (public: sweep/ uses them),
+// and, for this module's writers alone, closing descriptors and syncing.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <string_view>
 
-namespace fogradar::experiment::detail {
-
-// Closes a file descriptor when it goes out of scope.
-struct Descriptor {
-  int fd;
-  explicit Descriptor(int descriptor) : fd(descriptor) {}
-  ~Descriptor();
-  Descriptor(const Descriptor&) = delete;
-  Descriptor& operator=(const Descriptor&) = delete;
-};
-
-std::string errno_text();
-
-// fsync of a directory or a file by its path; false when it cannot be opened or synced.
-bool sync_path(const std::filesystem::path& path, bool directory);
+namespace fogradar::experiment {
 
 // Writes `content` into `path` whole or not at all: into a temporary file beside it, fsynced, then
 // renamed over it, the directory fsynced. False (errno set, nothing left behind) when a step fails.
@@ -44,4 +30,21 @@ class PathLock {
   int fd_ = -1;
 };
 
-}  // namespace fogradar::experiment::detail
+namespace detail {
+
+// Closes a file descriptor when it goes out of scope.
+struct Descriptor {
+  int fd;
+  explicit Descriptor(int descriptor) : fd(descriptor) {}
+  ~Descriptor();
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+};
+
+std::string errno_text();
+
+// fsync of a directory or a file by its path; false when it cannot be opened or synced.
+bool sync_path(const std::filesystem::path& path, bool directory);
+
+}  // namespace detail
+}  // namespace fogradar::experiment

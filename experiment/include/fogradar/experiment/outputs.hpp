@@ -18,9 +18,7 @@
 
 namespace fogradar::experiment {
 
-namespace detail {
 class PathLock;
-}  // namespace detail
 
 // Whether a file name is one a result set can hold: summary.json, scenario.toml, benchmark.svg, or
 // one of a registered sensor's (sensor::SensorType::owns_file_name). A set's files have such names;
@@ -80,7 +78,7 @@ class OutputDirectory {
 
   ResultFileNames names_;
   std::filesystem::path dir_, parent_, staging_;
-  std::unique_ptr<detail::PathLock> lock_;
+  std::unique_ptr<PathLock> lock_;
   std::vector<std::filesystem::path> created_;  // missing parents of `dir`, deepest first
 };
 

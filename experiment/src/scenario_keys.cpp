@@ -1,0 +1,240 @@
+// The scenario's keys: [chamber], [fog] and [experiment], and the file's layout of every part's keys.
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/scenario.hpp"
+#include "scenario_parts.hpp"
+
+namespace fogradar::experiment {
+namespace detail {
+
+// The range experiment.max_active_layers allows with `layer_count` layers in the chamber, given by
+// chamber.layer_count or listed by [[chamber.layers]].
+std::string integer_range_of_active(std::size_t layer_count, bool listed) {
+  const std::string count = std::to_string(layer_count);
+  if (!listed) return "an integer in [0, chamber.layer_count = " + count + "]";
+  return "an integer in [0, " + count + "] (the layers [[chamber.layers]] lists)";
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::in_quotes;
+using detail::integer_range_of_active;
+using detail::joined;
+using detail::ScenarioKey;
+
+// One layer of [[chamber.layers]]: its length and its fog, a table of [fog]'s keys.
+KeyTable<propagation::FogLayerSpec> layer_keys(std::string prefix) {
+  KeyTable<propagation::FogLayerSpec> keys(prefix);
+  const Interval length = open_closed(0.0, propagation::max_chamber_length_m);
+  Key<propagation::FogLayerSpec>& length_m =
+      keys.number("length_m", FOGRADAR_KEY_FIELD(length_m), length, "required; f_i");
+  // A layer read from a file starts without a length (NaN): a missing one is named as missing.
+  length_m.check = [name = length_m.name, length,
+                    in_range = std::move(length_m.check)](const propagation::FogLayerSpec& l) {
+    if (!std::isnan(l.length_m)) return in_range(l);
+    throw InvalidParameter(name, name +
+                                     " is missing: every [[chamber.layers]] layer must give "
+                                     "it, a number " +
+                                     length.constraint());
+  };
+  keys.include(propagation::fog_keys(prefix + "fog."), FOGRADAR_KEY_FIELD(fog));
+  return keys;
+}
+
+std::string_view switching_from_name(SwitchingFrom from) {
+  return from == SwitchingFrom::sensor ? "sensor_first" : "target_first";
+}
+
+// [chamber], [fog] and [experiment]: the keys of the experiment itself.
+KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names) {
+  KeyTable<Scenario> keys;
+  keys.number("chamber.sensor_gap_m", FOGRADAR_KEY_FIELD(chamber.sensor_gap_m),
+              closed(0.0, propagation::max_chamber_length_m),
+              "l_s, sensor to the first layer (0: the first layer touches the sensor)");
+  const auto uniform = [](const Scenario& s) { return s.chamber.layers.empty(); };
+  const std::string uniform_text = "without [[chamber.layers]], which gives each layer's length";
+  keys.integer("chamber.layer_count", FOGRADAR_KEY_FIELD(chamber.layer_count), 1,
+               static_cast<std::int64_t>(propagation::max_chamber_layers),
+               "switchable layers, all with the `[fog]` below")
+      .when(uniform, uniform_text);
+  keys.number("chamber.layer_length_m", FOGRADAR_KEY_FIELD(chamber.layer_length_m),
+              open_closed(0.0, propagation::max_chamber_length_m), "f_i")
+      .when(uniform, uniform_text);
+  keys.number("chamber.target_gap_m", FOGRADAR_KEY_FIELD(chamber.target_gap_m),
+              closed(0.0, propagation::max_chamber_length_m), "l_t, last layer to the target");
+  ScenarioKey& layers = keys.table_array(
+      "chamber.layers", FOGRADAR_KEY_FIELD(chamber.layers), &layer_keys,
+      propagation::max_chamber_layers, "tables of `length_m` and `fog`",
+      "the layers from the sensor, each of its own length and fog, in place of `layer_count` "
+      "layers of `layer_length_m` with `[fog]`; a layer's `fog` is a table of `[fog]`'s keys "
+      "(`fog = { lwc_g_per_m3 = 10.0 }`) replacing `[fog]`'s values for that layer");
+  // Each layer starts from [fog] (read before the arrays of tables), so that its own `fog` table
+  // states only where it differs.
+  layers.array_resize = [](Scenario& s, std::size_t n) {
+    s.chamber.layers.resize(
+        n, propagation::FogLayerSpec{.length_m = std::numeric_limits<double>::quiet_NaN(),
+                                     .fog = s.fog});
+  };
+  keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
+
+  std::vector<std::string> names_quoted;
+  for (const std::string& name : sensor_names) names_quoted.push_back(in_quotes(name));
+  const std::string allowed =
+      "a non-empty array of distinct names from " + joined(names_quoted, ", ");
+  ScenarioKey& sensors = keys.name_list(
+      "experiment.sensors", [](const Scenario& s) { return s.experiment.sensors; },
+      [](Scenario& s, const std::vector<std::string>& names) { s.experiment.sensors = names; },
+      allowed,
+      "the sensors that run, each on the same chamber and fog; results are reported in this "
+      "order");
+  sensors.choices = sensor_names;
+  sensors.with_check([allowed, sensor_names](const Scenario& s) {
+    const std::vector<std::string>& given = s.experiment.sensors;
+    std::string listed;
+    for (std::size_t i = 0; i < given.size(); ++i) {
+      listed += (listed.empty() ? "[" : ", ") + given[i];
+      const bool known =
+          std::find(sensor_names.begin(), sensor_names.end(), given[i]) != sensor_names.end();
+      if (!known || std::find(given.begin(), given.begin() + static_cast<std::ptrdiff_t>(i),
+                              given[i]) != given.begin() + static_cast<std::ptrdiff_t>(i)) {
+        throw_invalid("experiment.sensors", listed + ", ...]", allowed);
+      }
+    }
+    if (given.empty()) throw_invalid("experiment.sensors", "[]", allowed);
+  });
+  keys.integer("experiment.measurements_per_step",
+               FOGRADAR_KEY_FIELD(experiment.measurements_per_step), 1, 1000000,
+               "the study's series length: measurements per step of the sensors that take its "
+               "measurements (the others count their own items)");
+  // Its true upper bound is the chamber's layer count: the key's own bound is only the widest one
+  // the reader accepts before it states that (chamber is read first), and the check states it too.
+  // Not given, it follows the chamber: every layer. scenario.toml writes the value in force.
+  ScenarioKey& active = keys.integer(
+      "experiment.max_active_layers",
+      [](const Scenario& s) { return static_cast<std::int64_t>(s.steps() - 1); },
+      [](Scenario& s, std::int64_t v) {
+        s.experiment.max_active_layers = static_cast<std::size_t>(v);
+      },
+      "", "steps k = 0 … max_active_layers; not given: every layer of the chamber");
+  active.integer_low = 0;
+  active.integer_high = static_cast<std::int64_t>(propagation::max_chamber_layers);
+  active.check = [](const Scenario& s) {
+    if (s.experiment.max_active_layers &&
+        *s.experiment.max_active_layers > s.chamber.layers_in_use()) {
+      throw_invalid("experiment.max_active_layers",
+                    static_cast<double>(*s.experiment.max_active_layers),
+                    integer_range_of_active(s.chamber.layers_in_use(), !s.chamber.layers.empty()));
+    }
+  };
+  active.documented_as("integer [0, the layer count]");
+  keys.order(
+      "experiment.switching_order",
+      [](const Scenario& s) -> std::string {
+        const auto* from = std::get_if<SwitchingFrom>(&s.experiment.switching_order);
+        return from ? std::string(switching_from_name(*from)) : std::string();
+      },
+      [](Scenario& s, std::string_view name) {
+        if (name == "sensor_first") {
+          s.experiment.switching_order = SwitchingFrom::sensor;
+        } else if (name == "target_first") {
+          s.experiment.switching_order = SwitchingFrom::target;
+        } else {
+          throw_invalid("experiment.switching_order", name,
+                        "one of 'sensor_first', 'target_first', or an array naming each layer "
+                        "index 0 … n−1 once");
+        }
+      },
+      [](const Scenario& s) {
+        const auto* listed = std::get_if<std::vector<std::size_t>>(&s.experiment.switching_order);
+        return listed ? *listed : std::vector<std::size_t>{};
+      },
+      [](Scenario& s, const std::vector<std::size_t>& listed) {
+        s.experiment.switching_order = listed;
+      },
+      [](const Scenario& s) { return s.chamber.layers_in_use(); }, {"sensor_first", "target_first"},
+      "`sensor_first`, `target_first`, or an array naming each layer index 0 … n−1 once",
+      "the order the layers are switched on in, step by step: from the sensor (the study's), "
+      "from the target, or the layer indices (0 at the sensor) in the order they come on");
+  // TOML integers are signed 64-bit: a larger seed could not be written to scenario.toml.
+  keys.integer("experiment.seed", FOGRADAR_KEY_FIELD(experiment.seed), 0,
+               std::numeric_limits<std::int64_t>::max(), "overridden by `--seed`");
+  return keys;
+}
+
+// The scenario's keys in file order, one table per part: the first sensor's, the experiment's, the
+// other sensors'.
+std::vector<KeyTable<Scenario>> key_parts(const std::vector<SensorSetting>& sensors) {
+  std::vector<std::string> names;
+  for (const SensorSetting& setting : sensors) names.emplace_back(setting.type->name());
+  std::vector<KeyTable<Scenario>> parts;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    if (i == 1) parts.push_back(experiment_keys(names));
+    KeyTable<Scenario> part;
+    part.include(
+        sensors[i].type->keys(), [i](auto& scenario) -> auto& {
+          return scenario.sensors[i].params;
+        });
+    parts.push_back(std::move(part));
+  }
+  if (sensors.size() < 2) parts.push_back(experiment_keys(names));
+  return parts;
+}
+
+}  // namespace
+
+namespace detail {
+
+// A section belongs to the part that declares it first, the experiment's part before the sensors'
+// (so [fog] is the experiment's although the radar declares fog.clutter_scatterers_per_bin); a
+// section's own keys come first, keys other parts declare in it after them.
+ScenarioKeys::ScenarioKeys(const std::vector<SensorSetting>& sensors) {
+  for (const SensorSetting& setting : sensors) types.push_back(setting.type.get());
+  const std::size_t experiment_part = sensors.empty() ? 0 : 1;
+  std::vector<std::size_t> part_of;
+  std::vector<KeyTable<Scenario>> parts = key_parts(sensors);
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    part_of.insert(part_of.end(), parts[p].keys().size(), p);
+    all.append(std::move(parts[p]));
+  }
+  const std::vector<Key<Scenario>>& keys = all.keys();
+  std::map<std::string, std::size_t, std::less<>> owner;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (part_of[i] == experiment_part) owner.emplace(keys[i].section(), experiment_part);
+  }
+  for (std::size_t i = 0; i < keys.size(); ++i) owner.emplace(keys[i].section(), part_of[i]);
+  const auto section_of = [&](std::string_view name) -> Section& {
+    for (Section& s : sections) {
+      if (s.name == name) return s;
+    }
+    return sections.emplace_back(Section{std::string(name), owner.find(name)->second, {}});
+  };
+  for (const bool own : {true, false}) {
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if ((owner.find(keys[i].section())->second == part_of[i]) == own) {
+        section_of(keys[i].section()).keys.push_back(&keys[i]);
+      }
+    }
+  }
+}
+
+const ScenarioKeys& keys_of(const Scenario& s) {
+  FOGRADAR_CHECK(s.keys_ != nullptr);  // a moved-from scenario has none
+  const ScenarioKeys& keys = *s.keys_;
+  // The tables read and write sensors[i] by index.
+  FOGRADAR_CHECK(keys.types.size() == s.sensors.size());
+  for (std::size_t i = 0; i < s.sensors.size(); ++i) {
+    FOGRADAR_CHECK(keys.types[i] == s.sensors[i].type.get());
+  }
+  return keys;
+}
+
+}  // namespace detail
+
+}  // namespace fogradar::experiment

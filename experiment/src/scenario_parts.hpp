@@ -1,0 +1,68 @@
+// The scenario's parts shared by its files: the key layout, the TOML text helpers, the reader's
+// entry and its error relocation.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/experiment/scenario.hpp"
+
+namespace fogradar::experiment::detail {
+
+using ScenarioKey = Key<Scenario>;
+
+// Line of each key read from the file, to point error messages at it.
+using KeyLines = std::map<std::string, std::size_t>;
+
+// A section of the file (a TOML table) with its keys, in the order the file lists them.
+struct Section {
+  std::string name;
+  std::size_t part = 0;  // of key_parts()
+  std::vector<const Key<Scenario>*> keys;
+};
+
+// A scenario's keys and the file's layout of them, made once from its sensors (Scenario's
+// constructor) and shared by its copies.
+struct ScenarioKeys {
+  explicit ScenarioKeys(const std::vector<SensorSetting>& sensors);
+
+  std::vector<const sensor::SensorType*> types;  // the sensors they were made for, in order
+  KeyTable<Scenario> all;                        // every key, in part order
+  std::vector<Section> sections;
+};
+
+// scenario_keys.cpp
+
+// The range experiment.max_active_layers allows with `layer_count` layers in the chamber, given by
+// chamber.layer_count or listed by [[chamber.layers]].
+std::string integer_range_of_active(std::size_t layer_count, bool listed);
+
+// scenario_writer.cpp
+
+std::string format_toml_number(double value);
+std::string in_quotes(std::string_view text);
+std::string joined(const std::vector<std::string>& items, std::string_view separator);
+// A key's value as scenario.toml writes it.
+std::string toml_value(const ScenarioKey& key, const Scenario& s);
+
+// scenario_errors.cpp
+
+// Line 0: the message names the source and the key alone.
+[[noreturn]] void throw_at(std::string_view source, std::size_t line, const std::string& key,
+                           const std::string& message);
+// Rethrows a check's error `e` from reading `source`, pointed at the line of its key as the file
+// gave it (`lines`), with the number as the file typed it (`typed_numbers`).
+[[noreturn]] void relocate(const InvalidParameter& e, std::string_view source, const KeyLines& lines,
+                           const std::map<std::string, std::string>& typed_numbers);
+
+// scenario_reader.cpp
+
+// Reads `toml_text` over `base`: keys the file gives replace the base's values.
+Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name,
+                    LineNumbers line_numbers = LineNumbers::shown);
+
+}  // namespace fogradar::experiment::detail
