@@ -1,61 +1,15 @@
 // The CFAR's names and configuration: its keys, the checks of a configuration against a profile, and
 // the reference cells a cell under test reads.
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <utility>
 
 #include "cfar_kernels.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/cfar.hpp"
 
 namespace fogradar::radar {
-
-namespace {
-
-constexpr std::array<std::pair<CfarKind, std::string_view>, 4> kCfarNames{{
-    {CfarKind::ca, "ca"},
-    {CfarKind::go, "go"},
-    {CfarKind::so, "so"},
-    {CfarKind::os, "os"},
-}};
-
-constexpr std::array<std::pair<CfarThresholdDesign, std::string_view>, 2> kDesignNames{{
-    {CfarThresholdDesign::correlated, "correlated"},
-    {CfarThresholdDesign::independent, "independent"},
-}};
-
-}  // namespace
-
-std::string_view to_string(CfarKind kind) noexcept {
-  for (const auto& [value, name] : kCfarNames) {
-    if (value == kind) return name;
-  }
-  return "unknown";
-}
-
-CfarKind parse_cfar_kind(std::string_view text, std::string_view field) {
-  for (const auto& [value, name] : kCfarNames) {
-    if (name == text) return value;
-  }
-  throw_invalid(field, text, "one of ca, go, so, os");
-}
-
-std::string_view to_string(CfarThresholdDesign design) noexcept {
-  for (const auto& [value, name] : kDesignNames) {
-    if (value == design) return name;
-  }
-  return "unknown";
-}
-
-CfarThresholdDesign parse_cfar_threshold_design(std::string_view text, std::string_view field) {
-  for (const auto& [value, name] : kDesignNames) {
-    if (name == text) return value;
-  }
-  throw_invalid(field, text, "one of correlated, independent");
-}
 
 std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config, std::size_t cells_from_end) {
   config.validate();
@@ -81,8 +35,7 @@ unsigned CfarConfig::effective_os_rank() const noexcept {
 KeyTable<CfarConfig> cfar_keys(std::string prefix) {
   KeyTable<CfarConfig> keys(prefix);
   keys.choice(
-      "kind", FOGRADAR_KEY_FIELD(kind), {"ca", "go", "so", "os"}, parse_cfar_kind,
-      [](CfarKind k) { return to_string(k); }, "CFAR detector");
+      "kind", FOGRADAR_KEY_FIELD(kind), cfar_kind_names, "CFAR detector");
   keys.integer("guard_cells", FOGRADAR_KEY_FIELD(guard_cells), 0, 32766, "per side");
   keys.integer("training_cells", FOGRADAR_KEY_FIELD(training_cells), 1, 32767, "per side");
   keys.number("false_alarm_probability", FOGRADAR_KEY_FIELD(false_alarm_probability),
@@ -105,8 +58,7 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
       .when([](const CfarConfig& c) { return c.kind == CfarKind::os; },
             "with " + prefix + "kind = \"os\" (the other kinds average their cells)");
   keys.choice(
-      "threshold_design", FOGRADAR_KEY_FIELD(threshold_design), {"correlated", "independent"},
-      parse_cfar_threshold_design, [](CfarThresholdDesign d) { return to_string(d); },
+      "threshold_design", FOGRADAR_KEY_FIELD(threshold_design), cfar_threshold_design_names,
       "threshold factors solved for the noise cells as the range window correlates them, "
       "so the realised P_fa is the design value (one factor for the interior cells and "
       "one per edge position; docs/radar.md §7); `independent` = the textbook iid factor, "

@@ -162,9 +162,9 @@ TEST(CfarConfig, RejectsWindowWiderThanProfile) {
 }
 
 TEST(CfarConfig, KindNamesRoundTrip) {
-  for (const CfarKind kind : kAllKinds) EXPECT_EQ(parse_cfar_kind(to_string(kind)), kind);
+  for (const CfarKind kind : kAllKinds) EXPECT_EQ(cfar_kind_names.parse(to_string(kind), "cfar.kind"), kind);
   try {
-    parse_cfar_kind("CA-CFAR", "processing.cfar");
+    cfar_kind_names.parse("CA-CFAR", "processing.cfar");
     ADD_FAILURE() << "accepted an unknown CFAR kind";
   } catch (const InvalidParameter& error) {
     EXPECT_EQ(error.field(), "processing.cfar");

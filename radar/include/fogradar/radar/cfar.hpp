@@ -45,6 +45,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/keys.hpp"
 #include "fogradar/core/stop.hpp"
 #include "fogradar/radar/noise_correlation.hpp"
@@ -57,15 +58,15 @@ enum class CfarKind { ca, go, so, os };
 // (cfar_design.hpp), or with the independent-cell formulas below whatever the correlation.
 enum class CfarThresholdDesign { correlated, independent };
 
-// "ca", "go", "so", "os".
-std::string_view to_string(CfarKind kind) noexcept;
-// Inverse of to_string (exact, lower case); throws InvalidParameter naming `field`.
-CfarKind parse_cfar_kind(std::string_view text, std::string_view field = "cfar.kind");
-// "correlated", "independent".
-std::string_view to_string(CfarThresholdDesign design) noexcept;
-// Inverse of to_string (exact, lower case); throws InvalidParameter naming `field`.
-CfarThresholdDesign parse_cfar_threshold_design(std::string_view text,
-                                                std::string_view field = "cfar.threshold_design");
+inline constexpr auto cfar_kind_names = enum_names<CfarKind>(
+    {{CfarKind::ca, "ca"}, {CfarKind::go, "go"}, {CfarKind::so, "so"}, {CfarKind::os, "os"}});
+inline constexpr auto cfar_threshold_design_names = enum_names<CfarThresholdDesign>(
+    {{CfarThresholdDesign::correlated, "correlated"},
+     {CfarThresholdDesign::independent, "independent"}});
+constexpr std::string_view to_string(CfarKind kind) noexcept { return cfar_kind_names.name(kind); }
+constexpr std::string_view to_string(CfarThresholdDesign design) noexcept {
+  return cfar_threshold_design_names.name(design);
+}
 
 struct CfarConfig {
   CfarKind kind = CfarKind::ca;
