@@ -30,8 +30,8 @@
 #include "fogradar/camera/camera.hpp"
 #include "fogradar/camera/spectral.hpp"
 #include "fogradar/core/complex_normal_generator.hpp"
-#include "fogradar/core/random.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/core/random.hpp"
 #include "fogradar/propagation/visibility.hpp"
 
 namespace {
@@ -223,11 +223,11 @@ int main(int argc, char** argv) {
         camera::mie_wavelengths_m(params.band, params.wavelength_nm, params.mie_step_nm).size(),
         camera.band_wavelengths_m().size(), build_s, calibration_s, steps.size(), frames,
         params.roi.width_px, params.roi.height_px, median(run_s), repeats);
-    std::printf("floor (the same frames' %zu standard normals each): median %.4f s; the steps "
-                "over the floor, repeat by repeat: median %.2f [%.2f, %.2f]\n\n",
-                normals, median(floor_s), median(ratios),
-                *std::min_element(ratios.begin(), ratios.end()),
-                *std::max_element(ratios.begin(), ratios.end()));
+    std::printf(
+        "floor (the same frames' %zu standard normals each): median %.4f s; the steps "
+        "over the floor, repeat by repeat: median %.2f [%.2f, %.2f]\n\n",
+        normals, median(floor_s), median(ratios), *std::min_element(ratios.begin(), ratios.end()),
+        *std::max_element(ratios.begin(), ratios.end()));
     if (sensitivity) print_sensitivity(params, chamber, table);
     if (!out_dir.empty()) {
       const std::string folder = out_dir + "/" + reading.folder + "/";

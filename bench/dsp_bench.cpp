@@ -1,5 +1,5 @@
-// Per-frame cost of the radar DSP building blocks (docs/performance.md): window + range FFT + Doppler
-// FFT on a chirps x samples complex frame, the FFT work alone (the performance floor), and
+// Per-frame cost of the radar DSP building blocks (docs/performance.md): window + range FFT +
+// Doppler FFT on a chirps x samples complex frame, the FFT work alone (the performance floor), and
 // CFAR along range in every Doppler bin. Frames: 64 x 512 (paper scenario) and 128 x 1024
 // (bench workload). Run: ./build/release/bench/dsp_bench
 #include <benchmark/benchmark.h>

@@ -10,9 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -98,7 +98,8 @@ struct Case {
   double modelled = 0.0;      // with the code's constants
 };
 
-void report(const char* what, const char* unit1, const char* unit2, const std::vector<Case>& cases) {
+void report(const char* what, const char* unit1, const char* unit2,
+            const std::vector<Case>& cases) {
   std::vector<double> x1, x2, y;
   for (const Case& c : cases) {
     x1.push_back(c.x1);
@@ -208,9 +209,9 @@ void radar_chain() {
         p.cfar.threshold_design = radar::CfarThresholdDesign::correlated;
         c.measured = with - without;
         c.modelled = radar::cfar_design_seconds(
-            p.cfar, radar::window_noise_correlation(
-                        radar::make_window(p.window, p.samples_per_chirp),
-                        radar::cfar_correlation_lags(p.cfar)));
+            p.cfar,
+            radar::window_noise_correlation(radar::make_window(p.window, p.samples_per_chirp),
+                                            radar::cfar_correlation_lags(p.cfar)));
         c.x1 = c.modelled;
         design.push_back(c);
       }
@@ -271,19 +272,25 @@ void items() {
     experiment::ItemRun run(simulation, "radar");
     run.measure(40, 0, nullptr);
     Case c{.name = lwc > 0.0 ? "40 active layers of fog, 1024 samples" : "the same, clear"};
-    c.measured = median_seconds([&] { for (std::size_t i = 1; i <= 20; ++i) run.measure(40, i, nullptr); }, 3) / 20.0;
+    c.measured = median_seconds(
+                     [&] {
+                       for (std::size_t i = 1; i <= 20; ++i) run.measure(40, i, nullptr);
+                     },
+                     3) /
+                 20.0;
     const experiment::TimeEstimate e = experiment::estimate_run_time(s, 1);
     // The last step's tones, twice the mean over steps 0..40 (every layer is wet).
     c.modelled = e.sensors.front().time.item_seconds;
     tone_cases.push_back(c);
   }
-  std::printf("fog clutter tones (radar sensor.cpp frame_seconds_per_tone_sample): the last step's"
-              " frame %.3g s more than clear, %.3g s per tone and sample\n",
-              tone_cases[1].measured - tone_cases[0].measured,
-              (tone_cases[1].measured - tone_cases[0].measured) / (40.0 * 7.0 * 4.0 * 1024.0));
+  std::printf(
+      "fog clutter tones (radar sensor.cpp frame_seconds_per_tone_sample): the last step's"
+      " frame %.3g s more than clear, %.3g s per tone and sample\n",
+      tone_cases[1].measured - tone_cases[0].measured,
+      (tone_cases[1].measured - tone_cases[0].measured) / (40.0 * 7.0 * 4.0 * 1024.0));
   std::vector<Case> lidar_cases;
-  for (const auto& [fov, range] : {std::pair{90.0, 30.0}, std::pair{90.0, 120.0},
-                                   std::pair{360.0, 30.0}}) {
+  for (const auto& [fov, range] :
+       {std::pair{90.0, 30.0}, std::pair{90.0, 120.0}, std::pair{360.0, 30.0}}) {
     experiment::Scenario s = only("lidar");
     lidar::LidarParams& p = lidar_of(s);
     p.field_of_view_deg = fov;
@@ -303,8 +310,8 @@ void items() {
     camera::CameraParams& p = camera_of(s);
     p.roi.width_px *= scale;
     p.roi.height_px *= scale;
-    Case c{.name = std::to_string(p.roi.width_px) + " x " + std::to_string(p.roi.height_px) +
-                   " px"};
+    Case c{.name =
+               std::to_string(p.roi.width_px) + " x " + std::to_string(p.roi.height_px) + " px"};
     c.measured = item_seconds(s, 20);
     c.x1 = static_cast<double>(p.roi.width_px * p.roi.height_px);
     c.modelled = experiment::estimate_run_time(s, 1).sensors.front().time.item_seconds;
@@ -325,28 +332,45 @@ void sensor_parts(const propagation::SegelsteinTable& water) {
       camera_of(s).frames_per_step *= scale;
       const experiment::SensorSetting& st = setting(s);
       const sensor::Context context = s.context();
-      const double items = static_cast<double>(context.steps * st.type->items_per_step(st.params, context));
+      const double items =
+          static_cast<double>(context.steps * st.type->items_per_step(st.params, context));
       const sensor::SetupTime model = st.type->setup_time(st.params, context);
-      make.push_back({.name = std::string(name) + " make", .x1 = 1.0, .x2 = 0.0,
-                      .measured = median_seconds([&] { (void)st.type->make(st.params, context, water); }, 5),
-                      .modelled = model.make_seconds});
+      make.push_back(
+          {.name = std::string(name) + " make",
+           .x1 = 1.0,
+           .x2 = 0.0,
+           .measured = median_seconds([&] { (void)st.type->make(st.params, context, water); }, 5),
+           .modelled = model.make_seconds});
       const experiment::Simulation simulation(s);
-      const experiment::ExperimentResult result = simulation.run({.threads = 1, .progress = {}, .stop = nullptr, .raw = nullptr});
-      per_run.push_back({.name = std::string(name) + " summarize, " + std::to_string(static_cast<std::size_t>(items)) + " items", .x1 = items, .x2 = 0.0,
-                         .measured = median_seconds([&] { (void)experiment::summarize(result); }, 3),
-                         .modelled = model.run_seconds});
+      const experiment::ExperimentResult result =
+          simulation.run({.threads = 1, .progress = {}, .stop = nullptr, .raw = nullptr});
+      per_run.push_back(
+          {.name = std::string(name) + " summarize, " +
+                   std::to_string(static_cast<std::size_t>(items)) + " items",
+           .x1 = items,
+           .x2 = 0.0,
+           .measured = median_seconds([&] { (void)experiment::summarize(result); }, 3),
+           .modelled = model.run_seconds});
       const experiment::ExperimentSummary summary = experiment::summarize(result);
-      per_report.push_back({.name = std::string(name) + " fog report and files, " + std::to_string(static_cast<std::size_t>(items)) + " items",
-                            .x1 = items, .x2 = 0.0,
-                            .measured = median_seconds([&] {
-                              (void)st.type->fog_report(st.params, context.chamber.layers[0].fog, context.chamber.layers[0].length_m, water);
-                              (void)summary.sensors.front().summary->files();
-                            }, 3),
+      per_report.push_back({.name = std::string(name) + " fog report and files, " +
+                                    std::to_string(static_cast<std::size_t>(items)) + " items",
+                            .x1 = items,
+                            .x2 = 0.0,
+                            .measured = median_seconds(
+                                [&] {
+                                  (void)st.type->fog_report(
+                                      st.params, context.chamber.layers[0].fog,
+                                      context.chamber.layers[0].length_m, water);
+                                  (void)summary.sensors.front().summary->files();
+                                },
+                                3),
                             .modelled = model.report_seconds});
     }
-    report((std::string(name) + " make (Mie model above + its own)").c_str(), "make", nullptr, make);
+    report((std::string(name) + " make (Mie model above + its own)").c_str(), "make", nullptr,
+           make);
     report((std::string(name) + " run (summary)").c_str(), "item", nullptr, per_run);
-    report((std::string(name) + " result set (fog report, files)").c_str(), "item", nullptr, per_report);
+    report((std::string(name) + " result set (fog report, files)").c_str(), "item", nullptr,
+           per_report);
   }
 }
 
@@ -383,9 +407,10 @@ void process(const std::string& fogradar) {
   const double sweep_wall = child_seconds("rm -rf " + (dir / "sweep").string() + " && " + sweep);
   const double modelled_work = e.wall_seconds() - e.process_seconds;
   const std::vector<const experiment::Scenario*> runs{&tiny};
-  std::printf("process (experiment run_time.cpp process_seconds): `run` of 1 item per sensor %.3g s"
-              " CPU, %.3g s of it modelled work: %.3g s per process (the code holds %.3g s)\n",
-              run_wall, modelled_work, run_wall - modelled_work, e.process_seconds);
+  std::printf(
+      "process (experiment run_time.cpp process_seconds): `run` of 1 item per sensor %.3g s"
+      " CPU, %.3g s of it modelled work: %.3g s per process (the code holds %.3g s)\n",
+      run_wall, modelled_work, run_wall - modelled_work, e.process_seconds);
   std::printf("  one-point `sweep` of it %.3g s CPU (its estimate %.3g s)\n", sweep_wall,
               experiment::estimate_runs(runs, 1).wall_seconds);
   std::filesystem::remove_all(dir);

@@ -82,7 +82,8 @@ void run_room(const RoomOptions& o) {
                            "--frequency-ghz / --wavelength-nm: give exactly one of them (a radio "
                            "frequency in GHz or an optical wavelength in nm)");
   }
-  const propagation::Material material = propagation::material_names.parse(o.material, "--material");
+  const propagation::Material material =
+      propagation::material_names.parse(o.material, "--material");
   nlohmann::json out;
   out["material"] = o.material;
   std::ostringstream text;
@@ -170,7 +171,8 @@ Action add_room_command(CLI::App& app) {
       "room",
       "A surface material's complex permittivity (ITU-R P.2040-3 fits, water, plastic) or optical "
       "index, and its Fresnel TE and TM amplitude reflection coefficients at a grazing angle");
-  room->add_option("--material", options->material, "Material: " + propagation::material_names.allowed())
+  room->add_option("--material", options->material,
+                   "Material: " + propagation::material_names.allowed())
       ->required()
       ->check(CLI::Validator(
           [](const std::string& text) {

@@ -1,5 +1,5 @@
-// Point-target calibration example (issue: radar chain): one non-fluctuating 10 dBsm point target at
-// 25 m, no fog, no multipath, the paper radar. Prints the effective configuration and, for a few
+// Point-target calibration example (issue: radar chain): one non-fluctuating 10 dBsm point target
+// at 25 m, no fog, no multipath, the paper radar. Prints the effective configuration and, for a few
 // measurements, the estimated range, RCS and SNR; a calibrated chain reads back about 10 dBsm at
 // 25 m with an SNR near the radar-equation value printed alongside.
 //
@@ -25,15 +25,16 @@ int main(int argc, char** argv) {
   chamber_spec.target_gap_m = 19.0;
   const propagation::SegelsteinTable table;
   const propagation::Chamber chamber(chamber_spec, params.centre_frequency_hz, table);
-  const propagation::ActiveLayers no_fog = propagation::first_layers_active(0, chamber.layer_count());
+  const propagation::ActiveLayers no_fog =
+      propagation::first_layers_active(0, chamber.layer_count());
   const radar::Scene scene = radar::point_target_scene(10.0);
   chain.check_compatible(scene, chamber);
 
-  const double expected_pr_w =
-      radar::received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, 10.0, chamber.target_range_m());
-  const double expected_snr_db = power_ratio_to_db(
-      expected_pr_w * std::pow(chain.processor().coherent_amplitude_gain(), 2) /
-      (d.noise_power_w * chain.processor().noise_power_gain()));
+  const double expected_pr_w = radar::received_power_w(
+      d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, 10.0, chamber.target_range_m());
+  const double expected_snr_db =
+      power_ratio_to_db(expected_pr_w * std::pow(chain.processor().coherent_amplitude_gain(), 2) /
+                        (d.noise_power_w * chain.processor().noise_power_gain()));
   std::cout << std::fixed << std::setprecision(4) << "radar: " << params.centre_frequency_hz * 1e-9
             << " GHz centre, " << radar::to_string(params.sweep_direction)
             << "-chirp, B = " << params.sweep_bandwidth_hz * 1e-9 << " GHz, "
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
     RandomStream rng(seed, 0, static_cast<std::uint64_t>(i));
     chain.measure(scene, chamber, no_fog, rng, workspace, m);
     if (m.target) {
-      std::cout << i << ",1," << m.target->range_m << ',' << m.target->rcs_dbsm << ',' << m.target->snr_db << '\n';
+      std::cout << i << ",1," << m.target->range_m << ',' << m.target->rcs_dbsm << ','
+                << m.target->snr_db << '\n';
     } else {
       std::cout << i << ",0,,,\n";
     }

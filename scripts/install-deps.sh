@@ -3,7 +3,7 @@
 # further packages a script needs (scripts/fuzz.sh: clang and its fuzzer runtime).
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config clang-format
   libeigen3-dev libfftw3-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev

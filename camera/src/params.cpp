@@ -11,11 +11,10 @@ namespace fogradar::camera {
 
 KeyTable<CameraParams> camera_keys() {
   KeyTable<CameraParams> keys("camera.");
-  keys.choice(
-      "band", FOGRADAR_KEY_FIELD(band), band_names,
-      "spectral weighting: CIE photopic V(λ) (one grey channel), sRGB primaries to grey, "
-      "or one wavelength; the study's images are \"converted into gray scale\", and V(λ) "
-      "is the luminance weighting of a grey image");
+  keys.choice("band", FOGRADAR_KEY_FIELD(band), band_names,
+              "spectral weighting: CIE photopic V(λ) (one grey channel), sRGB primaries to grey, "
+              "or one wavelength; the study's images are \"converted into gray scale\", and V(λ) "
+              "is the luminance weighting of a grey image");
   // The Segelstein table and the Mie sums cover it; a camera sees 380-780 nm, silicon to ~1100 nm.
   // Keys a setting makes meaningless are refused there, not recorded and ignored.
   const auto monochromatic = [](const CameraParams& p) { return p.band == Band::monochromatic; };
@@ -30,10 +29,9 @@ KeyTable<CameraParams> camera_keys() {
               "at 4 layers; Mie ≈ 4 ms per wavelength)")
       .when(std::not_fn(monochromatic),
             "with camera.band = \"photopic\" or \"rgb\" (one wavelength has no spacing)");
-  keys.choice(
-      "transfer", FOGRADAR_KEY_FIELD(transfer), transfer_curve_names,
-      "output encoding: IEC 61966-2-1 sRGB, the usual 8-bit encoding (assumption), or a "
-      "power law");
+  keys.choice("transfer", FOGRADAR_KEY_FIELD(transfer), transfer_curve_names,
+              "output encoding: IEC 61966-2-1 sRGB, the usual 8-bit encoding (assumption), or a "
+              "power law");
   keys.number("gamma", FOGRADAR_KEY_FIELD(gamma), closed(1.0, 4.0),
               "transfer = gamma only (default 2.2)")
       .when([](const CameraParams& p) { return p.transfer == TransferCurve::gamma; },
@@ -51,10 +49,9 @@ KeyTable<CameraParams> camera_keys() {
       "absorption, one way, against the dry window; droplets' scattering not modelled");
   keys.boolean("write_roi_images", FOGRADAR_KEY_FIELD(write_roi_images),
                "keep the first frame of each step as camera_roi_<step>.pgm (Fig. 8)");
-  keys.choice(
-      "exposure.mode", FOGRADAR_KEY_FIELD(exposure.mode), exposure_mode_names,
-      "fixed, or per step so that the noise-free ROI mean grey is auto_target_grey; the "
-      "study's means rise with fog: no ROI auto-exposure");
+  keys.choice("exposure.mode", FOGRADAR_KEY_FIELD(exposure.mode), exposure_mode_names,
+              "fixed, or per step so that the noise-free ROI mean grey is auto_target_grey; the "
+              "study's means rise with fog: no ROI auto-exposure");
   const auto automatic = [](const CameraParams& p) {
     return p.exposure.mode == ExposureMode::automatic;
   };

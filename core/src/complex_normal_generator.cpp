@@ -32,7 +32,9 @@ struct LaneStates {
   u64x4 s0, s1, s2, s3;
 };
 
-[[gnu::always_inline]] inline void store_lanes(std::uint64_t* to, u64x4 v) { std::memcpy(to, &v, sizeof v); }
+[[gnu::always_inline]] inline void store_lanes(std::uint64_t* to, u64x4 v) {
+  std::memcpy(to, &v, sizeof v);
+}
 
 [[gnu::always_inline]] inline u64x4 load_lanes(const std::uint64_t* from) {
   u64x4 v;
@@ -56,12 +58,14 @@ struct BaselineLanes {
   [[gnu::always_inline]] static bool any(u32x8 mask) {
     using u32x4 = std::uint32_t __attribute__((vector_size(16)));
     using u64x2 = std::uint64_t __attribute__((vector_size(16)));
-    const u32x4 halves =
-        __builtin_shufflevector(mask, mask, 0, 1, 2, 3) | __builtin_shufflevector(mask, mask, 4, 5, 6, 7);
+    const u32x4 halves = __builtin_shufflevector(mask, mask, 0, 1, 2, 3) |
+                         __builtin_shufflevector(mask, mask, 4, 5, 6, 7);
     const u64x2 words = detail::lanes_as<u64x2>(halves);
     return (words[0] | words[1]) != 0;
   }
-  [[gnu::always_inline]] static f64x4 to_double(f32x4 x) { return __builtin_convertvector(x, f64x4); }
+  [[gnu::always_inline]] static f64x4 to_double(f32x4 x) {
+    return __builtin_convertvector(x, f64x4);
+  }
 };
 
 #if defined(FOGRADAR_SIMD_AVX2)
@@ -157,7 +161,8 @@ template <class Vector, class Scalar>
 // The {x_i, x_{i+1}} floats of the layer that a power word picks, as one 64-bit word.
 [[gnu::always_inline]] inline std::uint64_t layer_bits(std::uint32_t power_word) {
   std::uint64_t bits;
-  std::memcpy(&bits, kZiggurat.fast[power_word & (detail::ziggurat_layers - 1)].data(), sizeof bits);
+  std::memcpy(&bits, kZiggurat.fast[power_word & (detail::ziggurat_layers - 1)].data(),
+              sizeof bits);
   return bits;
 }
 
@@ -178,12 +183,16 @@ struct Group {
   const u32x8 second_halves = detail::lanes_as<u32x8>(second);
   // Each layer's {width, covered} pair as one 64-bit load per sample (the index from the 64-bit
   // word, whose low half is the power word), then split into two vectors.
-  const f32x8 first_pairs = detail::lanes_as<f32x8>(
-      u64x4{layer_bits(static_cast<std::uint32_t>(first[0])), layer_bits(static_cast<std::uint32_t>(first[1])),
-            layer_bits(static_cast<std::uint32_t>(first[2])), layer_bits(static_cast<std::uint32_t>(first[3]))});
-  const f32x8 second_pairs = detail::lanes_as<f32x8>(
-      u64x4{layer_bits(static_cast<std::uint32_t>(second[0])), layer_bits(static_cast<std::uint32_t>(second[1])),
-            layer_bits(static_cast<std::uint32_t>(second[2])), layer_bits(static_cast<std::uint32_t>(second[3]))});
+  const f32x8 first_pairs =
+      detail::lanes_as<f32x8>(u64x4{layer_bits(static_cast<std::uint32_t>(first[0])),
+                                    layer_bits(static_cast<std::uint32_t>(first[1])),
+                                    layer_bits(static_cast<std::uint32_t>(first[2])),
+                                    layer_bits(static_cast<std::uint32_t>(first[3]))});
+  const f32x8 second_pairs =
+      detail::lanes_as<f32x8>(u64x4{layer_bits(static_cast<std::uint32_t>(second[0])),
+                                    layer_bits(static_cast<std::uint32_t>(second[1])),
+                                    layer_bits(static_cast<std::uint32_t>(second[2])),
+                                    layer_bits(static_cast<std::uint32_t>(second[3]))});
   return {__builtin_shufflevector(first_halves, second_halves, 0, 2, 8, 10, 4, 6, 12, 14),
           __builtin_shufflevector(first_halves, second_halves, 1, 3, 9, 11, 5, 7, 13, 15),
           __builtin_shufflevector(first_pairs, second_pairs, 0, 2, 8, 10, 4, 6, 12, 14),
@@ -212,10 +221,11 @@ template <bool weighted, class Lanes>
   // (re, im) interleaved within 128-bit halves: samples 0-1 | 2-3 and 4-5 | 6-7.
   const f32x8 first_four = __builtin_shufflevector(re, im, 0, 8, 1, 9, 4, 12, 5, 13);
   const f32x8 last_four = __builtin_shufflevector(re, im, 2, 10, 3, 11, 6, 14, 7, 15);
-  const f64x4 parts[4] = {Lanes::to_double(__builtin_shufflevector(first_four, first_four, 0, 1, 2, 3)),
-                          Lanes::to_double(__builtin_shufflevector(first_four, first_four, 4, 5, 6, 7)),
-                          Lanes::to_double(__builtin_shufflevector(last_four, last_four, 0, 1, 2, 3)),
-                          Lanes::to_double(__builtin_shufflevector(last_four, last_four, 4, 5, 6, 7))};
+  const f64x4 parts[4] = {
+      Lanes::to_double(__builtin_shufflevector(first_four, first_four, 0, 1, 2, 3)),
+      Lanes::to_double(__builtin_shufflevector(first_four, first_four, 4, 5, 6, 7)),
+      Lanes::to_double(__builtin_shufflevector(last_four, last_four, 0, 1, 2, 3)),
+      Lanes::to_double(__builtin_shufflevector(last_four, last_four, 4, 5, 6, 7))};
   for (std::size_t p = 0; p < 4; ++p) {
     f64x4 sum = detail::load4(base + 4 * p) + parts[p] * scale;
     if constexpr (weighted) sum *= row_weight * detail::load4(weights + 4 * p);
@@ -228,8 +238,10 @@ template <bool weighted, class Lanes>
 // before this group's phase, square root and stores, which then hide the look-ups' latency. The
 // words are drawn in the same order either way.
 template <bool weighted, class Lanes>
-[[gnu::always_inline]] inline void add_complex_normal_body(std::uint64_t* state_words, const double* base, double* out,
-                                                           std::size_t count, double scale, double row_weight,
+[[gnu::always_inline]] inline void add_complex_normal_body(std::uint64_t* state_words,
+                                                           const double* base, double* out,
+                                                           std::size_t count, double scale,
+                                                           double row_weight,
                                                            const double* weights) {
   if (count == 0) return;
   LaneStates state = load_states(state_words);
@@ -307,8 +319,8 @@ void ComplexNormalGenerator::add(std::span<std::complex<double>> samples, double
   add(samples, samples, variance);
 }
 
-void ComplexNormalGenerator::add(std::span<const std::complex<double>> base, std::span<std::complex<double>> out,
-                                 double variance) {
+void ComplexNormalGenerator::add(std::span<const std::complex<double>> base,
+                                 std::span<std::complex<double>> out, double variance) {
   FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size());
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
   add_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
@@ -316,12 +328,13 @@ void ComplexNormalGenerator::add(std::span<const std::complex<double>> base, std
 }
 
 void ComplexNormalGenerator::add_weighted(std::span<const std::complex<double>> base,
-                                          std::span<std::complex<double>> out, double variance, double row_weight,
-                                          std::span<const double> part_weights) {
-  FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size() && part_weights.size() == 2 * out.size());
+                                          std::span<std::complex<double>> out, double variance,
+                                          double row_weight, std::span<const double> part_weights) {
+  FOGRADAR_CHECK(variance >= 0.0 && base.size() == out.size() &&
+                 part_weights.size() == 2 * out.size());
   add_weighted_complex_normal(state_.data(), reinterpret_cast<const double*>(base.data()),
-                              reinterpret_cast<double*>(out.data()), out.size(), std::sqrt(variance), row_weight,
-                              part_weights.data());
+                              reinterpret_cast<double*>(out.data()), out.size(),
+                              std::sqrt(variance), row_weight, part_weights.data());
 }
 
 }  // namespace fogradar

@@ -37,7 +37,8 @@ std::string chamber_caption(const Scenario& scenario) {
     one_fog = one_fog && layer.fog == layers.front().fog;
   }
   std::string text = "Chamber: " + std::to_string(layers.size()) + " fog layers of ";
-  text += one_length ? stats::format_number(layers.front().length_m, 3) + " m each" : lengths + " m";
+  text +=
+      one_length ? stats::format_number(layers.front().length_m, 3) + " m each" : lengths + " m";
   if (!one_fog) text += " whose fogs differ (summary.json 'chamber')";
   const std::vector<std::size_t> order = scenario.context().switching_order;
   if (!std::is_sorted(order.begin(), order.end())) {

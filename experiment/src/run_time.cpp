@@ -110,8 +110,8 @@ TimeEstimate estimate_run_time(const Scenario& scenario, unsigned requested_thre
   for (const std::string& name : scenario.experiment.sensors) {
     const SensorSetting& s = scenario.setting(name);
     const std::size_t count = context.steps * s.type->items_per_step(s.params, context);
-    e.sensors.push_back({name, count, s.type->item_time(s.params, context),
-                         s.type->setup_time(s.params, context)});
+    e.sensors.push_back(
+        {name, count, s.type->item_time(s.params, context), s.type->setup_time(s.params, context)});
     items += count;
   }
   // The same count the runner starts (runner.cpp): one pool for every sensor's items.

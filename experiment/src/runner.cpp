@@ -88,9 +88,11 @@ std::string sensor_identity(const Scenario& scenario, const SensorSetting& setti
   return to_toml(alone);
 }
 
-std::shared_ptr<const sensor::Sensor> SensorCache::sensor(
-    const Scenario& scenario, const SensorSetting& setting, const sensor::Context& context,
-    const propagation::SegelsteinTable& water, const StopToken& stop) {
+std::shared_ptr<const sensor::Sensor> SensorCache::sensor(const Scenario& scenario,
+                                                          const SensorSetting& setting,
+                                                          const sensor::Context& context,
+                                                          const propagation::SegelsteinTable& water,
+                                                          const StopToken& stop) {
   std::string identity = sensor_identity(scenario, setting);
   {
     const std::lock_guard lock(mutex_);
@@ -123,8 +125,9 @@ Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& wa
     const SensorSetting& setting = scenario_.setting(name);
     try {
       sensors_.push_back({setting.type,
-                          cache ? cache->sensor(scenario_, setting, context_, water, token)
-                                : setting.type->make_or_stop(setting.params, context_, water, token),
+                          cache
+                              ? cache->sensor(scenario_, setting, context_, water, token)
+                              : setting.type->make_or_stop(setting.params, context_, water, token),
                           nullptr});
     } catch (const Stopped&) {
       throw Interrupted();

@@ -1,5 +1,5 @@
-// A scenario error pointed at the key as the file wrote it: its source, its line and the lines of the
-// other keys a combined check names.
+// A scenario error pointed at the key as the file wrote it: its source, its line and the lines of
+// the other keys a combined check names.
 #include <cctype>
 #include <map>
 #include <string>

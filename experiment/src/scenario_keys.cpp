@@ -1,4 +1,5 @@
-// The scenario's keys: [chamber], [fog] and [experiment], and the file's layout of every part's keys.
+// The scenario's keys: [chamber], [fog] and [experiment], and the file's layout of every part's
+// keys.
 #include <cmath>
 #include <functional>
 #include <map>

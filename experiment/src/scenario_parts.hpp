@@ -56,7 +56,8 @@ std::string toml_value(const ScenarioKey& key, const Scenario& s);
                            const std::string& message);
 // Rethrows a check's error `e` from reading `source`, pointed at the line of its key as the file
 // gave it (`lines`), with the number as the file typed it (`typed_numbers`).
-[[noreturn]] void relocate(const InvalidParameter& e, std::string_view source, const KeyLines& lines,
+[[noreturn]] void relocate(const InvalidParameter& e, std::string_view source,
+                           const KeyLines& lines,
                            const std::map<std::string, std::string>& typed_numbers);
 
 // scenario_reader.cpp

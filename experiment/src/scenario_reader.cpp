@@ -410,8 +410,8 @@ class Reader {
     };
     fail(node, key.name,
          first->second + at(lines_.at(first->second)) + " and " + key.name +
-             at(node.source().begin.line) + " are both given: at most one " + key.group + " of " + joined(members, ", ") +
-             " per [" + section + "]");
+             at(node.source().begin.line) + " are both given: at most one " + key.group + " of " +
+             joined(members, ", ") + " per [" + section + "]");
   }
 
   std::vector<std::string> names_of(const ScenarioKey& key, const toml::node& node,
@@ -520,9 +520,9 @@ class Reader {
   bool lines_shown_;
   KeyLines lines_;
   std::map<std::string, std::string> typed_numbers_;
-  std::set<std::string> declared_;                          // every section and its parents
-  std::map<std::string, std::vector<std::string>> groups_;  // group -> its keys' short names
-  std::map<std::string, std::string> given_in_group_;       // "section group" -> the key given
+  std::set<std::string> declared_;                            // every section and its parents
+  std::map<std::string, std::vector<std::string>> groups_;    // group -> its keys' short names
+  std::map<std::string, std::string> given_in_group_;         // "section group" -> the key given
   std::map<std::string, std::set<std::string>> nested_keys_;  // an element's table -> its keys
   std::vector<std::pair<const ScenarioKey*, const toml::node*>> arrays_;  // read last
 };

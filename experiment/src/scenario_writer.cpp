@@ -1,4 +1,5 @@
-// A scenario written out: as TOML (the resolved scenario.toml) and as docs/scenario.md's key tables.
+// A scenario written out: as TOML (the resolved scenario.toml) and as docs/scenario.md's key
+// tables.
 #include <algorithm>
 #include <charconv>
 #include <set>

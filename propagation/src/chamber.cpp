@@ -78,7 +78,10 @@ Chamber::Chamber(const ChamberSpec& spec, double frequency_hz, const SegelsteinT
   layers_.reserve(spec.layers.size());
   for (std::size_t i = 0; i < spec.layers.size(); ++i) {
     const FogLayerSpec& layer_spec = spec.layers[i];
-    LayerOptics layer{.start_m = start_m, .end_m = start_m + layer_spec.length_m, .lwc_g_per_m3 = 0.0, .optics = {}};
+    LayerOptics layer{.start_m = start_m,
+                      .end_m = start_m + layer_spec.length_m,
+                      .lwc_g_per_m3 = 0.0,
+                      .optics = {}};
     // A layer filled with the same fog as an earlier one (the study's chamber: one fog in all four)
     // takes its results: resolving a density given at 550 nm sums a Mie series for every drop size
     // of the quadrature, most of a run's start-up, and would only repeat the same arithmetic.

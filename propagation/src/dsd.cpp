@@ -1,10 +1,10 @@
 #include "fogradar/propagation/dsd.hpp"
 
+#include <algorithm>
 #include <boost/math/distributions/gamma.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/gamma.hpp>
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -206,8 +206,8 @@ DiameterRange quadrature_range(const DropSizeDistribution& dsd) {
     // The D^k-weighted lognormal is lognormal with ln-median shifted by k s^2.
     DiameterRange operator()(const Lognormal& d) const {
       const double s = log_std(d);
-      const double z = boost::math::quantile(boost::math::normal_distribution<double>(),
-                                             1.0 - tail_fraction);
+      const double z =
+          boost::math::quantile(boost::math::normal_distribution<double>(), 1.0 - tail_fraction);
       const double mu = std::log(d.median_diameter_m);
       return {std::exp(mu - z * s), std::exp(mu + 6.0 * s * s + z * s)};
     }
@@ -222,7 +222,8 @@ DiameterRange quadrature_range(const DropSizeDistribution& dsd) {
     }
   };
   const DiameterRange tails = std::visit(Range{}, dsd);
-  return {std::max(tails.min_m, min_droplet_diameter_m), std::min(tails.max_m, max_droplet_diameter_m)};
+  return {std::max(tails.min_m, min_droplet_diameter_m),
+          std::min(tails.max_m, max_droplet_diameter_m)};
 }
 
 std::vector<QuadratureNode> quadrature_nodes(const DropSizeDistribution& dsd) {

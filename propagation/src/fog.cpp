@@ -68,11 +68,10 @@ KeyTable<FogSpec> fog_keys(std::string prefix) {
         }
       })
       .documented_as("[-20, 50] with `liebe`; only 25 with `segelstein`");
-  keys.choice(
-      "water_model", FOGRADAR_KEY_FIELD(water_model), water_model_names,
-      "water index at the radar frequency: `liebe` (Liebe 1991 / ITU-R P.840, "
-      "temperature dependent, up to 1 THz) or `segelstein` (a table for about 25 °C "
-      "without temperature dependence)");
+  keys.choice("water_model", FOGRADAR_KEY_FIELD(water_model), water_model_names,
+              "water index at the radar frequency: `liebe` (Liebe 1991 / ITU-R P.840, "
+              "temperature dependent, up to 1 THz) or `segelstein` (a table for about 25 °C "
+              "without temperature dependence)");
   keys.include(droplet_keys(prefix + "droplets."), FOGRADAR_KEY_FIELD(droplets));
   return keys;
 }
@@ -158,7 +157,8 @@ FogOptics Fog::bulk_optics(double wavelength_m, WaterModel model, double tempera
   optics.absorption_per_m = per_volume.absorption_m2;
   optics.scattering_per_m = per_volume.scattering_m2;
   // Eq. 5 per metre, reported per km.
-  optics.specific_attenuation_db_per_km = attenuation_db_per_km(per_m_to_per_km(optics.extinction_per_m));
+  optics.specific_attenuation_db_per_km =
+      attenuation_db_per_km(per_m_to_per_km(optics.extinction_per_m));
   optics.volume_backscatter_m2_per_m3 = per_volume.backscatter_m2;
   return optics;
 }

@@ -103,7 +103,8 @@ FrequencyRangeGhz radio_frequency_range(Material material) {
 
 std::string_view radio_permittivity_source(Material material) {
   if (material == Material::water) return "Liebe et al. 1991 (ITU-R P.840 form), water at 20 C";
-  if (material == Material::plastic) return "assumption: HDPE, n = 1.526, tan delta = 3e-4 (as quoted from Lamb 1996)";
+  if (material == Material::plastic)
+    return "assumption: HDPE, n = 1.526, tan delta = 3e-4 (as quoted from Lamb 1996)";
   return "ITU-R P.2040-3 Table 3";
 }
 

@@ -319,8 +319,7 @@ PYBIND11_MODULE(_core, m) {
           py::arg("text"), py::arg("source"), py::arg("line_numbers") = true)
       .def("to_toml", [](const Scenario& s) { return experiment::to_toml(s); })
       .def_property_readonly("sensors", [](const Scenario& s) { return s.experiment.sensors; })
-      .def_property_readonly("steps",
-                             [](const Scenario& s) { return s.steps(); })
+      .def_property_readonly("steps", [](const Scenario& s) { return s.steps(); })
       .def_property_readonly("seed", [](const Scenario& s) { return s.experiment.seed; })
       .def_property_readonly("target_range_m",
                              [](const Scenario& s) { return s.chamber_spec().target_range_m(); });

@@ -10,18 +10,18 @@
 #include <string>
 #include <utility>
 
+#include "cfar_kernels.hpp"
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/radar/cfar_design.hpp"
-#include "cfar_kernels.hpp"
 
 namespace fogradar::radar {
 
 using cfar_kernels::append_cells_above;
 using cfar_kernels::half_sums_rule;
 using cfar_kernels::interleave_norms;
-using cfar_kernels::ReferenceCells;
 using cfar_kernels::reference_cells;
+using cfar_kernels::ReferenceCells;
 using cfar_kernels::two_sided_detect;
 using cfar_kernels::two_sided_detect_four;
 using cfar_kernels::window_sums;
@@ -36,7 +36,8 @@ CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& noi
   alpha_ = factors.interior;
   edge_alpha_ = std::move(factors.edge);
   // The scale of the sums' thresholds: CA divides by N, GO/SO by n (the sums are of n cells).
-  const double divisor = static_cast<double>(config.kind == CfarKind::ca ? config.reference_cells() : config.training_cells);
+  const double divisor = static_cast<double>(config.kind == CfarKind::ca ? config.reference_cells()
+                                                                         : config.training_cells);
   edge_scale_.resize(edge_alpha_.size());
   for (std::size_t i = 0; i < edge_alpha_.size(); ++i) edge_scale_[i] = edge_alpha_[i] / divisor;
 }
@@ -133,7 +134,8 @@ void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspac
     }
     append_cells_above(power.data(), workspace.threshold.data(), length, workspace.detections);
   } else {
-    const std::span<const double> sums = window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
+    const std::span<const double> sums =
+        window_sums(power, n, workspace.window_sums, workspace.sum_scratch);
     // CA divides by N, GO/SO by n (the sums are of n cells).
     const double scale = alpha / static_cast<double>(config_.kind == CfarKind::ca ? big_n : n);
     two_sided_detect(power, guard, n, scale, edge_scale_, sums, half_sums_rule(config_.kind),

@@ -1,5 +1,5 @@
-// The CFAR's names and configuration: its keys, the checks of a configuration against a profile, and
-// the reference cells a cell under test reads.
+// The CFAR's names and configuration: its keys, the checks of a configuration against a profile,
+// and the reference cells a cell under test reads.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -11,17 +11,21 @@
 
 namespace fogradar::radar {
 
-std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config, std::size_t cells_from_end) {
+std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config,
+                                                   std::size_t cells_from_end) {
   config.validate();
   const std::size_t guard = config.guard_cells;
   const std::size_t n = config.training_cells;
   const std::size_t i = std::min(cells_from_end, guard + n);
   // A profile long enough that cell i has its full window on the right.
-  const cfar_kernels::ReferenceCells r = cfar_kernels::reference_cells(i, i + guard + 2 * n + 1, guard, n);
+  const cfar_kernels::ReferenceCells r =
+      cfar_kernels::reference_cells(i, i + guard + 2 * n + 1, guard, n);
   std::vector<std::ptrdiff_t> offsets;
   const auto cell = static_cast<std::ptrdiff_t>(i);
-  for (std::size_t j = r.lb; j < r.le; ++j) offsets.push_back(static_cast<std::ptrdiff_t>(j) - cell);
-  for (std::size_t j = r.rb; j < r.re; ++j) offsets.push_back(static_cast<std::ptrdiff_t>(j) - cell);
+  for (std::size_t j = r.lb; j < r.le; ++j)
+    offsets.push_back(static_cast<std::ptrdiff_t>(j) - cell);
+  for (std::size_t j = r.rb; j < r.re; ++j)
+    offsets.push_back(static_cast<std::ptrdiff_t>(j) - cell);
   return offsets;
 }
 
@@ -34,8 +38,7 @@ unsigned CfarConfig::effective_os_rank() const noexcept {
 
 KeyTable<CfarConfig> cfar_keys(std::string prefix) {
   KeyTable<CfarConfig> keys(prefix);
-  keys.choice(
-      "kind", FOGRADAR_KEY_FIELD(kind), cfar_kind_names, "CFAR detector");
+  keys.choice("kind", FOGRADAR_KEY_FIELD(kind), cfar_kind_names, "CFAR detector");
   keys.integer("guard_cells", FOGRADAR_KEY_FIELD(guard_cells), 0, 32766, "per side");
   keys.integer("training_cells", FOGRADAR_KEY_FIELD(training_cells), 1, 32767, "per side");
   keys.number("false_alarm_probability", FOGRADAR_KEY_FIELD(false_alarm_probability),
@@ -57,13 +60,12 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
       .documented_as("integer 0 or [1, 2·training]")
       .when([](const CfarConfig& c) { return c.kind == CfarKind::os; },
             "with " + prefix + "kind = \"os\" (the other kinds average their cells)");
-  keys.choice(
-      "threshold_design", FOGRADAR_KEY_FIELD(threshold_design), cfar_threshold_design_names,
-      "threshold factors solved for the noise cells as the range window correlates them, "
-      "so the realised P_fa is the design value (one factor for the interior cells and "
-      "one per edge position; docs/radar.md §7); `independent` = the textbook iid factor, "
-      "whose realised P_fa with a tapered window is higher (Hann: 2.2× at 1e-3, 10× at "
-      "1e-6 for CA)");
+  keys.choice("threshold_design", FOGRADAR_KEY_FIELD(threshold_design), cfar_threshold_design_names,
+              "threshold factors solved for the noise cells as the range window correlates them, "
+              "so the realised P_fa is the design value (one factor for the interior cells and "
+              "one per edge position; docs/radar.md §7); `independent` = the textbook iid factor, "
+              "whose realised P_fa with a tapered window is higher (Hann: 2.2× at 1e-3, 10× at "
+              "1e-6 for CA)");
   return keys;
 }
 

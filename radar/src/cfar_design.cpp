@@ -89,14 +89,13 @@ double log_pfa_ca_exact(const Matrix& cut_first_factor, double alpha) {
 // approximation (relative error below 3e-5 there: test_cfar_correlated.cpp against the series).
 constexpr double kSaddlepointLambda = 10.0;
 
-// log P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2 < kSaddlepointLambda: log Marcum
-// Q_1(sqrt(2 lambda), sqrt(2 y)) = log e^{-lambda-y} sum_j a_j B_j, a_j = lambda^j/j!,
-// B_j = sum_{i<=j} y^i/i! (Poisson mixture of Gamma(j+1) tails, all terms positive), summed in
-// linear space with B and the sum rescaled together. The term ratio a_{k+1} B_{k+1} / (a_k B_k) is
-// at most rho_k = lambda (k + 1 + y) / (k + 1)^2 (B_{k+1} / B_k <= 1 + y / (k + 1)), decreasing in
-// k, so once rho_j < 1 the rest of the sum is below term_j rho_j / (1 - rho_j).
-// 1/j for the series' terms, computed by the compiler (a multiplication instead of a division per
-// term).
+// log P(|Y0|^2 > y s^2) for Y0 ~ CN(mu, s^2), lambda = |mu|^2 / s^2 < kSaddlepointLambda: log
+// Marcum Q_1(sqrt(2 lambda), sqrt(2 y)) = log e^{-lambda-y} sum_j a_j B_j, a_j = lambda^j/j!, B_j =
+// sum_{i<=j} y^i/i! (Poisson mixture of Gamma(j+1) tails, all terms positive), summed in linear
+// space with B and the sum rescaled together. The term ratio a_{k+1} B_{k+1} / (a_k B_k) is at most
+// rho_k = lambda (k + 1 + y) / (k + 1)^2 (B_{k+1} / B_k <= 1 + y / (k + 1)), decreasing in k, so
+// once rho_j < 1 the rest of the sum is below term_j rho_j / (1 - rho_j). 1/j for the series'
+// terms, computed by the compiler (a multiplication instead of a division per term).
 constexpr std::array<double, 1024> kInverses = [] {
   std::array<double, 1024> inverses{};
   for (std::size_t j = 1; j < inverses.size(); ++j) inverses[j] = 1.0 / static_cast<double>(j);
@@ -264,8 +263,8 @@ struct QuadraticTilt {
   Matrix lower;          // G
 };
 
-// The tilt of `factor` (R's lower Cholesky factor, the cell under test last); none where q's mean is
-// not negative (then theta <= 0) or M's eigenvalues do not resolve the positive one.
+// The tilt of `factor` (R's lower Cholesky factor, the cell under test last); none where q's mean
+// is not negative (then theta <= 0) or M's eigenvalues do not resolve the positive one.
 std::optional<QuadraticTilt> quadratic_tilt(const Matrix& factor, const Tilt& tilt) {
   const Eigen::Index size = factor.rows() - 1;
   Eigen::VectorXd q = Eigen::VectorXd::Zero(size + 1);
@@ -460,7 +459,6 @@ class SampledPfa {
   std::vector<double> lambda_;
 };
 
-
 // True when no two cells of a geometry spanning `span` cells are correlated.
 bool white_within(const NoiseCorrelation& noise, std::size_t span) {
   for (std::size_t m = 1; m <= span && m < noise.coefficients.size(); ++m) {
@@ -499,8 +497,7 @@ double tilt_factor(const CfarConfig& config, const NoiseCorrelation& noise,
   CfarConfig ca = config;
   ca.kind = CfarKind::ca;
   const double ca_independent = cfar_threshold_factor(ca);
-  return independent_factor * ca_factor(ca, noise, offsets, ca_independent, stop) /
-         ca_independent;
+  return independent_factor * ca_factor(ca, noise, offsets, ca_independent, stop) / ca_independent;
 }
 
 double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise,
@@ -561,9 +558,9 @@ std::size_t structure_cells(const NoiseCorrelation& noise) {
 }
 
 // A reference geometry by its number of reference cells on the left of the cell under test, L in
-// [0, n] (n: the interior). Geometries whose L and n - L both reach K = structure_cells are the same
-// cells near every structure point and differ only in where the far cells lie: one of them,
-// L = n / 2, is solved for all (for CA exact they agree to 1e-5 at n = 24: test_cfar_correlated.cpp).
+// [0, n] (n: the interior). Geometries whose L and n - L both reach K = structure_cells are the
+// same cells near every structure point and differ only in where the far cells lie: one of them, L
+// = n / 2, is solved for all (for CA exact they agree to 1e-5 at n = 24: test_cfar_correlated.cpp).
 std::size_t solved_left(std::size_t left, std::size_t n, std::size_t k) {
   if (left < k || left + k >= n) return left;
   return n / 2;
@@ -579,8 +576,8 @@ CfarConfig with_training(const CfarConfig& config, std::size_t m) {
   CfarConfig result = config;
   result.training_cells = static_cast<unsigned>(m);
   if (config.kind == CfarKind::os && config.os_rank != 0) {
-    const double place = static_cast<double>(config.os_rank) /
-                         static_cast<double>(config.reference_cells());
+    const double place =
+        static_cast<double>(config.os_rank) / static_cast<double>(config.reference_cells());
     result.os_rank = static_cast<unsigned>(std::clamp<double>(
         std::round(place * static_cast<double>(2 * m)), 1.0, static_cast<double>(2 * m)));
   }
@@ -650,8 +647,7 @@ double half_sum_bias_term(CfarKind kind, const NoiseCorrelation& noise) {
   if (kind != CfarKind::go && kind != CfarKind::so) return 0.0;
   // Over the lags of the structure (the first half of a circular correlation at most): the rest
   // is a floor below 2e-4 or the same lags again around the window.
-  const std::size_t lags =
-      std::min(kStructureLags, (noise.coefficients.size() - 1) / 2);
+  const std::size_t lags = std::min(kStructureLags, (noise.coefficients.size() - 1) / 2);
   double c2 = 1.0;
   for (std::size_t m = 1; m <= lags; ++m) c2 += 2.0 * noise.coefficients[m] * noise.coefficients[m];
   const double term = (std::sqrt(c2) - 1.0) / std::sqrt(std::numbers::pi);

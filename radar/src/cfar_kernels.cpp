@@ -1,5 +1,6 @@
-// The CFAR's sliding window sums and detection scans, cloned per instruction set with the same bits.
-#include "fogradar/radar/cfar.hpp"
+// The CFAR's sliding window sums and detection scans, cloned per instruction set with the same
+// bits.
+#include "cfar_kernels.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +14,7 @@
 
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
-#include "cfar_kernels.hpp"
+#include "fogradar/radar/cfar.hpp"
 
 namespace fogradar::radar::cfar_kernels {
 
@@ -22,7 +23,8 @@ namespace {
 // The passes of window_sums, cloned so that AVX2 adds four cells per instruction (element-wise
 // sums: the same bits in every clone). Only `a` and `b` may overlap (both are read).
 FOGRADAR_SIMD_CLONES
-void add_cells(const double* __restrict a, const double* __restrict b, double* __restrict out, std::size_t count) {
+void add_cells(const double* __restrict a, const double* __restrict b, double* __restrict out,
+               std::size_t count) {
   for (std::size_t j = 0; j < count; ++j) out[j] = a[j] + b[j];
 }
 
@@ -37,8 +39,9 @@ void accumulate_cells(double* __restrict sums, const double* __restrict terms, s
 // result crosses the clones' ABIs, docs/architecture.md). Detections are rare: a branch-free vector
 // test of 16 cells at a time leaves the look at single cells to the few blocks that hold one.
 template <class Thresholds>
-[[gnu::always_inline]] inline void scan_cells_above(const double* power, const double* threshold, std::size_t begin,
-                                                    std::size_t end, std::vector<std::size_t>& cells,
+[[gnu::always_inline]] inline void scan_cells_above(const double* power, const double* threshold,
+                                                    std::size_t begin, std::size_t end,
+                                                    std::vector<std::size_t>& cells,
                                                     const Thresholds& thresholds) {
   constexpr std::size_t block = 16;
   std::size_t i = begin;
@@ -60,7 +63,9 @@ template <class Thresholds>
 // Thresholds formed beforehand (OS).
 struct StoredThresholds {
   const double* threshold;
-  [[gnu::always_inline]] detail::f64x4 four_from(std::size_t k) const { return detail::load4(threshold + k); }
+  [[gnu::always_inline]] detail::f64x4 four_from(std::size_t k) const {
+    return detail::load4(threshold + k);
+  }
   [[gnu::always_inline]] double one_at(std::size_t i) const { return threshold[i]; }
 };
 
@@ -120,8 +125,9 @@ struct InteriorThresholds {
 // The interior cells [begin, end) of two_sided_detect: thresholds and detections in one pass. The
 // rule is fixed outside the loop so that each clone vectorises all three.
 FOGRADAR_SIMD_CLONES
-void interior_thresholds_and_detect(HalfSums rule, const double* lead, const double* lag, const double* power,
-                                    double scale, double* threshold, std::size_t begin, std::size_t end,
+void interior_thresholds_and_detect(HalfSums rule, const double* lead, const double* lag,
+                                    const double* power, double scale, double* threshold,
+                                    std::size_t begin, std::size_t end,
                                     std::vector<std::size_t>& cells) {
   switch (rule) {
     case HalfSums::add:
@@ -269,8 +275,8 @@ void append_cells_above(const double* power, const double* threshold, std::size_
   scan_cells_above(power, threshold, 0, length, cells, StoredThresholds{threshold});
 }
 
-std::span<const double> window_sums(std::span<const double> power, std::size_t n, std::vector<double>& sums,
-                                    std::vector<double>& blocks) {
+std::span<const double> window_sums(std::span<const double> power, std::size_t n,
+                                    std::vector<double>& sums, std::vector<double>& blocks) {
   const std::size_t length = power.size();
   const std::size_t count = length - n + 1;
   sums.resize(count);
@@ -340,8 +346,9 @@ HalfSums half_sums_rule(CfarKind kind) {
 }
 
 void two_sided_detect(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
-                      std::span<const double> edge_scale, std::span<const double> sums, HalfSums rule,
-                      std::vector<double>& threshold, std::vector<std::size_t>& cells) {
+                      std::span<const double> edge_scale, std::span<const double> sums,
+                      HalfSums rule, std::vector<double>& threshold,
+                      std::vector<std::size_t>& cells) {
   const std::size_t length = power.size();
   const auto edge_cell = [&](std::size_t i) {
     const auto [first, second] = edge_halves<double>(i, length, guard, n, CellsOf{power.data()});
@@ -351,10 +358,10 @@ void two_sided_detect(std::span<const double> power, std::size_t guard, std::siz
   const std::size_t interior_begin = guard + n;
   const std::size_t interior_end = length - guard - n;  // > interior_begin (validated)
   for (std::size_t i = 0; i < interior_begin; ++i) edge_cell(i);
-  const double* lead = sums.data();                      // S_lead of cell i = sums[i - guard - n]
+  const double* lead = sums.data();                     // S_lead of cell i = sums[i - guard - n]
   const double* lag = sums.data() + 2 * guard + n + 1;  // S_lag of cell i = sums[i + guard + 1]
-  interior_thresholds_and_detect(rule, lead, lag, power.data(), scale, threshold.data(), interior_begin, interior_end,
-                                 cells);
+  interior_thresholds_and_detect(rule, lead, lag, power.data(), scale, threshold.data(),
+                                 interior_begin, interior_end, cells);
   for (std::size_t i = interior_end; i < length; ++i) edge_cell(i);
 }
 
@@ -399,12 +406,10 @@ void interleave_norms(const std::complex<double>* rows, std::size_t length, doub
       squares[r] = v * v;
     }
     // Rows 0 and 1, 2 and 3: |x_j|^2 of both rows, then |x_j+1|^2 of both.
-    const detail::f64x4 norms01 =
-        __builtin_shufflevector(squares[0], squares[1], 0, 4, 2, 6) +
-        __builtin_shufflevector(squares[0], squares[1], 1, 5, 3, 7);
-    const detail::f64x4 norms23 =
-        __builtin_shufflevector(squares[2], squares[3], 0, 4, 2, 6) +
-        __builtin_shufflevector(squares[2], squares[3], 1, 5, 3, 7);
+    const detail::f64x4 norms01 = __builtin_shufflevector(squares[0], squares[1], 0, 4, 2, 6) +
+                                  __builtin_shufflevector(squares[0], squares[1], 1, 5, 3, 7);
+    const detail::f64x4 norms23 = __builtin_shufflevector(squares[2], squares[3], 0, 4, 2, 6) +
+                                  __builtin_shufflevector(squares[2], squares[3], 1, 5, 3, 7);
     const detail::f64x4 cell = __builtin_shufflevector(norms01, norms23, 0, 1, 4, 5);
     const detail::f64x4 next = __builtin_shufflevector(norms01, norms23, 2, 3, 6, 7);
     detail::store4(power + 4 * j, cell);

@@ -19,8 +19,7 @@ struct ReferenceCells {
   std::size_t lb, le, rb, re;
 };
 
-ReferenceCells reference_cells(std::size_t i, std::size_t length, std::size_t guard,
-                               std::size_t n);
+ReferenceCells reference_cells(std::size_t i, std::size_t length, std::size_t guard, std::size_t n);
 
 // The detection scan of OS.
 void append_cells_above(const double* power, const double* threshold, std::size_t length,
@@ -32,8 +31,8 @@ void append_cells_above(const double* power, const double* threshold, std::size_
 // its relative error is below (2 log2 n + 1) eps however strong a target sits in the profile
 // (a running sum, add one cell and subtract another, would carry an absolute error of the
 // strongest cell that ever passed through it).
-std::span<const double> window_sums(std::span<const double> power, std::size_t n, std::vector<double>& sums,
-                                    std::vector<double>& blocks);
+std::span<const double> window_sums(std::span<const double> power, std::size_t n,
+                                    std::vector<double>& sums, std::vector<double>& blocks);
 
 // window_sums for four interleaved profiles (cell j of profile r at 4 j + r, CfarFourWorkspace):
 // the same blocks and the same additions per profile, every index scaled by four. `pairs` holds the
@@ -56,8 +55,9 @@ HalfSums half_sums_rule(CfarKind kind);
 // reference ranges directly, with the scale of their position (edge_scale[i] for the cells i and
 // L-1-i).
 void two_sided_detect(std::span<const double> power, std::size_t guard, std::size_t n, double scale,
-                      std::span<const double> edge_scale, std::span<const double> sums, HalfSums rule,
-                      std::vector<double>& threshold, std::vector<std::size_t>& cells);
+                      std::span<const double> edge_scale, std::span<const double> sums,
+                      HalfSums rule, std::vector<double>& threshold,
+                      std::vector<std::size_t>& cells);
 
 // two_sided_detect for four interleaved profiles of `length` cells (CfarFourWorkspace's layout),
 // one per vector lane: each lane makes the operations two_sided_detect makes for its profile, in

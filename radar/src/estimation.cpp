@@ -7,11 +7,11 @@
 #include <cstring>
 #include <limits>
 
+#include "estimation_peak.hpp"
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
-#include "estimation_peak.hpp"
 
 namespace fogradar::radar {
 namespace {
@@ -201,20 +201,21 @@ FOGRADAR_ROWS_TIMES_KERNELS(, 4)
 
 // ws.doppler[o * rows + r] = X_r(nu_o): every row of the map interpolated to the fractional range
 // bins nu_o of up to interpolation_batch objects, in one pass over the map.
-void interpolate_rows(std::span<const std::complex<double>> map, std::size_t rows, std::size_t columns,
-                      std::span<const double> nu, EstimationWorkspace& ws) {
+void interpolate_rows(std::span<const std::complex<double>> map, std::size_t rows,
+                      std::size_t columns, std::span<const double> nu, EstimationWorkspace& ws) {
   const std::size_t values = 2 * columns;
   for (std::size_t o = 0; o < nu.size(); ++o) {
     double* k_re = ws.kernel_re.data() + o * values;
     double* k_im = ws.kernel_im.data() + o * values;
-    dirichlet_weights(nu[o], ws.range_table, [k_re, k_im](std::size_t m, std::complex<double> weight) {
-      k_re[2 * m] = k_re[2 * m + 1] = weight.real();
-      k_im[2 * m] = k_im[2 * m + 1] = weight.imag();
-    });
+    dirichlet_weights(nu[o], ws.range_table,
+                      [k_re, k_im](std::size_t m, std::complex<double> weight) {
+                        k_re[2 * m] = k_re[2 * m + 1] = weight.real();
+                        k_im[2 * m] = k_im[2 * m + 1] = weight.imag();
+                      });
   }
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
-  rows_times_kernels(reinterpret_cast<const double*>(map.data()), rows, columns, ws.kernel_re.data(),
-                     ws.kernel_im.data(), nu.size(), ws.doppler.data());
+  rows_times_kernels(reinterpret_cast<const double*>(map.data()), rows, columns,
+                     ws.kernel_re.data(), ws.kernel_im.data(), nu.size(), ws.doppler.data());
 }
 
 // Doppler bin in [-N/2, N/2).
@@ -258,7 +259,8 @@ void run_cfar(std::span<const std::complex<double>> map, std::size_t rows, std::
 
 // Flood fill of the 8-connected object containing `seed` (Doppler wraps); clears its cells from the
 // mask and returns the index of its strongest cell and its size.
-std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<const std::complex<double>> map,
+std::pair<std::size_t, std::size_t> take_object(std::size_t seed,
+                                                std::span<const std::complex<double>> map,
                                                 std::size_t rows, std::size_t columns,
                                                 EstimationWorkspace& ws) {
   std::size_t peak = seed, cells = 0;
@@ -275,7 +277,8 @@ std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<cons
       const std::size_t nd = (d + rows + static_cast<std::size_t>(dd + 1) - 1) % rows;
       for (int dk = -1; dk <= 1; ++dk) {
         if ((dk < 0 && k == 0) || (dk > 0 && k + 1 == columns)) continue;
-        const std::size_t neighbour = nd * columns + static_cast<std::size_t>(static_cast<long>(k) + dk);
+        const std::size_t neighbour =
+            nd * columns + static_cast<std::size_t>(static_cast<long>(k) + dk);
         if (ws.detected[neighbour]) {
           ws.detected[neighbour] = 0;
           ws.stack.push_back(neighbour);
@@ -289,8 +292,8 @@ std::pair<std::size_t, std::size_t> take_object(std::size_t seed, std::span<cons
 }  // namespace
 
 void rows_times_interleaved_kernels(const double* map, std::size_t rows, std::size_t columns,
-                                    const double* kernel_re, const double* kernel_im, std::size_t objects,
-                                    std::complex<double>* out) {
+                                    const double* kernel_re, const double* kernel_im,
+                                    std::size_t objects, std::complex<double>* out) {
   FOGRADAR_CHECK(objects <= interpolation_batch);
   rows_times_kernels(map, rows, columns, kernel_re, kernel_im, objects, out);
 }
@@ -329,8 +332,8 @@ void estimate_detections(std::span<const std::complex<double>> map,
       object.range_cell = peak % columns;
       object.cells = cells;
       // Range: the DTFT maximum along the peak's Doppler row.
-      object.range_offset = find_peak(map.subspan(object.doppler_cell * columns, columns), object.range_cell,
-                                      ws.range_table, ws.range_inverse, ws)
+      object.range_offset = find_peak(map.subspan(object.doppler_cell * columns, columns),
+                                      object.range_cell, ws.range_table, ws.range_inverse, ws)
                                 .offset;
       range_bins[count] = static_cast<double>(object.range_cell) + object.range_offset;
       ++count;
@@ -353,11 +356,13 @@ void estimate_detections(std::span<const std::complex<double>> map,
       // The beat frequency holds the Doppler shift too (range-Doppler coupling): remove it.
       const double beat_hz = det.range_bin * params.sample_rate_hz / static_cast<double>(columns);
       const double doppler_hz = doppler_shift_hz(det.radial_velocity_m_per_s, derived);
-      det.range_m = (beat_hz - doppler_hz) * speed_of_light_m_per_s / (2.0 * derived.chirp_slope_hz_per_s);
+      det.range_m =
+          (beat_hz - doppler_hz) * speed_of_light_m_per_s / (2.0 * derived.chirp_slope_hz_per_s);
       det.received_power_w = peak_power / (gain * gain);
       det.snr_db = power_ratio_to_db(peak_power / noise_per_cell_w);
-      det.rcs_m2 = rcs_from_received_power_m2(det.received_power_w, derived.tx_power_w, derived.tx_gain,
-                                              derived.rx_gain, derived.wavelength_m, det.range_m);
+      det.rcs_m2 =
+          rcs_from_received_power_m2(det.received_power_w, derived.tx_power_w, derived.tx_gain,
+                                     derived.rx_gain, derived.wavelength_m, det.range_m);
       det.rcs_dbsm = power_ratio_to_db(det.rcs_m2);
       det.cells = object.cells;
       det.range_cell = object.range_cell;

@@ -1,10 +1,10 @@
 // The DTFT peak numerics: the maximum of |X| between bins, bracketed on Dirichlet sums and refined
 // by Newton steps on the time signal; the Dirichlet kernel and its tables.
-#include "fogradar/radar/estimation.hpp"
+#include "estimation_peak.hpp"
 
-#include <boost/math/tools/minima.hpp>
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <complex>
 #include <cstring>
@@ -14,7 +14,7 @@
 #include "fogradar/core/detail/simd.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
-#include "estimation_peak.hpp"
+#include "fogradar/radar/estimation.hpp"
 
 namespace fogradar::radar {
 namespace estimation_peak {
@@ -34,12 +34,14 @@ constexpr double peak_search_half_width_bins = 0.75;
 // sum_m (re[m] + i im[m]) / (sin_j[m] cos_delta + cos_j[m] sin_delta): the Dirichlet sum of one
 // fractional bin (dirichlet_kernel in estimation.hpp), four lanes of partial sums.
 FOGRADAR_SIMD_CLONES
-std::complex<double> sum_over_sines(const double* re, const double* im, const double* sin_j, const double* cos_j,
-                                    std::size_t n, double cos_delta, double sin_delta) {
+std::complex<double> sum_over_sines(const double* re, const double* im, const double* sin_j,
+                                    const double* cos_j, std::size_t n, double cos_delta,
+                                    double sin_delta) {
   f64x4 sum_re{}, sum_im{};
   std::size_t m = 0;
   for (; m + 4 <= n; m += 4) {
-    const f64x4 inverse = 1.0 / (detail::load4(sin_j + m) * cos_delta + detail::load4(cos_j + m) * sin_delta);
+    const f64x4 inverse =
+        1.0 / (detail::load4(sin_j + m) * cos_delta + detail::load4(cos_j + m) * sin_delta);
     sum_re += detail::load4(re + m) * inverse;
     sum_im += detail::load4(im + m) * inverse;
   }
@@ -57,14 +59,15 @@ std::complex<double> sum_over_sines(const double* re, const double* im, const do
 // three sines and one sum_over_sines.
 class FractionalBinPower {
  public:
-  FractionalBinPower(std::span<const std::complex<double>> values, std::size_t k, const DirichletTable& table,
-                     EstimationWorkspace& ws)
+  FractionalBinPower(std::span<const std::complex<double>> values, std::size_t k,
+                     const DirichletTable& table, EstimationWorkspace& ws)
       : n_(values.size()), centre_(values[k]), ws_(ws) {
     ws.rotated_re.resize(n_);
     ws.rotated_im.resize(n_);
     ws.sin_j.resize(n_);
     ws.cos_j.resize(n_);
-    for (std::size_t m = 0, j = k; m < n_; ++m, j = previous_index(j, 2 * n_)) {  // j = (k - m) mod 2N
+    for (std::size_t m = 0, j = k; m < n_;
+         ++m, j = previous_index(j, 2 * n_)) {  // j = (k - m) mod 2N
       const double c = table.cos_pi_j_over_n(j), s = table.sin_pi_j_over_n(j);
       ws.sin_j[m] = s;
       ws.cos_j[m] = c;
@@ -77,8 +80,9 @@ class FractionalBinPower {
     if (f == 0.0) return std::norm(centre_);
     const double nd = static_cast<double>(n_);
     const double delta = pi * f / nd;
-    const std::complex<double> sum = sum_over_sines(ws_.rotated_re.data(), ws_.rotated_im.data(), ws_.sin_j.data(),
-                                                    ws_.cos_j.data(), n_, std::cos(delta), std::sin(delta));
+    const std::complex<double> sum =
+        sum_over_sines(ws_.rotated_re.data(), ws_.rotated_im.data(), ws_.sin_j.data(),
+                       ws_.cos_j.data(), n_, std::cos(delta), std::sin(delta));
     const double scale = std::sin(pi * f) / nd;
     return scale * scale * std::norm(sum);
   }
@@ -89,8 +93,8 @@ class FractionalBinPower {
   const EstimationWorkspace& ws_;
 };
 
-// P = |g|^2 and its first two derivatives in f for g(f) = sum_n y[n] e^{i f w_n}, w_n = -2 pi (n - c)/N:
-// phases about the centre c = (N-1)/2 (|g| and its derivatives do not depend on it, and the
+// P = |g|^2 and its first two derivatives in f for g(f) = sum_n y[n] e^{i f w_n}, w_n = -2 pi (n -
+// c)/N: phases about the centre c = (N-1)/2 (|g| and its derivatives do not depend on it, and the
 // derivative weights w_n stay small). Four lanes, lane l summing n = l mod 4 with its own phasor
 // recurrence (N/4 steps, error ~ N/4 eps), so the recurrences do not wait on each other.
 struct DtftDerivatives {
@@ -104,7 +108,9 @@ DtftDerivatives dtft_derivatives(const std::complex<double>* signal, std::size_t
   const double nd = static_cast<double>(count);
   const double centre = 0.5 * (nd - 1.0);
   const double radians_per_sample = -2.0 * pi / nd;
-  const auto phasor = [&](double sample_offset) { return std::polar(1.0, f * sample_offset * radians_per_sample); };
+  const auto phasor = [&](double sample_offset) {
+    return std::polar(1.0, f * sample_offset * radians_per_sample);
+  };
   f64x4 offset{-centre, 1.0 - centre, 2.0 - centre, 3.0 - centre};  // n - c, exact
   f64x4 p_re, p_im;
   for (int l = 0; l < 4; ++l) {
@@ -155,8 +161,8 @@ DtftDerivatives dtft_derivatives(const std::complex<double>* signal, std::size_t
 // values of P alone stalls at ~sqrt(eps) (P is flat to second order at its maximum).
 class TimeSignalDtft {
  public:
-  TimeSignalDtft(std::span<const std::complex<double>> values, std::size_t k, const DirichletTable& table,
-                 InverseDft& inverse)
+  TimeSignalDtft(std::span<const std::complex<double>> values, std::size_t k,
+                 const DirichletTable& table, InverseDft& inverse)
       : n_(values.size()), y_(inverse.signal) {
     inverse.prepare(n_);
     inverse.plan->execute(values, y_);
@@ -176,14 +182,15 @@ class TimeSignalDtft {
 
 }  // namespace
 
-Peak find_peak(std::span<const std::complex<double>> values, std::size_t centre, const DirichletTable& table,
-               InverseDft& inverse, EstimationWorkspace& ws) {
+Peak find_peak(std::span<const std::complex<double>> values, std::size_t centre,
+               const DirichletTable& table, InverseDft& inverse, EstimationWorkspace& ws) {
   if (values.size() == 1) return {0.0, std::norm(values[0])};
   const FractionalBinPower power(values, centre, table, ws);
-  const double bracketed = boost::math::tools::brent_find_minima([&power](double offset) { return -power(offset); },
-                                                                 -peak_search_half_width_bins,
-                                                                 peak_search_half_width_bins, brent_bits)
-                               .first;
+  const double bracketed =
+      boost::math::tools::brent_find_minima([&power](double offset) { return -power(offset); },
+                                            -peak_search_half_width_bins,
+                                            peak_search_half_width_bins, brent_bits)
+          .first;
   const TimeSignalDtft dtft(values, centre, table, inverse);
   double offset = bracketed;
   DtftDerivatives at = dtft.at(offset);
@@ -228,9 +235,11 @@ void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> 
   dirichlet_kernel(nu, DirichletTable(n), kernel);
 }
 
-void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::complex<double>> kernel) {
+void dirichlet_kernel(double nu, const DirichletTable& table,
+                      std::span<std::complex<double>> kernel) {
   FOGRADAR_CHECK(kernel.size() >= table.length());
-  dirichlet_weights(nu, table, [&kernel](std::size_t m, std::complex<double> weight) { kernel[m] = weight; });
+  dirichlet_weights(nu, table,
+                    [&kernel](std::size_t m, std::complex<double> weight) { kernel[m] = weight; });
 }
 
 }  // namespace fogradar::radar

@@ -15,7 +15,9 @@ namespace fogradar::radar::estimation_peak {
 
 // (j - 1) mod period and (j + step) mod period for 0 <= j, step < period: the table index of the
 // next column, without a division per column.
-inline std::size_t previous_index(std::size_t j, std::size_t period) { return j == 0 ? period - 1 : j - 1; }
+inline std::size_t previous_index(std::size_t j, std::size_t period) {
+  return j == 0 ? period - 1 : j - 1;
+}
 inline std::size_t next_index(std::size_t j, std::size_t step, std::size_t period) {
   return j >= period - step ? j - (period - step) : j + step;
 }
@@ -65,7 +67,7 @@ struct Peak {
   double power;
 };
 
-Peak find_peak(std::span<const std::complex<double>> values, std::size_t centre, const DirichletTable& table,
-               InverseDft& inverse, EstimationWorkspace& ws);
+Peak find_peak(std::span<const std::complex<double>> values, std::size_t centre,
+               const DirichletTable& table, InverseDft& inverse, EstimationWorkspace& ws);
 
 }  // namespace fogradar::radar::estimation_peak

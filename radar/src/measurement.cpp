@@ -16,9 +16,7 @@ RadarChain::RadarChain(const RadarParams& params, FftPlanner planner, const Stop
       derived_(derive(params)),
       processor_(params, planner),
       cfar_(params.cfar,
-            window_noise_correlation(
-                processor_.range_window(),
-                cfar_correlation_lags(params.cfar)),
+            window_noise_correlation(processor_.range_window(), cfar_correlation_lags(params.cfar)),
             stop),
       origin_classifier_(processor_, params_, derived_) {}
 

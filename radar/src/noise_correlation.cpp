@@ -48,8 +48,7 @@ NoiseCorrelation window_noise_correlation(std::span<const double> window, std::s
   // precision), tabulated once: a lag costs N multiply-adds, not N sines and cosines.
   std::vector<double> cosines(n), sines(n), power(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const double phase =
-        2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
+    const double phase = 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
     cosines[k] = std::cos(phase);
     sines[k] = std::sin(phase);
     power[k] = window[k] * window[k];

@@ -29,10 +29,9 @@ KeyTable<RadarParams> radar_param_keys() {
       "f_c, the centre of the sweep: λ = c/f_c in eq. 7 and the Doppler scale, the phase of "
       "echoes sharing a range cell, and the frequency the chamber's fog is resolved at; "
       "the water models cover it");
-  keys.choice(
-      "radar.sweep_direction", FOGRADAR_KEY_FIELD(sweep_direction), sweep_direction_names,
-      "up: f_c − B/2 → f_c + B/2 (most automotive front ends); down: the reverse "
-      "(docs/radar.md §3.2)");
+  keys.choice("radar.sweep_direction", FOGRADAR_KEY_FIELD(sweep_direction), sweep_direction_names,
+              "up: f_c − B/2 → f_c + B/2 (most automotive front ends); down: the reverse "
+              "(docs/radar.md §3.2)");
   // B <= f_c / 2 keeps the whole sweep above 3 f_c / 4.
   keys.number("radar.sweep_bandwidth_hz", FOGRADAR_KEY_FIELD(sweep_bandwidth_hz),
               "[1e6, centre_frequency_hz/2]", nullptr, "B; range resolution c/(2B)")
@@ -64,9 +63,10 @@ KeyTable<RadarParams> radar_param_keys() {
                           .low_text = "16",
                           .high_text = message_number(most),
                           .integer = true,
-                          .note = ": the samples fit in the chirp, radar.chirp_duration_s x "
-                                  "radar.sample_rate_hz = " +
-                                  message_number(fitting)};
+                          .note =
+                              ": the samples fit in the chirp, radar.chirp_duration_s x "
+                              "radar.sample_rate_hz = " +
+                              message_number(fitting)};
       })
       .documented_as("integer [16, 65536], ≤ chirp_duration_s · sample_rate_hz");
   keys.number("radar.sample_rate_hz", FOGRADAR_KEY_FIELD(sample_rate_hz), closed(1e5, 1e10),
@@ -112,9 +112,8 @@ KeyTable<RadarParams> radar_param_keys() {
               closed(0.0, 0.01),
               "water film on the radome's outer face (the study's water-covered sensor), with the "
               "water model and temperature of the first layer's fog; also without a radome");
-  keys.choice(
-      "processing.window", FOGRADAR_KEY_FIELD(window), window_type_names,
-      "range and Doppler window");
+  keys.choice("processing.window", FOGRADAR_KEY_FIELD(window), window_type_names,
+              "range and Doppler window");
   keys.number("processing.association_gate_m", FOGRADAR_KEY_FIELD(association_gate_m),
               closed(0.0, 1e3),
               "the tracked target is the strongest detection within this of the chamber's target "
@@ -153,7 +152,8 @@ RadarDerived derive(const RadarParams& p) {
   d.velocity_resolution_m_per_s =
       d.wavelength_m / (2.0 * static_cast<double>(p.chirps_per_frame) * p.chirp_interval_s);
   d.max_unambiguous_velocity_m_per_s = d.wavelength_m / (4.0 * p.chirp_interval_s);
-  // Thermal noise k T0 F B with B = fs for complex sampling (noise figure definition, IEEE Std 100).
+  // Thermal noise k T0 F B with B = fs for complex sampling (noise figure definition, IEEE Std
+  // 100).
   d.noise_power_w = boltzmann_j_per_k * p.reference_temperature_k *
                     db_to_power_ratio(p.noise_figure_db) * p.sample_rate_hz;
   d.tx_power_w = dbm_to_watt(p.tx_power_dbm);

@@ -58,7 +58,8 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
   const double along_m = target_range_m + centre.range_offset_m + jitter_m;
   const Leg direct = leg(along_m, centre.lateral_m, centre.height_m - scene.sensor_height_m, p);
   // The floor image of the centre lies as far below the floor as the centre is above it.
-  const Leg via_floor = leg(along_m, centre.lateral_m, -(centre.height_m + scene.sensor_height_m), p);
+  const Leg via_floor =
+      leg(along_m, centre.lateral_m, -(centre.height_m + scene.sensor_height_m), p);
   const double gamma = scene.floor.reflection_coefficient;
 
   // Monostatic two-ray field: (direct + Gamma floor)^2 expands into three delays; the mixed path
@@ -76,15 +77,16 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
     const Path& path = paths[i];
     // Bistatic radar equation per leg pair: P = Pt Gt Gr lambda^2 sigma / ((4 pi)^3 r1^2 r2^2).
     const double geometric_mean_range_m = std::sqrt(path.out.length_m * path.back.length_m);
-    const double power_w = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, rcs_m2,
-                                            geometric_mean_range_m);
+    const double power_w = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m,
+                                            rcs_m2, geometric_mean_range_m);
     const double pattern = path.out.pattern_amplitude * path.back.pattern_amplitude;
     const double length_m = path.out.length_m + path.back.length_m;
     const double transmittance = chamber.two_way_transmittance(0.5 * length_m, active) *
                                  scene.radome_two_way_transmittance * scene.target_film_reflectance;
-    tones.push_back({length_m,
-                     path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
-                     centre.radial_velocity_m_per_s, Origin::target, -1});
+    tones.push_back(
+        {length_m,
+         path.coefficient * pattern * path_amplitude(power_w * transmittance, length_m, d),
+         centre.radial_velocity_m_per_s, Origin::target, -1});
   }
 }
 
@@ -92,8 +94,8 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
 // (the chamber's volume integral), split over point scatterers at uniform random ranges in the bin,
 // each with a complex Gaussian amplitude (Rayleigh magnitude, uniform phase) drawn per measurement.
 void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
-                     const propagation::ActiveLayers& active, const RadarDerived& d, RandomStream& rng,
-                     std::vector<Tone>& tones) {
+                     const propagation::ActiveLayers& active, const RadarDerived& d,
+                     RandomStream& rng, std::vector<Tone>& tones) {
   const double bin_m = d.range_bin_m;
   const unsigned per_bin = scene.clutter_scatterers_per_bin;
   for (std::size_t i = 0; i < chamber.layer_count(); ++i) {
@@ -102,7 +104,8 @@ void add_fog_clutter(const Scene& scene, const propagation::Chamber& chamber,
     if (layer.optics.volume_backscatter_m2_per_m3 <= 0.0) continue;
     for (double a = std::max(layer.start_m, bin_m); a < layer.end_m; a += bin_m) {
       const double b = std::min(a + bin_m, layer.end_m);
-      const double sigma_m2 = chamber.backscatter_cross_section_m2(a, b, d.beam_solid_angle_sr, active);
+      const double sigma_m2 =
+          chamber.backscatter_cross_section_m2(a, b, d.beam_solid_angle_sr, active);
       for (unsigned s = 0; s < per_bin; ++s) {
         const double range_m = a + (b - a) * rng.uniform();
         const double mean_power_w = received_power_w(d.tx_power_w, d.tx_gain, d.rx_gain,
@@ -182,7 +185,8 @@ void scene_tones(const Scene& scene, const propagation::Chamber& chamber,
                  const RadarDerived& derived, RandomStream& rng, std::vector<Tone>& tones) {
   tones.clear();
   for (const ScatteringCentre& centre : scene.centres) {
-    add_centre_paths(scene, centre, chamber.target_range_m(), chamber, active, params, derived, rng, tones);
+    add_centre_paths(scene, centre, chamber.target_range_m(), chamber, active, params, derived, rng,
+                     tones);
   }
   add_fog_clutter(scene, chamber, active, derived, rng, tones);
 }

@@ -43,9 +43,9 @@ constexpr double frame_seconds_per_tone_sample = 3.38e-10;
 
 // Wide CFAR windows (bench/estimate_calibration does not reach them; measured with profiles of
 // 4096-65536 cells and n = 1000-32767, GO and OS, Blackman-Harris): CA, GO and SO add the N
-// reference cells of each of a row's 2 (guard + n) edge cells one by one (cfar_kernels.cpp, edge_halves),
-// 21 s for 10 rows of 4.3e9 additions; OS moves up to N sorted values per cell as its window slides
-// (a memmove per cell), ~0.05 s per row of 65536 cells with N = 65534.
+// reference cells of each of a row's 2 (guard + n) edge cells one by one (cfar_kernels.cpp,
+// edge_halves), 21 s for 10 rows of 4.3e9 additions; OS moves up to N sorted values per cell as its
+// window slides (a memmove per cell), ~0.05 s per row of 65536 cells with N = 65534.
 constexpr double frame_seconds_per_edge_reference = 4.9e-10;
 constexpr double frame_seconds_per_sorted_reference = 1.3e-11;
 
@@ -257,10 +257,9 @@ class Type : public sensor::SensorType {
             : static_cast<double>(p.chirps_per_frame) * 2.0 *
                   static_cast<double>(std::size_t{p.cfar.guard_cells} + p.cfar.training_cells) *
                   reference_cells;
-    const double edge_seconds =
-        p.cfar.kind == CfarKind::os
-            ? cells * reference_cells * frame_seconds_per_sorted_reference
-            : edge_references * frame_seconds_per_edge_reference;
+    const double edge_seconds = p.cfar.kind == CfarKind::os
+                                    ? cells * reference_cells * frame_seconds_per_sorted_reference
+                                    : edge_references * frame_seconds_per_edge_reference;
     std::ostringstream detail;
     detail.precision(6);
     detail << "radar.samples_per_chirp = " << p.samples_per_chirp
@@ -273,13 +272,13 @@ class Type : public sensor::SensorType {
            << " per range bin of the active layers), " << edge_references
            << " CFAR edge-cell additions (2 x (processing.cfar.guard_cells + training_cells) x N "
               "per Doppler row)";
-    const double rest = cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
-                                 objects * frame_seconds_per_cell_and_object) +
-                        tones * static_cast<double>(p.samples_per_chirp) *
-                            frame_seconds_per_tone_sample;
+    const double rest =
+        cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
+                 objects * frame_seconds_per_cell_and_object) +
+        tones * static_cast<double>(p.samples_per_chirp) * frame_seconds_per_tone_sample;
     return {.item_seconds = rest + edge_seconds,
             .detail = detail.str(),
-            .key = edge_seconds > rest                       ? "processing.cfar.training_cells"
+            .key = edge_seconds > rest                         ? "processing.cfar.training_cells"
                    : p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
                                                                : "radar.chirps_per_frame",
             .items_key = "experiment.measurements_per_step"};
@@ -293,8 +292,8 @@ class Type : public sensor::SensorType {
     detail.precision(3);
     detail << "fog optics " << c.fog_seconds << " s, chain " << c.chain_seconds
            << " s, CFAR design (processing.cfar.kind = " << to_string(p.radar.cfar.kind)
-           << ", processing.cfar.threshold_design = "
-           << to_string(p.radar.cfar.threshold_design) << ") " << c.cfar_design_seconds << " s";
+           << ", processing.cfar.threshold_design = " << to_string(p.radar.cfar.threshold_design)
+           << ") " << c.cfar_design_seconds << " s";
     const double largest = std::max({c.fog_seconds, c.chain_seconds, c.cfar_design_seconds});
     return {.make_seconds = c.fog_seconds + c.chain_seconds + c.cfar_design_seconds,
             .run_seconds = c.summary_seconds,
@@ -368,8 +367,8 @@ class RadarWorker : public sensor::Worker {
   const RadarRun& run_;
   MeasurementWorkspace workspace_;
   Measurement measurement_;
-  std::vector<double> power_;  // |X|^2 of a map asked for as raw data
-  std::vector<double> rows_;   // detection rows asked for as raw data
+  std::vector<double> power_;          // |X|^2 of a map asked for as raw data
+  std::vector<double> rows_;           // detection rows asked for as raw data
   std::vector<std::uint8_t> origins_;  // the origin map asked for as raw data
   std::vector<std::int16_t> layers_;   // and its fog layers
 };
@@ -399,14 +398,15 @@ SetupCost setup_cost(const SensorParams& params, const sensor::Context& context)
   const double cells = static_cast<double>(r.samples_per_chirp * r.chirps_per_frame);
   const double per_step = static_cast<double>(context.measurements_per_step);
   const double steps = static_cast<double>(context.steps);
-  return {.fog_seconds = fog_seconds,
-          .chain_seconds = chain_seconds + cells * chain_seconds_per_cell,
-          .cfar_design_seconds = cfar_design_seconds(
-              r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
-                                               cfar_correlation_lags(r.cfar))),
-          .summary_seconds = steps * per_step *
-                             (summary_seconds_per_measurement + per_step * summary_seconds_per_pair),
-          .report_seconds = fog_seconds + steps * per_step * files_seconds_per_measurement};
+  return {
+      .fog_seconds = fog_seconds,
+      .chain_seconds = chain_seconds + cells * chain_seconds_per_cell,
+      .cfar_design_seconds = cfar_design_seconds(
+          r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
+                                           cfar_correlation_lags(r.cfar))),
+      .summary_seconds = steps * per_step *
+                         (summary_seconds_per_measurement + per_step * summary_seconds_per_pair),
+      .report_seconds = fog_seconds + steps * per_step * files_seconds_per_measurement};
 }
 
 MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measurements) {
@@ -674,12 +674,11 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
   if (raw != nullptr && raw->wants(raw_detections)) {
     rows_.clear();
     for (const DetectionRecord& d : record.detections) {
-      rows_.insert(rows_.end(), {d.range_m, d.velocity_m_per_s, watt_to_dbm(d.received_power_w),
-                                 d.snr_db, d.rcs_dbsm, static_cast<double>(d.origin),
-                                 d.in_gate ? 1.0 : 0.0, d.associated ? 1.0 : 0.0,
-                                 static_cast<double>(d.range_cell),
-                                 static_cast<double>(d.doppler_cell),
-                                 static_cast<double>(d.layer)});
+      rows_.insert(rows_.end(),
+                   {d.range_m, d.velocity_m_per_s, watt_to_dbm(d.received_power_w), d.snr_db,
+                    d.rcs_dbsm, static_cast<double>(d.origin), d.in_gate ? 1.0 : 0.0,
+                    d.associated ? 1.0 : 0.0, static_cast<double>(d.range_cell),
+                    static_cast<double>(d.doppler_cell), static_cast<double>(d.layer)});
     }
     raw->append_rows(raw_detections, rows_);
   }
@@ -698,8 +697,8 @@ void RadarWorker::measure(std::size_t step, std::size_t index, RandomStream& str
 std::unique_ptr<const sensor::SensorSummary> RadarRun::summarize() const {
   RadarSummary summary = radar::summarize(*steps_, sensor_->cfar_threshold_db(),
                                           sensor_->expected_false_alarm_cells_per_frame());
-  summary.velocity_fold = velocity_fold(sensor_->params().target.radial_velocity_m_per_s,
-                                        sensor_->chain().derived());
+  summary.velocity_fold =
+      velocity_fold(sensor_->params().target.radial_velocity_m_per_s, sensor_->chain().derived());
   return std::make_unique<Report>(sensor_->params(), sensor_->context(), steps_,
                                   std::move(summary));
 }

@@ -1,5 +1,5 @@
-// The threshold-factor root finder and log-space sum shared by the independent-cell (cfar_theory.cpp)
-// and the correlated-cell (cfar_design.cpp) CFAR designs.
+// The threshold-factor root finder and log-space sum shared by the independent-cell
+// (cfar_theory.cpp) and the correlated-cell (cfar_design.cpp) CFAR designs.
 #pragma once
 
 #include <algorithm>
@@ -85,8 +85,8 @@ double solve_threshold_factor(const LogPfa& log_pfa, double design, double start
 // The same root for an estimate whose evaluations are expensive and whose own error is far above
 // `tolerance` (relative, in alpha): log P_fa is smooth and close to linear in log alpha, so the
 // secant method on u = log alpha from start and a point 2 % beside it needs 3-4 more evaluations.
-// Once the root is bracketed a secant step that leaves the bracket is replaced by bisection; before,
-// steps are limited to a factor 2.
+// Once the root is bracketed a secant step that leaves the bracket is replaced by bisection;
+// before, steps are limited to a factor 2.
 template <class LogPfa>
 double solve_smooth_threshold_factor(const LogPfa& log_pfa, double design, double start,
                                      double tolerance) {

@@ -21,7 +21,8 @@ constexpr std::size_t tones_per_pass = 4;
 // One tone a exp(i 2 pi f n / fs) as add_tone_blocks sums it: `powers` holds s^0..s^15 as (Re, Im)
 // pairs and `rotated` as (-Im, Re) pairs, s = exp(i 2 pi f / fs); block_step = s^16. The arrays
 // are left uninitialised: fill_tone_powers writes every value before any is read, and zeroing and
-// copying these 544 bytes per tone (rep stos, rep movs) cost a third of synthesize_frame's own time.
+// copying these 544 bytes per tone (rep stos, rep movs) cost a third of synthesize_frame's own
+// time.
 struct TonePhasors {
   std::array<double, 2 * tone_block> powers, rotated;
   std::complex<double> amplitude, block_step;

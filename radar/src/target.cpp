@@ -11,9 +11,8 @@ KeyTable<TargetSpec> target_keys() {
   const std::string point_only =
       "with target.model = \"point\" (the EVT's five centres have heights of their own and a "
       "steady RCS)";
-  keys.choice(
-      "model", FOGRADAR_KEY_FIELD(model), target_model_names,
-      "EVT rear as five scattering centres, or one point");
+  keys.choice("model", FOGRADAR_KEY_FIELD(model), target_model_names,
+              "EVT rear as five scattering centres, or one point");
   keys.number("rcs_dbsm", FOGRADAR_KEY_FIELD(rcs_dbsm), closed(-60.0, 60.0),
               "mean RCS (sum over the EVT's centres)");
   // Any integer reaches the parser, which names the allowed set (0, 1, 3).
@@ -36,11 +35,11 @@ KeyTable<TargetSpec> target_keys() {
             "with target.floor_multipath = true");
   keys.number("micro_motion_std_m", FOGRADAR_KEY_FIELD(micro_motion_std_m), closed(0.0, 0.1),
               "rms line-of-sight jitter of each centre per measurement");
-  keys.number("radial_velocity_m_per_s", FOGRADAR_KEY_FIELD(radial_velocity_m_per_s),
-              closed(-300.0, 300.0),
-              "the whole target's radial velocity, + receding; beyond the radar's unambiguous "
-              "velocity λ/(4 T_i) (19.0 m/s for the paper radar) the estimate folds into it and the "
-              "run warns");
+  keys.number(
+      "radial_velocity_m_per_s", FOGRADAR_KEY_FIELD(radial_velocity_m_per_s), closed(-300.0, 300.0),
+      "the whole target's radial velocity, + receding; beyond the radar's unambiguous "
+      "velocity λ/(4 T_i) (19.0 m/s for the paper radar) the estimate folds into it and the "
+      "run warns");
   keys.number("water_film_m", FOGRADAR_KEY_FIELD(water_film_m), closed(0.0, 0.01),
               "water film on the target's metal surfaces (the study's water-covered target), with "
               "the water model and temperature of the last layer's fog");

@@ -154,8 +154,8 @@ double noise_equivalent_bandwidth_bins(std::span<const double> window) {
 void apply_frame_window(const FrameWindow& window, std::span<std::complex<double>> frame) {
   FOGRADAR_CHECK(2 * frame.size() == window.doppler.size() * window.range_pairs.size());
   // std::complex<double> is layout-compatible with double[2] ([complex.numbers.general]).
-  scale_rows(reinterpret_cast<double*>(frame.data()), window.doppler.size(), window.range_pairs.size(),
-             window.doppler.data(), window.range_pairs.data());
+  scale_rows(reinterpret_cast<double*>(frame.data()), window.doppler.size(),
+             window.range_pairs.size(), window.doppler.data(), window.range_pairs.data());
 }
 
 }  // namespace fogradar::radar

@@ -70,7 +70,9 @@ class PairwiseDifferences {
     const double h = static_cast<double>(size() - 1) * p;
     const auto j = static_cast<std::size_t>(std::floor(h));
     const double low = kth_smallest(j + 1);
-    return h == static_cast<double>(j) ? low : low + (h - static_cast<double>(j)) * (kth_smallest(j + 2) - low);
+    return h == static_cast<double>(j)
+               ? low
+               : low + (h - static_cast<double>(j)) * (kth_smallest(j + 2) - low);
   }
 
  private:

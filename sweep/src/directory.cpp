@@ -66,8 +66,7 @@ SweepDirectory::SweepDirectory(const fs::path& dir, Mode mode,
     throw_invalid(option, given, "a directory that can be created (" + error.message() + ")");
   }
   if (mode != Mode::shard) {
-    lock_ =
-        std::make_unique<experiment::PathLock>(dir_, option, given, "a sweep directory");
+    lock_ = std::make_unique<experiment::PathLock>(dir_, option, given, "a sweep directory");
   }
   const auto refuse = [&](const fs::path& path) {
     throw_invalid(option, given,

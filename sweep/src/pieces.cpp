@@ -1,4 +1,5 @@
-// Reading the points' committed pieces: their numbers, their sensors (envelope.cpp, tables.cpp, plots.cpp).
+// Reading the points' committed pieces: their numbers, their sensors (envelope.cpp, tables.cpp,
+// plots.cpp).
 #include <algorithm>
 #include <charconv>
 #include <nlohmann/json.hpp>

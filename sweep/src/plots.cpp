@@ -132,8 +132,7 @@ std::string limits_svg(const SweepSpec& spec, const std::vector<Point>& points,
                        const std::vector<json>& pieces) {
   const std::vector<std::string> sensors = sensor_order(pieces);
   std::size_t last_step = 1;
-  for (const Point& p : points)
-    last_step = std::max(last_step, p.scenario.steps() - 1);
+  for (const Point& p : points) last_step = std::max(last_step, p.scenario.steps() - 1);
   const auto limit_of = [&](std::size_t p, const std::string& sensor) -> std::optional<double> {
     const json* s = sensor_of(pieces[p]["runs"][0]["sensors"], sensor);
     if (s == nullptr || (*s)["limit"].is_null()) return std::nullopt;

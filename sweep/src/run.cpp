@@ -145,7 +145,8 @@ std::vector<experiment::Scenario> sweep_runs(const SweepSpec& spec,
                                              const std::vector<Point>& points) {
   std::vector<experiment::Scenario> runs;
   for (const Point& p : points) {
-    for (std::size_t r = 0; r < spec.replications; ++r) runs.push_back(with_seed(p.scenario, p.seed + r));
+    for (std::size_t r = 0; r < spec.replications; ++r)
+      runs.push_back(with_seed(p.scenario, p.seed + r));
     for (const experiment::Scenario& setup : p.setups) runs.push_back(setup);
   }
   return runs;

@@ -333,8 +333,10 @@ TEST(Params, EveryInvalidKeyIsRefusedByName) {
   EXPECT_EQ(rejected([](CameraParams& p) { p.contrast_threshold = 0.0; }),
             "camera.contrast_threshold");
   EXPECT_EQ(rejected_field([] { band_names.parse("infrared", "camera.band"); }), "camera.band");
-  EXPECT_EQ(rejected_field([] { exposure_mode_names.parse("manual", "camera.exposure.mode"); }), "camera.exposure.mode");
-  EXPECT_EQ(rejected_field([] { transfer_curve_names.parse("log", "camera.transfer"); }), "camera.transfer");
+  EXPECT_EQ(rejected_field([] { exposure_mode_names.parse("manual", "camera.exposure.mode"); }),
+            "camera.exposure.mode");
+  EXPECT_EQ(rejected_field([] { transfer_curve_names.parse("log", "camera.transfer"); }),
+            "camera.transfer");
   EXPECT_EQ(exposure_mode_names.parse("auto", "camera.exposure.mode"), ExposureMode::automatic);
   EXPECT_EQ(to_string(Band::rgb), "rgb");
   // The sensor refuses bad params and a wrong active-layer list at construction / per step.

@@ -180,7 +180,8 @@ class ScalarReference {
         detail::polar(std::sqrt(power), static_cast<std::uint32_t>(words[j] >> 32), re, im);
         if (group + j >= samples.size()) continue;  // the short group's unused samples: discarded
         cplx& out = samples[group + j];
-        out = cplx(out.real() + static_cast<double>(re) * scale, out.imag() + static_cast<double>(im) * scale);
+        out = cplx(out.real() + static_cast<double>(re) * scale,
+                   out.imag() + static_cast<double>(im) * scale);
       }
     }
   }
@@ -628,8 +629,8 @@ TEST(ZigguratTable, ConstantsAreTheCorrectlyRoundedValuesAtTheRoot) {
 // closure: next test). The table forms f_{i+1} = f_i + v/x_i in double: v/x_i rounds by <= 2^-53
 // relative and the sum by <= 2^-53 f_{i+1} absolute, so the area is v within 2^-53 (1 + f_{i+1}
 // x_i / v) relative. Tolerance per layer 2^-53 (3 + f_{i+1} x_i / v) (the area is evaluated here in
-// long double: exact difference, product rounded by 2^-64). Measured: max 0.97 of the bound, 7.7e-14
-// relative.
+// long double: exact difference, product rounded by 2^-64). Measured: max 0.97 of the
+// bound, 7.7e-14 relative.
 TEST(ZigguratTable, EveryLayerHasAreaV) {
   double worst_fraction_of_bound = 0.0, worst_relative = 0.0;
   std::size_t over_bound = 0;
@@ -858,7 +859,8 @@ class BranchRecorder {
         if (drawn_.size() - position != 1) return violation();
         const double u = 2.0 - detail::mantissa_in_one_two(drawn_[position]);
         const auto expected = static_cast<float>(detail::ziggurat_r - std::log(u));
-        if (std::fabs(x - expected) > 2.0F * std::numeric_limits<float>::epsilon() * expected) violation();
+        if (std::fabs(x - expected) > 2.0F * std::numeric_limits<float>::epsilon() * expected)
+          violation();
         return;
       }
       // The wedge of layer `layer`: height y uniform in [f_i, f_{i+1}).
@@ -900,10 +902,12 @@ const SamplerRun& sampler_run() {
     Xoshiro256pp stream = seeded_xoshiro(0x2166'0001);
     BranchRecorder recorder;
     for (std::size_t k = 0; k < n; ++k) {
-      result.sorted.push_back(recorder.sample(static_cast<std::uint32_t>(stream.next()), stream, result.counts));
+      result.sorted.push_back(
+          recorder.sample(static_cast<std::uint32_t>(stream.next()), stream, result.counts));
     }
     for (float x : result.sorted) {
-      if (static_cast<double>(x) > detail::ziggurat_r) result.tail.push_back(static_cast<double>(x));
+      if (static_cast<double>(x) > detail::ziggurat_r)
+        result.tail.push_back(static_cast<double>(x));
     }
     result.sorted = radix_sorted(result.sorted);
     return result;
@@ -968,7 +972,8 @@ TEST(ZigguratExponential, BranchFrequenciesMatchTheZigguratsAreas) {
   for (std::size_t i = 0; i < ziggurat_layers; ++i) sum += kTable.x[i + 1] / kTable.x[i];
   const double layers = static_cast<double>(ziggurat_layers);
   const double p_fast = sum / layers;
-  const double p_tail = (1.0 - detail::ziggurat_r * detail::ziggurat_f_r / detail::ziggurat_v) / layers;
+  const double p_tail =
+      (1.0 - detail::ziggurat_r * detail::ziggurat_f_r / detail::ziggurat_v) / layers;
   const double p_rejected = 1.0 - 1.0 / (layers * detail::ziggurat_v);
   const double p_accepted = 1.0 - p_fast - p_tail - p_rejected;
   RecordProperty("fast_failure_fraction", sci(1.0 - static_cast<double>(c.first_fast) / n, 5));
@@ -980,7 +985,8 @@ TEST(ZigguratExponential, BranchFrequenciesMatchTheZigguratsAreas) {
   RecordProperty("attempts", std::to_string(c.attempts));
   RecordProperty("exact_zeros", std::to_string(c.exact_zeros));
   EXPECT_EQ(c.protocol_violations, 0U);
-  EXPECT_EQ(c.first_fast + c.first_wedge_accepted + c.first_wedge_rejected + c.first_tail, c.samples);
+  EXPECT_EQ(c.first_fast + c.first_wedge_accepted + c.first_wedge_rejected + c.first_tail,
+            c.samples);
   const std::string prefix = "core.ziggurat.first_attempt.";
   RecordProperty("fast_sd", sci(expect_binomial(static_cast<double>(c.first_fast), n, p_fast,
                                                 "first attempts on the fast path", prefix + "fast",
@@ -1064,7 +1070,9 @@ TEST(Phase, PolynomialsMatchLibmOverEveryArgument) {
     const double angle = std::numbers::pi / 2.0 * static_cast<double>(t);
     worst_cos = std::max(worst_cos, std::fabs(static_cast<double>(re) - std::cos(angle)));
     worst_sin = std::max(worst_sin, std::fabs(static_cast<double>(im) - std::sin(angle)));
-    worst_modulus = std::max(worst_modulus, std::fabs(std::hypot(static_cast<double>(re), static_cast<double>(im)) - 1.0));
+    worst_modulus =
+        std::max(worst_modulus,
+                 std::fabs(std::hypot(static_cast<double>(re), static_cast<double>(im)) - 1.0));
   }
   RecordProperty("max_error_cos", sci(worst_cos));
   RecordProperty("max_error_sin", sci(worst_sin));
@@ -1102,14 +1110,17 @@ TEST(Phase, QuadrantBitsTileTheCircleWithTheLattice) {
   for (int trial = 0; trial < (1 << 16); ++trial) {
     const auto k = static_cast<std::uint32_t>(words() >> 42);
     for (std::uint32_t bits = 0; bits < 4; ++bits) {
-      const std::uint32_t j = (bits & 2U ? 2 * quarter : 0U) + (bits & 1U ? quarter + (quarter - 1 - k) : k);
+      const std::uint32_t j =
+          (bits & 2U ? 2 * quarter : 0U) + (bits & 1U ? quarter + (quarter - 1 - k) : k);
       float re = 0.0F, im = 0.0F;
       detail::polar(2.0F, (k << 10) | bits, re, im);
       const double expected = (static_cast<double>(j) + 0.5) * step - std::numbers::pi / 4.0;
-      const double difference = std::remainder(std::atan2(static_cast<double>(im), static_cast<double>(re)) - expected,
-                                               2.0 * std::numbers::pi);
+      const double difference =
+          std::remainder(std::atan2(static_cast<double>(im), static_cast<double>(re)) - expected,
+                         2.0 * std::numbers::pi);
       worst = std::max(worst, std::fabs(difference));
-      if (std::fabs(std::hypot(static_cast<double>(re), static_cast<double>(im)) - 2.0) > 5e-7) ++radius_errors;
+      if (std::fabs(std::hypot(static_cast<double>(re), static_cast<double>(im)) - 2.0) > 5e-7)
+        ++radius_errors;
     }
   }
   RecordProperty("max_angle_error", sci(worst));
@@ -1194,8 +1205,9 @@ TEST(ComplexNormalGenerator, LongBufferEqualsScalarReferenceThroughSlowPathsAndT
 // alike. Also checked live against ScalarReference. Tolerance: identical bits.
 TEST(ComplexNormalGenerator, FirstSamplesPinnedToAnIndependentEvaluation) {
   constexpr std::array<float, 16> pinned = {
-      -0x1.0ef62cp-1F, 0x1.38547ap-1F,  0x1.5505a4p-4F,  -0x1.6f6eb8p-2F, 0x1.d389a2p-2F,  -0x1.7c100ep-7F,
-      -0x1.03ba92p+0F, -0x1.3047a2p-1F, 0x1.2090cep-1F,  0x1.cdc22ep-2F,  0x1.4246b8p-2F,  0x1.7f1fe6p-2F,
+      -0x1.0ef62cp-1F, 0x1.38547ap-1F,  0x1.5505a4p-4F,  -0x1.6f6eb8p-2F,
+      0x1.d389a2p-2F,  -0x1.7c100ep-7F, -0x1.03ba92p+0F, -0x1.3047a2p-1F,
+      0x1.2090cep-1F,  0x1.cdc22ep-2F,  0x1.4246b8p-2F,  0x1.7f1fe6p-2F,
       0x1.105566p+0F,  -0x1.2909f4p-1F, -0x1.b99852p-1F, 0x1.86dfe6p-2F};
   RandomStream parent(42), reference_parent(42);
   ComplexNormalGenerator generator(parent);
@@ -1545,7 +1557,8 @@ TEST(ComplexNormalGenerator, WeightedAddIsTheTwoSpanAddTimesTheWeights) {
     for (std::size_t j = 0; j < n; ++j)
       base.emplace_back(0.5 * static_cast<double>(j), -3.0 + 1e-3 * static_cast<double>(j));
     std::vector<double> weights(2 * n);
-    for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = 0.25 + 1e-4 * static_cast<double>(i * i % 997);
+    for (std::size_t i = 0; i < weights.size(); ++i)
+      weights[i] = 0.25 + 1e-4 * static_cast<double>(i * i % 997);
     const double row_weight = 0.8125 + 1e-9;
     std::vector<cplx> expected = base;
     RandomStream reference_parent(79);
@@ -1562,7 +1575,8 @@ TEST(ComplexNormalGenerator, WeightedAddIsTheTwoSpanAddTimesTheWeights) {
 
     RandomStream aliased_parent(79);
     std::vector<cplx> in_place = base;
-    ComplexNormalGenerator(aliased_parent).add_weighted(in_place, in_place, 0.7, row_weight, weights);
+    ComplexNormalGenerator(aliased_parent)
+        .add_weighted(in_place, in_place, 0.7, row_weight, weights);
     EXPECT_TRUE(bitwise_equal(in_place, expected)) << n;
   }
 }

@@ -1,4 +1,5 @@
-// The bad-input channel: every validator names the field and the allowed range, and NaN never passes.
+// The bad-input channel: every validator names the field and the allowed range, and NaN never
+// passes.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -25,8 +26,8 @@ std::string message_of(F&& f, const std::string& expected_field) {
 }
 
 TEST(Error, MessageNamesFieldValueAndRange) {
-  const std::string m = message_of([] { require_in_range("radar.noise_figure_db", 99.0, 0.0, 30.0); },
-                                   "radar.noise_figure_db");
+  const std::string m = message_of(
+      [] { require_in_range("radar.noise_figure_db", 99.0, 0.0, 30.0); }, "radar.noise_figure_db");
   EXPECT_NE(m.find("radar.noise_figure_db = 99"), std::string::npos) << m;
   EXPECT_NE(m.find("in [0, 30]"), std::string::npos) << m;
 }
@@ -48,7 +49,8 @@ TEST(Error, NonFiniteValuesAreWrittenAsTyped) {
   EXPECT_EQ(message_of([] { require_in_range("x", -nan, 0.0, 1.0); }, "x"),
             "x = nan: must be in [0, 1]");
   EXPECT_EQ(message_of([] { require_positive("x", inf); }, "x"), "x = inf: must be finite and > 0");
-  EXPECT_EQ(message_of([] { require_finite("x", -inf); }, "x"), "x = -inf: must be a finite number");
+  EXPECT_EQ(message_of([] { require_finite("x", -inf); }, "x"),
+            "x = -inf: must be a finite number");
 }
 
 TEST(Error, Boundaries) {
@@ -61,8 +63,8 @@ TEST(Error, Boundaries) {
 }
 
 TEST(Error, StringValuesAreQuoted) {
-  const std::string m = message_of([] { throw_invalid("water_model", "mie", "one of: segelstein, liebe"); },
-                                   "water_model");
+  const std::string m = message_of(
+      [] { throw_invalid("water_model", "mie", "one of: segelstein, liebe"); }, "water_model");
   EXPECT_EQ(m, "water_model = 'mie': must be one of: segelstein, liebe");
 }
 

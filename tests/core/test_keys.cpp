@@ -154,14 +154,13 @@ TEST(Keys, ACrossKeyBoundThatNoValueMeetsSaysSo) {
     double room = 5.12;  // the other key: at most this many samples
   };
   KeyTable<Pair> keys("p.");
-  keys.integer("samples", FOGRADAR_KEY_FIELD(samples), 16, 65536, "n")
-      .within([](const Pair& p) {
-        return CrossBound{.range = closed(16.0, std::floor(p.room)),
-                          .low_text = "16",
-                          .high_text = message_number(std::floor(p.room)),
-                          .integer = true,
-                          .note = ": they fit in p.room = " + message_number(p.room)};
-      });
+  keys.integer("samples", FOGRADAR_KEY_FIELD(samples), 16, 65536, "n").within([](const Pair& p) {
+    return CrossBound{.range = closed(16.0, std::floor(p.room)),
+                      .low_text = "16",
+                      .high_text = message_number(std::floor(p.room)),
+                      .integer = true,
+                      .note = ": they fit in p.room = " + message_number(p.room)};
+  });
   const auto message = [&keys](const Pair& p) -> std::string {
     try {
       keys.check(p);

@@ -219,8 +219,8 @@ TEST(MovingTarget, AVelocityBeyondTheUnambiguousOneIsWarned) {
             .tolerance = 1e-3,
             .kind = Tolerance::absolute});
 
-  for (const auto& [velocity, chirp_s] : {std::pair{5.0, 51.2e-6}, std::pair{-5.0, 51.2e-6},
-                                          std::pair{25.0, 25.6e-6}}) {
+  for (const auto& [velocity, chirp_s] :
+       {std::pair{5.0, 51.2e-6}, std::pair{-5.0, 51.2e-6}, std::pair{25.0, 25.6e-6}}) {
     Scenario inside = moving(velocity, chirp_s);
     radar_of(inside).target.radial_velocity_m_per_s = velocity;
     inside.experiment.measurements_per_step = 2;

@@ -9,9 +9,9 @@
 #include <string>
 #include <thread>
 
+#include "fogradar/camera/spectral.hpp"
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/run_time.hpp"
-#include "fogradar/camera/spectral.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/radar/measurement.hpp"
 #include "sensors.hpp"
@@ -132,7 +132,8 @@ TEST(RunTimeEstimate, FogOpticsAreCountedPerDistinctFogAndWavelength) {
   // One fog's Mie sums: resolved at 550 nm, then at each Mie wavelength of the band.
   const camera::CameraParams& p = camera_of(s);
   double per_fog = propagation::fog_resolution_seconds(s.fog);
-  for (const double wavelength_m : camera::mie_wavelengths_m(p.band, p.wavelength_nm, p.mie_step_nm))
+  for (const double wavelength_m :
+       camera::mie_wavelengths_m(p.band, p.wavelength_nm, p.mie_step_nm))
     per_fog += propagation::bulk_optics_seconds(s.fog.droplets, wavelength_m);
   const double one_fog = make(s);  // the study's four layers of one fog
   ASSERT_EQ(s.chamber.layers_in_use(), 4u);

@@ -465,7 +465,8 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
        "bad.toml:2: fog.visibility_m = 1E-4: must be in [0.001, 10000000]"},
       // A layer's length given as nan is quoted, not taken for a missing one.
       {"[[chamber.layers]]\nlength_m = nan\n",
-       "bad.toml:2: chamber.layers[0].length_m = nan: must be in (0, 10000] (chamber.layers at line "
+       "bad.toml:2: chamber.layers[0].length_m = nan: must be in (0, 10000] (chamber.layers at "
+       "line "
        "1)"},
       {"[[chamber.layers]]\nlength_m = 1.0\n[[chamber.layers]]\nlength_m = -nan\n",
        "bad.toml:4: chamber.layers[1].length_m = -nan: must be in (0, 10000] (chamber.layers at "

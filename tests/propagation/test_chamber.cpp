@@ -1,6 +1,6 @@
-// The chamber channel. References: the path integral of a piecewise-constant attenuation written out
-// by hand for the study's geometry (l_s = 2 m, four 1 m layers, l_t = 4 m); the volume integral of
-// eta over a spherical shell sector; eq. 4 of the virtual layer model as a second method.
+// The chamber channel. References: the path integral of a piecewise-constant attenuation written
+// out by hand for the study's geometry (l_s = 2 m, four 1 m layers, l_t = 4 m); the volume integral
+// of eta over a spherical shell sector; eq. 4 of the virtual layer model as a second method.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -91,8 +91,8 @@ TEST(Chamber, TwoWayAttenuationIsThePathIntegral) {
         std::pow(10.0, -0.8 * a_db_per_m), Tolerance::absolute, 1e-12);
 }
 
-// Second method: a layer of thickness d is kappa virtual layers of d/kappa with tau = exp(-alpha d/kappa);
-// eq. 4 with rho_obj = 1 gives tau^(2 kappa) = the chamber's two-way transmittance.
+// Second method: a layer of thickness d is kappa virtual layers of d/kappa with tau = exp(-alpha
+// d/kappa); eq. 4 with rho_obj = 1 gives tau^(2 kappa) = the chamber's two-way transmittance.
 TEST(Chamber, AgreesWithVirtualLayerEq4) {
   const Chamber chamber(paper_chamber(20.0), 77e9, table());
   const double alpha_per_m = chamber.layer(0).optics.extinction_per_m;

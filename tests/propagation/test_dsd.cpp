@@ -104,8 +104,8 @@ TEST(Dsd, HoldsTheRequestedLiquidWaterContent) {
     for (double lwc : {0.01, 0.3, 50.0}) {
       const double n = number_concentration_per_m3(dsd, lwc);
       const double held = n * adaptive_integral(dsd, [](double d) {
-        return rho_water_g_per_m3 * std::numbers::pi / 6.0 * d * d * d;
-      });
+                            return rho_water_g_per_m3 * std::numbers::pi / 6.0 * d * d * d;
+                          });
       const std::string name = dsd_label(dsd);
       validate_dsd("lwc_held." + name + ".lwc" + num(lwc), "liquid water content held", "g/m^3",
                    name + ", " + num(lwc) + " g/m^3", held, lwc,
@@ -146,8 +146,8 @@ TEST(Dsd, QuadratureNodesReproduceMoments) {
 // concentration a Gamma(alpha+1) / b^(alpha+1) is 20 cm^-3 (advection, a = 0.027) and 100 cm^-3
 // (radiation, a = 2.37305); mode radii alpha / b are 10 um and 4 um.
 // A broad distribution is truncated at the largest accepted droplet (1 mm) and renormalised; the
-// truncated distribution still holds exactly the requested LWC (independent adaptive integral of the
-// pdf over the truncated range, normalised by its own integral).
+// truncated distribution still holds exactly the requested LWC (independent adaptive integral of
+// the pdf over the truncated range, normalised by its own integral).
 TEST(Dsd, BroadDistributionsAreTruncatedAtOneMillimetre) {
   const DropSizeDistribution broad = Lognormal{20e-6, 2.5};
   const DiameterRange r = quadrature_range(broad);
@@ -157,14 +157,16 @@ TEST(Dsd, BroadDistributionsAreTruncatedAtOneMillimetre) {
       const double d = std::exp(log_d);
       return f(d) * diameter_pdf(broad, d) * d;
     };
-    return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(integrand, std::log(r.min_m),
-                                                                          std::log(r.max_m), 20, 1e-12);
+    return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+        integrand, std::log(r.min_m), std::log(r.max_m), 20, 1e-12);
   };
-  const double mass_fraction_kept = truncated([](double d) { return d * d * d; }) / diameter_moment(broad, 3);
+  const double mass_fraction_kept =
+      truncated([](double d) { return d * d * d; }) / diameter_moment(broad, 3);
   EXPECT_LT(mass_fraction_kept, 0.99);  // the cap really cuts this one
   const double lwc = 0.5;
-  const double held = number_concentration_per_m3(broad, lwc) * rho_water_g_per_m3 * std::numbers::pi / 6.0 *
-                      truncated([](double d) { return d * d * d; }) / truncated([](double) { return 1.0; });
+  const double held = number_concentration_per_m3(broad, lwc) * rho_water_g_per_m3 *
+                      std::numbers::pi / 6.0 * truncated([](double d) { return d * d * d; }) /
+                      truncated([](double) { return 1.0; });
   validate_dsd("lwc_held.truncated_lognormal20um_2.5.lwc0.5", "liquid water content held", "g/m^3",
                "lognormal median 20 um, sigma_g 2.5, truncated at 1 mm, 0.5 g/m^3", held, lwc,
                "the requested LWC; truncated pdf integrated by Boost adaptive Gauss-Kronrod, "

@@ -1,7 +1,7 @@
-// Bulk fog optics. References: ITU-R P.840-8 eq. (2) closed form (Rayleigh absorption with the Liebe
-// permittivity) for attenuation per g/m^3; the Rayleigh closed form for eta with closed-form <D^6>;
-// an independent adaptive Gauss-Kronrod integral of Mie extinction at 550 nm; the definitions of
-// eq. 6 for the LWC <-> extinction <-> visibility round trips.
+// Bulk fog optics. References: ITU-R P.840-8 eq. (2) closed form (Rayleigh absorption with the
+// Liebe permittivity) for attenuation per g/m^3; the Rayleigh closed form for eta with closed-form
+// <D^6>; an independent adaptive Gauss-Kronrod integral of Mie extinction at 550 nm; the
+// definitions of eq. 6 for the LWC <-> extinction <-> visibility round trips.
 #include <gtest/gtest.h>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -38,7 +38,9 @@ class FogTest : public ::testing::Test {
 FogSpec lwc_fog(double lwc, DropSizeDistribution droplets,
                 double temperature_c = segelstein_table_temperature_c,
                 WaterModel model = WaterModel::segelstein) {
-  return {.density = LiquidWaterContent{lwc}, .droplets = droplets, .temperature_c = temperature_c,
+  return {.density = LiquidWaterContent{lwc},
+          .droplets = droplets,
+          .temperature_c = temperature_c,
           .water_model = model};
 }
 
@@ -149,8 +151,9 @@ TEST_F(FogTest, AttenuationAndBackscatterScaleLinearlyWithLwc) {
             .kind = Tolerance::absolute});
 }
 
-// eta = N pi^5 |K|^2 <D^6> / lambda^4 (Rayleigh, docs/physics.md §2) with the closed-form <D^6>: the Mie sum
-// over quadrature nodes must agree within 1 % at 77 GHz for fog-sized drops (x <= 0.03).
+// eta = N pi^5 |K|^2 <D^6> / lambda^4 (Rayleigh, docs/physics.md §2) with the closed-form <D^6>:
+// the Mie sum over quadrature nodes must agree within 1 % at 77 GHz for fog-sized drops (x <=
+// 0.03).
 TEST_F(FogTest, BackscatterMatchesRayleighClosedForm) {
   for (const DropSizeDistribution& dsd :
        {DropSizeDistribution{Lognormal{1e-6, 1.5}}, DropSizeDistribution{radiation_fog()},
@@ -178,10 +181,10 @@ TEST_F(FogTest, BackscatterMatchesRayleighClosedForm) {
 
 // The node sum against an independent adaptive Gauss-Kronrod integral of Mie extinction at 550 nm,
 // where the Mie efficiency oscillates with size. Water's k ~ 2e-9 at 550 nm makes Mie resonances so
-// narrow that no smooth rule resolves them: for radiation fog (x up to ~430) they carry ~4e-4 of the
-// integral (a 2e4- and an 8e4-point trapezoid rule in ln D disagree by 7.5e-5 and sit 4.6e-4 and
-// 3.8e-4 from the node sum; doubling the node count moves it by 3e-5). Hence 1e-3 there; the default
-// 1 um fog (x up to ~265, but with almost no weight beyond x ~ 60) must agree within 2e-5.
+// narrow that no smooth rule resolves them: for radiation fog (x up to ~430) they carry ~4e-4 of
+// the integral (a 2e4- and an 8e4-point trapezoid rule in ln D disagree by 7.5e-5 and sit 4.6e-4
+// and 3.8e-4 from the node sum; doubling the node count moves it by 3e-5). Hence 1e-3 there; the
+// default 1 um fog (x up to ~265, but with almost no weight beyond x ~ 60) must agree within 2e-5.
 TEST_F(FogTest, OpticalQuadratureMatchesAdaptiveIntegral) {
   struct Case {
     DropSizeDistribution dsd;
@@ -194,7 +197,8 @@ TEST_F(FogTest, OpticalQuadratureMatchesAdaptiveIntegral) {
     const DiameterRange r = quadrature_range(c.dsd);
     const auto integrand = [&](double log_d) {
       const double d = std::exp(log_d);
-      return mie_cross_sections(d, visibility_wavelength_m, m).extinction_m2 * diameter_pdf(c.dsd, d) * d;
+      return mie_cross_sections(d, visibility_wavelength_m, m).extinction_m2 *
+             diameter_pdf(c.dsd, d) * d;
     };
     const double mean_sigma = boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
         integrand, std::log(r.min_m), std::log(r.max_m), 12, 1e-7);
@@ -253,8 +257,9 @@ TEST_F(FogTest, DensityRoundTrips) {
   EXPECT_NEAR(Fog(spec, table()).optical_extinction_per_km() / 900.0, 1.0, 1e-12);
 }
 
-// Large drops: extinction efficiency tends to 2 (the extinction paradox, Bohren & Huffman sec. 4.4),
-// so beta -> 2 (pi D^2 / 4) N = 3 LWC / (rho_w D): within 5 % for 200 um drops at 550 nm (x = 1142).
+// Large drops: extinction efficiency tends to 2 (the extinction paradox, Bohren & Huffman
+// sec. 4.4), so beta -> 2 (pi D^2 / 4) N = 3 LWC / (rho_w D): within 5 % for 200 um drops at 550 nm
+// (x = 1142).
 TEST_F(FogTest, GeometricOpticsLimit) {
   const double d = 200e-6, lwc = 1.0;
   const Fog fog(lwc_fog(lwc, Monodisperse{d}), table());

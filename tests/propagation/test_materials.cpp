@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <complex>
+#include <cstdio>
 #include <string>
 
 #include "fogradar/core/constants.hpp"
@@ -68,8 +68,8 @@ TEST(Materials, PermittivityFollowsP2040Table3) {
     SCOPED_TRACE(std::string(to_string(row.material)));
     const complex eps = radio_permittivity(row.material, row.frequency_ghz * 1e9);
     const std::string name(to_string(row.material));
-    const std::string id = "propagation.materials.p2040." + name + "." +
-                           id_number(row.frequency_ghz) + "GHz";
+    const std::string id =
+        "propagation.materials.p2040." + name + "." + id_number(row.frequency_ghz) + "GHz";
     const std::string conditions = name + ", " + id_number(row.frequency_ghz) + " GHz";
     const std::string source =
         "ITU-R P.2040-3 Table 3: eps' = a f^b, eps'' = 17.98 c f^d / f (evaluated by hand)";
@@ -178,8 +178,8 @@ TEST(Fresnel, BrewsterAngleForTm) {
               .group = "physics: materials",
               .quantity = "|Gamma_TM| at Brewster's grazing angle",
               .unit = "1",
-              .conditions = "real eps = " + id_number(eps) + ", psi_B = atan(1/sqrt(eps)) = " +
-                            id_number(brewster / deg) + " deg",
+              .conditions = "real eps = " + id_number(eps) +
+                            ", psi_B = atan(1/sqrt(eps)) = " + id_number(brewster / deg) + " deg",
               .reference = 0.0,
               .source = "Brewster's angle, Born & Wolf 7th ed. sec. 1.5.3",
               .value = std::abs(fresnel_reflection(eps, brewster).tm),

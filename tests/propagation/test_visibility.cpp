@@ -50,7 +50,8 @@ TEST(Visibility, Eq6IsKoschmiederAtTwoPercent) {
     check("koschmieder.v_beta.beta" + num(beta), "V beta", "1", "beta = " + num(beta) + " 1/m",
           visibility_m_from_extinction(beta) * beta, 3.912023005428146,
           "Koschmieder, 2 % contrast (paper eq. 6): V beta = -ln 0.02", 1e-12);
-    EXPECT_NEAR(extinction_per_m_from_visibility(visibility_m_from_extinction(beta)), beta, 1e-12 * beta);
+    EXPECT_NEAR(extinction_per_m_from_visibility(visibility_m_from_extinction(beta)), beta,
+                1e-12 * beta);
   }
   // The study's fog: beta = 900 1/km gives V = 4.347 m (the paper reports 5.74 m measured, which
   // eq. 6 maps to beta = 681.5 1/km: the two numbers in sec. III-B are not the same fog state).
@@ -116,7 +117,8 @@ TEST(Visibility, KruseBranchesAtTheirBoundaries) {
 }
 
 TEST(Visibility, KimBranchesAreContinuousWhereKimMadeThemSo) {
-  // Kim et al. 2001: 0.16 V + 0.34 meets 1.3 at 6 km and V - 0.5 at 1 km; V - 0.5 meets 0 at 0.5 km.
+  // Kim et al. 2001: 0.16 V + 0.34 meets 1.3 at 6 km and V - 0.5 at 1 km; V - 0.5 meets 0 at 0.5
+  // km.
   for (double v : {0.5, 1.0, 6.0}) {
     EXPECT_NEAR(kim_q(v), kim_q(std::nextafter(v, 100.0)), 1e-12) << v;
   }

@@ -56,7 +56,8 @@ std::string num(double value) {
                                                  const std::string& field) {
   const std::string rejected = test_support::rejected_field(call);
   if (rejected == field) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "rejected field '" << rejected << "', expected '" << field << "'";
+  return ::testing::AssertionFailure()
+         << "rejected field '" << rejected << "', expected '" << field << "'";
 }
 
 // ---- Segelstein table -----------------------------------------------------------------------
@@ -519,11 +520,14 @@ TEST(WaterInputValidationTest, LiebeOpticsRejectsWavelengthsBelowOneTerahertz) {
 }
 
 TEST(WaterInputValidationTest, RejectsUnknownModelNames) {
-  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("mie", "water_model"); }, "water_model"));
-  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("Liebe", "water_model"); }, "water_model"));
-  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("", "water_model"); }, "water_model"));
   EXPECT_TRUE(
-      throws_invalid_naming([] { water_model_names.parse("ray", "--water-model"); }, "--water-model"));
+      throws_invalid_naming([] { water_model_names.parse("mie", "water_model"); }, "water_model"));
+  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("Liebe", "water_model"); },
+                                    "water_model"));
+  EXPECT_TRUE(
+      throws_invalid_naming([] { water_model_names.parse("", "water_model"); }, "water_model"));
+  EXPECT_TRUE(throws_invalid_naming([] { water_model_names.parse("ray", "--water-model"); },
+                                    "--water-model"));
 }
 
 }  // namespace

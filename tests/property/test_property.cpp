@@ -183,9 +183,9 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
       const auto k = static_cast<std::size_t>(std::stoul(row.at("active_layers")));
       const double range_m = std::stod(row.at("range_m"));
       const std::string& origin = row.at("origin");
-      const std::string where = "radar detection at step " + row.at("active_layers") +
-                                ", item " + row.at("item") + ", range " + row.at("range_m") +
-                                " m, origin " + origin;
+      const std::string where = "radar detection at step " + row.at("active_layers") + ", item " +
+                                row.at("item") + ", range " + row.at("range_m") + " m, origin " +
+                                origin;
       if (origin == "fog") {
         bool inside = false;
         for (const LayerGeometry& l : active_layers(d, k)) {

@@ -162,7 +162,8 @@ TEST(CfarConfig, RejectsWindowWiderThanProfile) {
 }
 
 TEST(CfarConfig, KindNamesRoundTrip) {
-  for (const CfarKind kind : kAllKinds) EXPECT_EQ(cfar_kind_names.parse(to_string(kind), "cfar.kind"), kind);
+  for (const CfarKind kind : kAllKinds)
+    EXPECT_EQ(cfar_kind_names.parse(to_string(kind), "cfar.kind"), kind);
   try {
     cfar_kind_names.parse("CA-CFAR", "processing.cfar");
     ADD_FAILURE() << "accepted an unknown CFAR kind";

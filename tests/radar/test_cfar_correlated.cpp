@@ -187,8 +187,8 @@ void check_brute_force_pfa(CfarKind kind, WindowType window_type, unsigned guard
             ".brute_force_pfa.from_end" + std::to_string(from_end),
         "P_fa of correlated noise vectors at the designed factor (brute-force Monte Carlo)",
         kind_label(kind) + ", 16 training cells, guard " + std::to_string(guard) + ", " +
-            std::string(to_string(window_type)) +
-            " window, cell " + std::to_string(from_end) + " from the end, design P_fa 1e-2",
+            std::string(to_string(window_type)) + " window, cell " + std::to_string(from_end) +
+            " from the end, design P_fa 1e-2",
         "design P_fa (brute-force Monte Carlo of Cholesky-correlated Gaussian vectors, this test)",
         1e-2, measured * kSamples, kSamples, low, high,
         "99.9 % two-sided binomial interval (normal approximation, z = 3.29, +1 continuity)");
@@ -256,11 +256,11 @@ TEST(CorrelatedPfa, SampledMethodOnWhiteNoiseMatchesIndependentFormulas) {
 }
 
 // log Marcum Q_1 of the cell under test's conditional tail (log_marcum_q1_tail) against its Poisson
-// mixture of gamma tails, sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, summed here term by term
-// in log space in long double from j = 0 until the terms fall 60 e-folds below the sum past the
-// Poisson mode (the reference; exact to rounding). Points: lambda from 0.01 to 4000, y from 0.3 x
-// the mean lambda + 1 to tails of e^-1400. Tolerance on Q (relative): 1e-12 below lambda = 10 (the
-// same series, summed in another order), 3e-5 from 10 on (the second-order saddlepoint
+// mixture of gamma tails, sum_j e^-lambda lambda^j/j! e^-y sum_{i<=j} y^i/i!, summed here term by
+// term in log space in long double from j = 0 until the terms fall 60 e-folds below the sum past
+// the Poisson mode (the reference; exact to rounding). Points: lambda from 0.01 to 4000, y from 0.3
+// x the mean lambda + 1 to tails of e^-1400. Tolerance on Q (relative): 1e-12 below lambda = 10
+// (the same series, summed in another order), 3e-5 from 10 on (the second-order saddlepoint
 // approximation; mpmath quadrature gave at most 1.9e-5 at lambda = 10, 2e-6 at 30).
 long double reference_log_marcum_q1(long double lambda, long double y) {
   const long double log_lambda = std::log(lambda), log_y = std::log(y);
@@ -527,18 +527,18 @@ void check_chain_realised_pfa(CfarKind kind, WindowType window_type, unsigned gu
       rate.interior_cells, il, ih, rate.edges / rate.edge_cells, rate.edges, rate.edge_cells, el,
       eh);
   const std::string conditions = kind_label(kind) + ", " + std::to_string(2 * training) +
-                                 " training cells, guard " +
-                                 std::to_string(guard) + ", " +
+                                 " training cells, guard " + std::to_string(guard) + ", " +
                                  std::string(to_string(window_type)) + " window, " +
                                  std::to_string(kFrames) + " noise-only frames of 1 x 512";
   const char* source = "design P_fa (noise-only frames through the chain)";
   const std::string confidence =
-      std::string("99.9 % two-sided interval of the frames' total (CLT, variance the larger of the "
-                  "per-frame and the binomial one, +1 continuity)") +
-      (design_accuracy == 1.0 ? ""
-                              : ", around the design value x [1/" + id_number(design_accuracy) +
-                                    ", " + id_number(design_accuracy) +
-                                    "], the anchored design's stated accuracy");
+      std::string(
+          "99.9 % two-sided interval of the frames' total (CLT, variance the larger of the "
+          "per-frame and the binomial one, +1 continuity)") +
+      (design_accuracy == 1.0
+           ? ""
+           : ", around the design value x [1/" + id_number(design_accuracy) + ", " +
+                 id_number(design_accuracy) + "], the anchored design's stated accuracy");
   const std::string id = "radar.cfar_correlated.chain." + name_of(kind, window_type) +
                          (guard == 2 ? "" : ".guard" + std::to_string(guard)) +
                          (training == 8 ? "" : ".n" + std::to_string(training));
@@ -584,11 +584,11 @@ INSTANTIATE_TEST_SUITE_P(HannAndBlackmanHarris, ChainRealisedPfaWithoutGuardCell
 // A window past the design's budget (cfar_design.hpp): 64 training cells per side with no guard
 // cells, Blackman-Harris (the cell under test correlated with its neighbours; the design solves at
 // an anchor of 13-14 cells, 76 for CA, and scales), every kind. 2000 frames give 7.7e5 interior
-// cells and 2.6e5 edge cells. Acceptance: the 99.9 % interval around the design value x [1/1.5, 1.5]:
-// the scaling's factor error against full designs at 1e-3 is at most 6 % (docs/radar.md §7), and
-// at 1e-3 a factor error e moves P_fa by about e x 7. At n = 64 the correlation moves the factor
-// by only 1-7 %, so this checks the chain end to end rather than the scaling (which
-// AnchoredCaKeepsTheDesignPfa and AnchoredSampledKindsKeepTheDesignPfa check).
+// cells and 2.6e5 edge cells. Acceptance: the 99.9 % interval around the design value x
+// [1/1.5, 1.5]: the scaling's factor error against full designs at 1e-3 is at most 6 %
+// (docs/radar.md §7), and at 1e-3 a factor error e moves P_fa by about e x 7. At n = 64 the
+// correlation moves the factor by only 1-7 %, so this checks the chain end to end rather than the
+// scaling (which AnchoredCaKeepsTheDesignPfa and AnchoredSampledKindsKeepTheDesignPfa check).
 class ChainRealisedPfaWideWindow : public ::testing::TestWithParam<CfarKind> {};
 
 TEST_P(ChainRealisedPfaWideWindow, DesignValueAtOneInAThousand) {
@@ -775,9 +775,9 @@ TEST(CorrelatedDesignBound, AnchoredSampledKindsKeepTheDesignPfa) {
   GTEST_SKIP() << "45 sampled estimates of 64 cells: run by the Release build only";
 #endif
   for (const CfarKind kind : {CfarKind::go, CfarKind::so, CfarKind::os}) {
-    for (const auto& [window, guard] : {std::pair{WindowType::hann, 0U},
-                                        std::pair{WindowType::blackman_harris, 0U},
-                                        std::pair{WindowType::blackman_harris, 2U}}) {
+    for (const auto& [window, guard] :
+         {std::pair{WindowType::hann, 0U}, std::pair{WindowType::blackman_harris, 0U},
+          std::pair{WindowType::blackman_harris, 2U}}) {
       const CfarConfig config{.kind = kind,
                               .guard_cells = guard,
                               .training_cells = 32,
@@ -814,8 +814,8 @@ TEST(CorrelatedDesignBound, ADesignSeesItsStop) {
   const std::atomic<bool> stop{true};
   for (const CfarKind kind : kKinds) {
     const CfarConfig config{.kind = kind, .guard_cells = 0, .training_cells = 32};
-    const NoiseCorrelation noise = window_noise_correlation(make_window(WindowType::hann, 512),
-                                                            cfar_correlation_lags(config));
+    const NoiseCorrelation noise =
+        window_noise_correlation(make_window(WindowType::hann, 512), cfar_correlation_lags(config));
     EXPECT_THROW(design_cfar_threshold_factors(config, noise, StopToken(&stop)), Stopped)
         << to_string(kind);
     EXPECT_NO_THROW(design_cfar_threshold_factors(config, noise, StopToken()));

@@ -149,8 +149,8 @@ TEST(ObjectRcs, CylinderFollowsItsPoIntegral) {
 }
 
 // The specular values are the textbook closed forms (Knott, Shaeffer & Tuley, Radar Cross Section,
-// 2nd ed., 1993, Table 5.1): a flat plate of area A at normal incidence 4 pi A^2 / lambda^2, a cylinder of
-// radius a and length L at broadside 2 pi a L^2 / lambda.
+// 2nd ed., 1993, Table 5.1): a flat plate of area A at normal incidence 4 pi A^2 / lambda^2, a
+// cylinder of radius a and length L at broadside 2 pi a L^2 / lambda.
 TEST(ObjectRcs, SpecularLimits) {
   const double lambda = wavelength_77ghz_m;
   validate({.id = "radar.object_rcs.plate.normal_incidence",

@@ -102,9 +102,8 @@ std::vector<Tone> fog_tones(const RadarParams& p, int first_bin, int last_bin, d
   const double a = amplitude_for_snr(p, snr_db);
   for (int k = first_bin; k < last_bin; ++k) {
     for (int s = 0; s < per_bin; ++s) {
-      tones.push_back(
-          {path_at_bin_m(p, k + rng.uniform()), rng.complex_normal(a * a), 0.0, Origin::fog,
-           layer});
+      tones.push_back({path_at_bin_m(p, k + rng.uniform()), rng.complex_normal(a * a), 0.0,
+                       Origin::fog, layer});
     }
   }
   return tones;
@@ -118,9 +117,9 @@ TEST(Origin, NamesAndDominance) {
   EXPECT_EQ(to_string(Origin::noise), "noise");
   EXPECT_EQ(to_string(Origin::clipping), "clipping");
   EXPECT_EQ(to_string(Origin::sidelobe), "sidelobe");
-  EXPECT_EQ(sensor::origin_labels(), (std::vector<std::string>{"noise", "target", "fog",
-                                                               "background", "clipping",
-                                                               "sidelobe"}));
+  EXPECT_EQ(
+      sensor::origin_labels(),
+      (std::vector<std::string>{"noise", "target", "fog", "background", "clipping", "sidelobe"}));
   EXPECT_EQ(static_cast<int>(Origin::noise), 0);
   EXPECT_EQ(static_cast<int>(Origin::target), 1);
   EXPECT_EQ(static_cast<int>(Origin::fog), 2);
@@ -227,8 +226,7 @@ TEST_P(Contributions, EqualTheProcessedFrameOfEachOriginsTones) {
     for (std::size_t k = 0; k < p.samples_per_chirp; ++k) {
       const CellContributions c = chain.origin_classifier().contributions(all, d, k);
       const std::size_t cell = d * p.samples_per_chirp + k;
-      worst_target =
-          std::max(worst_target, std::abs(c.target + c.target_leak - target_map[cell]));
+      worst_target = std::max(worst_target, std::abs(c.target + c.target_leak - target_map[cell]));
       worst_fog = std::max(worst_fog, std::abs(c.fog + c.fog_leak - fog_map[cell]));
     }
   }
@@ -410,8 +408,8 @@ TEST(OriginOfDetections, ClippingProductsAreClipping) {
     ASSERT_GT(report.clipped_samples, report.samples / 2);
     chain.processor().transform_windowed(ws.frame);
     std::vector<Detection> detections;
-    estimate_detections(ws.frame, chain.processor(), chain.cfar(), chain.params(),
-                        chain.derived(), ws.estimation, detections);
+    estimate_detections(ws.frame, chain.processor(), chain.cfar(), chain.params(), chain.derived(),
+                        ws.estimation, detections);
     chain.origin_classifier().attribute(tones, detections, report.clipped_samples > 0);
     for (const Detection& det : detections) {
       EXPECT_NE(det.origin, Origin::noise) << det.range_cell << ' ' << det.doppler_cell;

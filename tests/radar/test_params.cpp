@@ -141,7 +141,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
           p.radome.thickness_m = 0.005;
           p.radome.relative_permittivity = bad;
         },
-                    "radar.radome.relative_permittivity");
+        "radar.radome.relative_permittivity");
   }
   for (const double bad : {-0.01, 1.5, kNaN}) {
     expect_rejected(
@@ -149,7 +149,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
           p.radome.thickness_m = 0.005;
           p.radome.loss_tangent = bad;
         },
-                    "radar.radome.loss_tangent");
+        "radar.radome.loss_tangent");
   }
   for (const double bad : {-1e-4, 0.02, kNaN}) {
     expect_rejected([&](RadarParams& p) { p.radome.water_film_m = bad; },
@@ -239,11 +239,13 @@ TEST(RadarParams, DerivedQuantitiesOfThePaperRadar) {
 // The sweep direction's names round-trip; anything else is refused naming the field.
 TEST(RadarParams, SweepDirectionNames) {
   for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down}) {
-    EXPECT_EQ(sweep_direction_names.parse(to_string(direction), "radar.sweep_direction"), direction);
+    EXPECT_EQ(sweep_direction_names.parse(to_string(direction), "radar.sweep_direction"),
+              direction);
   }
   EXPECT_EQ(to_string(SweepDirection::up), "up");
   EXPECT_EQ(to_string(SweepDirection::down), "down");
-  EXPECT_EQ(test_support::rejected_field([] { sweep_direction_names.parse("Up", "radar.sweep_direction"); }),
+  EXPECT_EQ(test_support::rejected_field(
+                [] { sweep_direction_names.parse("Up", "radar.sweep_direction"); }),
             "radar.sweep_direction");
   EXPECT_EQ(test_support::rejected_field([] { sweep_direction_names.parse("sawtooth", "x.dir"); }),
             "x.dir");

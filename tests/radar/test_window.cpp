@@ -365,13 +365,15 @@ TEST(FrameWindow, ScalesEachSampleByBothWeights) {
   // arithmetic (both parts times the same double); tolerance: identical values. 5 x 7 samples,
   // an odd row length, with distinct weights.
   const std::vector<double> doppler = make_window(WindowType::hamming, 5);
-  const std::vector<double> range = make_window(WindowType::blackman_harris, 7, 80.0, WindowSymmetry::symmetric);
+  const std::vector<double> range =
+      make_window(WindowType::blackman_harris, 7, 80.0, WindowSymmetry::symmetric);
   std::vector<double> range_pairs;
   for (const double w : range) range_pairs.insert(range_pairs.end(), {w, w});
   std::vector<std::complex<double>> frame, expected;
   for (std::size_t c = 0; c < doppler.size(); ++c) {
     for (std::size_t n = 0; n < range.size(); ++n) {
-      frame.emplace_back(1.0 + 0.1 * static_cast<double>(c * 7 + n), -2.0 + 0.3 * static_cast<double>(n));
+      frame.emplace_back(1.0 + 0.1 * static_cast<double>(c * 7 + n),
+                         -2.0 + 0.3 * static_cast<double>(n));
       expected.push_back(frame.back() * (doppler[c] * range[n]));
     }
   }
@@ -380,7 +382,8 @@ TEST(FrameWindow, ScalesEachSampleByBothWeights) {
 }
 
 TEST(Window, NamesRoundTrip) {
-  for (const WindowType type : kAllWindows) EXPECT_EQ(window_type_names.parse(to_string(type), "window"), type);
+  for (const WindowType type : kAllWindows)
+    EXPECT_EQ(window_type_names.parse(to_string(type), "window"), type);
   try {
     window_type_names.parse("Hanning", "processing.range_window");
     ADD_FAILURE() << "accepted an unknown window name";

@@ -714,7 +714,8 @@ TEST(ShiftInterval, SelectionEqualsFullSortOfDifferences) {
     std::sort(differences.begin(), differences.end());
     const double h = 0.5 * static_cast<double>(differences.size() - 1);
     const auto j = static_cast<std::size_t>(h);
-    const double brute_median = differences[j] + (h - static_cast<double>(j)) * (differences[j + 1] - differences[j]);
+    const double brute_median =
+        differences[j] + (h - static_cast<double>(j)) * (differences[j + 1] - differences[j]);
     check("shift_interval.hodges_lehmann_vs_sort.grid" + std::to_string(grid).substr(0, 3),
           "Hodges-Lehmann shift", "37 and 53 values, grid " + std::to_string(grid).substr(0, 3),
           hodges_lehmann_shift(x, y), brute_median,
@@ -725,13 +726,16 @@ TEST(ShiftInterval, SelectionEqualsFullSortOfDifferences) {
     // Both ends sit at mirrored ranks: some C has d_(C) = low and d_(mn+1-C) = high (1-based; with
     // ties each end matches a range of ranks, and the two ranges must allow a common C).
     const auto first = [&](double v) {
-      return static_cast<std::size_t>(std::lower_bound(differences.begin(), differences.end(), v) - differences.begin());
+      return static_cast<std::size_t>(std::lower_bound(differences.begin(), differences.end(), v) -
+                                      differences.begin());
     };
     const auto past = [&](double v) {
-      return static_cast<std::size_t>(std::upper_bound(differences.begin(), differences.end(), v) - differences.begin());
+      return static_cast<std::size_t>(std::upper_bound(differences.begin(), differences.end(), v) -
+                                      differences.begin());
     };
     const std::size_t mn = differences.size();
-    EXPECT_LE(std::max(first(ci.low) + 1, mn - past(ci.high) + 1), std::min(past(ci.low), mn - first(ci.high)))
+    EXPECT_LE(std::max(first(ci.low) + 1, mn - past(ci.high) + 1),
+              std::min(past(ci.low), mn - first(ci.high)))
         << "grid " << grid;
   }
 }

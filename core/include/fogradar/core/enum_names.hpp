@@ -1,5 +1,5 @@
-// One table of an enumeration's names, from which its printing, its parsing, its refusal message and
-// its scenario key's set of choices all follow, so that no name is written twice.
+// One table of an enumeration's names, from which its printing, its parsing, its refusal message
+// and its scenario key's set of choices all follow, so that no name is written twice.
 #pragma once
 
 #include <array>
@@ -40,7 +40,8 @@ class EnumNames {
   // "one of a, b, c", in the table's order.
   std::string allowed() const {
     std::string text = "one of ";
-    for (std::size_t i = 0; i < N; ++i) text += (i == 0 ? "" : ", ") + std::string(entries_[i].second);
+    for (std::size_t i = 0; i < N; ++i)
+      text += (i == 0 ? "" : ", ") + std::string(entries_[i].second);
     return text;
   }
 

@@ -65,8 +65,8 @@ class RandomStream {
   // Exponential with unit mean: -ln U.
   double exponential() { return -std::log(uniform_open_zero()); }
 
-  // Circular complex Gaussian CN(0, variance) by Box-Muller: |z|^2 ~ variance * Exp(1) and a uniform
-  // phase, i.e. a Rayleigh amplitude with a random phase.
+  // Circular complex Gaussian CN(0, variance) by Box-Muller: |z|^2 ~ variance * Exp(1) and a
+  // uniform phase, i.e. a Rayleigh amplitude with a random phase.
   std::complex<double> complex_normal(double variance) {
     const double radius = std::sqrt(variance * exponential());
     const double phase = 2.0 * pi * uniform();

@@ -19,7 +19,8 @@ inline double dbm_to_watt(double dbm) { return 1e-3 * db_to_power_ratio(dbm); }
 // dBm from watts.
 inline double watt_to_dbm(double watt) { return power_ratio_to_db(watt / 1e-3); }
 
-// Decibels of a power loss factor exp(-x) (x in nepers of power): dB = 10 log10(e) x  (paper eq. 5).
+// Decibels of a power loss factor exp(-x) (x in nepers of power): dB = 10 log10(e) x  (paper eq.
+// 5).
 inline constexpr double db_per_neper_power = 4.342944819032518;  // 10 / ln(10)
 
 constexpr double celsius_to_kelvin(double celsius) { return celsius + zero_celsius_k; }

@@ -1,5 +1,5 @@
-// Scattering by one spherical water droplet in air: Rayleigh closed forms and the full Mie solution.
-// Index convention m = n + i k, k >= 0 (Bohren & Huffman 1983). Backscatter is the radar
+// Scattering by one spherical water droplet in air: Rayleigh closed forms and the full Mie
+// solution. Index convention m = n + i k, k >= 0 (Bohren & Huffman 1983). Backscatter is the radar
 // backscattering cross section sigma_b = 4 pi dsigma/dOmega(180 deg).
 #pragma once
 
@@ -48,6 +48,7 @@ CrossSections mie_cross_sections(double diameter_m, double wavelength_m, std::co
 //   scattering   sigma_s = 2 pi^5 D^6 / (3 lambda^4) |K|^2
 //   backscatter  sigma_b = pi^5 D^6 / lambda^4 |K|^2
 //   extinction   sigma_a + sigma_s
-CrossSections rayleigh_cross_sections(double diameter_m, double wavelength_m, std::complex<double> m);
+CrossSections rayleigh_cross_sections(double diameter_m, double wavelength_m,
+                                      std::complex<double> m);
 
 }  // namespace fogradar::propagation

@@ -40,12 +40,13 @@ using DropSizeDistribution = std::variant<Monodisperse, Lognormal, ModifiedGamma
 // Advection fog: alpha = 3, gamma = 1, b = 0.3 um^-1 (mode radius 10 um, N = 20 cm^-3,
 // LWC about 0.37 g/m^3 with a = 0.027). Radiation fog: alpha = 6, gamma = 1, b = 1.5 um^-1
 // (mode radius 4 um, N = 100 cm^-3, LWC about 0.06 g/m^3 with a = 2.37305). Both as tabulated by
-// Al Naboulsi, Sizun & de Fornel, Opt. Eng. 43(2), 319-329 (2004), Table 1, after Shettle & Fenn 1979.
+// Al Naboulsi, Sizun & de Fornel, Opt. Eng. 43(2), 319-329 (2004), Table 1, after Shettle & Fenn
+// 1979.
 ModifiedGamma advection_fog();
 ModifiedGamma radiation_fog();
 
-// The distribution fogradar uses when none is given: the study's ultrasonic fogger makes droplets of
-// "diameter about 1 um" (paper sec. III-B); lognormal, median 1 um, sigma_g = 1.5 (an assumption
+// The distribution fogradar uses when none is given: the study's ultrasonic fogger makes droplets
+// of "diameter about 1 um" (paper sec. III-B); lognormal, median 1 um, sigma_g = 1.5 (an assumption
 // typical of ultrasonic atomiser spectra; documented in docs/physics.md).
 DropSizeDistribution default_fog_droplets();
 
@@ -74,8 +75,8 @@ double diameter_pdf(const DropSizeDistribution& dsd, double diameter_m);
 
 // Diameter interval outside which each tail holds less than 1e-12 of the number (lower end) and of
 // the D^6 moment (upper end), clipped to the droplet sizes fogradar accepts (10 nm .. 1 mm): the
-// quadrature range. A broad distribution (e.g. lognormal, median 20 um, sigma_g 2.5) is truncated at
-// 1 mm: its drops beyond are drizzle, not fog. Both ends equal the diameter for monodisperse.
+// quadrature range. A broad distribution (e.g. lognormal, median 20 um, sigma_g 2.5) is truncated
+// at 1 mm: its drops beyond are drizzle, not fog. Both ends equal the diameter for monodisperse.
 struct DiameterRange {
   double min_m;
   double max_m;
@@ -83,9 +84,9 @@ struct DiameterRange {
 DiameterRange quadrature_range(const DropSizeDistribution& dsd);
 
 // Nodes and weights with sum_j weight_j f(D_j) ~ integral f(D) p(D) dD over the truncated and
-// renormalised distribution: composite Gauss-Legendre in ln D over quadrature_range (a single node of
-// weight 1 for monodisperse). Bulk fog optics are sums
-// of per-droplet cross sections over these nodes.
+// renormalised distribution: composite Gauss-Legendre in ln D over quadrature_range (a single node
+// of weight 1 for monodisperse). Bulk fog optics are sums of per-droplet cross sections over these
+// nodes.
 struct QuadratureNode {
   double diameter_m;
   double weight;

@@ -33,10 +33,11 @@ using FogDensity = std::variant<LiquidWaterContent, OpticalExtinction, Visibilit
 struct FogSpec {
   FogDensity density = OpticalExtinction{};
   DropSizeDistribution droplets = default_fog_droplets();
-  // Water temperature of the index at radar frequencies: 20 C (an assumed indoor hall; the study gives none) under Liebe,
-  // the temperature-dependent model of ITU-R P.840. With the Segelstein table only its own 25 C is
-  // accepted. Optical wavelengths always use the table at 25 C (Liebe ends at 1 THz;
-  // docs/physics.md §2 quantifies what the optical temperature dependence would change).
+  // Water temperature of the index at radar frequencies: 20 C (an assumed indoor hall; the study
+  // gives none) under Liebe, the temperature-dependent model of ITU-R P.840. With the Segelstein
+  // table only its own 25 C is accepted. Optical wavelengths always use the table at 25 C (Liebe
+  // ends at 1 THz; docs/physics.md §2 quantifies what the optical temperature dependence would
+  // change).
   double temperature_c = 20.0;
   WaterModel water_model = WaterModel::liebe;
   void validate() const;  // throws InvalidParameter naming the key under "fog." (fog_keys)
@@ -48,14 +49,15 @@ struct FogSpec {
 // model of the index at radar frequencies, and the droplets under "droplets." (droplet_keys).
 KeyTable<FogSpec> fog_keys(std::string prefix);
 
-// Bulk properties of a fog at one frequency (sums over the drop size distribution, Mie per droplet).
+// Bulk properties of a fog at one frequency (sums over the drop size distribution, Mie per
+// droplet).
 struct FogOptics {
   double frequency_hz = 0.0;
   double wavelength_m = 0.0;
-  std::complex<double> refractive_index;      // of water at this frequency
+  std::complex<double> refractive_index;            // of water at this frequency
   WaterModel water_model = WaterModel::segelstein;  // the model and temperature that gave the index
   double water_temperature_c = segelstein_table_temperature_c;
-  double extinction_per_m = 0.0;             // power extinction coefficient
+  double extinction_per_m = 0.0;  // power extinction coefficient
   double absorption_per_m = 0.0;
   double scattering_per_m = 0.0;
   double specific_attenuation_db_per_km = 0.0;  // 10 log10(e) * 1000 * extinction_per_m

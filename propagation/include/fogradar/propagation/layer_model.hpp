@@ -27,8 +27,8 @@ std::uint64_t narayana(unsigned n, unsigned k);
 // Throws InvalidParameter for even kappa or i outside 1..max(1, (kappa-1)/2).
 std::uint64_t layer_path_count(unsigned kappa, unsigned i);
 
-// Eq. 3: fog-only received intensity in the delay bin of kappa = 2n-1 interactions, for an unbounded
-// stack of identical layers. tau, rho in [0, 1] with tau + rho <= 1.
+// Eq. 3: fog-only received intensity in the delay bin of kappa = 2n-1 interactions, for an
+// unbounded stack of identical layers. tau, rho in [0, 1] with tau + rho <= 1.
 double layer_model_intensity(unsigned kappa, double tau, double rho, double i0 = 1.0);
 
 // Eq. 4: the direct echo of an object behind `layers` layers: I_obj = I_0 rho_obj tau^(2 layers).
@@ -52,6 +52,7 @@ std::vector<double> layer_stack_response(std::span<const VirtualLayer> layers, d
 // Virtual layer from fog bulk optics: tau = exp(-alpha d) with alpha the power extinction
 // coefficient (1/m) and d the layer thickness (m); rho = eta d, the layer's backscattering cross
 // section per unit area (eta in m^2/m^3), i.e. its area reflectivity sigma^0.
-VirtualLayer virtual_layer_from_fog(double extinction_per_m, double eta_m2_per_m3, double thickness_m);
+VirtualLayer virtual_layer_from_fog(double extinction_per_m, double eta_m2_per_m3,
+                                    double thickness_m);
 
 }  // namespace fogradar::propagation

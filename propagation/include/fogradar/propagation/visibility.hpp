@@ -1,13 +1,13 @@
 // Optical extinction, attenuation and visibility (paper eq. 1, 2, 5, 6, 9; Kunkel; Kim).
 // beta is an extinction coefficient of power (1/km or 1/m as named). The study's eq. 1 prints
-// "dB/km", but 3.91 = -ln(0.02) makes it an extinction coefficient beta in 1/km (power ~ exp(-beta d)):
-// the Kruse functions below return beta in 1/km; multiply by 10 log10(e) (eq. 5) for dB/km.
+// "dB/km", but 3.91 = -ln(0.02) makes it an extinction coefficient beta in 1/km (power ~ exp(-beta
+// d)): the Kruse functions below return beta in 1/km; multiply by 10 log10(e) (eq. 5) for dB/km.
 #pragma once
 
 namespace fogradar::propagation {
 
-// Contrast thresholds: Koschmieder/visual range (paper eq. 6, epsilon = 0.02) and CIE meteorological
-// optical range (paper eq. 9, 0.05).
+// Contrast thresholds: Koschmieder/visual range (paper eq. 6, epsilon = 0.02) and CIE
+// meteorological optical range (paper eq. 9, 0.05).
 inline constexpr double visual_range_contrast = 0.02;
 inline constexpr double cie_contrast = 0.05;
 

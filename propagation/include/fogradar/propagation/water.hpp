@@ -25,8 +25,8 @@ constexpr std::string_view to_string(WaterModel model) noexcept {
 }
 
 // The Segelstein 1981 table (data/segelstein81_index.txt, compiled into the library), interpolated
-// monotonically (PCHIP) in log(lambda) -> log(n), log(k). Immutable after construction; safe to share
-// between threads. Wavelengths outside the table throw InvalidParameter.
+// monotonically (PCHIP) in log(lambda) -> log(n), log(k). Immutable after construction; safe to
+// share between threads. Wavelengths outside the table throw InvalidParameter.
 class SegelsteinTable {
  public:
   SegelsteinTable();
@@ -48,16 +48,18 @@ class SegelsteinTable {
 };
 
 // Liebe, Hufford & Manabe 1991 (Int. J. IR mm Waves 12, 659) double-Debye relative permittivity of
-// liquid water, in the form ITU-R P.840 uses (eq. (4)-(11) in the numbering of P.840-7), which keeps
-// the high-frequency permittivity eps2 = 3.52 constant as Liebe et al. 1993 do. Valid 0-1000 GHz, temperature_k in
-// [253.15, 323.15] (-20..50 C, supercooled water included as P.840 does); outside throws.
+// liquid water, in the form ITU-R P.840 uses (eq. (4)-(11) in the numbering of P.840-7), which
+// keeps the high-frequency permittivity eps2 = 3.52 constant as Liebe et al. 1993 do. Valid 0-1000
+// GHz, temperature_k in [253.15, 323.15] (-20..50 C, supercooled water included as P.840 does);
+// outside throws.
 std::complex<double> liebe1991_permittivity(double frequency_hz, double temperature_k);
 
 // m = sqrt(eps) on the branch with Im(m) >= 0.
 std::complex<double> refractive_index_from_permittivity(std::complex<double> permittivity);
 
-// ITU-R P.840 eq. (2)-(3) (P.840-7 numbering): Rayleigh specific attenuation coefficient of cloud/fog liquid water,
-// K_l = 0.819 f / (eps'' (1 + eta^2)), eta = (2 + eps') / eps'', in (dB/km)/(g/m^3), f in GHz.
+// ITU-R P.840 eq. (2)-(3) (P.840-7 numbering): Rayleigh specific attenuation coefficient of
+// cloud/fog liquid water, K_l = 0.819 f / (eps'' (1 + eta^2)), eta = (2 + eps') / eps'', in
+// (dB/km)/(g/m^3), f in GHz.
 double itu_p840_specific_attenuation_coefficient(double frequency_hz, double temperature_k);
 
 // The refractive index of water under a chosen model at one temperature. The Segelstein table takes

@@ -18,9 +18,9 @@ struct SlabLayer {
 struct SlabResponse {
   std::complex<double> reflection_amplitude;    // r
   std::complex<double> transmission_amplitude;  // t
-  double reflectance = 0.0;    // R = |r|^2
-  double transmittance = 0.0;  // T = Re(n_out)/Re(n_in) |t|^2
-  double absorptance = 0.0;    // A = 1 - R - T
+  double reflectance = 0.0;                     // R = |r|^2
+  double transmittance = 0.0;                   // T = Re(n_out)/Re(n_in) |t|^2
+  double absorptance = 0.0;                     // A = 1 - R - T
 };
 
 // Normal incidence from a medium of index n_in through `layers` (in order of incidence) into n_out.

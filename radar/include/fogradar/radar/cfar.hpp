@@ -60,9 +60,9 @@ enum class CfarThresholdDesign { correlated, independent };
 
 inline constexpr auto cfar_kind_names = enum_names<CfarKind>(
     {{CfarKind::ca, "ca"}, {CfarKind::go, "go"}, {CfarKind::so, "so"}, {CfarKind::os, "os"}});
-inline constexpr auto cfar_threshold_design_names = enum_names<CfarThresholdDesign>(
-    {{CfarThresholdDesign::correlated, "correlated"},
-     {CfarThresholdDesign::independent, "independent"}});
+inline constexpr auto cfar_threshold_design_names =
+    enum_names<CfarThresholdDesign>({{CfarThresholdDesign::correlated, "correlated"},
+                                     {CfarThresholdDesign::independent, "independent"}});
 constexpr std::string_view to_string(CfarKind kind) noexcept { return cfar_kind_names.name(kind); }
 constexpr std::string_view to_string(CfarThresholdDesign design) noexcept {
   return cfar_threshold_design_names.name(design);
@@ -108,11 +108,11 @@ double cfar_false_alarm_probability(const CfarConfig& config, double alpha);
 
 // Reusable per-thread buffers for CfarDetector::detect.
 struct CfarWorkspace {
-  std::vector<double> threshold;         // threshold per cell (same length as the profile)
-  std::vector<std::size_t> detections;   // indices of cells with power > threshold, ascending
-  std::vector<double> order_scratch;     // OS: the N reference cells, sorted
-  std::vector<double> window_sums;       // CA/GO/SO: sums of every training_cells consecutive cells
-  std::vector<double> sum_scratch;       // CA/GO/SO: block sums while forming window_sums (2 profiles)
+  std::vector<double> threshold;        // threshold per cell (same length as the profile)
+  std::vector<std::size_t> detections;  // indices of cells with power > threshold, ascending
+  std::vector<double> order_scratch;    // OS: the N reference cells, sorted
+  std::vector<double> window_sums;      // CA/GO/SO: sums of every training_cells consecutive cells
+  std::vector<double> sum_scratch;  // CA/GO/SO: block sums while forming window_sums (2 profiles)
 };
 
 // The |X|^2 profiles of four rows of one length side by side, for CfarDetector::detect_four: cell j
@@ -154,8 +154,8 @@ class CfarDetector {
   // training_cells consecutive cells, formed by doubling in O(log n) per cell from non-negative
   // terms only (relative error < (2 log2 n + 1) eps, whatever the profile's dynamic range); OS
   // keeps the N reference cells sorted while the window slides (binary search + O(N) moves per
-  // cell, about 10x faster than a selection per cell). `power` must be finite and non-negative (square-law detected). Throws
-  // InvalidParameter via validate_profile_length.
+  // cell, about 10x faster than a selection per cell). `power` must be finite and non-negative
+  // (square-law detected). Throws InvalidParameter via validate_profile_length.
   void detect(std::span<const double> power, CfarWorkspace& workspace) const;
   // Square-law detection and CFAR of four consecutive rows of `rows` (rows.size() / 4 values each):
   // workspace.power[4 j + r] = |rows[r L + j]|^2 (re^2 + im^2, as std::norm), then detect for each

@@ -37,17 +37,17 @@
 // edge cells (edge policy in cfar.hpp) have one-sided or shifted reference windows; the cells i and
 // L-1-i from the two ends are mirror images (rho even) and share a factor. A geometry is fixed by
 // the number L of its reference cells on the left of the cell under test; geometries whose L and
-// n - L both reach K cells (K = the correlation's reach + 1) hold the same cells near the cell under
-// test, the ends of their blocks and the halves' boundary, and share one solved factor.
-// The design's cost is bounded: where solving at n training cells would take more than
-// kCfarDesignBudgetSeconds (cfar_design_seconds' model), the geometries are solved at the anchor m <
-// n, the largest within the budget (and at least 2 K + 1), and each geometry at n takes its anchor
-// twin's factor (same L near the ends, the shared middle one, the interior) with its ratio r to the
-// independent-cell factor brought towards 1: r_n - 1 = a / sqrt(n) + b / n, with b such that r_m
-// is the anchor's. The correlation changes the noise estimate's variance (and its covariance with
-// the cell under test) by O(1/N) of its mean, hence the 1/n term; GO and SO take the larger or
-// smaller of two half sums whose mean the correlation shifts by O(1/sqrt(n)), a = -+(sqrt(c2) - 1) /
-// sqrt(pi), c2 = sum_m rho(m)^2 (0 for CA and OS). docs/radar.md §7 gives the measured error of
+// n - L both reach K cells (K = the correlation's reach + 1) hold the same cells near the cell
+// under test, the ends of their blocks and the halves' boundary, and share one solved factor. The
+// design's cost is bounded: where solving at n training cells would take more than
+// kCfarDesignBudgetSeconds (cfar_design_seconds' model), the geometries are solved at the anchor m
+// < n, the largest within the budget (and at least 2 K + 1), and each geometry at n takes its
+// anchor twin's factor (same L near the ends, the shared middle one, the interior) with its ratio r
+// to the independent-cell factor brought towards 1: r_n - 1 = a / sqrt(n) + b / n, with b such that
+// r_m is the anchor's. The correlation changes the noise estimate's variance (and its covariance
+// with the cell under test) by O(1/N) of its mean, hence the 1/n term; GO and SO take the larger or
+// smaller of two half sums whose mean the correlation shifts by O(1/sqrt(n)), a = -+(sqrt(c2) - 1)
+// / sqrt(pi), c2 = sum_m rho(m)^2 (0 for CA and OS). docs/radar.md §7 gives the measured error of
 // the scaling against full designs.
 // All arithmetic is scalar or Eigen at the x86-64 baseline with fixed sample counts and seed: the
 // same factors in every process, for every thread count and instruction-set clone.
@@ -104,8 +104,9 @@ inline constexpr double kCfarDesignBudgetSeconds = 0.2;
 // Correlation lags a design reads: guard + N, at most kCfarCorrelationLags. Beyond it the
 // coefficients are taken as 0: they are, exactly, for every window of the chain but Chebyshev,
 // whose flat floor (from the spikes at its ends) stays below 2e-4 at 80 dB up to 65536 samples
-// (1.9e-4 there; the anchor's geometries need at most guard + 174 lags). So window_noise_correlation
-// costs at most kCfarCorrelationLags x the window's length (~0.05 s at 65536 samples).
+// (1.9e-4 there; the anchor's geometries need at most guard + 174 lags). So
+// window_noise_correlation costs at most kCfarCorrelationLags x the window's length (~0.05 s at
+// 65536 samples).
 inline constexpr std::size_t kCfarCorrelationLags = 256;
 std::size_t cfar_correlation_lags(const CfarConfig& config);
 
@@ -125,12 +126,12 @@ CfarThresholdFactors design_cfar_threshold_factors(const CfarConfig& config,
 // The CPU seconds design_cfar_threshold_factors takes for this config and noise, a cost model for
 // the run-time estimate and the anchor (on the project's shared 2-core machine, Release, the
 // measured CPU time is 0.52-1.7 x the model for n = 4-64, g = 0 and 2, every window, GO/SO/OS;
-// docs/radar.md §7): 0 where the iid factors serve; per solved geometry (at most 2 K + 2) CA's eigenvalue
-// solves, ~12 x (N + 1)^3, and for GO/SO/OS 2^14 samples x (the reference vector's products, N^2 /
-// 2 per tilted component and N x the correlation's band for the noise itself, + ~15 conditional
-// tails, Marcum evaluations where the cell under test is correlated with a reference cell), at the
-// anchor's N. At most kCfarDesignBudgetSeconds unless the anchor's floor 2 K + 1 needs more
-// (not for the chain's windows).
+// docs/radar.md §7): 0 where the iid factors serve; per solved geometry (at most 2 K + 2) CA's
+// eigenvalue solves, ~12 x (N + 1)^3, and for GO/SO/OS 2^14 samples x (the reference vector's
+// products, N^2 / 2 per tilted component and N x the correlation's band for the noise itself, + ~15
+// conditional tails, Marcum evaluations where the cell under test is correlated with a reference
+// cell), at the anchor's N. At most kCfarDesignBudgetSeconds unless the anchor's floor 2 K + 1
+// needs more (not for the chain's windows).
 double cfar_design_seconds(const CfarConfig& config, const NoiseCorrelation& noise);
 
 }  // namespace fogradar::radar

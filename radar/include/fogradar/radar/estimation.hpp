@@ -1,6 +1,6 @@
 // From the range-Doppler map to detections: CFAR along range in every Doppler bin, detected cells
-// grouped into objects (8-connected, Doppler wrapping), each object's peak interpolated to the exact
-// DTFT maximum, received power calibrated for every processing gain, RCS by paper eq. 7.
+// grouped into objects (8-connected, Doppler wrapping), each object's peak interpolated to the
+// exact DTFT maximum, received power calibrated for every processing gain, RCS by paper eq. 7.
 #pragma once
 
 #include <complex>
@@ -21,16 +21,16 @@ namespace fogradar::radar {
 
 struct Detection {
   double range_m = 0.0;
-  double radial_velocity_m_per_s = 0.0;   // + receding
-  double range_bin = 0.0;                 // interpolated
-  double doppler_bin = 0.0;               // interpolated, signed (in [-N_c/2, N_c/2))
-  double received_power_w = 0.0;          // at the receiver input, all processing gains removed
-  double rcs_m2 = 0.0;                    // eq. 7 with the estimated range
+  double radial_velocity_m_per_s = 0.0;  // + receding
+  double range_bin = 0.0;                // interpolated
+  double doppler_bin = 0.0;              // interpolated, signed (in [-N_c/2, N_c/2))
+  double received_power_w = 0.0;         // at the receiver input, all processing gains removed
+  double rcs_m2 = 0.0;                   // eq. 7 with the estimated range
   double rcs_dbsm = 0.0;
-  double snr_db = 0.0;                    // peak power over the chain's thermal-noise power per cell
-  std::size_t cells = 0;                  // detected cells in the object
-  std::size_t range_cell = 0;             // the object's strongest cell: range bin in [0, N)
-  std::size_t doppler_cell = 0;           // and Doppler bin in [0, N_c) (unsigned, as in the map)
+  double snr_db = 0.0;           // peak power over the chain's thermal-noise power per cell
+  std::size_t cells = 0;         // detected cells in the object
+  std::size_t range_cell = 0;    // the object's strongest cell: range bin in [0, N)
+  std::size_t doppler_cell = 0;  // and Doppler bin in [0, N_c) (unsigned, as in the map)
   // What dominates the strongest cell (OriginClassifier, attribution.hpp); estimate_detections
   // leaves noise, RadarChain::measure sets it.
   Origin origin = Origin::noise;
@@ -66,15 +66,17 @@ struct InverseDft {
 struct EstimationWorkspace {
   CfarFourWorkspace cfar_four;  // |X|^2 of four Doppler rows under CFAR, and its results
   CfarWorkspace cfar;
-  std::vector<double> row_power;        // |X|^2 of a Doppler row under CFAR (the last rows % 4)
-  std::vector<std::uint8_t> detected;   // chirps x samples mask, all zero between frames
+  std::vector<double> row_power;            // |X|^2 of a Doppler row under CFAR (the last rows % 4)
+  std::vector<std::uint8_t> detected;       // chirps x samples mask, all zero between frames
   std::vector<std::size_t> detected_cells;  // the cells set in the mask, ascending
-  std::vector<std::size_t> stack;       // flood fill
+  std::vector<std::size_t> stack;           // flood fill
   DirichletTable range_table, doppler_table;
   std::vector<double> rotated_re, rotated_im, sin_j, cos_j;  // one peak search (see estimation.cpp)
   InverseDft range_inverse, doppler_inverse;  // the peak's time signal for the final Newton steps
-  std::vector<double> kernel_re, kernel_im;   // Dirichlet weights along range, each value twice, per object
-  std::vector<std::complex<double>> doppler;  // range-interpolated value per Doppler bin, per object
+  std::vector<double> kernel_re,
+      kernel_im;  // Dirichlet weights along range, each value twice, per object
+  std::vector<std::complex<double>>
+      doppler;  // range-interpolated value per Doppler bin, per object
 };
 
 // Exact interpolation of a DFT to a fractional bin nu: the DTFT of the (windowed) time signal,
@@ -86,7 +88,8 @@ struct EstimationWorkspace {
 // from `table` (made for n), sin(pi (j + f)/N) = sin(pi j/N) cos(pi f/N) + cos(pi j/N) sin(pi f/N),
 // so one call costs three sines and N divisions (derivation in docs/radar.md sec. 5).
 void dirichlet_kernel(double nu, std::size_t n, std::span<std::complex<double>> kernel);
-void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::complex<double>> kernel);
+void dirichlet_kernel(double nu, const DirichletTable& table,
+                      std::span<std::complex<double>> kernel);
 
 // The row interpolation inside estimate_detections, declared for its test: out[o * rows + r] =
 // sum_m map[r][m] K_o[m] for the `objects` (at most 4) kernels K_o, map the rows x columns complex
@@ -94,8 +97,8 @@ void dirichlet_kernel(double nu, const DirichletTable& table, std::span<std::com
 // value stored twice (kernel_re[2m] = kernel_re[2m+1] = Re K_o[m], likewise Im). The sums are
 // formed in a fixed order (estimation.cpp), the same in every instruction-set version.
 void rows_times_interleaved_kernels(const double* map, std::size_t rows, std::size_t columns,
-                                    const double* kernel_re, const double* kernel_im, std::size_t objects,
-                                    std::complex<double>* out);
+                                    const double* kernel_re, const double* kernel_im,
+                                    std::size_t objects, std::complex<double>* out);
 
 // Detections of one processed frame (map = the complex range-Doppler map of
 // RangeDopplerProcessor; the CFAR runs on |map|^2, formed one Doppler row at a time).

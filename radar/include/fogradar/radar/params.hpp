@@ -58,8 +58,11 @@ struct RadarParams {
   double adc_full_scale_dbm = -20.0;       // power of a full-scale complex tone at the ADC input
   double phase_noise_rms_rad = 0.0;        // white phase noise per sample (0: off)
   WindowType window = WindowType::hann;    // range and Doppler
-  CfarConfig cfar{.kind = CfarKind::ca, .guard_cells = 2, .training_cells = 8,
-                  .false_alarm_probability = 1e-6, .os_rank = 0};
+  CfarConfig cfar{.kind = CfarKind::ca,
+                  .guard_cells = 2,
+                  .training_cells = 8,
+                  .false_alarm_probability = 1e-6,
+                  .os_rank = 0};
   double association_gate_m = 0.5;  // |R_detected - R_expected| for the tracked target
   Radome radome;
 
@@ -75,20 +78,20 @@ KeyTable<RadarParams> radar_param_keys();
 
 // Everything the chain derives from RadarParams.
 struct RadarDerived {
-  double wavelength_m;                  // c / f_c, f_c the sweep centre
-  double start_frequency_hz;            // f_0 = f_c - eps B / 2
-  double sweep_sign;                    // eps: +1 up, -1 down
-  double chirp_slope_hz_per_s;          // S = B / T_c (magnitude; the sweep runs at eps S)
-  double range_resolution_m;            // c / (2 B)
-  double range_bin_m;                   // c fs / (2 S N): one range-FFT bin
-  double max_range_m;                   // c fs / (2 S): complex sampling, beat in [0, fs)
-  double velocity_resolution_m_per_s;   // lambda / (2 N_c T_i)
+  double wavelength_m;                      // c / f_c, f_c the sweep centre
+  double start_frequency_hz;                // f_0 = f_c - eps B / 2
+  double sweep_sign;                        // eps: +1 up, -1 down
+  double chirp_slope_hz_per_s;              // S = B / T_c (magnitude; the sweep runs at eps S)
+  double range_resolution_m;                // c / (2 B)
+  double range_bin_m;                       // c fs / (2 S N): one range-FFT bin
+  double max_range_m;                       // c fs / (2 S): complex sampling, beat in [0, fs)
+  double velocity_resolution_m_per_s;       // lambda / (2 N_c T_i)
   double max_unambiguous_velocity_m_per_s;  // lambda / (4 T_i)
-  double noise_power_w;                 // k T0 F fs, per complex sample
+  double noise_power_w;                     // k T0 F fs, per complex sample
   double tx_power_w;
-  double tx_gain;                       // linear
+  double tx_gain;  // linear
   double rx_gain;
-  double beam_solid_angle_sr;           // two-way equivalent, Probert-Jones 1962
+  double beam_solid_angle_sr;  // two-way equivalent, Probert-Jones 1962
 };
 
 RadarDerived derive(const RadarParams& params);

@@ -25,9 +25,9 @@ struct DetectionRecord {
   double snr_db = 0.0;
   double rcs_dbsm = 0.0;
   Origin origin = Origin::noise;
-  bool in_gate = false;     // within the association gate of the chamber's target range
-  bool associated = false;  // the gate's strongest: the one the record associates
-  std::size_t range_cell = 0;    // the peak cell the attribution looked at (Detection)
+  bool in_gate = false;        // within the association gate of the chamber's target range
+  bool associated = false;     // the gate's strongest: the one the record associates
+  std::size_t range_cell = 0;  // the peak cell the attribution looked at (Detection)
   std::size_t doppler_cell = 0;
   std::int16_t layer = -1;  // for a fog origin, the dominant chamber layer (Detection::layer)
 };
@@ -47,10 +47,10 @@ struct MeasurementRecord {
   // A fog-origin detection echoes at least as strongly (received power) as the target detection,
   // or there is no target detection at all: the sensor cannot tell target from fog.
   bool fog_rivals_target = false;
-  std::size_t fog_detections = 0;  // fog-origin detections anywhere in the map
-  std::size_t false_alarms = 0;    // noise-origin detections anywhere in the map
-  std::size_t clipping_detections = 0;  // clipping-origin detections anywhere in the map
-  std::size_t sidelobe_detections = 0;  // sidelobe-origin detections anywhere in the map
+  std::size_t fog_detections = 0;           // fog-origin detections anywhere in the map
+  std::size_t false_alarms = 0;             // noise-origin detections anywhere in the map
+  std::size_t clipping_detections = 0;      // clipping-origin detections anywhere in the map
+  std::size_t sidelobe_detections = 0;      // sidelobe-origin detections anywhere in the map
   std::vector<DetectionRecord> detections;  // every detection of the map, in the chain's order
   // The frame's samples and those with an I or Q rail clipped by the ADC (SynthesisReport); not
   // written per measurement, summed per step (StepSummary::adc_clipped_fraction).
@@ -85,7 +85,7 @@ struct StepSummary {
   // Mean sidelobe-origin detections per measurement: sidelobe false alarms, echoes' leakage outside
   // their window main lobes (attribution.hpp), not counted with the noise's false alarms.
   double sidelobe_detections_per_frame = 0.0;
-  stats::BoxPlot rcs;                     // of the target detections' rcs_dbsm values
+  stats::BoxPlot rcs;  // of the target detections' rcs_dbsm values
   // Against the 0-layer series: the Hodges-Lehmann shift (median of all pairwise differences
   // x_i - y_j), its distribution-free 95 % interval (the inverted Mann-Whitney test) and the
   // Mann-Whitney U p-value; shift 0 and interval and p NaN for the baseline itself, all NaN when

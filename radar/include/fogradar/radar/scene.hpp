@@ -71,9 +71,10 @@ struct Scene {
 Scene point_target_scene(double rcs_dbsm);
 
 // Rear of the Euro NCAP Vehicle Target as a cluster of scattering centres whose mean RCS adds up to
-// `rcs_dbsm` (about 10 dBsm, vehicle rears 7-12 dBsm per the study's ref. [25]): a dominant centre at the rear centre and four weaker ones
-// at the bumper corners and light clusters. Geometry after the EVT's 1.8 m x 1.4 m rear (ADAC, the
-// study's ref. [19]); the split of RCS among centres is an assumption stated in docs/radar.md.
+// `rcs_dbsm` (about 10 dBsm, vehicle rears 7-12 dBsm per the study's ref. [25]): a dominant centre
+// at the rear centre and four weaker ones at the bumper corners and light clusters. Geometry after
+// the EVT's 1.8 m x 1.4 m rear (ADAC, the study's ref. [19]); the split of RCS among centres is an
+// assumption stated in docs/radar.md.
 Scene evt_rear_scene(double rcs_dbsm = 10.0);
 
 // A propagation path as the receiver sees it: two-way path length, complex amplitude (sqrt(W)) at

@@ -73,7 +73,6 @@ struct SetupCost {
 };
 SetupCost setup_cost(const SensorParams& params, const sensor::Context& context);
 
-
 // What a run of the radar found (RadarRun::summarize): its records and their summary.
 class RadarReport : public sensor::SensorSummary {
  public:

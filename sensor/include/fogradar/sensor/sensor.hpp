@@ -98,8 +98,8 @@ struct SetupTime {
   double make_seconds = 0.0;    // make(): once per process, or per sensor a sweep cannot reuse
   double run_seconds = 0.0;     // each run: begin_run, every step prepared, summarize
   double report_seconds = 0.0;  // a result set (`fogradar run`): its fog reports and result files
-  std::string detail;  // what make_seconds is made of, with its keys and values
-  std::string key;     // the key that sizes it most ("processing.cfar.threshold_design")
+  std::string detail;           // what make_seconds is made of, with its keys and values
+  std::string key;              // the key that sizes it most ("processing.cfar.threshold_design")
 };
 
 enum class Band { radio, optical };

@@ -51,17 +51,17 @@ struct SweepOptions {
   // After each point: (points committed, points in all, seconds so far of this invocation's
   // points).
   std::function<void(std::size_t, std::size_t, double)> progress;
-  // Sensors kept from point to point (what does not depend on a swept key is made once); run_sweep()
-  // uses this one when given, else keeps its own.
+  // Sensors kept from point to point (what does not depend on a swept key is made once);
+  // run_sweep() uses this one when given, else keeps its own.
   experiment::SensorCache* cache = nullptr;
 };
 
 // What a sweep will do, said before it does it.
 struct SweepEstimate {
   std::size_t points = 0;
-  std::size_t runs = 0;   // points x (replications + setups)
-  std::size_t items = 0;  // of every sensor of every run
-  double seconds = 0.0;   // experiment::estimate_runs of every run, in one process: wall time
+  std::size_t runs = 0;      // points x (replications + setups)
+  std::size_t items = 0;     // of every sensor of every run
+  double seconds = 0.0;      // experiment::estimate_runs of every run, in one process: wall time
   double cpu_seconds = 0.0;  // and CPU time
   std::size_t peak_bytes = 0;
   std::string text() const;

@@ -33,7 +33,8 @@ using u64x4 = std::uint64_t __attribute__((vector_size(32)));
 // FOGRADAR_SIMD_AVX2 and FOGRADAR_SIMD_AVX512 say which clones exist, for the loop that is written
 // out per instruction set instead (complex_normal_generator.cpp).
 #ifndef FOGRADAR_SIMD_CLONES
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(FOGRADAR_SIMD_NO_AVX512)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    defined(FOGRADAR_SIMD_NO_AVX512)
 #define FOGRADAR_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #define FOGRADAR_SIMD_AVX2 1
 #elif defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)

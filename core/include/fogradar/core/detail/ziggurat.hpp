@@ -45,7 +45,8 @@ constexpr double log_positive(double x) {
   // Carry into bit 52 iff the mantissa is >= sqrt(2) - 1: then 1 + f is halved and k raised by 1.
   const std::uint64_t halve = (mantissa + 0x0009'5F64'0000'0000ULL) & 0x0010'0000'0000'0000ULL;
   const double one_plus_f = std::bit_cast<double>(mantissa | (halve ^ 0x3FF0'0000'0000'0000ULL));
-  const double k = static_cast<double>(static_cast<std::int64_t>((bits >> 52) + (halve >> 52)) - 1023);
+  const double k =
+      static_cast<double>(static_cast<std::int64_t>((bits >> 52) + (halve >> 52)) - 1023);
   const double f = one_plus_f - 1.0;
   const double s = f / (2.0 + f);
   const double z = s * s;
@@ -68,7 +69,8 @@ inline constexpr double ziggurat_v = 0x1.006f48073a080p-11;    // 4.891103607436
 
 struct ZigguratTable {
   // {x_i, x_{i+1}} in single precision: the fast path's width of layer i and the part of it that
-  // lies under f in full (x_0 = v / f(r), the base strip's width as if it held the tail; x_2048 = 0).
+  // lies under f in full (x_0 = v / f(r), the base strip's width as if it held the tail; x_2048 =
+  // 0).
   std::array<std::array<float, 2>, ziggurat_layers> fast{};
   std::array<double, ziggurat_layers + 1> x{};
   std::array<double, ziggurat_layers + 1> f{};  // f(x_i); f_0 = 0 (the strip reaches the x axis)
@@ -100,7 +102,9 @@ constexpr ZigguratTable make_ziggurat_table() {
 // one word (Float = float, Word = std::uint32_t) or for the lanes of a vector of them.
 template <class Float, class Word>
 [[gnu::always_inline]] inline Float layer_uniform(Word word) {
-  return lanes_as<Float>(((word >> ziggurat_index_bits) << (23 - ziggurat_uniform_bits)) | 0x3F80'0000U) - 1.0F;
+  return lanes_as<Float>(((word >> ziggurat_index_bits) << (23 - ziggurat_uniform_bits)) |
+                         0x3F80'0000U) -
+         1.0F;
 }
 
 // The fast path: x = u x_i, taken when x < x_{i+1}. Returns false (and x) otherwise.
@@ -122,7 +126,8 @@ float ziggurat_slow(std::uint32_t word, float x, const ZigguratTable& table, Nex
       return static_cast<float>(ziggurat_r - log_positive(2.0 - mantissa_in_one_two(next_word())));
     }
     // Wedge: a uniform height y in the layer lies under f at x iff ln y < -x.
-    const double y = table.f[i] + (mantissa_in_one_two(next_word()) - 1.0) * (table.f[i + 1] - table.f[i]);
+    const double y =
+        table.f[i] + (mantissa_in_one_two(next_word()) - 1.0) * (table.f[i + 1] - table.f[i]);
     if (log_positive(y) < -static_cast<double>(x)) return x;
     word = static_cast<std::uint32_t>(next_word());
     if (ziggurat_fast(word, table, x)) return x;
