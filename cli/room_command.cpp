@@ -33,15 +33,6 @@ struct RoomOptions {
   bool json = false;
 };
 
-std::string optical_names_text() {
-  std::string allowed;
-  for (const propagation::Material material : propagation::optical_materials()) {
-    allowed += allowed.empty() ? "one of " : ", ";
-    allowed += propagation::to_string(material);
-  }
-  return allowed;
-}
-
 // The text an option was typed as, kept for the message that refuses it after the parse.
 CLI::Validator keep_text(std::string* typed) {
   return CLI::Validator(
@@ -120,7 +111,7 @@ void run_room(const RoomOptions& o) {
         propagation::optical_wavelength_range(material, table);
     if (!range) {
       throw_invalid("--material", o.material,
-                    optical_names_text() +
+                    "one of " + propagation::optical_material_names() +
                         " with --wavelength-nm (the materials with optical "
                         "data)");
     }

@@ -69,15 +69,6 @@ std::string range_text(double low, double high, std::string_view unit) {
   return "in [" + message_number(low) + ", " + message_number(high) + "] " + std::string(unit);
 }
 
-std::string optical_names() {
-  std::string text;
-  for (const Material material : with_optical_data) {
-    text += text.empty() ? "" : ", ";
-    text += to_string(material);
-  }
-  return text;
-}
-
 }  // namespace
 
 std::optional<ItuP2040Fit> itu_p2040_fit(Material material) {
@@ -128,6 +119,15 @@ complex radio_permittivity(Material material, double frequency_hz, std::string_v
 }
 
 std::span<const Material> optical_materials() { return with_optical_data; }
+
+std::string optical_material_names() {
+  std::string text;
+  for (const Material material : with_optical_data) {
+    text += text.empty() ? "" : ", ";
+    text += to_string(material);
+  }
+  return text;
+}
 
 std::optional<WavelengthRangeNm> optical_wavelength_range(Material material,
                                                           const SegelsteinTable& table) {
@@ -193,7 +193,7 @@ complex optical_refractive_index(Material material, double wavelength_m,
     throw InvalidParameter(std::string(field),
                            "material '" + std::string(to_string(material)) +
                                "' has no optical data: the materials with optical data are " +
-                               optical_names());
+                               optical_material_names());
   }
   const double wavelength_nm = wavelength_m * 1e9;
   if (!(wavelength_nm >= range->min_nm && wavelength_nm <= range->max_nm)) {

@@ -9,6 +9,7 @@
 #include <complex>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "fogradar/core/enum_names.hpp"
@@ -113,6 +114,8 @@ struct WavelengthRangeNm {
 // 1965 Sellmeier fit, absorption neglected) and metal (aluminium, Rakic et al. 1998 Lorentz-Drude
 // fit). The others have none.
 std::span<const Material> optical_materials();
+// Their names, "water, glass, metal", for messages.
+std::string optical_material_names();
 std::optional<WavelengthRangeNm> optical_wavelength_range(Material material,
                                                           const SegelsteinTable& table);
 std::string_view optical_index_source(Material material);
