@@ -63,4 +63,15 @@ inline CLI::Validator non_empty_path(std::string option) {
       "", "");
 }
 
+// Keeps the text an option was typed as in `typed`, for a message that refuses its value after the
+// parse (a bound that depends on other options).
+inline CLI::Validator keep_text(std::string* typed) {
+  return CLI::Validator(
+      [typed](const std::string& text) {
+        *typed = text;
+        return std::string();
+      },
+      "", "");
+}
+
 }  // namespace fogradar::cli

@@ -565,12 +565,7 @@ Action add_fog_command(CLI::App& app) {
       ->capture_default_str()
       ->check(number_in("--frequency-ghz", 0.03, 2.99e7,
                         "in [0.03, 1000] with --water-model liebe, [0.03, 2.99e7] with segelstein"))
-      ->check(CLI::Validator(
-          [options](const std::string& text) {
-            options->frequency_typed = text;
-            return std::string();
-          },
-          "", ""));
+      ->check(keep_text(&options->frequency_typed));
   auto* lwc =
       fog->add_option("--lwc", options->lwc_g_per_m3, "Liquid water content in g/m^3 [0, 100]")
           ->check(number_in("--lwc", 0.0, 100.0, "in [0, 100]"));

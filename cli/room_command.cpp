@@ -33,16 +33,6 @@ struct RoomOptions {
   bool json = false;
 };
 
-// The text an option was typed as, kept for the message that refuses it after the parse.
-CLI::Validator keep_text(std::string* typed) {
-  return CLI::Validator(
-      [typed](const std::string& text) {
-        *typed = text;
-        return std::string();
-      },
-      "", "");
-}
-
 std::string number(double value) {
   std::ostringstream text;
   text << std::setprecision(6) << value;
