@@ -82,18 +82,13 @@ KeyTable<CameraParams> camera_keys() {
                "assumption: the study gives no ROI size");
   keys.integer("roi.cell_px", FOGRADAR_KEY_FIELD(roi.cell_px), 2, 2048,
                "square cells of one reflectance each: the scale of the scene's structure (edges)")
-      .also([](const CameraParams&) {
-        return std::string(
-            "with 2 x camera.roi.cell_px <= camera.roi.width_px and "
-            "camera.roi.height_px");
-      })
-      .with_check([](const CameraParams& p) {
-        const RoiParams& roi = p.roi;
-        if (!(roi.cell_px <= roi.width_px / 2 && roi.cell_px <= roi.height_px / 2)) {
-          throw_invalid("camera.roi.cell_px", static_cast<double>(roi.cell_px),
-                        "in [2, " + std::to_string(std::min(roi.width_px, roi.height_px) / 2) +
-                            "] (half of min(camera.roi.width_px, camera.roi.height_px))");
-        }
+      .within([](const CameraParams& p) {
+        const double half = static_cast<double>(std::min(p.roi.width_px, p.roi.height_px) / 2);
+        return CrossBound{.range = closed(2.0, half),
+                          .low_text = "2",
+                          .high_text = message_number(half),
+                          .integer = true,
+                          .note = " (half of min(camera.roi.width_px, camera.roi.height_px))"};
       })
       .documented_as("integer [2, min(width_px, height_px)/2]");
   keys.number("roi.target_fraction", FOGRADAR_KEY_FIELD(roi.target_fraction), closed(0.05, 0.95),

@@ -64,10 +64,9 @@ IntegerRange integer_range(const ScenarioKey& key, const Scenario& s,
   if (key.integer_low == std::numeric_limits<std::int64_t>::min()) {
     return {key.integer_low, key.integer_high, "an integer (" + key.allowed + ")"};
   }
-  std::string text = "an integer in [" + std::to_string(key.integer_low) + ", " +
-                     std::to_string(key.integer_high) + "]";
-  if (key.integer_also) text += " " + key.integer_also(s);
-  return {key.integer_low, key.integer_high, text};
+  return {key.integer_low, key.integer_high,
+          "an integer in [" + std::to_string(key.integer_low) + ", " +
+              std::to_string(key.integer_high) + "]"};
 }
 
 // docs/scenario.md's allowed values as a message states them (no Markdown).
@@ -232,7 +231,7 @@ class Reader {
   // A key whose bound involves other keys (processing.cfar.guard_cells) states its true range in
   // its check; the widest value the reader takes draws it out.
   std::optional<std::string> bound_by_others(const ScenarioKey& key) const {
-    if (!key.integer_also) return std::nullopt;
+    if (!key.cross_check) return std::nullopt;
     return refusal(
         key, [&key](Scenario& probe) { key.set_integer(probe, key.integer_high); }, true);
   }
@@ -349,7 +348,9 @@ class Reader {
       }
       case KeyType::integer: {
         const IntegerRange range = integer_range(key, scenario_, layers_in_file());
-        if (!node.is_integer()) fail(node, key.name, given + integer_text(key, range));
+        if (!node.is_integer()) {
+          fail(node, key.name, given + bound_by_others(key).value_or(integer_text(key, range)));
+        }
         const std::int64_t value = *node.value<std::int64_t>();
         if (value < range.low || value > range.high) {
           fail(node, key.name, given + bound_by_others(key).value_or(range.text));

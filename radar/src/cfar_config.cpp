@@ -43,20 +43,9 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
   keys.integer("training_cells", FOGRADAR_KEY_FIELD(training_cells), 1, 32767, "per side");
   keys.number("false_alarm_probability", FOGRADAR_KEY_FIELD(false_alarm_probability),
               open(0.0, 1.0), "design P_fa");
-  const std::string rank_key = prefix + "os_rank", training_key = prefix + "training_cells";
   keys.integer("os_rank", FOGRADAR_KEY_FIELD(os_rank), 0, 65534,
                "OS rank k; 0 = round(3/4 · 2·training)")
-      .also([training_key](const CfarConfig& c) {
-        return "and 0 or at most 2 x " + training_key + " = " + std::to_string(c.reference_cells());
-      })
-      .with_check([rank_key, training_key](const CfarConfig& c) {
-        const std::size_t big_n = c.reference_cells();
-        if (c.os_rank > big_n) {
-          throw_invalid(rank_key, c.os_rank,
-                        "0 (default round(3N/4)) or in [1, " + std::to_string(big_n) +
-                            "] (N = 2 x " + training_key + ")");
-        }
-      })
+      .within([prefix](const CfarConfig& c) { return c.os_rank_bound(prefix); })
       .documented_as("integer 0 or [1, 2·training]")
       .when([](const CfarConfig& c) { return c.kind == CfarKind::os; },
             "with " + prefix + "kind = \"os\" (the other kinds average their cells)");
@@ -71,29 +60,70 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
 
 void CfarConfig::validate() const { cfar_keys("cfar.").check(*this); }
 
+namespace {
+
+// 2 (guard + training) + 1 <= L: the guard and training cells per side that fit in L cells.
+std::size_t cells_per_side(std::size_t profile_length) {
+  return profile_length >= 1 ? (profile_length - 1) / 2 : 0;
+}
+
+const char* const window_rule = " (2 (guard + training) + 1 <= profile length)";
+
+}  // namespace
+
+CrossBound CfarConfig::training_bound(std::size_t profile_length, std::string_view prefix,
+                                      std::string_view profile) const {
+  const double most =
+      static_cast<double>(cells_per_side(profile_length)) - static_cast<double>(guard_cells);
+  return CrossBound{.range = closed(1.0, most),
+                    .low_text = "1",
+                    .high_text = message_number(most),
+                    .integer = true,
+                    .note = " with " + std::string(prefix) +
+                            "guard_cells = " + std::to_string(guard_cells) + " and " +
+                            std::string(profile) + window_rule};
+}
+
+CrossBound CfarConfig::guard_bound(std::size_t profile_length, std::string_view prefix,
+                                   std::string_view profile) const {
+  const std::size_t usable = cells_per_side(profile_length);
+  // Guard cells that leave room for one training cell are in range here; training_bound() then
+  // names the training cells that do not fit beside them.
+  const double most = guard_cells < usable
+                          ? static_cast<double>(usable - 1)
+                          : static_cast<double>(usable) - static_cast<double>(training_cells);
+  return CrossBound{.range = closed(0.0, most),
+                    .low_text = "0",
+                    .high_text = message_number(most),
+                    .integer = true,
+                    .note = " with " + std::string(prefix) +
+                            "training_cells = " + std::to_string(training_cells) + " and " +
+                            std::string(profile) + window_rule};
+}
+
+CrossBound CfarConfig::os_rank_bound(std::string_view prefix) const {
+  const auto big_n = static_cast<double>(reference_cells());
+  return CrossBound{
+      .range = closed(0.0, big_n),
+      .low_text = "0",
+      .high_text = "2 x " + std::string(prefix) + "training_cells = " + message_number(big_n),
+      .integer = true,
+      .note = " (0: the default rank round(3N/4))"};
+}
+
 void CfarConfig::validate_profile_length(std::size_t profile_length,
                                          std::string_view prefix) const {
+  // The detector checks every profile: the messages are made only for a window that does not fit.
   if (profile_length >= window_length()) return;
-  const std::string guard_key = std::string(prefix) + "guard_cells",
-                    training_key = std::string(prefix) + "training_cells";
-  // Largest guard + n with 2 (guard + n) + 1 <= profile_length.
-  const std::size_t usable = profile_length >= 1 ? (profile_length - 1) / 2 : 0;
-  const std::string rule = " (2 (guard + training) + 1 <= profile length)";
-  const std::string profile =
-      "a profile of radar.samples_per_chirp = " + std::to_string(profile_length) + " cells";
-  if (usable > guard_cells) {
-    throw_invalid(training_key, training_cells,
-                  "in [1, " + std::to_string(usable - guard_cells) + "] with " + guard_key + " = " +
-                      std::to_string(guard_cells) + " and " + profile + rule);
+  const std::string profile = "a profile of " + std::to_string(profile_length) + " cells";
+  const CrossBound guard = guard_bound(profile_length, prefix, profile);
+  if (!guard.admits(guard_cells)) {
+    throw_invalid(std::string(prefix) + "guard_cells", guard_cells, guard.constraint());
   }
-  // The guard cells alone fill the profile: they are what must shrink.
-  const std::string constraint =
-      usable > training_cells
-          ? "in [0, " + std::to_string(usable - training_cells) + "] with " + training_key + " = " +
-                std::to_string(training_cells) + " and " + profile + rule
-          : "smaller: with " + training_key + " = " + std::to_string(training_cells) +
-                " not even 0 guard cells fit in " + profile + rule;
-  throw_invalid(guard_key, guard_cells, constraint);
+  const CrossBound training = training_bound(profile_length, prefix, profile);
+  if (!training.admits(training_cells)) {
+    throw_invalid(std::string(prefix) + "training_cells", training_cells, training.constraint());
+  }
 }
 
 }  // namespace fogradar::radar

@@ -119,25 +119,27 @@ KeyTable<RadarParams> radar_param_keys() {
               "the tracked target is the strongest detection within this of the chamber's target "
               "range");
   keys.include(cfar_keys("processing.cfar."), FOGRADAR_KEY_FIELD(cfar));
-  // The CFAR's window must fit in a range profile: validate() checks it with the key the user gave.
-  const auto window_rule = [](const RadarParams& p) {
-    return "with 2 (processing.cfar.guard_cells + processing.cfar.training_cells) + 1 <= "
-           "radar.samples_per_chirp = " +
-           std::to_string(p.samples_per_chirp);
+  // The CFAR slides along range, one Doppler bin at a time: its window must fit in a range profile.
+  const auto profile = [](const RadarParams& p) {
+    return "a profile of radar.samples_per_chirp = " + std::to_string(p.samples_per_chirp) +
+           " cells";
   };
-  for (const char* cells : {"processing.cfar.guard_cells", "processing.cfar.training_cells"}) {
-    Key<RadarParams>& key = keys.at(cells);
-    key.also(window_rule)
-        .documented_as(key.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
-  }
+  Key<RadarParams>& guard = keys.at("processing.cfar.guard_cells");
+  guard
+      .within([profile](const RadarParams& p) {
+        return p.cfar.guard_bound(p.samples_per_chirp, "processing.cfar.", profile(p));
+      })
+      .documented_as(guard.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
+  Key<RadarParams>& training = keys.at("processing.cfar.training_cells");
+  training
+      .within([profile](const RadarParams& p) {
+        return p.cfar.training_bound(p.samples_per_chirp, "processing.cfar.", profile(p));
+      })
+      .documented_as(training.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
   return keys;
 }
 
-void RadarParams::validate() const {
-  radar_param_keys().check(*this);
-  // CFAR slides along range, one Doppler bin at a time.
-  cfar.validate_profile_length(samples_per_chirp, "processing.cfar.");
-}
+void RadarParams::validate() const { radar_param_keys().check(*this); }
 
 RadarDerived derive(const RadarParams& p) {
   p.validate();

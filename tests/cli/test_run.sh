@@ -282,7 +282,7 @@ expect_bad_run empty-window "empty-window.toml:2: processing.window = ''" "one o
   --scenario "$work/empty-window.toml"
 expect_bad_run empty-water-model "empty-water.toml:2: fog.water_model = ''" "one of liebe, segelstein" \
   --scenario "$work/empty-water.toml"
-expect_bad_run integer-documented-range "radar.samples_per_chirp = 5000000000" "an integer in [16, 65536]" \
+expect_bad_run integer-documented-range "radar.samples_per_chirp = 5000000000" "an integer in [16, 512]: the samples fit in the chirp" \
   --scenario "$work/huge-samples.toml"
 expect_bad_run clutter-range "fog.clutter_scatterers_per_bin = 65" "an integer in [1, 64]" --scenario "$work/clutter.toml"
 expect_bad_run scenario-seed "seed.toml:2: experiment.seed = -1" "an integer in [0, 9223372036854775807]" \

@@ -218,11 +218,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"huge_os_rank",
                  "[processing.cfar]\nkind = \"os\"\ntraining_cells = 4\nos_rank = 70000\n",
                  "processing.cfar.os_rank", 4,
-                 "0 (default round(3N/4)) or in [1, 8] (N = 2 x processing.cfar.training_cells)",
+                 "an integer in [0, 2 x processing.cfar.training_cells = 8] (0: the default rank "
+                 "round(3N/4))",
                  "processing.cfar.training_cells at line 3"},
         BadInput{"os_rank_beyond_training",
                  "[processing.cfar]\nkind = \"os\"\ntraining_cells = 4\nos_rank = 9\n",
-                 "processing.cfar.os_rank", 4, "[1, 8]",
+                 "processing.cfar.os_rank", 4, "[0, 2 x processing.cfar.training_cells = 8]",
                  "processing.cfar.training_cells at line 3"},
         // Keys that would do nothing are refused, naming what makes them work.
         BadInput{"os_rank_without_os", "[processing.cfar]\nos_rank = 4\n",
@@ -287,9 +288,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "experiment.measurements_per_step", 2, "an integer in [1, 1000000]"},
         // Integer keys state their documented range, not the C type's.
         BadInput{"samples_beyond_unsigned", "[radar]\nsamples_per_chirp = 5000000000\n",
-                 "radar.samples_per_chirp", 2, "= 5000000000: must be an integer in [16, 65536]"},
+                 "radar.samples_per_chirp", 2,
+                 "= 5000000000: must be an integer in [16, 512]: the samples fit in the chirp, "
+                 "radar.chirp_duration_s x radar.sample_rate_hz = 512"},
         BadInput{"fractional_samples", "[radar]\nsamples_per_chirp = 1.5\n",
-                 "radar.samples_per_chirp", 2, "= 1.5: must be an integer in [16, 65536]"},
+                 "radar.samples_per_chirp", 2, "= 1.5: must be an integer in [16, 512]"},
         BadInput{"too_many_chirps", "[radar]\nchirps_per_frame = 16385\n", "radar.chirps_per_frame",
                  2, "an integer in [1, 16384]"},
         BadInput{"too_many_adc_bits", "[radar]\nadc_bits = 25\n", "radar.adc_bits", 2,
@@ -460,7 +463,8 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
       {"[radar] # \xc3\xbc\ntx_power_dbm = 1_000.5 # \xc3\xbc\n",
        "bad.toml:2: radar.tx_power_dbm = 1_000.5: must be in [-30, 50]"},
       {"[radar]\nsamples_per_chirp = 0x10_0000\n",
-       "bad.toml:2: radar.samples_per_chirp = 0x10_0000: must be an integer in [16, 65536]"},
+       "bad.toml:2: radar.samples_per_chirp = 0x10_0000: must be an integer in [16, 512]: the "
+       "samples fit in the chirp, radar.chirp_duration_s x radar.sample_rate_hz = 512"},
       {"[fog]\nvisibility_m = 1E-4\n",
        "bad.toml:2: fog.visibility_m = 1E-4: must be in [0.001, 10000000]"},
       // A layer's length given as nan is quoted, not taken for a missing one.

@@ -106,9 +106,6 @@ struct Key {
   std::function<void(P&, std::int64_t)> set_integer;
   std::int64_t integer_low = 0;
   std::int64_t integer_high = 0;
-  // A bound other keys set within [integer_low, integer_high], as text for the reader's message
-  // ("with 2 (guard + training) + 1 <= radar.samples_per_chirp = 512").
-  std::function<std::string(const P&)> integer_also;
   std::function<bool(const P&)> get_boolean;
   std::function<void(P&, bool)> set_boolean;
   // choice: the name of the value; setting an unknown name throws InvalidParameter naming `name`.
@@ -154,10 +151,6 @@ struct Key {
   }
   Key& in_group(std::string name_of_group) {
     group = std::move(name_of_group);
-    return *this;
-  }
-  Key& also(std::function<std::string(const P&)> text) {
-    integer_also = std::move(text);
     return *this;
   }
   // Adds the check of a bound other keys set (a number or integer key): `bound(p)` gives the range
@@ -473,7 +466,6 @@ class KeyTable {
     if (sub.set_number) key.set_number = writing(std::move(sub.set_number));
     if (sub.get_integer) key.get_integer = reading(std::move(sub.get_integer));
     if (sub.set_integer) key.set_integer = writing(std::move(sub.set_integer));
-    if (sub.integer_also) key.integer_also = reading(std::move(sub.integer_also));
     if (sub.get_boolean) key.get_boolean = reading(std::move(sub.get_boolean));
     if (sub.set_boolean) key.set_boolean = writing(std::move(sub.set_boolean));
     if (sub.get_text) key.get_text = reading(std::move(sub.get_text));

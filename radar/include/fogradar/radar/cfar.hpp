@@ -79,9 +79,18 @@ struct CfarConfig {
   // Throws InvalidParameter naming the key of cfar_keys("cfar.") it breaks: "cfar.training_cells"
   // (in [1, 32767]), "cfar.false_alarm_probability" (in (0, 1)), "cfar.os_rank" (0 or in [1, N]).
   void validate() const;
-  // Throws InvalidParameter naming "<prefix>training_cells" (with the allowed range) when a
-  // profile of `profile_length` cells is shorter than the full window 2 (guard + training) + 1, or
-  // "<prefix>guard_cells" when the guard cells alone fill it.
+  // The bounds a profile of `profile_length` cells sets on the window, 2 (guard + training) + 1 <=
+  // profile_length, under the keys' `prefix`; `profile` names the profile in messages ("a profile
+  // of radar.samples_per_chirp = 512 cells"). The training cells take the blame while the guard
+  // cells leave room for one: guard_bound() refuses only guard cells that alone fill the profile.
+  CrossBound training_bound(std::size_t profile_length, std::string_view prefix,
+                            std::string_view profile) const;
+  CrossBound guard_bound(std::size_t profile_length, std::string_view prefix,
+                         std::string_view profile) const;
+  // The OS rank's bound the training cells set: 0 (the default rank) or at most N = 2 n.
+  CrossBound os_rank_bound(std::string_view prefix) const;
+  // Throws InvalidParameter naming "<prefix>guard_cells" or "<prefix>training_cells" with the bound
+  // above that a profile of `profile_length` cells breaks.
   void validate_profile_length(std::size_t profile_length, std::string_view prefix = "cfar.") const;
 
   std::size_t reference_cells() const noexcept { return 2 * std::size_t{training_cells}; }
