@@ -2,6 +2,8 @@
 // entry and its error relocation.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <cstddef>
 #include <map>
 #include <string>
@@ -10,6 +12,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/experiment/scenario_values.hpp"
 
 namespace fogradar::experiment::detail {
 
@@ -60,10 +63,30 @@ std::string toml_value(const ScenarioKey& key, const Scenario& s);
                            const KeyLines& lines,
                            const std::map<std::string, std::string>& typed_numbers);
 
+// scenario_values.cpp
+
+// A key of one element of an array of tables ("chamber.layers[2].fog.lwc_g_per_m3"): the element's
+// keys (the table keeps them) and the one named.
+struct ElementKey {
+  KeyTable<Scenario> element;
+  std::size_t at = 0;
+  const ScenarioKey& key() const { return element.keys()[at]; }
+};
+
+bool is_element_key(std::string_view key);
+// `key` in `s`'s key table; refuses it (InvalidParameter naming `key`) where `s` has no such
+// element or the element no such key.
+ElementKey element_key(const Scenario& s, const std::string& key);
+
 // scenario_reader.cpp
 
 // Reads `toml_text` over `base`: keys the file gives replace the base's values.
 Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name,
                     LineNumbers line_numbers = LineNumbers::shown);
+// Reads `root`, a file's tables (`text`: the file, empty for tables a program built), over `s`,
+// then `element_values`, keys of one element each, over the elements in force.
+Scenario read_over(Scenario s, const toml::table& root, std::string_view text,
+                   std::string_view source_name, LineNumbers line_numbers,
+                   const std::vector<KeyValue>& element_values);
 
 }  // namespace fogradar::experiment::detail

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <optional>
@@ -89,12 +90,13 @@ std::size_t byte_of_column(std::string_view line, std::size_t column) {
 class Reader {
  public:
   Reader(const toml::table& root, std::string_view text, std::string_view source,
-         Scenario& scenario, LineNumbers line_numbers)
+         Scenario& scenario, LineNumbers line_numbers, const std::vector<KeyValue>& element_values)
       : root_(root),
         text_(text),
         source_(source),
         scenario_(scenario),
-        lines_shown_(line_numbers == LineNumbers::shown) {}
+        lines_shown_(line_numbers == LineNumbers::shown),
+        element_values_(element_values) {}
 
   void read() {
     const detail::ScenarioKeys& keys = detail::keys_of(scenario_);
@@ -130,6 +132,10 @@ class Reader {
     // of [[chamber.layers]] from [fog]).
     take_table_temperature("fog.", scenario_.fog);
     for (const auto& [key, node] : arrays_) read_array(*key, *node);
+    for (const KeyValue& value : element_values_) {
+      elements_.push_back(element_key(scenario_, value.key));
+      read_key(elements_.back().key(), *value.value);
+    }
     for (std::size_t i = 0; i < scenario_.chamber.layers.size(); ++i) {
       // A layer starts without a length (NaN, "missing"): a NaN the file gives is its own value.
       const std::string length = "chamber.layers[" + std::to_string(i) + "].length_m";
@@ -526,9 +532,26 @@ class Reader {
   std::map<std::string, std::string> given_in_group_;         // "section group" -> the key given
   std::map<std::string, std::set<std::string>> nested_keys_;  // an element's table -> its keys
   std::vector<std::pair<const ScenarioKey*, const toml::node*>> arrays_;  // read last
+  const std::vector<KeyValue>& element_values_;                           // after the arrays
+  std::deque<ElementKey> elements_;                                       // their keys
 };
 
 }  // namespace
+
+Scenario read_over(Scenario s, const toml::table& root, std::string_view text,
+                   std::string_view source_name, LineNumbers line_numbers,
+                   const std::vector<KeyValue>& element_values) {
+  Reader reader(root, text, source_name, s, line_numbers, element_values);
+  try {
+    reader.read();
+    s.validate();
+  } catch (const InvalidParameter& e) {
+    // Without line numbers, the other keys a message names are not pointed at either.
+    relocate(e, source_name, line_numbers == LineNumbers::shown ? reader.lines() : KeyLines{},
+             reader.typed_numbers());
+  }
+  return s;
+}
 
 // Reads `toml_text` over `base`: keys the file gives replace the base's values.
 Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view source_name,
@@ -541,16 +564,7 @@ Scenario parse_over(Scenario s, std::string_view toml_text, std::string_view sou
     throw_at(source_name, e.source().begin.line, "toml",
              std::string("malformed TOML: ") + std::string(e.description()));
   }
-  Reader reader(root, toml_text, source_name, s, line_numbers);
-  try {
-    reader.read();
-    s.validate();
-  } catch (const InvalidParameter& e) {
-    // Without line numbers, the other keys a message names are not pointed at either.
-    relocate(e, source_name, line_numbers == LineNumbers::shown ? reader.lines() : KeyLines{},
-             reader.typed_numbers());
-  }
-  return s;
+  return read_over(std::move(s), root, toml_text, source_name, line_numbers, {});
 }
 
 }  // namespace detail

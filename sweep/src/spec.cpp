@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -16,9 +17,17 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/keys.hpp"
 #include "fogradar/core/random.hpp"
+#include "fogradar/experiment/scenario_values.hpp"
 #include "fogradar/propagation/water.hpp"
 
 namespace fogradar::sweep {
+
+namespace detail {
+struct ValueNode {
+  std::unique_ptr<toml::node> node;
+};
+}  // namespace detail
+
 namespace {
 
 // The [uncertain] draws' random streams: RandomStream(seed, draws_stream, key index).
@@ -55,16 +64,25 @@ std::string toml_string(std::string_view text) {
   return out + "\"";
 }
 
+// A copy of `node` that the value keeps.
+std::shared_ptr<const detail::ValueNode> kept(const toml::node& node) {
+  auto value = std::make_shared<detail::ValueNode>();
+  node.visit([&value](const auto& n) {
+    value->node = std::make_unique<std::remove_cvref_t<decltype(n)>>(n);
+  });
+  return value;
+}
+
 Value number_value(double value) {
   std::string text = shortest(value);
   std::string literal = text;
   if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
-  return {literal, literal, value};
+  return {literal, literal, value, kept(toml::value<double>(value))};
 }
 
 Value integer_value(std::int64_t value) {
   const std::string text = std::to_string(value);
-  return {text, text, static_cast<double>(value)};
+  return {text, text, static_cast<double>(value), kept(toml::value<std::int64_t>(value))};
 }
 
 // Reads the tables of a sweep file, each key at its line, refusing what it does not know.
@@ -135,15 +153,15 @@ class Reader {
     if (node.is_floating_point()) return number_value(number(node, name));
     if (node.is_boolean()) {
       const std::string text = *node.value<bool>() ? "true" : "false";
-      return {text, text, std::nullopt};
+      return {text, text, std::nullopt, kept(node)};
     }
     if (node.is_string()) {
       const std::string text = *node.value<std::string>();
-      return {toml_string(text), text, std::nullopt};
+      return {toml_string(text), text, std::nullopt, kept(node)};
     }
     if (node.is_array() || node.is_table()) {
       const std::string text = written(node, name);
-      return {text, text, std::nullopt};
+      return {text, text, std::nullopt, kept(node)};
     }
     fail_at(node, name,
             name + ": must be a key's value (a number, a boolean, a string or an array)");
@@ -456,211 +474,6 @@ std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
   return values;
 }
 
-using ScenarioKey = Key<experiment::Scenario>;
-
-// A key of one element of an array of tables, "chamber.layers[2].fog.lwc_g_per_m3": the element's
-// keys (the table keeps them) and the one named.
-struct ElementKey {
-  KeyTable<experiment::Scenario> element;
-  std::size_t at = 0;
-  const ScenarioKey& key() const { return element.keys()[at]; }
-};
-
-bool is_element_key(const std::string& key) { return key.find('[') != std::string::npos; }
-
-// `key` in the base scenario's key table; throws InvalidParameter naming `key` with what the base
-// has where it is not one of them. An element key needs its element in the base (the array's
-// other elements and keys are the base's).
-ElementKey element_key(const experiment::Scenario& base, const std::string& key) {
-  const std::size_t open = key.find('['), close = key.find(']', open);
-  const std::string array = key.substr(0, open);
-  const ScenarioKey* table = nullptr;
-  for (const ScenarioKey& k : base.keys().keys()) {
-    if (k.name == array && k.type == KeyType::table_array) table = &k;
-  }
-  if (table == nullptr || close == std::string::npos || key.size() < close + 2 ||
-      key[close + 1] != '.') {
-    throw InvalidParameter(key, "'" + key +
-                                    "' is no scenario key (an element's key is written "
-                                    "array[i].key, e.g. chamber.layers[2].fog.lwc_g_per_m3)");
-  }
-  const std::string digits = key.substr(open + 1, close - open - 1);
-  std::size_t index = 0;
-  const auto [end, parsed] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
-  const std::size_t count = table->array_size(base);
-  if (parsed != std::errc() || end != digits.data() + digits.size() ||
-      std::to_string(index) != digits || index >= count) {
-    throw InvalidParameter(key, "'" + key + "': the base scenario's " + array + " has " +
-                                    (count == 0 ? std::string("no elements")
-                                                : "elements 0 … " + std::to_string(count - 1)) +
-                                    "; a key of one element needs that element in the base");
-  }
-  ElementKey found;
-  table->array_element(index, found.element);
-  const std::vector<ScenarioKey>& keys = found.element.keys();
-  found.at = static_cast<std::size_t>(std::find_if(keys.begin(), keys.end(),
-                                                   [&](const ScenarioKey& k) {
-                                                     return k.name == key &&
-                                                            k.type != KeyType::retired &&
-                                                            k.type != KeyType::table_array;
-                                                   }) -
-                                      keys.begin());
-  if (found.at == keys.size()) {
-    std::string known;
-    const std::string prefix = array + "[" + digits + "].";
-    for (const ScenarioKey& k : found.element.keys()) {
-      known += ' ';
-      known.append(k.name, prefix.size());
-    }
-    throw InvalidParameter(key, "'" + key + "' is no scenario key (keys of an element of " + array +
-                                    ":" + known + ")");
-  }
-  return found;
-}
-
-// Refuses a key the base scenario does not take (InvalidParameter naming it), as the scenario
-// reader would, but before any point is read.
-void require_scenario_key(const experiment::Scenario& base, const std::string& key) {
-  if (is_element_key(key)) {
-    element_key(base, key);
-    return;
-  }
-  std::string known;
-  const std::string section = key.substr(0, key.rfind('.'));
-  for (const ScenarioKey& k : base.keys().keys()) {
-    if (k.name != key) {
-      if (k.section() == section && k.type != KeyType::retired)
-        known += " " + std::string(k.short_name());
-      continue;
-    }
-    if (k.type == KeyType::retired)
-      throw InvalidParameter(key, "'" + key + "' is no longer read: " + k.meaning);
-    return;
-  }
-  std::string sections;
-  for (const std::string& top : experiment::top_level_sections(base))
-    sections += (sections.empty() ? "" : ", ") + top;
-  throw InvalidParameter(
-      key, "'" + key + "' is no scenario key (" +
-               (known.empty() ? "sections: " + sections : "keys of [" + section + "]:" + known) +
-               ")");
-}
-
-// Sets `value` (TOML text) into `scenario` through `key`'s setter, as the scenario reader sets a
-// key a file gives; a value of the wrong type is refused naming the key and what it takes.
-void set_through_key(experiment::Scenario& scenario, const ScenarioKey& key, const Value& value) {
-  const toml::table parsed = toml::parse("v = " + value.toml);
-  const toml::node& node = *parsed.get("v");
-  const std::string given = key.name + " = " + value.toml + ": must be ";
-  switch (key.type) {
-    case KeyType::number:
-      if (!node.is_number()) throw InvalidParameter(key.name, given + "a number " + key.allowed);
-      key.set_number(scenario, *node.value<double>());
-      return;
-    case KeyType::integer: {
-      const std::string range = "an integer in [" + std::to_string(key.integer_low) + ", " +
-                                std::to_string(key.integer_high) + "]";
-      if (!node.is_integer()) throw InvalidParameter(key.name, given + range);
-      const std::int64_t v = *node.value<std::int64_t>();
-      if (v < key.integer_low || v > key.integer_high)
-        throw InvalidParameter(key.name, given + range);
-      key.set_integer(scenario, v);
-      return;
-    }
-    case KeyType::boolean:
-      if (!node.is_boolean()) throw InvalidParameter(key.name, given + "true or false");
-      key.set_boolean(scenario, *node.value<bool>());
-      return;
-    case KeyType::choice:
-      if (!node.is_string()) throw InvalidParameter(key.name, given + "one of " + key.allowed);
-      key.set_text(scenario, *node.value<std::string>());
-      return;
-    case KeyType::order:
-      if (node.is_string()) {
-        key.set_text(scenario, *node.value<std::string>());
-        return;
-      }
-      if (const toml::array* array = node.as_array(); array != nullptr && !array->empty()) {
-        std::vector<std::size_t> indices;
-        for (const toml::node& element : *array) {
-          const std::optional<std::int64_t> index = element.value<std::int64_t>();
-          if (!element.is_integer() || *index < 0)
-            throw InvalidParameter(key.name, given + key.allowed);
-          indices.push_back(static_cast<std::size_t>(*index));
-        }
-        key.set_indices(scenario, indices);
-        return;
-      }
-      throw InvalidParameter(key.name, given + key.allowed);
-    case KeyType::name_list:
-      if (const toml::array* array = node.as_array(); array != nullptr && !array->empty()) {
-        std::vector<std::string> names;
-        for (const toml::node& element : *array) {
-          if (!element.is_string()) throw InvalidParameter(key.name, given + key.allowed);
-          names.push_back(*element.value<std::string>());
-        }
-        key.set_list(scenario, names);
-        return;
-      }
-      throw InvalidParameter(key.name, given + key.allowed);
-    case KeyType::table_array:
-    case KeyType::retired:
-      break;
-  }
-  throw InvalidParameter(key.name, "'" + key.name + "' is no key an axis can set");
-}
-
-// The TOML text that sets `values` over a scenario: each key in its section.
-std::string overrides_text(const std::vector<std::pair<std::string, Value>>& values) {
-  std::vector<std::pair<std::string, std::string>> sections;  // section, its lines
-  for (const auto& [key, value] : values) {
-    if (is_element_key(key)) continue;  // set through the key table (element_values)
-    const std::size_t dot = key.rfind('.');
-    const std::string section = key.substr(0, dot);
-    auto it = std::find_if(sections.begin(), sections.end(),
-                           [&](const auto& s) { return s.first == section; });
-    if (it == sections.end()) it = sections.insert(sections.end(), {section, ""});
-    it->second += key.substr(dot + 1) + " = " + value.toml + "\n";
-  }
-  std::string text;
-  for (const auto& [section, lines] : sections) text += "[" + section + "]\n" + lines;
-  return text;
-}
-
-// Sets the element keys among `values` over `scenario` (read from the file's keys) through the
-// element's key table: a scenario file can only replace an array of tables whole. As the scenario
-// reader does, a key is refused where it takes no effect, and a fog that chooses the water table
-// without a temperature takes the table's own. Validates the result.
-void set_element_values(experiment::Scenario& scenario,
-                        const std::vector<std::pair<std::string, Value>>& values) {
-  std::vector<std::pair<ElementKey, const Value*>> given;
-  for (const auto& [key, value] : values) {
-    if (!is_element_key(key)) continue;
-    given.emplace_back(element_key(scenario, key), &value);
-    set_through_key(scenario, given.back().first.key(), value);
-  }
-  if (given.empty()) return;
-  const auto named = [&](const std::string& name) {
-    return std::any_of(values.begin(), values.end(),
-                       [&](const auto& v) { return v.first == name; });
-  };
-  for (const auto& [element, value] : given) {
-    const ScenarioKey& key = element.key();
-    if (key.group.empty() && !key.takes_effect(scenario)) {
-      throw InvalidParameter(
-          key.name, key.name + " = " + value->toml + ": takes effect only " + key.applies_text);
-    }
-    if (key.short_name() != "water_model" || value->text != "segelstein") continue;
-    const std::string temperature = std::string(key.section()) + ".temperature_c";
-    if (named(temperature)) continue;
-    for (const ScenarioKey& k : element.element.keys()) {
-      if (k.name == temperature)
-        k.set_number(scenario, propagation::segelstein_table_temperature_c);
-    }
-  }
-  scenario.validate();
-}
-
 }  // namespace
 
 double Distribution::quantile(double u) const {
@@ -735,7 +548,7 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
       const toml::node& named = t.get("key") ? *t.get("key") : *t.get("keys");
       for (const std::string& k : axis.keys) {
         try {
-          require_scenario_key(spec.base, k);
+          experiment::require_key(spec.base, k);
         } catch (const InvalidParameter& e) {
           r.fail_at(named, name + ".key", name + ": " + e.what());
         }
@@ -767,7 +580,7 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
       if (k == "experiment.seed" || k.find('.') == std::string::npos)
         r.fail_at(node, name, name + ": must be a scenario key other than experiment.seed");
       try {
-        require_scenario_key(spec.base, k);
+        experiment::require_key(spec.base, k);
       } catch (const InvalidParameter& e) {
         r.fail_at(node, name, name + ": " + e.what());
       }
@@ -802,7 +615,7 @@ SweepSpec parse_sweep(std::string_view text, std::string_view source,
     for (const UncertainKey& u : spec.uncertain->keys) all.push_back(u.key);
   }
   for (const std::string& key : all) {
-    if (!is_element_key(key)) continue;
+    if (key.find('[') == std::string::npos) continue;  // an element's key
     const std::string array = key.substr(0, key.find('['));
     if (std::find(all.begin(), all.end(), array) != all.end())
       fail_keys(key, "'" + key + "' is an element of " + array + ", which is swept whole too");
@@ -874,10 +687,9 @@ std::vector<Point> expand(const SweepSpec& spec) {
     const auto read = [&](const std::vector<std::pair<std::string, Value>>& values,
                           const std::string& what) {
       try {
-        experiment::Scenario scenario =
-            experiment::parse_scenario_over(spec.base, overrides_text(values), label);
-        set_element_values(scenario, values);
-        return scenario;
+        std::vector<experiment::KeyValue> given;
+        for (const auto& [key, value] : values) given.push_back({key, value.node->node.get()});
+        return experiment::set_values_over(spec.base, given, label);
       } catch (const InvalidParameter& e) {
         // The sweep's own location replaces the point's.
         const std::string& message = e.message();

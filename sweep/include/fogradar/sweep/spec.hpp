@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,10 +20,15 @@ namespace fogradar::sweep {
 
 // A value of a swept or drawn key, as TOML writes it ("900.0", "\"os\"", "true", "[3, 1, 2, 0]")
 // and as a table writes it ("900.0", "os", "true", "[3, 1, 2, 0]").
+namespace detail {
+struct ValueNode;  // the value as the sweep file gives it, or as drawn (TOML)
+}  // namespace detail
+
 struct Value {
   std::string toml;
   std::string text;
   std::optional<double> number;  // numbers (and integers): for ordering and plotting
+  std::shared_ptr<const detail::ValueNode> node;  // set through the scenario's keys
 };
 
 struct Axis {
