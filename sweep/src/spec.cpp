@@ -1,55 +1,38 @@
+// The sweep file's reader: its [sweep], [[axis]], [uncertain] and [[plot]] tables into a SweepSpec,
+// each key at its line, and every axis and [uncertain] key checked against the base scenario's.
 #include "fogradar/sweep/spec.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <boost/math/distributions/normal.hpp>
-#include <charconv>
 #include <cmath>
 #include <fstream>
-#include <limits>
-#include <map>
 #include <memory>
 #include <numeric>
 #include <set>
 #include <sstream>
 
+#include "engine.hpp"
 #include "fogradar/core/error.hpp"
-#include "fogradar/core/keys.hpp"
-#include "fogradar/core/random.hpp"
 #include "fogradar/experiment/scenario_values.hpp"
-#include "fogradar/propagation/water.hpp"
+#include "spec_parts.hpp"
 
 namespace fogradar::sweep {
 
-namespace detail {
-struct ValueNode {
-  std::unique_ptr<toml::node> node;
-};
-}  // namespace detail
+using detail::fail;
+using detail::integer_value;
+using detail::kept;
+using detail::number_value;
+using detail::shortest;
 
 namespace {
 
-// The [uncertain] draws' random streams: RandomStream(seed, draws_stream, key index).
-constexpr std::uint64_t draws_stream = 0x5357454550ULL;  // "SWEEP"
 // Largest counts a sweep file may ask for: far beyond any study, far below memory limits.
 constexpr std::int64_t max_replications = 1000;
 constexpr std::int64_t max_range_count = 10000;
 constexpr std::int64_t max_setups = 100000;
-constexpr std::size_t max_points = 1000000;
-
-[[noreturn]] void fail(std::string_view source, std::size_t line, const std::string& key,
-                       const std::string& message) {
-  throw InvalidParameter(key, message, {std::string(source), line});
-}
 
 std::size_t line_of(const toml::node& node) { return node.source().begin.line; }
-
-std::string shortest(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 std::string toml_string(std::string_view text) {
   std::string out = "\"";
@@ -62,27 +45,6 @@ std::string toml_string(std::string_view text) {
     out += c;
   }
   return out + "\"";
-}
-
-// A copy of `node` that the value keeps.
-std::shared_ptr<const detail::ValueNode> kept(const toml::node& node) {
-  auto value = std::make_shared<detail::ValueNode>();
-  node.visit([&value](const auto& n) {
-    value->node = std::make_unique<std::remove_cvref_t<decltype(n)>>(n);
-  });
-  return value;
-}
-
-Value number_value(double value) {
-  std::string text = shortest(value);
-  std::string literal = text;
-  if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
-  return {literal, literal, value, kept(toml::value<double>(value))};
-}
-
-Value integer_value(std::int64_t value) {
-  const std::string text = std::to_string(value);
-  return {text, text, static_cast<double>(value), kept(toml::value<std::int64_t>(value))};
 }
 
 // Reads the tables of a sweep file, each key at its line, refusing what it does not know.
@@ -430,81 +392,7 @@ EnvelopePlot read_plot(const Reader& r, const toml::table& t, const std::string&
   return plot;
 }
 
-// FNV-1a over the text, then SplitMix64: a seed from a point's values, in [0, 2^63).
-std::uint64_t seed_of(const std::string& text) {
-  std::uint64_t hash = 14695981039346656037ULL;
-  for (const unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ULL;
-  }
-  return splitmix64(hash) >> 1;
-}
-
-// An unbiased integer in [0, n) (rejection of the low remainder).
-std::uint64_t bounded(RandomStream& stream, std::uint64_t n) {
-  const std::uint64_t threshold = (0 - n) % n;
-  for (;;) {
-    const std::uint64_t r = stream();
-    if (r >= threshold) return r % n;
-  }
-}
-
-// The [uncertain] draws, setup by setup, key by key: Latin hypercube (each key's N strata in a
-// random order, a uniform point in each) or plain Monte Carlo, through each key's inverse CDF.
-std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
-  std::vector<std::vector<double>> values(u.setups, std::vector<double>(u.keys.size()));
-  for (std::size_t k = 0; k < u.keys.size(); ++k) {
-    RandomStream stream(seed, draws_stream, k);
-    std::vector<std::size_t> strata(u.setups);
-    std::iota(strata.begin(), strata.end(), std::size_t{0});
-    if (u.sampling == Sampling::latin_hypercube) {
-      for (std::size_t i = u.setups; i > 1; --i)
-        std::swap(strata[i - 1], strata[bounded(stream, i)]);
-    }
-    for (std::size_t s = 0; s < u.setups; ++s) {
-      // In (0, 1): an inverse CDF is finite there.
-      const double jitter = stream.uniform() + 0x1.0p-54;
-      const double p =
-          u.sampling == Sampling::latin_hypercube
-              ? (static_cast<double>(strata[s]) + jitter) / static_cast<double>(u.setups)
-              : jitter;
-      values[s][k] = u.keys[k].distribution.quantile(p);
-    }
-  }
-  return values;
-}
-
 }  // namespace
-
-double Distribution::quantile(double u) const {
-  switch (kind) {
-    case Kind::uniform:
-      return low + u * (high - low);
-    case Kind::normal:
-      return boost::math::quantile(boost::math::normal_distribution<double>(mean, std), u);
-    case Kind::truncated_normal: {
-      const boost::math::normal_distribution<double> n(mean, std);
-      const double a = boost::math::cdf(n, low), b = boost::math::cdf(n, high);
-      return std::clamp(boost::math::quantile(n, a + u * (b - a)), low, high);
-    }
-    case Kind::discrete: {
-      double cumulative = 0.0;
-      for (std::size_t i = 0; i < values.size(); ++i) {
-        cumulative += weights[i];
-        if (u < cumulative) return values[i];
-      }
-      return values.back();
-    }
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
-std::string Point::label() const {
-  std::string text;
-  for (const auto& [key, value] : values)
-    text += (text.empty() ? "" : ", ") + key + " = " + value.text;
-  return text.empty() ? "the base scenario" : text;
-}
 
 SweepSpec parse_sweep(std::string_view text, std::string_view source,
                       const std::filesystem::path& directory) {
@@ -635,104 +523,6 @@ SweepSpec load_sweep_file(const std::string& path) {
     throw_invalid("--sweep", path, "a sweep file of at most 1 MiB");
   }
   return parse_sweep(text.str(), path, std::filesystem::path(path).parent_path());
-}
-
-std::vector<Point> expand(const SweepSpec& spec) {
-  // Each axis's positions by value: the file's order does not matter.
-  std::vector<std::vector<std::size_t>> order;
-  std::size_t count = 1;
-  for (const Axis& axis : spec.axes) {
-    std::vector<std::size_t> o(axis.positions.size());
-    std::iota(o.begin(), o.end(), std::size_t{0});
-    std::stable_sort(o.begin(), o.end(), [&](std::size_t a, std::size_t b) {
-      const Value& x = axis.positions[a][0];
-      const Value& y = axis.positions[b][0];
-      if (x.number && y.number) return *x.number < *y.number;
-      if (x.number != y.number) return x.number.has_value();
-      return x.text < y.text;
-    });
-    order.push_back(std::move(o));
-    count *= axis.positions.size();
-    if (count > max_points) {
-      throw_invalid("axis", static_cast<double>(count),
-                    "a grid of at most " + std::to_string(max_points) + " points");
-    }
-  }
-  const std::uint64_t base_seed = spec.base.experiment.seed;
-  std::vector<std::vector<double>> drawn;
-  if (spec.uncertain) drawn = draws(*spec.uncertain, base_seed);
-  std::vector<Point> points;
-  std::vector<std::size_t> at(spec.axes.size(), 0);
-  for (std::size_t index = 0; index < count; ++index) {
-    Point point;
-    point.index = index;
-    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
-      const Axis& axis = spec.axes[a];
-      const std::vector<Value>& position = axis.positions[order[a][at[a]]];
-      for (std::size_t k = 0; k < axis.keys.size(); ++k)
-        point.values.emplace_back(axis.keys[k], position[k]);
-    }
-    if (spec.seed_mode == SeedMode::by_values) {
-      std::vector<std::string> lines;
-      for (const auto& [key, value] : point.values)
-        lines.push_back(key + " = " + value.toml + "\n");
-      std::sort(lines.begin(), lines.end());
-      point.seed = seed_of(std::accumulate(lines.begin(), lines.end(), std::string()));
-    } else {
-      point.seed = base_seed;
-    }
-    std::vector<std::pair<std::string, Value>> with_seed = point.values;
-    with_seed.emplace_back("experiment.seed", integer_value(static_cast<std::int64_t>(point.seed)));
-    const std::string label = spec.source + " point " + std::to_string(index);
-    const auto read = [&](const std::vector<std::pair<std::string, Value>>& values,
-                          const std::string& what) {
-      try {
-        std::vector<experiment::KeyValue> given;
-        for (const auto& [key, value] : values) given.push_back({key, value.node->node.get()});
-        return experiment::set_values_over(spec.base, given, label);
-      } catch (const InvalidParameter& e) {
-        // The sweep's own location replaces the point's.
-        const std::string& message = e.message();
-        for (std::size_t a = 0; a < spec.axes.size(); ++a) {
-          const Axis& axis = spec.axes[a];
-          if (std::find(axis.keys.begin(), axis.keys.end(), e.field()) == axis.keys.end()) continue;
-          const auto value = std::find_if(values.begin(), values.end(),
-                                          [&](const auto& v) { return v.first == e.field(); });
-          fail(spec.source, axis.line, e.field(),
-               "axis[" + std::to_string(a) + "] value " + value->second.text + " of " + e.field() +
-                   what + ": " + message);
-        }
-        if (spec.uncertain) {
-          for (const UncertainKey& u : spec.uncertain->keys) {
-            if (u.key != e.field()) continue;
-            const auto value = std::find_if(values.begin(), values.end(),
-                                            [&](const auto& v) { return v.first == e.field(); });
-            fail(spec.source, 1, "uncertain.keys." + u.key,
-                 "uncertain.keys." + u.key + " drew " + value->second.text + what + ": " + message);
-          }
-        }
-        fail(spec.source, spec.axes.empty() ? 1 : spec.axes.front().line, e.field(),
-             point.label() + what + ": " + message);
-      }
-    };
-    point.scenario = read(with_seed, "");
-    for (std::size_t s = 0; s < drawn.size(); ++s) {
-      std::vector<std::pair<std::string, Value>> setup;
-      for (std::size_t k = 0; k < spec.uncertain->keys.size(); ++k) {
-        setup.emplace_back(spec.uncertain->keys[k].key, number_value(drawn[s][k]));
-      }
-      std::vector<std::pair<std::string, Value>> all = with_seed;
-      all.insert(all.end(), setup.begin(), setup.end());
-      point.setups.push_back(read(all, " (setup " + std::to_string(s) + " of [uncertain])"));
-      point.setup_values.push_back(std::move(setup));
-    }
-    points.push_back(std::move(point));
-    for (std::size_t a = spec.axes.size(); a-- > 0;) {
-      if (++at[a] < spec.axes[a].positions.size()) break;
-      at[a] = 0;
-    }
-  }
-  return points;
 }
 
 }  // namespace fogradar::sweep
