@@ -188,7 +188,7 @@ void radar_chain() {
     c.modelled = radar::setup_cost(radar_of(s), s.context()).chain_seconds;
     cases.push_back(c);
   }
-  report("radar chain (radar sensor.cpp chain_seconds)", "chain", "cell", cases);
+  report("radar chain (radar sensor_costs.cpp chain_seconds)", "chain", "cell", cases);
   // The design's own cost model (cfar_design.hpp, cfar_design_seconds) as the one count: a fitted
   // scale near 1 says its constants still hold on this machine, for guard_cells 0 and 2, solved at
   // n (4-16 training cells) and at an anchor (64 and 128).
@@ -284,7 +284,7 @@ void items() {
     tone_cases.push_back(c);
   }
   std::printf(
-      "fog clutter tones (radar sensor.cpp frame_seconds_per_tone_sample): the last step's"
+      "fog clutter tones (radar sensor_type.cpp frame_seconds_per_tone_sample): the last step's"
       " frame %.3g s more than clear, %.3g s per tone and sample\n",
       tone_cases[1].measured - tone_cases[0].measured,
       (tone_cases[1].measured - tone_cases[0].measured) / (40.0 * 7.0 * 4.0 * 1024.0));

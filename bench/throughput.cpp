@@ -42,7 +42,6 @@
 //   ./build/release/bench/throughput [--scenario FILE] [--repeats N] [--measurements N]
 //                                    [--fogradar PATH] [--transform-seconds S]
 // bench/throughput_sizes.sh runs it for the three frame sizes of docs/performance.md.
-#include <fftw3.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -56,7 +55,6 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iostream>
 #include <iterator>
 #include <memory>
@@ -74,6 +72,7 @@
 #include "fogradar/radar/fft.hpp"
 #include "fogradar/radar/outputs.hpp"
 #include "fogradar/radar/sensor.hpp"
+#include "throughput_transforms.hpp"
 
 #ifndef FOGRADAR_SOURCE_DIR
 #error "FOGRADAR_SOURCE_DIR must be defined (bench/CMakeLists.txt)"
@@ -82,8 +81,14 @@
 namespace {
 
 using namespace fogradar;
-using Clock = std::chrono::steady_clock;
-using Complex = std::complex<double>;
+using bench::Clock;
+using bench::make_buffers;
+using bench::rescale_exponent_for;
+using bench::seconds_since;
+using bench::ThreadBuffers;
+using bench::time_transform;
+using bench::Transforms;
+using bench::Variant;
 
 struct Options {
   std::string scenario_path = std::string(FOGRADAR_SOURCE_DIR) + "/examples/bench.toml";
@@ -157,10 +162,6 @@ std::string load_average() {
   std::string one, five, fifteen;
   in >> one >> five >> fifteen;
   return one + " " + five + " " + fifteen;
-}
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 double median(std::vector<double> values) {
@@ -240,195 +241,6 @@ double time_process(const Options& options, const std::filesystem::path& out_dir
     std::exit(1);
   }
   return seconds;
-}
-
-// --- Transforms -------------------------------------------------------------------------------
-
-// One FFTW plan made directly (the 2-D candidates, which radar::FftPlan does not offer).
-struct RawPlan {
-  fftw_plan plan = nullptr;
-  explicit RawPlan(fftw_plan p) : plan(p) {
-    if (plan == nullptr) throw InternalError("FFTW could not create a plan");
-  }
-  RawPlan(const RawPlan&) = delete;
-  RawPlan& operator=(const RawPlan&) = delete;
-  ~RawPlan() { fftw_destroy_plan(plan); }
-};
-
-fftw_complex* as_fftw(Complex* p) { return reinterpret_cast<fftw_complex*>(p); }
-
-// A thread's frame buffers: the frame is in `a` or, after an out-of-place transform, in `b`. The
-// unnormalised 2-D forward DFT F of an n = rows x columns frame satisfies F^4 = n^2 I, so the frame
-// grows by exactly n^8 every 16 frames; with n a power of two, scaling it back by that power of two
-// (std::ldexp, exact) every 16 frames returns the original noise frame up to rounding. It costs one
-// pass every 16 frames and keeps the data finite noise-like values: no inf, NaN or denormals that
-// could make FFTW run at another speed than on real frames. Every variant computes the same F.
-constexpr std::size_t rescale_period_frames = 16;
-
-struct ThreadBuffers {
-  radar::ComplexVector a, b;
-  bool in_b = false;
-  std::size_t transformed = 0;
-  Complex* current() { return in_b ? b.data() : a.data(); }
-  Complex* other() { return in_b ? a.data() : b.data(); }
-};
-
-ThreadBuffers make_buffers(std::size_t size, std::uint64_t seed) {
-  ThreadBuffers buffers{radar::ComplexVector(size), radar::ComplexVector(size)};
-  RandomStream rng(seed);
-  for (auto& v : buffers.a) v = rng.complex_normal(1.0);
-  return buffers;
-}
-
-struct Variant {
-  std::string name;
-  bool floor_candidate = false;
-  std::function<void(ThreadBuffers&)> transform;  // one frame, in place or a -> b
-  std::size_t frames = 0;                         // frames per timing (set by calibration)
-  std::vector<double> seconds_per_frame[2];       // per repeat, per thread-count slot
-};
-
-struct Transforms {
-  std::size_t rows, columns;
-  int rescale_exponent;
-  radar::FftPlan estimate_rows, estimate_columns;
-  radar::ColumnBlockFft estimate_blocks;
-  radar::FftPlan shipped_chirp;
-  radar::ColumnBlockFft shipped_blocks;
-  radar::FftPlan measure_rows, measure_columns, measure_chirp;
-  radar::ColumnBlockFft measure_blocks;
-  std::unique_ptr<RawPlan> measure_2d_in_place, measure_2d_out_of_place;
-  std::vector<Variant> variants;
-
-  void add_variant(std::string name, bool floor_candidate,
-                   std::function<void(ThreadBuffers&)> transform) {
-    Variant v;
-    v.name = std::move(name);
-    v.floor_candidate = floor_candidate;
-    v.transform = std::move(transform);
-    variants.push_back(std::move(v));
-  }
-
-  Transforms(std::size_t r, std::size_t c, int rescale)
-      : rows(r),
-        columns(c),
-        rescale_exponent(rescale),
-        estimate_rows(radar::FftPlan::along_rows(r, c, radar::FftDirection::forward,
-                                                 {.placement = radar::FftPlacement::in_place})),
-        estimate_columns(radar::FftPlan::along_columns(
-            r, c, radar::FftDirection::forward, {.placement = radar::FftPlacement::in_place})),
-        estimate_blocks(r, c, radar::FftDirection::forward),
-        shipped_chirp(c, radar::FftDirection::forward,
-                      {.planner = radar::FftPlanner::shipped_wisdom,
-                       .alignment = radar::FftAlignment::aligned,
-                       .placement = radar::FftPlacement::out_of_place}),
-        shipped_blocks(r, c, radar::FftDirection::forward, radar::FftPlanner::shipped_wisdom),
-        measure_rows(radar::FftPlan::along_rows(
-            r, c, radar::FftDirection::forward,
-            {.planner = radar::FftPlanner::measure, .placement = radar::FftPlacement::in_place})),
-        measure_columns(radar::FftPlan::along_columns(
-            r, c, radar::FftDirection::forward,
-            {.planner = radar::FftPlanner::measure, .placement = radar::FftPlacement::in_place})),
-        measure_chirp(c, radar::FftDirection::forward,
-                      {.planner = radar::FftPlanner::measure,
-                       .alignment = radar::FftAlignment::aligned,
-                       .placement = radar::FftPlacement::out_of_place}),
-        measure_blocks(r, c, radar::FftDirection::forward, radar::FftPlanner::measure) {
-    // FFTW_MEASURE overwrites the arrays it plans on: plan on scratch, execute on the threads'
-    // buffers.
-    radar::ComplexVector in(r * c), out(r * c);
-    const int n0 = static_cast<int>(r), n1 = static_cast<int>(c);
-    measure_2d_in_place = std::make_unique<RawPlan>(fftw_plan_dft_2d(
-        n0, n1, as_fftw(in.data()), as_fftw(in.data()), FFTW_FORWARD, FFTW_MEASURE));
-    measure_2d_out_of_place = std::make_unique<RawPlan>(fftw_plan_dft_2d(
-        n0, n1, as_fftw(in.data()), as_fftw(out.data()), FFTW_FORWARD, FFTW_MEASURE));
-
-    const std::size_t size = r * c;
-    const auto span = [size](Complex* p) { return std::span<Complex>(p, size); };
-    add_variant("ESTIMATE rows + columns (old floor)", false, [this, span](ThreadBuffers& b) {
-      estimate_rows.execute(span(b.current()));
-      estimate_columns.execute(span(b.current()));
-    });
-    add_variant("ESTIMATE rows + blocks (chain before)", false, [this, span](ThreadBuffers& b) {
-      estimate_rows.execute(span(b.current()));
-      estimate_blocks.execute(span(b.current()));
-    });
-    // The range FFT by a one-chirp out-of-place plan, from a copy of each chirp into its row.
-    const auto by_chirp = [this, span](const radar::FftPlan& chirp_plan,
-                                       const radar::ColumnBlockFft& blocks, ThreadBuffers& b) {
-      const std::span<Complex> frame = span(b.current());
-      radar::ComplexVector chirp(columns);
-      for (std::size_t row = 0; row < rows; ++row) {
-        const std::span<Complex> chirp_row = frame.subspan(row * columns, columns);
-        std::copy(chirp_row.begin(), chirp_row.end(), chirp.begin());
-        chirp_plan.execute(chirp, chirp_row);
-      }
-      blocks.execute(frame);
-    };
-    add_variant("shipped chirps + blocks (chain's plans)", false,
-                [this, by_chirp](ThreadBuffers& b) { by_chirp(shipped_chirp, shipped_blocks, b); });
-    add_variant("MEASURE rows + columns", true, [this, span](ThreadBuffers& b) {
-      measure_rows.execute(span(b.current()));
-      measure_columns.execute(span(b.current()));
-    });
-    add_variant("MEASURE rows + blocks", true, [this, span](ThreadBuffers& b) {
-      measure_rows.execute(span(b.current()));
-      measure_blocks.execute(span(b.current()));
-    });
-    add_variant("MEASURE chirps + blocks", true,
-                [this, by_chirp](ThreadBuffers& b) { by_chirp(measure_chirp, measure_blocks, b); });
-    add_variant("MEASURE 2-D in place", true, [this](ThreadBuffers& b) {
-      fftw_execute_dft(measure_2d_in_place->plan, as_fftw(b.current()), as_fftw(b.current()));
-    });
-    add_variant("MEASURE 2-D out of place", true, [this](ThreadBuffers& b) {
-      fftw_execute_dft(measure_2d_out_of_place->plan, as_fftw(b.current()), as_fftw(b.other()));
-      b.in_b = !b.in_b;
-    });
-  }
-};
-
-void transform_frames(const Transforms& t, const Variant& variant, ThreadBuffers& buffers,
-                      std::size_t count) {
-  for (std::size_t f = 0; f < count; ++f) {
-    variant.transform(buffers);
-    if (++buffers.transformed % rescale_period_frames == 0) {
-      Complex* frame = buffers.current();
-      for (std::size_t i = 0; i < t.rows * t.columns; ++i) {
-        frame[i] = {std::ldexp(frame[i].real(), t.rescale_exponent),
-                    std::ldexp(frame[i].imag(), t.rescale_exponent)};
-      }
-    }
-  }
-}
-
-// Seconds per frame of `frames` frames split into `threads` contiguous shares; thread i owns
-// buffers[i].
-double time_transform(const Transforms& t, const Variant& variant,
-                      std::vector<ThreadBuffers>& buffers, std::size_t frames, unsigned threads) {
-  const Clock::time_point start = Clock::now();
-  std::vector<std::thread> pool;
-  const auto share = [&](unsigned i) { return frames * (i + 1) / threads - frames * i / threads; };
-  for (unsigned i = 1; i < threads; ++i) {
-    pool.emplace_back([&, i] { transform_frames(t, variant, buffers[i], share(i)); });
-  }
-  transform_frames(t, variant, buffers[0], share(0));
-  for (std::thread& thread : pool) thread.join();
-  return seconds_since(start) / static_cast<double>(frames);
-}
-
-int rescale_exponent_for(std::size_t rows, std::size_t columns) {
-  const std::size_t n = rows * columns;
-  if ((n & (n - 1)) != 0) {
-    std::fprintf(stderr,
-                 "throughput: chirps x samples = %zu is not a power of two; the FFT floor's "
-                 "rescaling assumes one\n",
-                 n);
-    std::exit(2);
-  }
-  int log2n = 0;
-  while ((std::size_t{1} << log2n) < n) ++log2n;
-  // 16 frames = 4 periods of F^4: growth (n^2)^4 = 2^(8 log2 n).
-  return -8 * log2n;
 }
 
 // --- Thermal noise alone ----------------------------------------------------------------------

@@ -1,5 +1,5 @@
 // The threshold-factor root finder and log-space sum shared by the independent-cell
-// (cfar_theory.cpp) and the correlated-cell (cfar_design.cpp) CFAR designs.
+// (cfar_theory.cpp) and the correlated-cell (cfar_correlated.cpp) CFAR designs.
 #pragma once
 
 #include <algorithm>

@@ -1,0 +1,256 @@
+// The radar as a sensor::SensorType: its keys and checks, its memory and time, its files and fog.
+#include <algorithm>
+#include <any>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "fogradar/core/error.hpp"
+#include "fogradar/propagation/fog.hpp"
+#include "fogradar/propagation/water.hpp"
+#include "fogradar/radar/scene.hpp"
+#include "fogradar/radar/sensor.hpp"
+
+namespace fogradar::radar {
+namespace {
+
+// The CPU time of a frame, measured by bench/estimate_calibration (docs/scenario.md, "Time limit"):
+// synthesis, the two transforms and the CFAR cost about cells x log2(cells) together (the FFTs'
+// n log n, and a map that outgrows the caches); each object's peak search (the scene's few plus
+// about P_fa x cells false alarms) sums over the whole map, so a frame grows as cells squared once
+// P_fa x cells passes a few.
+constexpr double frame_seconds_per_cell_log2_cell = 2.16e-10;
+constexpr double frame_seconds_per_cell_and_object = 3.22e-10;
+// Each static tone (a scene path, a fog clutter scatterer) is synthesised once per frame over one
+// chirp's samples (synthesis.cpp), so the fog's clutter adds per tone and sample.
+constexpr double frame_seconds_per_tone_sample = 3.38e-10;
+
+// Wide CFAR windows (bench/estimate_calibration does not reach them; measured with profiles of
+// 4096-65536 cells and n = 1000-32767, GO and OS, Blackman-Harris): CA, GO and SO add the N
+// reference cells of each of a row's 2 (guard + n) edge cells one by one (cfar_kernels.cpp,
+// edge_halves), 21 s for 10 rows of 4.3e9 additions; OS moves up to N sorted values per cell as its
+// window slides (a memmove per cell), ~0.05 s per row of 65536 cells with N = 65534.
+constexpr double frame_seconds_per_edge_reference = 4.9e-10;
+constexpr double frame_seconds_per_sorted_reference = 1.3e-11;
+
+// The fog clutter's tones of a frame, averaged over the steps: clutter_scatterers_per_bin in every
+// range bin of every active layer that holds water (scene.cpp, add_fog_clutter).
+double mean_clutter_tones(const SensorParams& p, const sensor::Context& context) {
+  const double bin_m = derive(p.radar).range_bin_m;
+  const auto wet = [](const propagation::FogSpec& fog) {
+    if (const auto* lwc = std::get_if<propagation::LiquidWaterContent>(&fog.density))
+      return lwc->g_per_m3 > 0.0;
+    if (const auto* beta = std::get_if<propagation::OpticalExtinction>(&fog.density))
+      return beta->per_km > 0.0;
+    return true;
+  };
+  double tones = 0.0;
+  for (std::size_t k = 0; k < context.steps; ++k) {
+    const propagation::ActiveLayers active = context.active(k);
+    for (std::size_t i = 0; i < context.chamber.layers.size(); ++i) {
+      const propagation::FogLayerSpec& layer = context.chamber.layers[i];
+      if (!active[i] || !wet(layer.fog)) continue;
+      tones += std::ceil(layer.length_m / bin_m) * p.clutter_scatterers_per_bin;
+    }
+  }
+  return tones / static_cast<double>(std::max<std::size_t>(context.steps, 1));
+}
+constexpr double scene_objects_per_frame = 3.0;
+
+double mib(std::size_t bytes) {
+  return static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 20);
+}
+
+const char* const file_names[] = {"radar_samples.csv", "radar_detections.csv", "radar_summary.csv",
+                                  "radar_summary.json", "radar_rcs_boxplot.svg"};
+// The radar's files as fogradar 0.1 named them: an earlier result set is still replaced whole.
+const char* const earlier_file_names[] = {"samples.csv", "summary.csv", "rcs_boxplot.svg"};
+
+class Type : public sensor::SensorType {
+ public:
+  std::string_view name() const override { return "radar"; }
+  std::uint64_t stream_key() const override { return radar::stream_key; }
+  std::string_view item_noun() const override { return "radar measurements"; }
+  std::string_view curve_caption() const override { return "median target RCS as a power ratio"; }
+  std::any default_params() const override { return SensorParams{}; }
+  const KeyTable<std::any>& keys() const override { return keys_; }
+
+  void validate(const std::any& params, const sensor::Context& context) const override {
+    keys_.check(params);
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    // CFAR slides along range, one Doppler bin at a time.
+    p.radar.cfar.validate_profile_length(p.radar.samples_per_chirp, "processing.cfar.");
+    const Scene scene = make_scene(p.target, p.clutter_scatterers_per_bin);
+    scene.validate();
+    // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
+    // (docs/radar.md).
+    const double target_range_m = context.chamber.target_range_m();
+    double farthest_m = target_range_m;
+    for (const ScatteringCentre& centre : scene.centres) {
+      farthest_m = std::max(farthest_m, target_range_m + centre.range_offset_m);
+    }
+    const double limit_m = derive(p.radar).max_range_m - 1.0;
+    if (farthest_m > limit_m) {
+      std::ostringstream constraint;
+      constraint.precision(10);
+      constraint
+          << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
+             "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
+          << farthest_m
+          << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
+             "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
+          << limit_m << " m";
+      throw_invalid("chamber.target_gap_m", context.chamber.target_gap_m, constraint.str());
+    }
+  }
+
+  std::size_t items_per_step(const std::any&, const sensor::Context& context) const override {
+    return context.measurements_per_step;
+  }
+
+  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
+                            unsigned threads) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    const MemoryEstimate e = memory_estimate(p, context.steps * context.measurements_per_step);
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << "radar.samples_per_chirp = " << p.radar.samples_per_chirp
+           << " x radar.chirps_per_frame = " << p.radar.chirps_per_frame << ": " << threads << " x "
+           << mib(e.per_thread_bytes) << " MiB frame workspace; experiment.measurements_per_step = "
+           << context.measurements_per_step << ": " << mib(e.records_bytes)
+           << " MiB per-measurement records; " << mib(e.shared_bytes) << " MiB windows and plans";
+    return {.bytes = threads * e.per_thread_bytes + e.shared_bytes + e.records_bytes,
+            .detail = detail.str(),
+            .key = "radar.samples_per_chirp"};
+  }
+
+  sensor::TimePart item_time(const std::any& params,
+                             const sensor::Context& context) const override {
+    const RadarParams& p = sensor::params_of<SensorParams>(params).radar;
+    const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
+    const double tones = mean_clutter_tones(sensor::params_of<SensorParams>(params), context);
+    const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
+    const double reference_cells = static_cast<double>(p.cfar.reference_cells());
+    const double edge_references =
+        p.cfar.kind == CfarKind::os
+            ? 0.0
+            : static_cast<double>(p.chirps_per_frame) * 2.0 *
+                  static_cast<double>(std::size_t{p.cfar.guard_cells} + p.cfar.training_cells) *
+                  reference_cells;
+    const double edge_seconds = p.cfar.kind == CfarKind::os
+                                    ? cells * reference_cells * frame_seconds_per_sorted_reference
+                                    : edge_references * frame_seconds_per_edge_reference;
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << "radar.samples_per_chirp = " << p.samples_per_chirp
+           << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
+           << " objects (" << scene_objects_per_frame
+           << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
+           << " x cells), about " << tones
+           << " fog clutter tones (fog.clutter_scatterers_per_bin = "
+           << sensor::params_of<SensorParams>(params).clutter_scatterers_per_bin
+           << " per range bin of the active layers), " << edge_references
+           << " CFAR edge-cell additions (2 x (processing.cfar.guard_cells + training_cells) x N "
+              "per Doppler row)";
+    const double rest =
+        cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
+                 objects * frame_seconds_per_cell_and_object) +
+        tones * static_cast<double>(p.samples_per_chirp) * frame_seconds_per_tone_sample;
+    return {.item_seconds = rest + edge_seconds,
+            .detail = detail.str(),
+            .key = edge_seconds > rest                         ? "processing.cfar.training_cells"
+                   : p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
+                                                               : "radar.chirps_per_frame",
+            .items_key = "experiment.measurements_per_step"};
+  }
+
+  sensor::SetupTime setup_time(const std::any& params,
+                               const sensor::Context& context) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    const SetupCost c = setup_cost(p, context);
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics " << c.fog_seconds << " s, chain " << c.chain_seconds
+           << " s, CFAR design (processing.cfar.kind = " << to_string(p.radar.cfar.kind)
+           << ", processing.cfar.threshold_design = " << to_string(p.radar.cfar.threshold_design)
+           << ") " << c.cfar_design_seconds << " s";
+    const double largest = std::max({c.fog_seconds, c.chain_seconds, c.cfar_design_seconds});
+    return {.make_seconds = c.fog_seconds + c.chain_seconds + c.cfar_design_seconds,
+            .run_seconds = c.summary_seconds,
+            .report_seconds = c.report_seconds,
+            .detail = detail.str(),
+            .key = largest == c.cfar_design_seconds ? "processing.cfar.threshold_design"
+                   : largest == c.chain_seconds     ? "radar.samples_per_chirp"
+                                                    : "fog.droplets"};
+  }
+
+  std::vector<sensor::RawKind> raw_kinds(const std::any& params,
+                                         const sensor::Context&) const override {
+    return radar_raw_kinds(sensor::params_of<SensorParams>(params));
+  }
+
+  bool owns_file_name(std::string_view file_name) const override {
+    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
+               std::end(file_names) ||
+           std::find(std::begin(earlier_file_names), std::end(earlier_file_names), file_name) !=
+               std::end(earlier_file_names);
+  }
+
+  // The fog at the radar's sweep centre: specific attenuation, backscatter, and the two-way loss
+  // through one layer, 2 A L.
+  sensor::Band band() const override { return sensor::Band::radio; }
+
+  sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
+                               double layer_length_m,
+                               const propagation::SegelsteinTable& water) const override {
+    const SensorParams& p = sensor::params_of<SensorParams>(params);
+    const propagation::Fog fog(spec, water);
+    const propagation::FogOptics o = fog.at_frequency(p.radar.centre_frequency_hz);
+    const double loss_db = 2.0 * o.specific_attenuation_db_per_km * layer_length_m * 1e-3;
+    std::ostringstream line;
+    line << "  radar (" << o.frequency_hz * 1e-9 << " GHz)         2-way loss " << loss_db << " dB";
+    return {.json = {{"frequency_hz", o.frequency_hz},
+                     {"specific_attenuation_db_per_km", o.specific_attenuation_db_per_km},
+                     {"volume_backscatter_m2_per_m3", o.volume_backscatter_m2_per_m3},
+                     {"two_way_loss_db_per_layer", loss_db}},
+            .line = line.str()};
+  }
+
+  std::shared_ptr<const sensor::Sensor> make(
+      const std::any& params, const sensor::Context& context,
+      const propagation::SegelsteinTable& water) const override {
+    return make_or_stop(params, context, water, StopToken());
+  }
+
+  std::shared_ptr<const sensor::Sensor> make_or_stop(const std::any& params,
+                                                     const sensor::Context& context,
+                                                     const propagation::SegelsteinTable& water,
+                                                     const StopToken& stop) const override {
+    return std::make_shared<RadarSensor>(sensor::params_of<SensorParams>(params), context, water,
+                                         stop);
+  }
+
+ private:
+  KeyTable<std::any> keys_ = sensor::erase_keys(sensor_keys());
+};
+
+}  // namespace
+
+KeyTable<SensorParams> sensor_keys() {
+  KeyTable<SensorParams> keys;
+  keys.include(radar_param_keys(), FOGRADAR_KEY_FIELD(radar));
+  keys.include(target_keys(), FOGRADAR_KEY_FIELD(target));
+  keys.integer("fog.clutter_scatterers_per_bin", FOGRADAR_KEY_FIELD(clutter_scatterers_per_bin), 1,
+               64, "random point scatterers per range bin that make up the radar's fog clutter");
+  return keys;
+}
+
+std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+
+}  // namespace fogradar::radar
