@@ -82,10 +82,8 @@ class Type : public sensor::SensorType {
   const KeyTable<std::any>& keys() const override { return keys_; }
 
   void validate(const std::any& params, const sensor::Context& context) const override {
-    keys_.check(params);
+    keys_.check(params);  // the CFAR's window against the range profile too (radar_param_keys)
     const SensorParams& p = sensor::params_of<SensorParams>(params);
-    // CFAR slides along range, one Doppler bin at a time.
-    p.radar.cfar.validate_profile_length(p.radar.samples_per_chirp, "processing.cfar.");
     const Scene scene = make_scene(p.target, p.clutter_scatterers_per_bin);
     scene.validate();
     // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
