@@ -27,10 +27,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 matplotlib.rcParams.update({"svg.fonttype": "path", "font.size": 10, "svg.hashsalt": "fogradar"})
 
 PAPER = "paper comparison"
-GROUP_ORDER = [PAPER, "physics: water", "physics: materials", "physics: droplets", "physics: fog",
-               "physics: chamber", "radar: SNR", "radar: CFAR", "radar: detection", "radar: RCS",
-               "radar: Doppler", "radar: signal processing", "lidar", "lidar: optics", "camera",
-               "experiment: geometry and Doppler", "experiment: layers", "experiment: statistics"]
+GROUP_ORDER = [PAPER, "physics: water", "physics: materials", "physics: room", "physics: droplets",
+               "physics: fog", "physics: chamber", "radar: SNR", "radar: CFAR", "radar: detection",
+               "radar: RCS", "radar: Doppler", "radar: signal processing", "lidar", "lidar: optics",
+               "camera", "experiment: geometry and Doppler", "experiment: layers",
+               "experiment: statistics"]
 COLUMNS = ('<colgroup><col class="id"><col class="q"><col class="c"><col class="r">'
            '<col class="s"><col class="v"><col class="t"><col class="p"></colgroup>')
 PLOTS = {

@@ -1,0 +1,124 @@
+// The room's specular paths by the image method (room.hpp).
+#include "fogradar/propagation/room.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "fogradar/core/error.hpp"
+
+namespace fogradar::propagation {
+namespace {
+
+// The coordinate axis a plane is normal to: x 0, y 1, z 2.
+int axis_of(Surface surface) {
+  switch (surface) {
+    case Surface::floor:
+    case Surface::ceiling:
+      return 2;
+    case Surface::left_wall:
+    case Surface::right_wall:
+      return 1;
+    case Surface::back_wall:
+      return 0;
+  }
+  return 0;
+}
+
+// The room's side of the plane: +1 where the room has larger coordinates (floor, left wall).
+double inward_sign(Surface surface) {
+  return surface == Surface::floor || surface == Surface::left_wall ? 1.0 : -1.0;
+}
+
+// Where the segment a → b crosses `plane` strictly between its ends, as the fraction t of the way.
+std::optional<double> crossing(const RoomPlane& plane, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b) {
+  const int axis = axis_of(plane.surface);
+  const double da = a[axis] - plane.position_m, db = b[axis] - plane.position_m;
+  if (!(da * db < 0.0)) return std::nullopt;  // both on one side, or an end on the plane
+  return da / (da - db);
+}
+
+// The grazing angle of a ray along `direction` (unit) at `plane`: asin |d · n|.
+double grazing_angle_rad(const RoomPlane& plane, const Eigen::Vector3d& direction) {
+  return std::asin(std::min(1.0, std::abs(direction[axis_of(plane.surface)])));
+}
+
+}  // namespace
+
+Eigen::Vector3d inward_normal(const RoomPlane& plane) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  n[axis_of(plane.surface)] = inward_sign(plane.surface);
+  return n;
+}
+
+bool inside_room(std::span<const RoomPlane> planes, const Eigen::Vector3d& point) {
+  for (const RoomPlane& plane : planes) {
+    const double d = point[axis_of(plane.surface)] - plane.position_m;
+    if (inward_sign(plane.surface) * d < 0.0) return false;
+  }
+  return true;
+}
+
+Eigen::Vector3d mirrored(const RoomPlane& plane, const Eigen::Vector3d& point) {
+  Eigen::Vector3d image = point;
+  const int axis = axis_of(plane.surface);
+  image[axis] = 2.0 * plane.position_m - point[axis];
+  return image;
+}
+
+std::vector<SpecularPath> specular_paths(std::span<const RoomPlane> planes,
+                                         const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                         std::size_t max_order) {
+  FOGRADAR_CHECK(max_order <= 2);
+  FOGRADAR_CHECK(inside_room(planes, from) && inside_room(planes, to));
+  std::vector<SpecularPath> paths;
+  // The path through `sequence` (plane indices in the order the ray meets them), if it exists.
+  const auto add = [&](const std::vector<std::size_t>& sequence) {
+    // images[k]: `from` mirrored in the first k planes of the sequence.
+    std::vector<Eigen::Vector3d> images{from};
+    for (const std::size_t p : sequence) images.push_back(mirrored(planes[p], images.back()));
+    // Back from the receiver: the line from the last image to the point after each reflection
+    // crosses that reflection's plane at its reflection point.
+    std::vector<Eigen::Vector3d> points(sequence.size());
+    Eigen::Vector3d after = to;
+    for (std::size_t k = sequence.size(); k-- > 0;) {
+      const RoomPlane& plane = planes[sequence[k]];
+      const std::optional<double> t = crossing(plane, images[k + 1], after);
+      if (!t) return;
+      Eigen::Vector3d point = images[k + 1] + *t * (after - images[k + 1]);
+      point[axis_of(plane.surface)] = plane.position_m;  // exactly on the plane
+      if (!inside_room(planes, point)) return;
+      points[k] = point;
+      after = point;
+    }
+    SpecularPath path;
+    path.planes = sequence;
+    path.reflection_points = points;
+    path.length_m = (to - images.back()).norm();
+    const Eigen::Vector3d first = points.empty() ? to : points.front();
+    const Eigen::Vector3d last = points.empty() ? from : points.back();
+    path.departure = (first - from).normalized();
+    path.arrival = (to - last).normalized();
+    Eigen::Vector3d start = from;
+    for (std::size_t k = 0; k < sequence.size(); ++k) {
+      path.grazing_rad.push_back(
+          grazing_angle_rad(planes[sequence[k]], (points[k] - start).normalized()));
+      start = points[k];
+    }
+    paths.push_back(std::move(path));
+  };
+  add({});
+  if (max_order >= 1) {
+    for (std::size_t p = 0; p < planes.size(); ++p) add({p});
+  }
+  if (max_order >= 2) {
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+      for (std::size_t q = 0; q < planes.size(); ++q) {
+        if (q != p) add({p, q});
+      }
+    }
+  }
+  return paths;
+}
+
+}  // namespace fogradar::propagation
