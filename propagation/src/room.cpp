@@ -74,29 +74,32 @@ std::vector<SpecularPath> specular_paths(std::span<const RoomPlane> planes,
   std::vector<SpecularPath> paths;
   // The path through `sequence` (plane indices in the order the ray meets them), if it exists.
   const auto add = [&](const std::vector<std::size_t>& sequence) {
-    // images[k]: `from` mirrored in the first k planes of the sequence.
-    std::vector<Eigen::Vector3d> images{from};
-    for (const std::size_t p : sequence) images.push_back(mirrored(planes[p], images.back()));
-    // Back from the receiver: the line from the last image to the point after each reflection
-    // crosses that reflection's plane at its reflection point.
-    std::vector<Eigen::Vector3d> points(sequence.size());
-    Eigen::Vector3d after = to;
-    for (std::size_t k = sequence.size(); k-- > 0;) {
+    // images[k]: `to` mirrored in the last k planes of the sequence, the last plane first.
+    std::vector<Eigen::Vector3d> images{to};
+    for (std::size_t k = sequence.size(); k-- > 0;)
+      images.push_back(mirrored(planes[sequence[k]], images.back()));
+    // Forward from the source: the line to the image of `to` in the planes still ahead crosses the
+    // next plane at its reflection point.
+    std::vector<Eigen::Vector3d> points;
+    Eigen::Vector3d before = from;
+    for (std::size_t k = 0; k < sequence.size(); ++k) {
       const RoomPlane& plane = planes[sequence[k]];
-      const std::optional<double> t = crossing(plane, images[k + 1], after);
+      const Eigen::Vector3d& ahead = images[sequence.size() - k];
+      const std::optional<double> t = crossing(plane, before, ahead);
       if (!t) return;
-      Eigen::Vector3d point = images[k + 1] + *t * (after - images[k + 1]);
+      Eigen::Vector3d point = before + *t * (ahead - before);
       point[axis_of(plane.surface)] = plane.position_m;  // exactly on the plane
       if (!inside_room(planes, point)) return;
-      points[k] = point;
-      after = point;
+      points.push_back(point);
+      before = point;
     }
     SpecularPath path;
     path.planes = sequence;
     path.reflection_points = points;
-    path.length_m = (to - images.back()).norm();
-    const Eigen::Vector3d first = points.empty() ? to : points.front();
-    const Eigen::Vector3d last = points.empty() ? from : points.back();
+    path.image = images.back();
+    path.length_m = (path.image - from).norm();
+    const Eigen::Vector3d& first = points.empty() ? to : points.front();
+    const Eigen::Vector3d& last = points.empty() ? from : points.back();
     path.departure = (first - from).normalized();
     path.arrival = (to - last).normalized();
     Eigen::Vector3d start = from;

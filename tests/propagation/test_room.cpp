@@ -54,6 +54,9 @@ TEST(Room, FloorPathIsTheTwoRayPath) {
   EXPECT_NEAR(floor_path.grazing_rad[0], std::atan((h_t + h_r) / d), 1e-12);
   EXPECT_NEAR(floor_path.reflection_points[0].x(), d * h_t / (h_t + h_r), 1e-12);
   EXPECT_NEAR(floor_path.reflection_points[0].z(), -h_t, 0.0);
+  // The receiver's image below the floor, as far below it as the receiver is above.
+  EXPECT_LT((floor_path.image - Vector3d(d, 0.0, -h_t - h_r)).norm(), 1e-15);
+  EXPECT_NEAR((floor_path.image - Vector3d::Zero()).norm(), floor_path.length_m, 0.0);
   // It leaves downward and arrives upward.
   EXPECT_LT(floor_path.departure.z(), 0.0);
   EXPECT_GT(floor_path.arrival.z(), 0.0);

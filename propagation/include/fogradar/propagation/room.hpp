@@ -1,8 +1,9 @@
 // The room's specular paths: the walls, floor and ceiling of a hall as axis-aligned planes, and
 // the paths from one point to another that reflect off them, to second order, by the image method
-// (Allen & Berkley 1979, J. Acoust. Soc. Am. 65, 943: a source mirrored in each plane of a path, in
-// order, lies on the straight line to the receiver; the path is as long as that line). Frame: the
-// sensor's, x along boresight, y to the right, z up, metres.
+// (Allen & Berkley 1979, J. Acoust. Soc. Am. 65, 943: the receiver mirrored in each plane of a
+// path, the last plane first, lies on the straight line that leaves the source along the path; the
+// path is as long as that line). Frame: x along the sensor's boresight toward the back wall, y to
+// the right, z up, metres; its origin is the caller's (the sensor, or the floor below it).
 #pragma once
 
 #include <Eigen/Core>
@@ -31,6 +32,9 @@ struct RoomPlane {
 struct SpecularPath {
   std::vector<std::size_t> planes;
   std::vector<Eigen::Vector3d> reflection_points;
+  // `to` mirrored in the path's planes, the last first: the straight line from `from` to it leaves
+  // along `departure` and is as long as the path (`to` itself for the direct path).
+  Eigen::Vector3d image;
   double length_m = 0.0;
   Eigen::Vector3d departure;  // unit vector leaving `from`
   Eigen::Vector3d arrival;    // unit vector of travel arriving at `to`
@@ -48,7 +52,8 @@ Eigen::Vector3d mirrored(const RoomPlane& plane, const Eigen::Vector3d& point);
 // Every specular path from `from` to `to` (both inside the room) with at most `max_order`
 // reflections (0, 1 or 2), the direct path first, then by order and plane index. A sequence of
 // planes gives a path where each reflection point lies on its plane inside the room, between the
-// points before and after it (Allen & Berkley's validity test); a plane never follows itself.
+// point before it and the image ahead (Allen & Berkley's validity test); a plane never follows
+// itself.
 std::vector<SpecularPath> specular_paths(std::span<const RoomPlane> planes,
                                          const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                          std::size_t max_order = 2);
