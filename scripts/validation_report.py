@@ -28,10 +28,10 @@ matplotlib.rcParams.update({"svg.fonttype": "path", "font.size": 10, "svg.hashsa
 
 PAPER = "paper comparison"
 GROUP_ORDER = [PAPER, "physics: water", "physics: materials", "physics: room", "physics: droplets",
-               "physics: fog", "physics: chamber", "radar: SNR", "radar: CFAR", "radar: detection",
-               "radar: RCS", "radar: Doppler", "radar: signal processing", "lidar", "lidar: optics",
-               "camera", "experiment: geometry and Doppler", "experiment: layers",
-               "experiment: statistics"]
+               "physics: fog", "physics: chamber", "physics: sensor bands", "radar: SNR",
+               "radar: CFAR", "radar: detection", "radar: RCS", "radar: Doppler",
+               "radar: signal processing", "lidar", "lidar: optics", "camera",
+               "experiment: geometry and Doppler", "experiment: layers", "experiment: statistics"]
 COLUMNS = ('<colgroup><col class="id"><col class="q"><col class="c"><col class="r">'
            '<col class="s"><col class="v"><col class="t"><col class="p"></colgroup>')
 PLOTS = {
@@ -388,8 +388,8 @@ def page(checks, tests, failed_tests, commit):
     status = "all passing" if not failing and not failed_tests else \
         f"<b style=\"color:#c00\">{len(failing)} failing</b>"
     disagreements = "" if not known else \
-        (f"; {len(known)} known disagreement{'s' if len(known) != 1 else ''} with the study, "
-         f"shown as such in the <a href=\"#{PAPER}\">{PAPER}</a>")
+        (f"; {len(known)} known disagreement{'s' if len(known) != 1 else ''} with published "
+         f"values, shown as such in their sections")
     out.append(f"<p class=\"summary\">{len(checks)} checks against independent references in "
                f"{sum(rows.values())} rows (the checks of one loop are one row), {status}"
                f"{disagreements}; from {tests} tests of the GoogleTest suites "
@@ -459,7 +459,7 @@ def main():
     failing = [c["id"] for c in checks if not c["pass"]]
     known = sum(c["tolerance_kind"] == "disagreement" and c["pass"] for c in checks)
     print(f"validation: {len(checks)} checks, {len(failing)} failing, {known} known "
-          f"disagreement{'' if known == 1 else 's'} with the study, {tests} tests "
+          f"disagreement{'' if known == 1 else 's'} with published values, {tests} tests "
           f"({len(failed_tests)} failed); {os.path.join(out_dir, 'validation.html')}, "
           f"{os.path.join(out_dir, 'validation.json')}")
     for line in problems + [f"failing: {i}" for i in failing] + \

@@ -101,14 +101,14 @@ def test_a_known_disagreement_is_shown_as_one():
     status, stdout, page = run({"Paper.Radar": [disagreement(14.97, 5.64, 12.75)],
                                 "Paper.Lidar": [agree]})
     assert status == 0, stdout
-    assert "1 known disagreement with the study" in stdout, stdout
+    assert "1 known disagreement with published values" in stdout, stdout
     classes = [r[0] for r in table_rows(page, "paper comparison")]
     assert sorted(classes) == ["disagree", "pass"], classes
     radar = [r[1] for r in table_rows(page, "paper comparison") if r[0] == "disagree"][0]
     assert "known disagreement" in radar and ">pass<" not in radar, radar
     assert "outside fogradar's band [5.64, 12.75]" in radar, radar
     assert "the study's value lies 2.22 dB above fogradar's band" in page
-    assert "1 known disagreement with the study" in page
+    assert "1 known disagreement with published values" in page
     # The paper comparison is the first section.
     assert page.index("<h2 id=") == page.index('<h2 id="paper comparison">')
 
