@@ -107,6 +107,7 @@ Scenario set_values_over(const Scenario& base, const std::vector<KeyValue>& valu
     std::string_view rest = value.key;
     for (std::size_t dot = rest.find('.'); dot != std::string_view::npos; dot = rest.find('.')) {
       table = table->emplace<toml::table>(rest.substr(0, dot)).first->second.as_table();
+      FOGRADAR_CHECK(table != nullptr);  // a section's name is no key's (require_key)
       rest.remove_prefix(dot + 1);
     }
     value.value->visit([&](const auto& node) { table->insert_or_assign(rest, node); });
