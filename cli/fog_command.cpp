@@ -3,7 +3,6 @@
 // study's eq. 1, 2 (Kruse, Kim) beside Mie at one wavelength, the virtual layer model of its eq. 3,
 // 4, and one layer of the fog as each sensor of the paper scenario sees it
 // (sensor::SensorType::fog_report).
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -40,8 +39,6 @@ namespace {
 constexpr double default_wavelength_nm = 905.0;
 constexpr double default_object_reflectivity = 1.0;
 
-const std::vector<std::string> optical_model_names = {"mie", "kruse", "kim"};
-
 struct FogOptions {
   double frequency_ghz = 77.0;
   std::string frequency_typed = "77";  // --frequency-ghz as typed, for the message that refuses it
@@ -61,22 +58,15 @@ struct FogOptions {
       temperature_c;  // absent: 20 C under Liebe, the table's own under Segelstein
   std::string water_model = "liebe";
   double layer_length_m = 1.0;  // the study's layer f_i
-  std::vector<std::string> optical_models = optical_model_names;
+  std::vector<std::string> optical_models = propagation::optical_model_names.names();
   double wavelength_nm = default_wavelength_nm;
   std::optional<std::int64_t> layer_model;
   double object_reflectivity = default_object_reflectivity;
   bool json = false;
 };
 
-// A bound as a message states it, six significant digits rounded inward (down for an upper
-// bound), so that the number shown is itself allowed.
-std::string bound_text(double bound, bool upper) {
-  const double unit = std::pow(10.0, std::floor(std::log10(std::abs(bound))) - 5.0);
-  std::ostringstream text;
-  text << std::setprecision(6)
-       << (upper ? std::floor(bound / unit) : std::ceil(bound / unit)) * unit;
-  return text.str();
-}
+// A fog key's own range, under the options' prefix "--" (fog_keys).
+Interval fog_key_range(std::string_view key) { return propagation::fog_keys("--").at(key).range; }
 
 // The fogs behind the output. The radar-frequency values follow the LWC, the optical ones the
 // extinction at 550 nm; under --lwc-from mie (the default) both are one fog, the LWC and the
@@ -87,23 +77,42 @@ struct FogSpecs {
   propagation::FogSpec by_extinction;
 };
 
-// A droplet option and the [fog.droplets] key it sets (dsd.hpp droplet_keys, here under the prefix
-// "--", so that the families, the presets and which key goes with which family are the
-// scenario's). Diameters are typed in um, the keys hold m.
-struct DropletOption {
+// An option and the fog key it sets (fog.hpp fog_keys, dsd.hpp droplet_keys, here under the prefix
+// "--"), so that the bounds, the families, the presets and which key goes with which family are
+// the scenario's. Diameters are typed in um, the keys hold m. The help states the key's range
+// between `help` and `after`.
+struct KeyOption {
   std::string_view option;
   std::string_view key;
   double key_per_option_unit;
   std::optional<double> FogOptions::*value;
+  std::string_view help;
+  std::string_view after;
 };
 
-const DropletOption droplet_options[] = {
-    {"--diameter-um", "--diameter_m", 1e-6, &FogOptions::diameter_um},
-    {"--median-diameter-um", "--median_diameter_m", 1e-6, &FogOptions::median_diameter_um},
-    {"--geometric-std", "--geometric_std", 1.0, &FogOptions::geometric_std},
-    {"--alpha", "--alpha", 1.0, &FogOptions::alpha},
-    {"--gamma", "--gamma", 1.0, &FogOptions::gamma},
-    {"--b-per-um-gamma", "--b_per_um_gamma", 1.0, &FogOptions::b_per_um_gamma},
+const KeyOption density_options[] = {
+    {"--lwc", "--lwc_g_per_m3", 1.0, &FogOptions::lwc_g_per_m3, "Liquid water content in g/m^3",
+     ""},
+    {"--extinction-per-km", "--extinction_per_km", 1.0, &FogOptions::extinction_per_km,
+     "Optical extinction coefficient at 550 nm in 1/km", " (default 900, the study's fog)"},
+    {"--visibility-m", "--visibility_m", 1.0, &FogOptions::visibility_m,
+     "Visibility (eq. 6, 2 % contrast at 550 nm) in m", ""},
+};
+
+const KeyOption droplet_options[] = {
+    {"--diameter-um", "--diameter_m", 1e-6, &FogOptions::diameter_um,
+     "Monodisperse droplets of this diameter in um", " (default 1)"},
+    {"--median-diameter-um", "--median_diameter_m", 1e-6, &FogOptions::median_diameter_um,
+     "Lognormal median diameter in um", " (default 1)"},
+    {"--geometric-std", "--geometric_std", 1.0, &FogOptions::geometric_std,
+     "Lognormal geometric standard deviation sigma_g", " (default 1.5)"},
+    {"--alpha", "--alpha", 1.0, &FogOptions::alpha,
+     "Modified gamma n(r) = a r^alpha exp(-b r^gamma): alpha", " (default 3, or the preset's)"},
+    {"--gamma", "--gamma", 1.0, &FogOptions::gamma, "Modified gamma: gamma",
+     " (default 1, or the preset's)"},
+    // The mode radius rule goes between the range and `after`.
+    {"--b-per-um-gamma", "--b_per_um_gamma", 1.0, &FogOptions::b_per_um_gamma,
+     "Modified gamma: b in um^-gamma,", " (default 0.3, or the preset's)"},
 };
 
 // The drop size distribution the options give, as the scenario's [fog.droplets] would: the family
@@ -114,8 +123,8 @@ propagation::DropSizeDistribution droplets_from(const FogOptions& o) {
   propagation::DropSizeDistribution droplets = propagation::default_fog_droplets();
   keys.at("--distribution")
       .set_text(droplets, o.distribution.value_or(o.diameter_um ? "monodisperse" : "lognormal"));
-  const DropletOption* gamma_option = nullptr;  // one given, for the message below
-  for (const DropletOption& option : droplet_options) {
+  const KeyOption* gamma_option = nullptr;  // one given, for the message below
+  for (const KeyOption& option : droplet_options) {
     const std::optional<double>& value = o.*option.value;
     if (!value) continue;
     const Key<propagation::DropSizeDistribution>& key = keys.at(option.key);
@@ -128,14 +137,13 @@ propagation::DropSizeDistribution droplets_from(const FogOptions& o) {
     }
   }
   // The one bound that involves several keys (droplet_keys: b_per_um_gamma); a preset meets it, so
-  // a typed parameter broke it.
+  // a typed parameter broke it, and the message names that one.
   if (const auto* g = std::get_if<propagation::ModifiedGamma>(&droplets)) {
-    const double mode_radius_um =
-        std::pow(g->alpha / (g->b_per_um_gamma * g->gamma), 1.0 / g->gamma);
-    if (!(mode_radius_um <= 500.0)) {
+    const double mode_radius_um = propagation::mode_radius_um(*g);
+    if (!(mode_radius_um <= propagation::max_mode_radius_um)) {
       std::ostringstream constraint;
-      constraint << "such that the mode radius (alpha / (b gamma))^(1/gamma) <= 500 um (here "
-                 << mode_radius_um << " um with alpha = " << g->alpha << ", gamma = " << g->gamma
+      constraint << "such that " << propagation::mode_radius_rule() << " (here " << mode_radius_um
+                 << " um with alpha = " << g->alpha << ", gamma = " << g->gamma
                  << ", b = " << g->b_per_um_gamma << ")";
       FOGRADAR_CHECK(gamma_option != nullptr);
       throw_invalid(gamma_option->option, *(o.*gamma_option->value), constraint.str());
@@ -155,28 +163,22 @@ propagation::FogSpec fog_spec_from(const FogOptions& o) {
                   "--water-model segelstein covers [0.03, 2.99e7]");
   }
   propagation::FogSpec spec;
-  if (o.lwc_g_per_m3) {
-    require_in_range("--lwc", *o.lwc_g_per_m3, 0.0, 100.0);
-    spec.density = propagation::LiquidWaterContent{*o.lwc_g_per_m3};
-  } else if (o.extinction_per_km) {
-    require_in_range("--extinction-per-km", *o.extinction_per_km, 0.0, 1e6);
-    spec.density = propagation::OpticalExtinction{*o.extinction_per_km};
-  } else if (o.visibility_m) {
-    require_in_range("--visibility-m", *o.visibility_m, 1e-3, 1e7);
-    spec.density = propagation::Visibility{*o.visibility_m};
+  KeyTable<propagation::FogSpec> keys = propagation::fog_keys("--");
+  for (const KeyOption& option : density_options) {
+    if (const std::optional<double>& value = o.*option.value) {
+      keys.at(option.key).set_number(spec, *value * option.key_per_option_unit);
+    }
   }
   spec.droplets = droplets_from(o);
   spec.water_model = propagation::water_model_names.parse(o.water_model, "--water-model");
   if (spec.water_model == propagation::WaterModel::segelstein) {
     spec.temperature_c = propagation::segelstein_table_temperature_c;
     if (o.temperature_c && *o.temperature_c != spec.temperature_c) {
-      throw_invalid(
-          "--temperature-c", *o.temperature_c,
-          "= 25 with --water-model segelstein (a table for about 25 C without temperature "
-          "dependence); --water-model liebe takes [-20, 50]");
+      throw_invalid("--temperature-c", *o.temperature_c,
+                    propagation::segelstein_temperature_constraint("--water-model segelstein",
+                                                                   "--water-model liebe"));
     }
   } else if (o.temperature_c) {
-    require_in_range("--temperature-c", *o.temperature_c, -20.0, 50.0);
     spec.temperature_c = *o.temperature_c;
   }
   return spec;
@@ -191,24 +193,29 @@ FogSpecs fog_specs_from(const FogOptions& o) {
     lwc_g_per_m3 = *o.lwc_g_per_m3;
     extinction_per_km = propagation::kunkel_extinction_per_km(lwc_g_per_m3);
   } else {
-    // Kunkel's LWC of a dense fog passes the LWC's own bound of 100 g/m^3 long before the
-    // extinction's: the options are held to the extinction that bound allows.
-    const double max_extinction_per_km = propagation::kunkel_extinction_per_km(100.0);
+    // Kunkel's LWC of a dense fog passes the LWC's own bound long before the extinction's: the
+    // options are held to the extinction that bound allows.
+    const double max_lwc_g_per_m3 = fog_key_range("--lwc_g_per_m3").high;
+    const double max_extinction_per_km = propagation::kunkel_extinction_per_km(max_lwc_g_per_m3);
+    const std::string kunkel = " with --lwc-from kunkel (Kunkel's LWC at most " +
+                               message_number(max_lwc_g_per_m3) + " g/m^3); --lwc-from mie takes ";
     std::ostringstream constraint;
     if (o.visibility_m) {
       extinction_per_km =
           per_m_to_per_km(propagation::extinction_per_m_from_visibility(*o.visibility_m));
+      const Interval visibilities_m = fog_key_range("--visibility_m");
       constraint << "in ["
                  << bound_text(propagation::visibility_m_from_extinction(
                                    per_km_to_per_m(max_extinction_per_km)),
                                false)
-                 << ", 1e7] with --lwc-from kunkel (Kunkel's LWC at most 100 g/m^3); "
-                    "--lwc-from mie takes [1e-3, 1e7]";
+                 << ", " << doc_number(visibilities_m.high) << "]" << kunkel
+                 << visibilities_m.doc();
     } else {
       extinction_per_km = std::get<propagation::OpticalExtinction>(spec.density).per_km;
-      constraint << "in [0, " << bound_text(max_extinction_per_km, true)
-                 << "] with --lwc-from kunkel (Kunkel's LWC at most 100 g/m^3); --lwc-from mie "
-                    "takes [0, 1e6]";
+      const Interval extinctions_per_km = fog_key_range("--extinction_per_km");
+      constraint << "in [" << doc_number(extinctions_per_km.low) << ", "
+                 << bound_text(max_extinction_per_km, true) << "]" << kunkel
+                 << extinctions_per_km.doc();
     }
     if (extinction_per_km > max_extinction_per_km) {
       if (o.visibility_m) throw_invalid("--visibility-m", *o.visibility_m, constraint.str());
@@ -307,63 +314,17 @@ std::string droplet_parameters_text(const propagation::DropSizeDistribution& dro
   return std::visit(Text{}, droplets);
 }
 
-// Specific attenuation at the --wavelength-nm by one optical model.
-struct OpticalModelRow {
-  std::string name;
-  std::string label;
-  double extinction_per_km = 0.0;
-  std::optional<double> q;  // Kruse's and Kim's wavelength exponent
-};
-
-// Mie over the droplets, and the study's eq. 1 with Kruse's q (eq. 2) or Kim's, from the eq. 6
-// visibility: eq. 1's 3.91 is -ln 0.02, the 2 % contrast of eq. 6, and Kruse and Kim define their
-// visibility by that threshold, so at 550 nm their extinction is the fog's own.
-std::vector<OpticalModelRow> optical_model_rows(const std::vector<std::string>& models,
-                                                const propagation::FogOptics& mie,
-                                                double visibility_m, double wavelength_nm) {
-  std::vector<OpticalModelRow> rows = {
-      {"mie", "Mie", per_m_to_per_km(mie.extinction_per_m), std::nullopt}};
-  const auto wanted = [&models](std::string_view name) {
-    return std::find(models.begin(), models.end(), name) != models.end();
-  };
-  // No water: no extinction at any wavelength (eq. 1 as V grows without bound).
-  const bool clear = !std::isfinite(visibility_m);
-  const double visibility_km = visibility_m * 1e-3;
-  if (wanted("kruse")) {
-    rows.push_back(
-        {"kruse", "Kruse (eq. 1, 2)",
-         clear ? 0.0 : propagation::kruse_extinction_per_km(visibility_km, wavelength_nm),
-         clear ? std::nullopt : std::optional(propagation::kruse_q(visibility_km))});
+// An optical model's name in the text output.
+std::string_view optical_model_label(propagation::OpticalModel model) {
+  switch (model) {
+    case propagation::OpticalModel::kruse:
+      return "Kruse (eq. 1, 2)";
+    case propagation::OpticalModel::kim:
+      return "Kim (eq. 1)";
+    case propagation::OpticalModel::mie:
+      break;
   }
-  if (wanted("kim")) {
-    rows.push_back({"kim", "Kim (eq. 1)",
-                    clear ? 0.0 : propagation::kim_extinction_per_km(visibility_km, wavelength_nm),
-                    clear ? std::nullopt : std::optional(propagation::kim_q(visibility_km))});
-  }
-  return rows;
-}
-
-// One row of the virtual layer model: an object behind `layers` layers, and the fog's own echo in
-// its delay bin (bin layers + 1, kappa = 2 layers + 1).
-struct LayerModelRow {
-  unsigned layers = 0;
-  unsigned kappa = 1;
-  double fog_intensity_per_i0 = 0.0;
-  double object_intensity_per_i0 = 0.0;
-};
-
-// The longest layer whose virtual layer keeps tau + rho = exp(-alpha d) + eta d <= 1, for
-// eta < alpha: the sum falls from 1 at d = 0 to its minimum at ln(alpha / eta) / alpha and
-// rises through 1 once more before d = 1 / eta; bisection to the last double.
-double longest_layer_m(double extinction_per_m, double eta_m2_per_m3) {
-  double below = std::log(extinction_per_m / eta_m2_per_m3) / extinction_per_m;
-  double above = 1.0 / eta_m2_per_m3;
-  for (int step = 0; step < 200 && std::nextafter(below, above) < above; ++step) {
-    const double middle = 0.5 * (below + above);
-    const double sum = std::exp(-extinction_per_m * middle) + eta_m2_per_m3 * middle;
-    (sum > 1.0 ? above : below) = middle;
-  }
-  return below;
+  return "Mie";
 }
 
 // The study's eq. 3, 4 for a stack of identical virtual layers, each one layer of `length_m` of
@@ -382,24 +343,11 @@ propagation::VirtualLayer virtual_layer(const propagation::FogOptics& optics, do
                     "left out: " + why.str() + " exceeds 1 at every layer length d");
     }
     std::ostringstream constraint;
-    constraint << "at most " << bound_text(longest_layer_m(alpha, eta), true)
+    constraint << "at most " << bound_text(propagation::longest_layer_m(alpha, eta), true)
                << " with --layer-model: " << why.str() << " must not exceed 1";
     throw_invalid("--layer-length-m", length_m, constraint.str());
   }
   return propagation::virtual_layer_from_fog(alpha, eta, length_m);
-}
-
-std::vector<LayerModelRow> layer_model_rows(const propagation::VirtualLayer& layer,
-                                            unsigned max_layers, double object_reflectivity) {
-  std::vector<LayerModelRow> rows;
-  for (unsigned k = 0; k <= max_layers; ++k) {
-    const unsigned kappa = 2 * k + 1;
-    rows.push_back(
-        {k, kappa,
-         propagation::layer_model_intensity(kappa, layer.transmittance, layer.reflectance),
-         propagation::object_intensity(k, layer.transmittance, object_reflectivity)});
-  }
-  return rows;
 }
 
 void run_fog(const FogOptions& options) {
@@ -418,14 +366,18 @@ void run_fog(const FogOptions& options) {
           : std::numeric_limits<double>::infinity();
   const propagation::FogOptics at_wavelength =
       optical_fog.at_optical_wavelength(options.wavelength_nm * 1e-9);
-  const std::vector<OpticalModelRow> models = optical_model_rows(
-      options.optical_models, at_wavelength, visibility_m, options.wavelength_nm);
+  std::vector<propagation::OpticalModel> wanted;
+  for (const std::string& name : options.optical_models) {
+    wanted.push_back(propagation::optical_model_names.parse(name, "--optical-model"));
+  }
+  const std::vector<propagation::OpticalModelExtinction> models = propagation::optical_model_table(
+      wanted, per_m_to_per_km(at_wavelength.extinction_per_m), visibility_m, options.wavelength_nm);
   std::optional<propagation::VirtualLayer> layer;
-  std::vector<LayerModelRow> layer_rows;
+  std::vector<propagation::LayerModelRow> layer_rows;
   if (options.layer_model) {
     layer = virtual_layer(at_wavelength, options.layer_length_m, options);
-    layer_rows = layer_model_rows(*layer, static_cast<unsigned>(*options.layer_model),
-                                  options.object_reflectivity);
+    layer_rows = propagation::layer_model_table(*layer, static_cast<unsigned>(*options.layer_model),
+                                                options.object_reflectivity);
   }
   const auto reports = sensor_reports(specs, options.layer_length_m, table);
 
@@ -453,16 +405,18 @@ void run_fog(const FogOptions& options) {
         {"layer_length_m", options.layer_length_m},
     };
     nlohmann::json& by_model = out["optical_models"] = nlohmann::json::object();
-    for (const OpticalModelRow& row : models) {
+    for (const propagation::OpticalModelExtinction& row : models) {
+      const std::string name(propagation::optical_model_names.name(row.model));
       nlohmann::json& entry =
-          by_model[row.name] = {{"extinction_per_km", row.extinction_per_km},
-                                {"specific_attenuation_db_per_km",
-                                 propagation::attenuation_db_per_km(row.extinction_per_km)}};
-      if (row.name != "mie") entry["q"] = row.q ? nlohmann::json(*row.q) : nlohmann::json(nullptr);
+          by_model[name] = {{"extinction_per_km", row.extinction_per_km},
+                            {"specific_attenuation_db_per_km",
+                             propagation::attenuation_db_per_km(row.extinction_per_km)}};
+      if (row.model != propagation::OpticalModel::mie)
+        entry["q"] = row.q ? nlohmann::json(*row.q) : nlohmann::json(nullptr);
     }
     if (layer) {
       nlohmann::json rows = nlohmann::json::array();
-      for (const LayerModelRow& row : layer_rows) {
+      for (const propagation::LayerModelRow& row : layer_rows) {
         rows.push_back({{"layers", row.layers},
                         {"kappa", row.kappa},
                         {"fog_intensity_per_i0", row.fog_intensity_per_i0},
@@ -509,8 +463,8 @@ void run_fog(const FogOptions& options) {
             << " m (meteorological optical range, 5 % contrast)\n"
             << "at " << options.wavelength_nm
             << " nm (Kruse and Kim from the eq. 6 visibility), eq. 5 for dB/km:\n";
-  for (const OpticalModelRow& row : models) {
-    std::cout << "  " << std::left << std::setw(24) << row.label << std::right
+  for (const propagation::OpticalModelExtinction& row : models) {
+    std::cout << "  " << std::left << std::setw(24) << optical_model_label(row.model) << std::right
               << row.extinction_per_km << " 1/km, "
               << propagation::attenuation_db_per_km(row.extinction_per_km) << " dB/km";
     if (row.q) std::cout << " (q = " << *row.q << ")";
@@ -524,7 +478,7 @@ void run_fog(const FogOptions& options) {
               << "  layers k  fog echo I_kappa / I_0     object echo I_obj / I_0\n"
               << "            (eq. 3, kappa = 2k + 1)    (eq. 4, rho_obj = "
               << options.object_reflectivity << ")\n";
-    for (const LayerModelRow& row : layer_rows) {
+    for (const propagation::LayerModelRow& row : layer_rows) {
       std::cout << "  " << std::setw(8) << row.layers << "  " << std::left << std::setw(27)
                 << row.fog_intensity_per_i0 << std::right << row.object_intensity_per_i0 << '\n';
     }
@@ -532,24 +486,6 @@ void run_fog(const FogOptions& options) {
   std::cout << "through one layer of " << options.layer_length_m
             << " m, as the paper scenario's sensors see it:\n";
   for (const auto& [name, report] : reports) std::cout << report.line << '\n';
-}
-
-// A word option that takes one of `names`.
-CLI::Validator one_of(std::string option, std::vector<std::string> names) {
-  return CLI::Validator(
-      [option, names](const std::string& text) {
-        if (std::find(names.begin(), names.end(), text) == names.end()) {
-          std::string allowed;
-          for (const std::string& name : names) {
-            allowed += allowed.empty() ? "one of '" : ", '";
-            allowed += name;
-            allowed += "'";
-          }
-          throw_invalid(option, text, allowed);
-        }
-        return std::string();
-      },
-      "", "");
 }
 
 }  // namespace
@@ -566,59 +502,48 @@ Action add_fog_command(CLI::App& app) {
       ->check(number_in("--frequency-ghz", 0.03, 2.99e7,
                         "in [0.03, 1000] with --water-model liebe, [0.03, 2.99e7] with segelstein"))
       ->check(keep_text(&options->frequency_typed));
-  auto* lwc =
-      fog->add_option("--lwc", options->lwc_g_per_m3, "Liquid water content in g/m^3 [0, 100]")
-          ->check(number_in("--lwc", 0.0, 100.0, "in [0, 100]"));
-  auto* ext = fog->add_option("--extinction-per-km", options->extinction_per_km,
-                              "Optical extinction coefficient at 550 nm in 1/km [0, 1e6] (default "
-                              "900, the study's fog)")
-                  ->check(number_in("--extinction-per-km", 0.0, 1e6, "in [0, 1e6]"));
-  auto* vis = fog->add_option("--visibility-m", options->visibility_m,
-                              "Visibility (eq. 6, 2 % contrast at 550 nm) in m [1e-3, 1e7]")
-                  ->check(number_in("--visibility-m", 1e-3, 1e7, "in [1e-3, 1e7]"));
-  lwc->excludes(ext)->excludes(vis);
-  ext->excludes(vis);
+  // The options that set a fog key are checked by its own range (fog_keys, droplet_keys), in the
+  // key's unit, and state it in theirs.
+  KeyTable<propagation::FogSpec> fog_keys = propagation::fog_keys("--");
+  KeyTable<propagation::DropSizeDistribution> droplet_keys = propagation::droplet_keys("--");
+  const auto add_key_option = [fog, &options](const KeyOption& option, const Interval& range,
+                                              const std::string& rule = "") {
+    const std::string name(option.option);
+    const std::string help = std::string(option.help) + " " +
+                             option_range(range, option.key_per_option_unit).doc() +
+                             (rule.empty() ? "" : " with " + rule) + std::string(option.after);
+    return fog->add_option(name, (*options).*option.value, help)
+        ->check(key_number(name, range, option.key_per_option_unit,
+                           rule.empty() ? "" : ", with " + rule));
+  };
+  std::vector<CLI::Option*> density;
+  for (const KeyOption& option : density_options) {
+    density.push_back(add_key_option(option, fog_keys.at(option.key).range));
+  }
+  density[0]->excludes(density[1])->excludes(density[2]);
+  density[1]->excludes(density[2]);
   fog->add_option("--lwc-from", options->lwc_from,
                   "What ties the LWC to the 550 nm extinction: mie (over the droplets) | kunkel "
                   "(Kunkel 1984, beta = 144.7 LWC^0.88; the radar sees the LWC, the optical "
                   "sensors the extinction)")
       ->capture_default_str()
       ->check(one_of("--lwc-from", {"mie", "kunkel"}));
-  // The droplet options are the scenario's [fog.droplets] keys, with their ranges (dsd.hpp
-  // droplet_keys; diameters in um here).
   fog->add_option("--distribution", options->distribution,
                   "Drop size distribution: lognormal (default) | monodisperse (default with "
                   "--diameter-um) | advection | radiation (modified-gamma presets, Shettle & "
                   "Fenn) | modified_gamma");
-  fog->add_option("--diameter-um", options->diameter_um,
-                  "Monodisperse droplets of this diameter in um [0.01, 1000] (default 1)")
-      ->check(number_in("--diameter-um", 0.01, 1000.0, "in [0.01, 1000]"));
-  fog->add_option("--median-diameter-um", options->median_diameter_um,
-                  "Lognormal median diameter in um [0.01, 1000] (default 1)")
-      ->check(number_in("--median-diameter-um", 0.01, 1000.0, "in [0.01, 1000]"));
-  fog->add_option("--geometric-std", options->geometric_std,
-                  "Lognormal geometric standard deviation sigma_g [1.01, 3] (default 1.5)")
-      ->check(number_in("--geometric-std", 1.01, 3.0, "in [1.01, 3]"));
-  fog->add_option("--alpha", options->alpha,
-                  "Modified gamma n(r) = a r^alpha exp(-b r^gamma): alpha [0, 20] (default 3, "
-                  "or the preset's)")
-      ->check(number_in("--alpha", 0.0, 20.0, "in [0, 20]"));
-  fog->add_option("--gamma", options->gamma,
-                  "Modified gamma: gamma [0.25, 4] (default 1, or the preset's)")
-      ->check(number_in("--gamma", 0.25, 4.0, "in [0.25, 4]"));
-  fog->add_option("--b-per-um-gamma", options->b_per_um_gamma,
-                  "Modified gamma: b in um^-gamma, > 0 with the mode radius "
-                  "(alpha / (b gamma))^(1/gamma) <= 500 um (default 0.3, or the preset's)")
-      ->check(number_in("--b-per-um-gamma", std::numeric_limits<double>::denorm_min(),
-                        std::numeric_limits<double>::max(),
-                        "finite and > 0, with the mode radius (alpha / (b gamma))^(1/gamma) <= "
-                        "500 um"));
-  fog->add_option(
-         "--temperature-c", options->temperature_c,
-         "Water temperature in C: [-20, 50] with liebe (default 20); segelstein is a table for "
-         "25 C and takes only 25")
-      ->check(number_in("--temperature-c", -20.0, 50.0,
-                        "in [-20, 50] with --water-model liebe, 25 with segelstein"));
+  for (const KeyOption& option : droplet_options) {
+    add_key_option(option, droplet_keys.at(option.key).range,
+                   option.key == "--b_per_um_gamma" ? propagation::mode_radius_rule() : "");
+  }
+  const Interval temperatures_c = fog_keys.at("--temperature_c").range;
+  const std::string table_c = message_number(propagation::segelstein_table_temperature_c);
+  fog->add_option("--temperature-c", options->temperature_c,
+                  "Water temperature in C: " + temperatures_c.doc() +
+                      " with liebe (default 20); segelstein is a table for " + table_c +
+                      " C and takes only " + table_c)
+      ->check(key_number("--temperature-c", temperatures_c, 1.0,
+                         " with --water-model liebe, " + table_c + " with segelstein"));
   fog->add_option("--water-model", options->water_model,
                   "Water index at --frequency-ghz: liebe (temperature dependent, up to 1000 GHz) | "
                   "segelstein (25 C table); 550 nm always uses segelstein")
@@ -633,7 +558,7 @@ Action add_fog_command(CLI::App& app) {
                   "separated: mie | kruse (eq. 1, 2) | kim")
       ->delimiter(',')
       ->capture_default_str()
-      ->check(one_of("--optical-model", optical_model_names));
+      ->check(one_of("--optical-model", propagation::optical_model_names.names()));
   // Kruse's and Kim's fits are of visible and near-infrared data; the lidar's key takes the same.
   fog->add_option("--wavelength-nm", options->wavelength_nm,
                   "Optical wavelength of --optical-model and --layer-model in nm [400, 2000] "

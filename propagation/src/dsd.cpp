@@ -44,6 +44,15 @@ double radius_um_from_u(const ModifiedGamma& d, double u) {
 ModifiedGamma advection_fog() { return {.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 0.3}; }
 ModifiedGamma radiation_fog() { return {.alpha = 6.0, .gamma = 1.0, .b_per_um_gamma = 1.5}; }
 
+double mode_radius_um(const ModifiedGamma& d) {
+  return std::pow(d.alpha / (d.b_per_um_gamma * d.gamma), 1.0 / d.gamma);
+}
+
+std::string mode_radius_rule() {
+  return "the mode radius (alpha / (b gamma))^(1/gamma) <= " + message_number(max_mode_radius_um) +
+         " um";
+}
+
 DropSizeDistribution default_fog_droplets() {
   return Lognormal{.median_diameter_m = 1e-6, .geometric_std = 1.5};
 }
@@ -131,12 +140,8 @@ KeyTable<DropSizeDistribution> droplet_keys(std::string prefix) {
       .when(is(ModifiedGamma{}), gamma_text)
       .with_check([b_key](const DropSizeDistribution& dsd) {
         const ModifiedGamma& d = std::get<ModifiedGamma>(dsd);
-        const double mode_radius_um =
-            std::pow(d.alpha / (d.b_per_um_gamma * d.gamma), 1.0 / d.gamma);
-        if (!(mode_radius_um <= 500.0)) {
-          throw_invalid(b_key, d.b_per_um_gamma,
-                        "large enough that the mode radius (alpha / (b gamma))^(1/gamma) <= 500 "
-                        "um");
+        if (!(mode_radius_um(d) <= max_mode_radius_um)) {
+          throw_invalid(b_key, d.b_per_um_gamma, "large enough that " + mode_radius_rule());
         }
       })
       .documented_as("> 0, mode radius ≤ 500 µm");

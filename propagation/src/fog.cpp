@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/core/units.hpp"
@@ -19,8 +20,18 @@ constexpr double max_lwc_g_per_m3 = 100.0;
 constexpr double max_extinction_per_km = 1e6;
 constexpr double min_visibility_m = 1e-3;
 constexpr double max_visibility_m = 1e7;
+// The Liebe model's temperatures (ITU-R P.840).
+const Interval liebe_temperatures_c = closed(-20.0, 50.0);
 
 }  // namespace
+
+std::string segelstein_temperature_constraint(std::string_view with_segelstein,
+                                              std::string_view with_liebe) {
+  return "= " + message_number(segelstein_table_temperature_c) + " with " +
+         std::string(with_segelstein) +
+         " (a table for about 25 C without temperature dependence); " + std::string(with_liebe) +
+         " takes " + liebe_temperatures_c.doc();
+}
 
 KeyTable<FogSpec> fog_keys(std::string prefix) {
   KeyTable<FogSpec> keys(prefix);
@@ -51,20 +62,18 @@ KeyTable<FogSpec> fog_keys(std::string prefix) {
           closed(min_visibility_m, max_visibility_m), "or: visibility, eq. 6 (2 % contrast)")
       .when(holds(Visibility{}), one_density)
       .in_group("fog density");
-  // The Liebe model's range (ITU-R P.840). A table without temperature dependence cannot use any
-  // other temperature than its own: refused rather than ignored.
+  // A table without temperature dependence cannot use any other temperature than its own:
+  // refused rather than ignored.
   const std::string temperature_key = prefix + "temperature_c", model_key = prefix + "water_model";
-  keys.number("temperature_c", FOGRADAR_KEY_FIELD(temperature_c), closed(-20.0, 50.0),
+  keys.number("temperature_c", FOGRADAR_KEY_FIELD(temperature_c), liebe_temperatures_c,
               "water temperature of the index at the radar frequency (20 °C: an assumed indoor "
               "hall, the study gives none)")
       .with_check([temperature_key, model_key](const FogSpec& f) {
         if (f.water_model == WaterModel::segelstein &&
             f.temperature_c != segelstein_table_temperature_c) {
           throw_invalid(temperature_key, f.temperature_c,
-                        "= 25 with " + model_key +
-                            " = \"segelstein\" (a table for about 25 C without temperature "
-                            "dependence); " +
-                            model_key + " = \"liebe\" takes [-20, 50]");
+                        segelstein_temperature_constraint(model_key + " = \"segelstein\"",
+                                                          model_key + " = \"liebe\""));
         }
       })
       .documented_as("[-20, 50] with `liebe`; only 25 with `segelstein`");

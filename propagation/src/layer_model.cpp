@@ -194,4 +194,30 @@ VirtualLayer virtual_layer_from_fog(double extinction_per_m, double eta_m2_per_m
   return layer;
 }
 
+double longest_layer_m(double extinction_per_m, double eta_m2_per_m3) {
+  require_positive("eta_m2_per_m3", eta_m2_per_m3);
+  if (!(eta_m2_per_m3 < extinction_per_m)) {
+    throw_invalid("eta_m2_per_m3", eta_m2_per_m3, "< extinction_per_m (some layer fits)");
+  }
+  double below = std::log(extinction_per_m / eta_m2_per_m3) / extinction_per_m;
+  double above = 1.0 / eta_m2_per_m3;
+  for (int step = 0; step < 200 && std::nextafter(below, above) < above; ++step) {
+    const double middle = 0.5 * (below + above);
+    const double sum = std::exp(-extinction_per_m * middle) + eta_m2_per_m3 * middle;
+    (sum > 1.0 ? above : below) = middle;
+  }
+  return below;
+}
+
+std::vector<LayerModelRow> layer_model_table(const VirtualLayer& layer, unsigned max_layers,
+                                             double object_reflectivity) {
+  std::vector<LayerModelRow> rows;
+  for (unsigned k = 0; k <= max_layers; ++k) {
+    const unsigned kappa = 2 * k + 1;
+    rows.push_back({k, kappa, layer_model_intensity(kappa, layer.transmittance, layer.reflectance),
+                    object_intensity(k, layer.transmittance, object_reflectivity)});
+  }
+  return rows;
+}
+
 }  // namespace fogradar::propagation

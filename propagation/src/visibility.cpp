@@ -1,5 +1,6 @@
 #include "fogradar/propagation/visibility.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fogradar/core/error.hpp"
@@ -80,6 +81,24 @@ double kruse_extinction_per_km(double visibility_km, double wavelength_nm) {
 
 double kim_extinction_per_km(double visibility_km, double wavelength_nm) {
   return wavelength_scaled_extinction_per_km(visibility_km, wavelength_nm, kim_q(visibility_km));
+}
+
+std::vector<OpticalModelExtinction> optical_model_table(std::span<const OpticalModel> models,
+                                                        double mie_extinction_per_km,
+                                                        double visibility_m, double wavelength_nm) {
+  std::vector<OpticalModelExtinction> rows = {
+      {OpticalModel::mie, mie_extinction_per_km, std::nullopt}};
+  const bool clear = !std::isfinite(visibility_m);
+  const double visibility_km = visibility_m * 1e-3;
+  const auto eq1 = [&](OpticalModel model, double (*extinction_per_km)(double, double),
+                       double (*q)(double)) {
+    if (std::find(models.begin(), models.end(), model) == models.end()) return;
+    rows.push_back({model, clear ? 0.0 : extinction_per_km(visibility_km, wavelength_nm),
+                    clear ? std::nullopt : std::optional(q(visibility_km))});
+  };
+  eq1(OpticalModel::kruse, kruse_extinction_per_km, kruse_q);
+  eq1(OpticalModel::kim, kim_extinction_per_km, kim_q);
+  return rows;
 }
 
 }  // namespace fogradar::propagation

@@ -26,7 +26,7 @@ from ._toml import dumps as dict_to_toml
 
 __version__ = _core.version
 __all__ = ["InvalidParameter", "Scenario", "Simulator", "Results", "Measurement", "stability",
-           "dict_to_toml"]
+           "dict_to_toml", "optical_model_table", "layer_model_table", "longest_layer_m"]
 
 
 class Scenario:
@@ -308,6 +308,31 @@ class Simulator:
                                        label)
         return Measurement(sensor, int(step), int(index), kinds,
                            run.measure(int(step), int(index), names))
+
+
+def optical_model_table(mie_extinction_per_km, visibility_m, wavelength_nm,
+                        models=("kruse", "kim")):
+    """The study's optical attenuation models at one wavelength, as `fogradar fog` prints them: Mie
+    as given (the fog's own extinction there, 1/km), then eq. 1 with Kruse's q (eq. 2) and Kim's
+    from the eq. 6 visibility (m; inf without water). A DataFrame indexed by model:
+    extinction_per_km, q (None for Mie and without water)."""
+    rows = _core.optical_model_table([models] if isinstance(models, str) else list(models),
+                                     mie_extinction_per_km, visibility_m, wavelength_nm)
+    return pd.DataFrame(rows).set_index("model")
+
+
+def layer_model_table(transmittance, reflectance, max_layers, object_reflectivity=1.0):
+    """The study's virtual layer model (eq. 3, 4) for a stack of identical layers of transmittance
+    tau and reflectance rho, as `fogradar fog --layer-model` prints it: a row per object behind
+    0 .. max_layers layers with kappa = 2 layers + 1, the fog's echo (eq. 3) and the object's
+    (eq. 4), both per I_0."""
+    rows = _core.layer_model_table(transmittance, reflectance, max_layers, object_reflectivity)
+    return pd.DataFrame(rows).set_index("layers")
+
+
+def longest_layer_m(extinction_per_m, eta_m2_per_m3):
+    """The longest layer d whose virtual layer keeps exp(-alpha d) + eta d <= 1 (eta < alpha)."""
+    return _core.longest_layer_m(extinction_per_m, eta_m2_per_m3)
 
 
 from ._stability import stability  # noqa: E402  (uses the classes above)

@@ -28,6 +28,8 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
+#include "fogradar/propagation/layer_model.hpp"
+#include "fogradar/propagation/visibility.hpp"
 #include "fogradar/sensor/origin.hpp"
 #include "fogradar/stats/box_plot.hpp"
 #include "fogradar/stats/line_plot.hpp"
@@ -390,6 +392,48 @@ PYBIND11_MODULE(_core, m) {
           "kinds", [](const ItemRunner& r) { return kinds_to_python(r.run().raw_kinds()); })
       .def("measure", &ItemRunner::measure, py::arg("step"), py::arg("index"), py::arg("keep"));
 
+  m.def(
+      "optical_model_table",
+      [](const std::vector<std::string>& models, double mie_extinction_per_km, double visibility_m,
+         double wavelength_nm) {
+        std::vector<propagation::OpticalModel> wanted;
+        for (const std::string& name : models) {
+          wanted.push_back(propagation::optical_model_names.parse(name, "models"));
+        }
+        py::list rows;
+        for (const propagation::OpticalModelExtinction& row : propagation::optical_model_table(
+                 wanted, mie_extinction_per_km, visibility_m, wavelength_nm)) {
+          py::dict entry;
+          entry["model"] = std::string(propagation::optical_model_names.name(row.model));
+          entry["extinction_per_km"] = row.extinction_per_km;
+          entry["q"] = row.q ? py::object(py::float_(*row.q)) : py::object(py::none());
+          rows.append(std::move(entry));
+        }
+        return rows;
+      },
+      "The optical models at one wavelength (propagation/visibility.hpp optical_model_table)");
+  m.def(
+      "layer_model_table",
+      [](double transmittance, double reflectance, unsigned max_layers,
+         double object_reflectivity) {
+        const propagation::VirtualLayer layer{transmittance, reflectance};
+        layer.validate();
+        require_in_range("object_reflectivity", object_reflectivity, 0.0, 1.0);
+        py::list rows;
+        for (const propagation::LayerModelRow& row :
+             propagation::layer_model_table(layer, max_layers, object_reflectivity)) {
+          py::dict entry;
+          entry["layers"] = row.layers;
+          entry["kappa"] = row.kappa;
+          entry["fog_intensity_per_i0"] = row.fog_intensity_per_i0;
+          entry["object_intensity_per_i0"] = row.object_intensity_per_i0;
+          rows.append(std::move(entry));
+        }
+        return rows;
+      },
+      "Eq. 3, 4 for 0 .. max_layers layers (propagation/layer_model.hpp layer_model_table)");
+  m.def("longest_layer_m", &propagation::longest_layer_m,
+        "The longest layer with tau + rho <= 1 (propagation/layer_model.hpp)");
   m.def(
       "box_plot",
       [](const std::vector<double>& values) { return box_plot_to_python(box_plot_of(values)); },

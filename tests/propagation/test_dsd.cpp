@@ -191,6 +191,13 @@ TEST(Dsd, ShettleFennPresets) {
   };
   check(advection_fog(), 0.027, 20.0, 10.0);
   check(radiation_fog(), 2.37305, 100.0, 4.0);
+  // The mode radii the same table gives: 10 um (advection) and 4 um (radiation).
+  validate_dsd("shettle_fenn.mode_radius.advection", "mode radius (alpha / (b gamma))^(1/gamma)",
+               "um", "advection preset", mode_radius_um(advection_fog()), 10.0,
+               "Al Naboulsi et al. 2004 Table 1", 1e-12, Tolerance::relative);
+  validate_dsd("shettle_fenn.mode_radius.radiation", "mode radius (alpha / (b gamma))^(1/gamma)",
+               "um", "radiation preset", mode_radius_um(radiation_fog()), 4.0,
+               "Al Naboulsi et al. 2004 Table 1", 1e-12, Tolerance::relative);
 }
 
 TEST(Dsd, RejectsInvalidParameters) {
@@ -207,6 +214,11 @@ TEST(Dsd, RejectsInvalidParameters) {
   EXPECT_EQ(field_of(ModifiedGamma{.gamma = 0.0}), "fog.droplets.gamma");
   EXPECT_EQ(field_of(ModifiedGamma{.b_per_um_gamma = 0.0}), "fog.droplets.b_per_um_gamma");
   EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 1e-3}),
+            "fog.droplets.b_per_um_gamma");
+  // The mode radius bound itself: (3 / (b 1)) = 500 um at b = 6e-3 is accepted, just below not.
+  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 6e-3}),
+            "accepted");
+  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 5.99e-3}),
             "fog.droplets.b_per_um_gamma");
   EXPECT_EQ(field_of(advection_fog()), "accepted");
   EXPECT_EQ(field_of(default_fog_droplets()), "accepted");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/math/special_functions/lambert_w.hpp>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -392,6 +393,51 @@ TEST(VirtualLayerFromFog, BeerLambertTransmittanceAndAreaReflectivity) {
         kDoubleEqRelTol, Tolerance::relative);
   check("virtual_layer.reflectance", "virtual layer reflectance rho", conditions, layer.reflectance,
         1.5e-6, "closed form: area reflectivity rho = eta d", kDoubleEqRelTol, Tolerance::relative);
+}
+
+TEST(LongestLayer, IsTheNonTrivialRootOfTauPlusRhoEqualsOne) {
+  // exp(-alpha d) + eta d = 1 with t = 1 - eta d: t exp(-(alpha/eta) t) = exp(-alpha/eta), whose
+  // roots are t = -(eta/alpha) W(-(alpha/eta) exp(-alpha/eta)); W_-1 gives the trivial d = 0, the
+  // principal branch W_0 the longest layer (Corless et al. 1996; Boost.Math lambert_w0).
+  for (const auto& [alpha, eta] :
+       {std::pair{2.0, 1.0}, std::pair{0.9, 0.09}, std::pair{1e-2, 1e-3}, std::pair{0.05, 4e-2}}) {
+    const double ratio = alpha / eta;
+    const double t = -boost::math::lambert_w0(-ratio * std::exp(-ratio)) / ratio;
+    const double reference_m = (1.0 - t) / eta;
+    const std::string conditions = "alpha = " + num(alpha) + " 1/m, eta = " + num(eta) + " m^2/m^3";
+    const double longest_m = longest_layer_m(alpha, eta);
+    check("longest_layer.a" + num(alpha) + "_eta" + num(eta), "longest virtual layer", conditions,
+          longest_m, reference_m, "closed form by the Lambert W function (principal branch)", 1e-12,
+          Tolerance::relative);
+    // Its defining property: the layer fits, one double longer does not.
+    EXPECT_LE(std::exp(-alpha * longest_m) + eta * longest_m, 1.0);
+    const double longer_m = std::nextafter(longest_m, 2.0 * longest_m);
+    EXPECT_GT(std::exp(-alpha * longer_m) + eta * longer_m, 1.0);
+  }
+  expect_invalid([] { longest_layer_m(1.0, 1.0); }, "eta_m2_per_m3");
+  expect_invalid([] { longest_layer_m(1.0, 0.0); }, "eta_m2_per_m3");
+}
+
+TEST(LayerModelTable, RowsAreEq3AndEq4WrittenOut) {
+  // tau = 0.8, rho = 0.05, rho_obj = 0.6: eq. 3 for kappa = 1, 3, 5, 7 written out with the
+  // Narayana numbers (1; 1; 1, 1; 1, 3, 1) and eq. 4 I_obj = rho_obj tau^(2k).
+  const double tau = 0.8, rho = 0.05, rho_obj = 0.6;
+  const std::vector<LayerModelRow> rows = layer_model_table({tau, rho}, 3, rho_obj);
+  ASSERT_EQ(rows.size(), 4u);
+  const double eq3[] = {rho, rho * tau * tau, rho * std::pow(tau, 4) + std::pow(rho, 3) * tau * tau,
+                        rho * std::pow(tau, 6) + 3 * std::pow(rho, 3) * std::pow(tau, 4) +
+                            std::pow(rho, 5) * tau * tau};
+  for (unsigned k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(rows[k].layers, k);
+    EXPECT_EQ(rows[k].kappa, 2 * k + 1);
+    const std::string conditions = "tau = 0.8, rho = 0.05, k = " + num(k);
+    check("table.fog.k" + num(k), "fog echo I_kappa / I_0 (table)", conditions,
+          rows[k].fog_intensity_per_i0, eq3[k], "paper eq. 3 written out", 1e-12,
+          Tolerance::relative);
+    check("table.object.k" + num(k), "object echo I_obj / I_0 (table)", conditions,
+          rows[k].object_intensity_per_i0, rho_obj * std::pow(tau, 2.0 * k),
+          "paper eq. 4: rho_obj tau^(2k)", 1e-12, Tolerance::relative);
+  }
 }
 
 // ---- Rejected inputs --------------------------------------------------------------------------

@@ -2,10 +2,12 @@
 // 2001). References are the published closed forms evaluated by hand; tolerances 1e-12 unless said.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/visibility.hpp"
@@ -188,6 +190,60 @@ TEST(Visibility, Eq1AwayFrom550nmInEachVisibilityBand) {
   check("kruse_beta.1550nm.v10km.by_hand", "optical extinction beta (Kruse)", "1/km",
         "1550 nm, V = 10 km", kruse_extinction_per_km(10.0, 1550.0), 0.1017282770,
         eq1 + ", q = 1.3, evaluated by hand", 1e-9);
+}
+
+TEST(OpticalModelTable, MieFirstThenKruseAndKimAsEq1WithTheirQ) {
+  // V = 3 km at 905 nm: Kruse's q = 0.585 V^(1/3) (eq. 2), Kim's q = 0.16 V + 0.34 = 0.82; eq. 1
+  // written out; Kim's by hand as in Eq1AwayFrom550nmInEachVisibilityBand. Mie is the value given.
+  const std::array<OpticalModel, 3> all = {OpticalModel::kim, OpticalModel::mie,
+                                           OpticalModel::kruse};
+  const std::vector<OpticalModelExtinction> rows = optical_model_table(all, 1.25, 3000.0, 905.0);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].model, OpticalModel::mie);
+  EXPECT_EQ(rows[1].model, OpticalModel::kruse);
+  EXPECT_EQ(rows[2].model, OpticalModel::kim);
+  EXPECT_EQ(rows[0].extinction_per_km, 1.25);
+  EXPECT_FALSE(rows[0].q.has_value());
+  const std::string eq1 = "paper eq. 1 written out: beta = 3.912 / V (lambda / 550 nm)^-q";
+  const double ratio = 905.0 / 550.0;
+  check("table.kruse_q.v3km", "Kruse q (table)", "1", "V = 3 km", rows[1].q.value(),
+        0.585 * std::cbrt(3.0), "paper eq. 2: q = 0.585 V^(1/3)", 1e-12, Tolerance::relative);
+  check("table.kruse_beta.905nm.v3km", "optical extinction beta (Kruse, table)", "1/km",
+        "905 nm, V = 3 km", rows[1].extinction_per_km,
+        3.912023005428146 / 3.0 * std::pow(ratio, -0.585 * std::cbrt(3.0)), eq1, 1e-12,
+        Tolerance::relative);
+  check("table.kim_q.v3km", "Kim q (table)", "1", "V = 3 km", rows[2].q.value(), 0.82,
+        "Kim et al. 2001: q = 0.16 V + 0.34", 1e-12, Tolerance::relative);
+  check("table.kim_beta.905nm.v3km.by_hand", "optical extinction beta (Kim, table)", "1/km",
+        "905 nm, V = 3 km", rows[2].extinction_per_km, 0.8668135983,
+        eq1 + ", q = 0.82, evaluated by hand", 1e-9);
+}
+
+TEST(OpticalModelTable, At550nmEveryModelIsTheFogsOwnExtinction) {
+  // Eq. 1 at 550 nm is eq. 6 whatever q: beta = -ln(0.02) / V; Mie given as that same value.
+  const std::array<OpticalModel, 2> empirical = {OpticalModel::kruse, OpticalModel::kim};
+  for (const double visibility_m : {200.0, 2000.0, 20000.0}) {
+    const double beta_per_km = 3.912023005428146 / (visibility_m * 1e-3);
+    for (const OpticalModelExtinction& row :
+         optical_model_table(empirical, beta_per_km, visibility_m, 550.0)) {
+      check("table.550nm." + std::string(optical_model_names.name(row.model)) + ".v" +
+                num(visibility_m) + "m",
+            "optical extinction beta at 550 nm (table)", "1/km", "V = " + num(visibility_m) + " m",
+            row.extinction_per_km, beta_per_km, "paper eq. 6: beta = -ln(0.02) / V", 1e-12,
+            Tolerance::relative);
+    }
+  }
+}
+
+TEST(OpticalModelTable, WithoutWaterNoExtinctionAndNoQ) {
+  // Limiting case: eq. 1 as V grows without bound.
+  const std::array<OpticalModel, 1> kim = {OpticalModel::kim};
+  const std::vector<OpticalModelExtinction> rows =
+      optical_model_table(kim, 0.0, std::numeric_limits<double>::infinity(), 905.0);
+  ASSERT_EQ(rows.size(), 2u);  // Mie is always there; Kruse was not asked for
+  EXPECT_EQ(rows[1].model, OpticalModel::kim);
+  EXPECT_EQ(rows[1].extinction_per_km, 0.0);
+  EXPECT_FALSE(rows[1].q.has_value());
 }
 
 TEST(Visibility, RejectsNonPhysicalInput) {

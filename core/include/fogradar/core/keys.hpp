@@ -102,6 +102,9 @@ struct Key {
 
   std::function<double(const P&)> get_number;
   std::function<void(P&, double)> set_number;
+  // A number key's own allowed values, for a front end that states them in its own unit (the
+  // whole line where a check stated in words bounds the key instead).
+  Interval range;
   std::function<std::int64_t(const P&)> get_integer;
   std::function<void(P&, std::int64_t)> set_integer;
   std::int64_t integer_low = 0;
@@ -226,6 +229,7 @@ class KeyTable {
     Key<P>& key = add(name, KeyType::number, range.doc(), std::move(meaning));
     key.get_number = std::move(get);
     key.set_number = std::move(set);
+    key.range = range;
     key.check = [name = key.name, get = key.get_number, range](const P& p) {
       const double value = get(p);
       if (!range.contains(value)) throw_invalid(name, value, range.constraint());
@@ -449,6 +453,7 @@ class KeyTable {
     key.type = sub.type;
     key.allowed = std::move(sub.allowed);
     key.meaning = std::move(sub.meaning);
+    key.range = sub.range;
     key.integer_low = sub.integer_low;
     key.integer_high = sub.integer_high;
     key.choices = std::move(sub.choices);

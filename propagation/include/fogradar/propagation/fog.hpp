@@ -3,6 +3,8 @@
 #pragma once
 
 #include <complex>
+#include <string>
+#include <string_view>
 #include <variant>
 
 #include "fogradar/propagation/droplet.hpp"
@@ -48,6 +50,13 @@ struct FogSpec {
 // extinction_per_km, visibility_m (the one given replaces the others), the temperature and water
 // model of the index at radar frequencies, and the droplets under "droplets." (droplet_keys).
 KeyTable<FogSpec> fog_keys(std::string prefix);
+
+// The temperatures the water index takes, as a message states them after "must be ": only the
+// Segelstein table's own under `with_segelstein` (the water model named as the user writes it:
+// "fog.water_model = \"segelstein\"", "--water-model segelstein"), Liebe's range under
+// `with_liebe`.
+std::string segelstein_temperature_constraint(std::string_view with_segelstein,
+                                              std::string_view with_liebe);
 
 // Bulk properties of a fog at one frequency (sums over the drop size distribution, Mie per
 // droplet).

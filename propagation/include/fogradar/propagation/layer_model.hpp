@@ -55,4 +55,21 @@ std::vector<double> layer_stack_response(std::span<const VirtualLayer> layers, d
 VirtualLayer virtual_layer_from_fog(double extinction_per_m, double eta_m2_per_m3,
                                     double thickness_m);
 
+// The longest layer d whose virtual layer keeps tau + rho = exp(-alpha d) + eta d <= 1, for
+// 0 < eta < alpha: the sum falls from 1 at d = 0 to its minimum at ln(alpha / eta) / alpha and
+// rises through 1 once more before d = 1 / eta (the root found to the last double).
+double longest_layer_m(double extinction_per_m, double eta_m2_per_m3);
+
+// One row of eq. 3, 4 for a stack of identical layers: an object behind `layers` layers (eq. 4),
+// and the fog's own echo in its delay bin, kappa = 2 layers + 1 (eq. 3), both per I_0.
+struct LayerModelRow {
+  unsigned layers = 0;
+  unsigned kappa = 1;
+  double fog_intensity_per_i0 = 0.0;
+  double object_intensity_per_i0 = 0.0;
+};
+// The rows for 0 .. max_layers layers of `layer` before an object of `object_reflectivity`.
+std::vector<LayerModelRow> layer_model_table(const VirtualLayer& layer, unsigned max_layers,
+                                             double object_reflectivity);
+
 }  // namespace fogradar::propagation

@@ -4,6 +4,12 @@
 // d)): the Kruse functions below return beta in 1/km; multiply by 10 log10(e) (eq. 5) for dB/km.
 #pragma once
 
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "fogradar/core/enum_names.hpp"
+
 namespace fogradar::propagation {
 
 // Contrast thresholds: Koschmieder/visual range (paper eq. 6, epsilon = 0.02) and CIE
@@ -37,5 +43,27 @@ double kim_q(double visibility_km);
 // Paper eq. 1: beta(lambda) = (3.91 / V) (lambda / 550 nm)^(-q), V in km, beta in 1/km.
 double kruse_extinction_per_km(double visibility_km, double wavelength_nm);
 double kim_extinction_per_km(double visibility_km, double wavelength_nm);
+
+// The study's optical attenuation models: Mie over the fog's droplets, eq. 1 with Kruse's q (eq. 2)
+// and eq. 1 with Kim's q.
+enum class OpticalModel { mie, kruse, kim };
+inline constexpr auto optical_model_names = enum_names<OpticalModel>(
+    {{OpticalModel::mie, "mie"}, {OpticalModel::kruse, "kruse"}, {OpticalModel::kim, "kim"}});
+
+// One model's extinction at one wavelength.
+struct OpticalModelExtinction {
+  OpticalModel model = OpticalModel::mie;
+  double extinction_per_km = 0.0;
+  std::optional<double> q;  // eq. 1's wavelength exponent: Kruse's and Kim's, none without water
+};
+
+// The models' extinction at `wavelength_nm` for a fog whose Mie extinction there is
+// `mie_extinction_per_km` and whose eq. 6 visibility is `visibility_m` (infinite without water):
+// Mie first, then Kruse and Kim where `models` names them. Eq. 1's 3.91 is -ln 0.02, the 2 %
+// contrast of eq. 6, so at 550 nm Kruse and Kim give the fog's own extinction; without water eq. 1
+// gives none (its limit as V grows without bound) and no q.
+std::vector<OpticalModelExtinction> optical_model_table(std::span<const OpticalModel> models,
+                                                        double mie_extinction_per_km,
+                                                        double visibility_m, double wavelength_nm);
 
 }  // namespace fogradar::propagation
