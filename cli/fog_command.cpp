@@ -110,7 +110,7 @@ const KeyOption droplet_options[] = {
      "Modified gamma n(r) = a r^alpha exp(-b r^gamma): alpha", " (default 3, or the preset's)"},
     {"--gamma", "--gamma", 1.0, &FogOptions::gamma, "Modified gamma: gamma",
      " (default 1, or the preset's)"},
-    // The mode radius rule goes between the range and `after`.
+    // The mean radius rule goes between the range and `after`.
     {"--b-per-um-gamma", "--b_per_um_gamma", 1.0, &FogOptions::b_per_um_gamma,
      "Modified gamma: b in um^-gamma,", " (default 0.3, or the preset's)"},
 };
@@ -139,10 +139,10 @@ propagation::DropSizeDistribution droplets_from(const FogOptions& o) {
   // The one bound that involves several keys (droplet_keys: b_per_um_gamma); a preset meets it, so
   // a typed parameter broke it, and the message names that one.
   if (const auto* g = std::get_if<propagation::ModifiedGamma>(&droplets)) {
-    const double mode_radius_um = propagation::mode_radius_um(*g);
-    if (!(mode_radius_um <= propagation::max_mode_radius_um)) {
+    const double mean_radius_um = propagation::mean_radius_um(*g);
+    if (!(mean_radius_um <= propagation::max_mean_radius_um)) {
       std::ostringstream constraint;
-      constraint << "such that " << propagation::mode_radius_rule() << " (here " << mode_radius_um
+      constraint << "such that " << propagation::mean_radius_rule() << " (here " << mean_radius_um
                  << " um with alpha = " << g->alpha << ", gamma = " << g->gamma
                  << ", b = " << g->b_per_um_gamma << ")";
       FOGRADAR_CHECK(gamma_option != nullptr);
@@ -534,7 +534,7 @@ Action add_fog_command(CLI::App& app) {
                   "Fenn) | modified_gamma");
   for (const KeyOption& option : droplet_options) {
     add_key_option(option, droplet_keys.at(option.key).range,
-                   option.key == "--b_per_um_gamma" ? propagation::mode_radius_rule() : "");
+                   option.key == "--b_per_um_gamma" ? propagation::mean_radius_rule() : "");
   }
   const Interval temperatures_c = fog_keys.at("--temperature_c").range;
   const std::string table_c = message_number(propagation::segelstein_table_temperature_c);

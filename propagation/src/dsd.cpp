@@ -48,9 +48,14 @@ double mode_radius_um(const ModifiedGamma& d) {
   return std::pow(d.alpha / (d.b_per_um_gamma * d.gamma), 1.0 / d.gamma);
 }
 
-std::string mode_radius_rule() {
-  return "the mode radius (alpha / (b gamma))^(1/gamma) <= " + message_number(max_mode_radius_um) +
-         " um";
+double mean_radius_um(const ModifiedGamma& d) {
+  return boost::math::tgamma_ratio(gamma_shape(d, 1), gamma_shape(d, 0)) /
+         std::pow(d.b_per_um_gamma, 1.0 / d.gamma);
+}
+
+std::string mean_radius_rule() {
+  return "the mean radius Gamma((alpha + 2)/gamma) / (b^(1/gamma) Gamma((alpha + 1)/gamma)) <= " +
+         message_number(max_mean_radius_um) + " um";
 }
 
 DropSizeDistribution default_fog_droplets() {
@@ -136,15 +141,17 @@ KeyTable<DropSizeDistribution> droplet_keys(std::string prefix) {
           "b_per_um_gamma",
           [](const DropSizeDistribution& d) { return std::get<ModifiedGamma>(d).b_per_um_gamma; },
           [](DropSizeDistribution& d, double v) { std::get<ModifiedGamma>(d).b_per_um_gamma = v; },
-          positive(), "modified gamma: b in µm^−γ, with the mode radius (α/(bγ))^(1/γ) ≤ 500 µm")
+          positive(),
+          "modified gamma: b in µm^−γ, with the mean radius Γ((α+2)/γ) / (b^(1/γ) Γ((α+1)/γ)) ≤ "
+          "500 µm")
       .when(is(ModifiedGamma{}), gamma_text)
       .with_check([b_key](const DropSizeDistribution& dsd) {
         const ModifiedGamma& d = std::get<ModifiedGamma>(dsd);
-        if (!(mode_radius_um(d) <= max_mode_radius_um)) {
-          throw_invalid(b_key, d.b_per_um_gamma, "large enough that " + mode_radius_rule());
+        if (!(mean_radius_um(d) <= max_mean_radius_um)) {
+          throw_invalid(b_key, d.b_per_um_gamma, "large enough that " + mean_radius_rule());
         }
       })
-      .documented_as("> 0, mode radius ≤ 500 µm");
+      .documented_as("> 0, mean radius ≤ 500 µm");
   return keys;
 }
 

@@ -270,9 +270,11 @@ expect_bad fog-alpha "--alpha = '21'" "in [0, 20]" fog --distribution advection 
 expect_bad fog-gamma "--gamma = '0.2'" "in [0.25, 4]" fog --distribution advection --gamma 0.2
 expect_bad fog-b "--b-per-um-gamma = '0'" "finite and > 0" \
   fog --distribution advection --b-per-um-gamma 0
-expect_bad fog-b-mode-radius "--b-per-um-gamma = 0.001" \
-  "mode radius (alpha / (b gamma))^(1/gamma) <= 500 um" \
+expect_bad fog-b-mean-radius "--b-per-um-gamma = 0.001" \
+  "mean radius Gamma((alpha + 2)/gamma) / (b^(1/gamma) Gamma((alpha + 1)/gamma)) <= 500 um" \
   fog --distribution modified_gamma --b-per-um-gamma 0.001
+expect_bad fog-b-mean-radius-alpha-0 "--b-per-um-gamma = 1e-300" "mean radius" \
+  fog --distribution modified_gamma --alpha 0 --b-per-um-gamma 1e-300
 expect_bad fog-parameter-of-another-family "--geometric-std = 2" \
   'given only with --distribution = "lognormal"' \
   fog --distribution radiation --geometric-std 2

@@ -215,11 +215,18 @@ TEST(Dsd, RejectsInvalidParameters) {
   EXPECT_EQ(field_of(ModifiedGamma{.b_per_um_gamma = 0.0}), "fog.droplets.b_per_um_gamma");
   EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 1e-3}),
             "fog.droplets.b_per_um_gamma");
-  // The mode radius bound itself: (3 / (b 1)) = 500 um at b = 6e-3 is accepted, just below not.
-  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 6e-3}),
+  // The mean radius bound itself: for gamma = 1 the mean radius is (alpha + 1) / b, 500 um at
+  // alpha = 3, b = 8e-3 (accepted), beyond it just below.
+  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 8e-3}),
             "accepted");
-  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 5.99e-3}),
+  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 3.0, .gamma = 1.0, .b_per_um_gamma = 7.99e-3}),
             "fog.droplets.b_per_um_gamma");
+  // At alpha = 0 the mode radius is 0 for every b; the mean radius 1/b still bounds the droplets
+  // (b = 1e-300 once passed the mode's bound and then asked for droplets of 1e300 um).
+  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 0.0, .gamma = 1.0, .b_per_um_gamma = 1e-300}),
+            "fog.droplets.b_per_um_gamma");
+  EXPECT_EQ(field_of(ModifiedGamma{.alpha = 0.0, .gamma = 1.0, .b_per_um_gamma = 2e-3}),
+            "accepted");
   EXPECT_EQ(field_of(advection_fog()), "accepted");
   EXPECT_EQ(field_of(default_fog_droplets()), "accepted");
 }

@@ -48,10 +48,15 @@ ModifiedGamma radiation_fog();
 // Mode radius of a modified gamma, where n(r) peaks: r_c = (alpha / (b gamma))^(1/gamma) in um
 // (dn/dr = 0; Deirmendjian 1969).
 double mode_radius_um(const ModifiedGamma& d);
-// The largest mode radius accepted: half the largest droplet diameter fogradar takes (1 mm).
-inline constexpr double max_mode_radius_um = 500.0;
-// That bound as a message states it: "the mode radius (alpha / (b gamma))^(1/gamma) <= 500 um".
-std::string mode_radius_rule();
+// Mean radius of a modified gamma: <r> = Gamma((alpha + 2)/gamma) / (b^(1/gamma)
+// Gamma((alpha + 1)/gamma)) in um (the k = 1 moment, Deirmendjian 1969). It bounds the droplets'
+// scale for every alpha, where the mode radius is 0 at alpha = 0 whatever b is.
+double mean_radius_um(const ModifiedGamma& d);
+// The largest mean radius accepted: half the largest droplet diameter fogradar takes (1 mm).
+inline constexpr double max_mean_radius_um = 500.0;
+// That bound as a message states it: "the mean radius Gamma((alpha + 2)/gamma) / (b^(1/gamma)
+// Gamma((alpha + 1)/gamma)) <= 500 um".
+std::string mean_radius_rule();
 
 // The distribution fogradar uses when none is given: the study's ultrasonic fogger makes droplets
 // of "diameter about 1 um" (paper sec. III-B); lognormal, median 1 um, sigma_g = 1.5 (an assumption
