@@ -35,17 +35,15 @@ struct FogStretch {
 // 1 on its nodes and, at either edge, weights on the 8 nodes around it (4 outside, where the
 // profile is continued by its formula) that make the rule exact for every polynomial of degree 7:
 // the partial cell up to the edge plus the Euler-Maclaurin (midpoint form) corrections of the
-// grid's end (Davis & Rabinowitz 1984, Methods of Numerical Integration, 2.9 and 2.10). Away from
+// grid's end (Davis & Rabinowitz 1984, Methods of Numerical Integration, ch. 2). Away from
 // the edges the trapezoidal sum of p(t - tau) g(tau) is spectrally accurate (aliasing error ~
 // exp(-2 pi^2 sigma^2 / h^2) < 1e-130 at h = sigma / 4). The pulse is cut 2 fwhm from each node,
-// and each stretch writes only the samples within 2 fwhm of its range, like a pulse from any of its
-// points. With `first_sample`, waveform[0] is sample first_sample: a part of the record gets
+// and a call writes only the samples from 2 fwhm before its nearest stretch to 2 fwhm beyond its
+// farthest. With `first_sample`, waveform[0] is sample first_sample: a part of the record gets
 // exactly the values the whole record would (the same sums in the same order).
 class FogReturn {
  public:
   explicit FogReturn(const WaveformGrid& grid);
-
-  const WaveformGrid& grid() const { return grid_; }
 
   // The stretches' return, one profile on one node grid (the finest any of them needs).
   void add(std::span<double> waveform, std::span<const FogStretch> stretches,
@@ -54,10 +52,10 @@ class FogReturn {
     add(waveform, std::span<const FogStretch>(&fog, 1), first_sample);
   }
 
+ private:
   // Nodes of the edge rule: offsets -4..3 from the first node inside the stretch.
   static constexpr std::size_t edge_nodes = 8;
 
- private:
   WaveformGrid grid_;
   double sigma_s_ = 0.0;
   // pulse_[i][n + half_[i]] = p(n dt / 2^i), |n dt / 2^i| <= 2 fwhm.
