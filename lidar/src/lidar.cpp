@@ -100,6 +100,7 @@ Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
   grid_ = {.sample_interval_s = params_.sample_interval_ns * 1e-9,
            .pulse_fwhm_s = params_.pulse_width_ns * 1e-9,
            .full_overlap_range_m = params_.overlap_range_m};
+  fog_return_ = FogReturn(grid_);
   samples_ = params_.samples_per_beam();
   // The datasheet's detection range: a Lambertian target of threshold_reflectivity at
   // threshold_range_m, normal incidence, clear air, peaks exactly at the threshold.
@@ -235,7 +236,7 @@ BeamWaveform Lidar::waveform(std::size_t beam, const propagation::ActiveLayers& 
   const Hit hit = trace(beam, active, optical_depth_factors, stretches, stretch_layers);
   out.crosses_fog = !stretches.empty();
   out.hits = hit.found;
-  for (const FogStretch& stretch : stretches) add_fog_stretch(out.fog, grid_, stretch);
+  fog_return_.add(out.fog, stretches);
   if (hit.found) {
     add_hard_target(hit.is_target ? out.target : out.background, grid_, hit.range_m, hit.amplitude);
   }
@@ -286,7 +287,7 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
     if (through_fog) {
       lo = sample_at(stretches.front().start_m, -support_s);
       hi = sample_at(stretches.back().end_m, support_s) + 1;
-      for (const FogStretch& stretch : stretches) add_fog_stretch(fog, grid_, stretch);
+      fog_return_.add(fog, stretches);
     }
     if (hit.found) {
       lo = std::min(lo, sample_at(hit.range_m, -support_s));
@@ -317,8 +318,8 @@ LidarScan Lidar::measure(const propagation::ActiveLayers& active,
           share_count.push_back(end - from);
           share_at.push_back(shares.size());
           shares.resize(shares.size() + (end - from), 0.0);
-          add_fog_stretch(std::span<double>(shares).subspan(share_at.back(), end - from), grid_,
-                          stretch, from);
+          fog_return_.add(std::span<double>(shares).subspan(share_at.back(), end - from), stretch,
+                          from);
         }
       }
       std::int32_t layer = no_layer;

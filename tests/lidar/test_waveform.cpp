@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fogradar/lidar/fog_return.hpp"
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/lidar/waveform.hpp"
 #include "fogradar/propagation/chamber.hpp"
@@ -95,12 +96,11 @@ TEST(LidarWaveform, HardTargetPeakIsTheClosedForm) {
 TEST(LidarWaveform, ThickTransparentLayerPlateau) {
   std::vector<double> w(samples, 0.0);
   const double beta = 2e-3;
-  add_fog_stretch(w, grid,
-                  {.start_m = 50.0,
-                   .end_m = 150.0,
-                   .extinction_per_m = 0.0,
-                   .backscatter_per_m_sr = beta,
-                   .transmittance_at_start = 1.0});
+  FogReturn(grid).add(w, {.start_m = 50.0,
+                          .end_m = 150.0,
+                          .extinction_per_m = 0.0,
+                          .backscatter_per_m_sr = beta,
+                          .transmittance_at_start = 1.0});
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   for (const std::size_t k : {800u, 900u, 1000u}) {
     const double r = c * static_cast<double>(k) * grid.sample_interval_s / 2.0;
@@ -124,16 +124,15 @@ TEST(LidarWaveform, ThickTransparentLayerPlateau) {
 // k = 2 alpha, e^(k a) [e^(-k a)/a - e^(-k b)/b - k (E1(k a) - E1(k b))] (integration by parts;
 // E1 the exponential integral, Boost.Math expint). The sample sum times dt is the trapezoidal rule
 // of a function vanishing at both ends. Tolerance 1e-5: the pulse is evaluated within 2 FWHM of
-// its centre, and the cut-off tails hold 3e-6 of its energy (waveform.cpp).
+// its centre, and the cut-off tails hold 3e-6 of its energy (fog_return.cpp).
 TEST(LidarWaveform, AbsorbingLayerEnergyMatchesTheExponentialIntegralForm) {
   std::vector<double> w(samples, 0.0);
   const double a = 5.0, b = 6.0, alpha = 0.9, beta = 0.05, t0 = 0.4;
-  add_fog_stretch(w, grid,
-                  {.start_m = a,
-                   .end_m = b,
-                   .extinction_per_m = alpha,
-                   .backscatter_per_m_sr = beta,
-                   .transmittance_at_start = t0});
+  FogReturn(grid).add(w, {.start_m = a,
+                          .end_m = b,
+                          .extinction_per_m = alpha,
+                          .backscatter_per_m_sr = beta,
+                          .transmittance_at_start = t0});
   double energy = 0.0;
   for (const double v : w) energy += v * grid.sample_interval_s;
   const double k = 2.0 * alpha;
@@ -162,12 +161,11 @@ TEST(LidarWaveform, OverlapFunctionInsideTheFullOverlapRange) {
   std::vector<double> w(samples, 0.0);
   WaveformGrid near_grid = grid;
   near_grid.full_overlap_range_m = 20.0;
-  add_fog_stretch(w, near_grid,
-                  {.start_m = 10.0,
-                   .end_m = 15.0,
-                   .extinction_per_m = 0.0,
-                   .backscatter_per_m_sr = 1e-3,
-                   .transmittance_at_start = 1.0});
+  FogReturn(near_grid).add(w, {.start_m = 10.0,
+                               .end_m = 15.0,
+                               .extinction_per_m = 0.0,
+                               .backscatter_per_m_sr = 1e-3,
+                               .transmittance_at_start = 1.0});
   double energy = 0.0;
   for (const double v : w) energy += v * grid.sample_interval_s;
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
@@ -441,12 +439,11 @@ TEST(LidarEchoes, MergedFogAndTargetEchoIsAttributedToTheFogWhoseEdgeItReads) {
   const double dr = c * grid.sample_interval_s / 2.0;
   const double tau_e = grid.pulse_fwhm_s * std::sqrt(pi / (4.0 * ln2));
   std::vector<double> w(samples, 0.0);
-  add_fog_stretch(w, grid,
-                  {.start_m = 5.0,
-                   .end_m = 6.0,
-                   .extinction_per_m = 0.0,
-                   .backscatter_per_m_sr = 2.0 * 25.0 / (c * tau_e / 2.0),
-                   .transmittance_at_start = 1.0});
+  FogReturn(grid).add(w, {.start_m = 5.0,
+                          .end_m = 6.0,
+                          .extinction_per_m = 0.0,
+                          .backscatter_per_m_sr = 2.0 * 25.0 / (c * tau_e / 2.0),
+                          .transmittance_at_start = 1.0});
   Constructed target;
   target.add(6.5, 5.0);
   for (std::size_t k = 0; k < samples; ++k) w[k] += target.w[k];

@@ -21,6 +21,7 @@
 
 #include "fogradar/core/random.hpp"
 #include "fogradar/core/stop.hpp"
+#include "fogradar/lidar/fog_return.hpp"
 #include "fogradar/lidar/params.hpp"
 #include "fogradar/lidar/waveform.hpp"
 #include "fogradar/propagation/chamber.hpp"
@@ -185,6 +186,7 @@ class Lidar {
   std::size_t target_beam_ = 0;
   std::size_t samples_ = 0;
   WaveformGrid grid_;
+  FogReturn fog_return_{WaveformGrid{}};
   EchoDetector detector_;
   double noise_std_ = 0.0;
   double window_two_way_transmittance_ = 1.0;  // the window's water film, out and back

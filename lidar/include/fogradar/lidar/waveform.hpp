@@ -42,28 +42,6 @@ struct WaveformGrid {
 void add_hard_target(std::span<double> waveform, const WaveformGrid& grid, double range_m,
                      double amplitude);
 
-// A homogeneous stretch of fog along the beam, [start_m, end_m] in range, with extinction alpha
-// and volume backscatter beta_pi = sigma_b / (4 pi) per metre per steradian, entered with two-way
-// transmittance `transmittance_at_start`.
-struct FogStretch {
-  double start_m = 0.0;
-  double end_m = 0.0;
-  double extinction_per_m = 0.0;
-  double backscatter_per_m_sr = 0.0;
-  double transmittance_at_start = 1.0;
-};
-
-// waveform[k] += integral_start^end p(k dt - 2r/c) beta_pi T^2(r) / r^2 O(r) dr,
-// T^2(r) = T^2(start) exp(-2 alpha (r - start)), by composite 8-point Gauss-Legendre quadrature
-// (Boost.Math nodes) in panels of at most the pulse's range FWHM c fwhm / 2 (and split at the
-// overlap function's kink), each node's pulse evaluated at least 2 fwhm either side of it (a
-// panel's nodes share one window: their own 2 fwhm around any of them). With `first_sample`,
-// waveform[0] is sample first_sample: a part of the record gets exactly the values the whole
-// record would (the same sums in the same order), so one stretch's share of a sample can be taken
-// apart from the others'.
-void add_fog_stretch(std::span<double> waveform, const WaveformGrid& grid, const FogStretch& fog,
-                     std::size_t first_sample = 0);
-
 // The receiver (docs/lidar.md §4).
 struct EchoDetector {
   double threshold = 0.0;  // in waveform units
