@@ -214,7 +214,8 @@ void FogReturn::add(std::span<double> waveform, std::span<const FogStretch> stre
       if (m1 - m < edge_before) weight += right[static_cast<std::size_t>(hi - m)];
       const double r = static_cast<double>(m) * r_step;
       // Before a piece beyond the overlap range its 1/r^2 is continued (r > 0.7 r_start > 0
-      // there); a piece starting at r = 0 beyond it has no finite return.
+      // there). A piece starting at r = 0 beyond it would have no finite return: the lidar's
+      // checks refuse fog at the aperture without an overlap function, so r = 0 is no node's.
       const double geometry =
           piece.inside_overlap ? inside_factor : (r > 0.0 ? 1.0 / (r * r) : 0.0);
       profile[static_cast<std::size_t>(m - m_lo)] += weight * scale * attenuation * geometry;

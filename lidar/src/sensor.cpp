@@ -219,8 +219,16 @@ class Type : public sensor::SensorType {
   std::any default_params() const override { return LidarParams{}; }
   const KeyTable<std::any>& keys() const override { return keys_; }
 
-  void validate(const std::any& params, const sensor::Context&) const override {
+  void validate(const std::any& params, const sensor::Context& context) const override {
     keys_.check(params);
+    // Fog from the aperture on returns the integral of dr / r^2, which diverges at r = 0 unless
+    // the overlap function takes the receiver's view to 0 there.
+    const LidarParams& p = sensor::params_of<LidarParams>(params);
+    if (p.overlap_range_m == 0.0 && context.chamber.sensor_gap_m == 0.0) {
+      throw_invalid("lidar.overlap_range_m", p.overlap_range_m,
+                    "> 0 with chamber.sensor_gap_m = 0: the fog then begins at the lidar, whose "
+                    "return without an overlap function diverges there (the integral of dr / r^2)");
+    }
   }
 
   std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {

@@ -374,6 +374,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "one of photopic, rgb, monochromatic"},
         BadInput{"camera_exposure_mode", "[camera.exposure]\nmode = \"\"\n", "camera.exposure.mode",
                  2, "one of fixed, auto"},
+        // Fog that begins at the lidar returns the divergent integral of dr / r^2 without an
+        // overlap function.
+        BadInput{"lidar_fog_at_the_aperture",
+                 "[chamber]\nsensor_gap_m = 0.0\n[lidar]\noverlap_range_m = 0.0\n",
+                 "lidar.overlap_range_m", 4, "> 0 with chamber.sensor_gap_m = 0",
+                 "chamber.sensor_gap_m at line 2"},
         BadInput{"camera_cell", "[camera.roi]\ncell_px = 100\n", "camera.roi.cell_px", 2,
                  "[2, 60]"},
         BadInput{"camera_frames", "[camera]\nframes_per_step = 0\n", "camera.frames_per_step", 2,
