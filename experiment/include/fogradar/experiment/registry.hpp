@@ -1,7 +1,7 @@
 // The one place that names the sensors (docs/architecture.md): the registry of sensor kinds a
-// scenario can run. Everything else in experiment/ and cli/ loops over it. A fourth sensor is one
-// folder that implements sensor::SensorKind and one line in standard_registry(); a test can add its
-// own with add().
+// scenario can run. Everything else in experiment/ and cli/ loops over it. A fourth sensor is a
+// folder that implements sensor::SensorKind and one line in standard_registry(), with the build's
+// lines docs/architecture.md lists ("Adding a sensor kind"); a test can add its own with add().
 #pragma once
 
 #include <memory>
