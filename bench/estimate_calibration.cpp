@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -130,10 +131,6 @@ experiment::Scenario only(const std::string& sensor) {
   experiment::Scenario s = experiment::paper_scenario();
   s.experiment.sensors = {sensor};
   return s;
-}
-
-const experiment::SensorSetting& setting(const experiment::Scenario& s) {
-  return s.setting(s.experiment.sensors.front());
 }
 
 void mie(const propagation::SegelsteinTable& water) {
@@ -330,16 +327,15 @@ void sensor_parts(const propagation::SegelsteinTable& water) {
       s.experiment.measurements_per_step *= scale;
       lidar_of(s).scans_per_step *= scale;
       camera_of(s).frames_per_step *= scale;
-      const experiment::SensorSetting& st = setting(s);
       const sensor::Context context = s.context();
-      const double items =
-          static_cast<double>(context.steps * st.type->items_per_step(st.params, context));
-      const sensor::SetupTime model = st.type->setup_time(st.params, context);
+      const std::shared_ptr<const sensor::ConfiguredSensor> configured = s.configure(name);
+      const double items = static_cast<double>(context.steps * configured->items_per_step());
+      const sensor::SetupTime model = configured->cost().setup;
       make.push_back(
           {.name = std::string(name) + " make",
            .x1 = 1.0,
            .x2 = 0.0,
-           .measured = median_seconds([&] { (void)st.type->make(st.params, context, water); }, 5),
+           .measured = median_seconds([&] { (void)configured->make(water, StopToken()); }, 5),
            .modelled = model.make_seconds});
       const experiment::Simulation simulation(s);
       const experiment::ExperimentResult result =
@@ -358,9 +354,9 @@ void sensor_parts(const propagation::SegelsteinTable& water) {
                             .x2 = 0.0,
                             .measured = median_seconds(
                                 [&] {
-                                  (void)st.type->fog_report(
-                                      st.params, context.chamber.layers[0].fog,
-                                      context.chamber.layers[0].length_m, water);
+                                  (void)configured->fog_report(context.chamber.layers[0].fog,
+                                                               context.chamber.layers[0].length_m,
+                                                               water);
                                   (void)summary.sensors.front().summary->files();
                                 },
                                 3),

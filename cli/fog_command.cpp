@@ -2,7 +2,7 @@
 // optical extinction and visibility (docs/physics.md), the optical attenuation models of the
 // study's eq. 1, 2 (Kruse, Kim) beside Mie at one wavelength, the virtual layer model of its eq. 3,
 // 4, and one layer of the fog as each sensor of the paper scenario sees it
-// (sensor::SensorType::fog_report).
+// (sensor::ConfiguredSensor::fog_report).
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -238,11 +238,11 @@ std::vector<std::pair<std::string, sensor::FogReport>> sensor_reports(
   const experiment::Scenario paper = experiment::paper_scenario();
   std::vector<std::pair<std::string, sensor::FogReport>> reports;
   for (const experiment::SensorSetting& setting : paper.sensors) {
-    const bool radio = setting.type->band() == sensor::Band::radio;
+    const bool radio = setting.kind->info().band == sensor::Band::radio;
     reports.emplace_back(
-        setting.type->name(),
-        setting.type->fog_report(setting.params, radio ? specs.by_lwc : specs.by_extinction,
-                                 layer_length_m, table));
+        setting.kind->name(),
+        paper.configure(setting.kind->name())
+            ->fog_report(radio ? specs.by_lwc : specs.by_extinction, layer_length_m, table));
   }
   return reports;
 }

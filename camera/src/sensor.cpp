@@ -132,7 +132,6 @@ class Made : public sensor::Sensor, public std::enable_shared_from_this<Made> {
     for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
   }
 
-  std::size_t items_per_step() const override { return camera_->params().frames_per_step; }
   std::unique_ptr<sensor::SensorRun> begin_run() const override;
 
   const sensor::Context& context() const { return context_; }
@@ -153,7 +152,7 @@ class Run : public sensor::SensorRun {
         steps_(std::make_shared<std::vector<CameraStepResult>>(made_->context().steps)) {
     for (std::size_t k = 0; k < steps_->size(); ++k) {
       (*steps_)[k].active_layers = k;
-      (*steps_)[k].frames.resize(made_->items_per_step());
+      (*steps_)[k].frames.resize(camera_->params().frames_per_step);
     }
   }
 
@@ -201,67 +200,28 @@ std::unique_ptr<sensor::SensorRun> Made::begin_run() const {
   return std::make_unique<Run>(shared_from_this());
 }
 
-class Type : public sensor::SensorType {
+class Configured : public sensor::ConfiguredSensor {
  public:
-  std::string_view name() const override { return "camera"; }
-  std::uint64_t stream_key() const override { return camera::stream_key; }
-  std::string_view item_noun() const override { return "camera frames"; }
-  std::string_view curve_caption() const override { return "target contrast"; }
-  std::any default_params() const override { return CameraParams{}; }
-  const KeyTable<std::any>& keys() const override { return keys_; }
+  Configured(const CameraParams& params, const sensor::Context& context)
+      : p_(params), context_(context) {}
 
-  void validate(const std::any& params, const sensor::Context&) const override {
-    keys_.check(params);
-  }
+  std::size_t items_per_step() const override { return p_.frames_per_step; }
 
-  std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {
-    return sensor::params_of<CameraParams>(params).frames_per_step;
-  }
-
-  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
-                            unsigned) const override {
-    const CameraParams& p = sensor::params_of<CameraParams>(params);
+  sensor::MemoryPart memory(unsigned) const override {
+    const CameraParams& p = p_;
     std::ostringstream detail;
     detail << "camera.frames_per_step = " << p.frames_per_step
            << " of camera.roi.width_px = " << p.roi.width_px
            << " x camera.roi.height_px = " << p.roi.height_px;
-    return {.bytes = memory_bytes(p, context.steps),
+    return {.bytes = memory_bytes(p, context_.steps),
             .detail = detail.str(),
             .key = "camera.frames_per_step"};
   }
 
-  sensor::TimePart item_time(const std::any& params, const sensor::Context&) const override {
-    const CameraParams& p = sensor::params_of<CameraParams>(params);
-    std::ostringstream detail;
-    detail << "camera.roi.width_px = " << p.roi.width_px
-           << " x camera.roi.height_px = " << p.roi.height_px << " px";
-    return {
-        .item_seconds =
-            static_cast<double>(p.roi.width_px * p.roi.height_px) * frame_seconds_per_pixel,
-        .detail = detail.str(),
-        .key = p.roi.width_px >= p.roi.height_px ? "camera.roi.width_px" : "camera.roi.height_px",
-        .items_key = "camera.frames_per_step"};
-  }
+  sensor::Cost cost() const override { return {.item = item_time(), .setup = setup_time()}; }
 
-  sensor::SetupTime setup_time(const std::any& params,
-                               const sensor::Context& context) const override {
-    const CameraParams& p = sensor::params_of<CameraParams>(params);
-    const double fogs = fog_seconds(p, context.chamber);
-    std::ostringstream detail;
-    detail.precision(3);
-    detail << "fog optics at " << mie_wavelengths_m(p.band, p.wavelength_nm, p.mie_step_nm).size()
-           << " wavelengths (camera.band = " << to_string(p.band)
-           << ", camera.mie_step_nm = " << p.mie_step_nm << "): " << fogs << " s";
-    return {.make_seconds = fogs + make_seconds,
-            .run_seconds = 0.0,
-            .report_seconds = fogs + make_seconds + files_seconds,
-            .detail = detail.str(),
-            .key = "camera.mie_step_nm"};
-  }
-
-  std::vector<sensor::RawKind> raw_kinds(const std::any& params,
-                                         const sensor::Context&) const override {
-    const CameraParams& p = sensor::params_of<CameraParams>(params);
+  std::vector<sensor::RawKind> raw_kinds() const override {
+    const CameraParams& p = p_;
     std::vector<sensor::RawKind> kinds(1);
     kinds[raw_images] = {
         .name = "images",
@@ -279,20 +239,11 @@ class Type : public sensor::SensorType {
     return kinds;
   }
 
-  bool owns_file_name(std::string_view file_name) const override {
-    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
-               std::end(file_names) ||
-           is_roi_file_name(file_name);
-  }
-
   // The layer's band-weighted transmittance t (the camera's own band quadrature), the band's
   // effective extinction -ln t / L and the one-way loss -10 log10 t.
-  sensor::Band band() const override { return sensor::Band::optical; }
-
-  sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
-                               double layer_length_m,
+  sensor::FogReport fog_report(const propagation::FogSpec& spec, double layer_length_m,
                                const propagation::SegelsteinTable& water) const override {
-    const CameraParams& p = sensor::params_of<CameraParams>(params);
+    const CameraParams& p = p_;
     propagation::ChamberSpec chamber;
     chamber.layers = {propagation::FogLayerSpec{.length_m = layer_length_m, .fog = spec}};
     const Camera camera(p, chamber, water);
@@ -312,18 +263,70 @@ class Type : public sensor::SensorType {
             .line = line.str()};
   }
 
-  std::shared_ptr<const sensor::Sensor> make(
-      const std::any& params, const sensor::Context& context,
-      const propagation::SegelsteinTable& water) const override {
-    return std::make_shared<Made>(sensor::params_of<CameraParams>(params), context, water);
+  std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
+                                             const StopToken& stop) const override {
+    stop.check();
+    return std::make_shared<Made>(p_, context_, water);
   }
 
  private:
-  KeyTable<std::any> keys_ = sensor::erase_keys(camera_keys());
+  sensor::TimePart item_time() const {
+    const CameraParams& p = p_;
+    std::ostringstream detail;
+    detail << "camera.roi.width_px = " << p.roi.width_px
+           << " x camera.roi.height_px = " << p.roi.height_px << " px";
+    return {
+        .item_seconds =
+            static_cast<double>(p.roi.width_px * p.roi.height_px) * frame_seconds_per_pixel,
+        .detail = detail.str(),
+        .key = p.roi.width_px >= p.roi.height_px ? "camera.roi.width_px" : "camera.roi.height_px",
+        .items_key = "camera.frames_per_step"};
+  }
+
+  sensor::SetupTime setup_time() const {
+    const CameraParams& p = p_;
+    const double fogs = fog_seconds(p, context_.chamber);
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics at " << mie_wavelengths_m(p.band, p.wavelength_nm, p.mie_step_nm).size()
+           << " wavelengths (camera.band = " << to_string(p.band)
+           << ", camera.mie_step_nm = " << p.mie_step_nm << "): " << fogs << " s";
+    return {.make_seconds = fogs + make_seconds,
+            .run_seconds = 0.0,
+            .report_seconds = fogs + make_seconds + files_seconds,
+            .detail = detail.str(),
+            .key = "camera.mie_step_nm"};
+  }
+
+  CameraParams p_;
+  sensor::Context context_;
+};
+
+class Kind : public sensor::Kind<CameraParams> {
+ public:
+  Kind()
+      : sensor::Kind<CameraParams>({.name = "camera",
+                                    .stream_key = camera::stream_key,
+                                    .band = sensor::Band::optical,
+                                    .item_noun = "camera frames",
+                                    .curve_caption = "target contrast"},
+                                   camera_keys()) {}
+
+  bool owns_file_name(std::string_view file_name) const override {
+    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
+               std::end(file_names) ||
+           is_roi_file_name(file_name);
+  }
+
+ protected:
+  std::shared_ptr<const sensor::ConfiguredSensor> configured(
+      const CameraParams& p, const sensor::Context& context) const override {
+    return std::make_shared<Configured>(p, context);
+  }
 };
 
 }  // namespace
 
-std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+std::shared_ptr<const sensor::SensorKind> sensor_kind() { return std::make_shared<Kind>(); }
 
 }  // namespace fogradar::camera

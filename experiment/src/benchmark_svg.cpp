@@ -16,8 +16,8 @@ namespace {
 std::string metrics_caption(const Scenario& scenario) {
   std::string text;
   for (const SensorSetting& setting : scenario.sensors) {
-    text += (text.empty() ? "" : "; ") + std::string(setting.type->name()) + ": " +
-            std::string(setting.type->curve_caption());
+    text += (text.empty() ? "" : "; ") + std::string(setting.kind->name()) + ": " +
+            setting.kind->info().curve_caption;
   }
   if (!text.empty()) text.front() = static_cast<char>(std::toupper(text.front()));
   return text + ".";
@@ -55,7 +55,7 @@ std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& sum
   std::vector<stats::LineSeries> series;
   for (const SensorOutcome& sensor : summary.sensors) {
     const sensor::Curve c = sensor.summary->curve();
-    const std::string name(sensor.type->name());
+    const std::string name(sensor.kind->name());
     stats::LineSeries line{.label = name + " " + c.metric,
                            .x = c.active_layers,
                            .y = c.relative_value,

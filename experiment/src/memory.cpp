@@ -33,15 +33,15 @@ MemoryEstimate estimate_peak_memory(const Scenario& scenario, unsigned requested
   const sensor::Context context = scenario.context();
   // One pool takes every sensor's items (runner.cpp): the thread count follows from all of them.
   std::size_t items = 0;
+  std::vector<std::shared_ptr<const sensor::ConfiguredSensor>> configured;
   for (const std::string& name : scenario.experiment.sensors) {
-    const SensorSetting& s = scenario.setting(name);
-    items += context.steps * s.type->items_per_step(s.params, context);
+    configured.push_back(scenario.configure(name));
+    items += context.steps * configured.back()->items_per_step();
   }
   MemoryEstimate e;
   e.threads = worker_threads(requested_threads, items);
-  for (const std::string& name : scenario.experiment.sensors) {
-    const SensorSetting& s = scenario.setting(name);
-    e.sensors.push_back({name, s.type->memory(s.params, context, e.threads)});
+  for (std::size_t i = 0; i < configured.size(); ++i) {
+    e.sensors.push_back({scenario.experiment.sensors[i], configured[i]->memory(e.threads)});
   }
   return e;
 }

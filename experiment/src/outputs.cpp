@@ -103,22 +103,22 @@ std::vector<fs::path> previous_set(const fs::path& dir, const fs::path& given,
 }  // namespace
 
 ResultFileNames result_file_names(const Scenario& scenario) {
-  std::vector<std::shared_ptr<const sensor::SensorType>> types;
-  for (const SensorSetting& setting : scenario.sensors) types.push_back(setting.type);
-  return [types](std::string_view name) {
+  std::vector<std::shared_ptr<const sensor::SensorKind>> kinds;
+  for (const SensorSetting& setting : scenario.sensors) kinds.push_back(setting.kind);
+  return [kinds](std::string_view name) {
     if (std::find(std::begin(common_file_names), std::end(common_file_names), name) !=
         std::end(common_file_names)) {
       return true;
     }
-    return std::any_of(types.begin(), types.end(),
-                       [name](const auto& type) { return type->owns_file_name(name); });
+    return std::any_of(kinds.begin(), kinds.end(),
+                       [name](const auto& kind) { return kind->owns_file_name(name); });
   };
 }
 
 std::string sensor_tables(const ExperimentSummary& summary) {
   std::string out;
   for (const SensorOutcome& sensor : summary.sensors) {
-    out += std::string(sensor.type->name()) + '\n' + sensor.summary->table() + '\n';
+    out += std::string(sensor.kind->name()) + '\n' + sensor.summary->table() + '\n';
   }
   return out;
 }
@@ -127,7 +127,7 @@ std::string benchmark_table(const ExperimentSummary& summary) {
   std::string out = "benchmark (the study's criterion: active fog layers until the sensor fails)\n";
   for (const SensorOutcome& sensor : summary.sensors) {
     const sensor::Verdict v = sensor.summary->verdict();
-    std::string name(sensor.type->name());
+    std::string name(sensor.kind->name());
     name.resize(std::max<std::size_t>(name.size() + 1, 7), ' ');
     out += name + "layers to failure: " +
            (v.layers_to_failure ? std::to_string(*v.layers_to_failure)
@@ -144,10 +144,15 @@ nlohmann::json finite_or_null(double value) {
 }
 
 // The chamber as the run resolved it: each layer's place and fog, and the fog as each running
-// sensor sees it at its own band (SensorType::fog_report, the numbers the run uses).
+// sensor sees it at its own band (ConfiguredSensor::fog_report, the numbers the run uses).
 nlohmann::json chamber_json(const Scenario& scenario) {
   const sensor::Context context = scenario.context();
   const propagation::SegelsteinTable table;
+  std::vector<std::pair<std::string, std::shared_ptr<const sensor::ConfiguredSensor>>> running;
+  for (const SensorSetting& setting : scenario.sensors) {
+    const std::string name(setting.kind->name());
+    if (scenario.runs(name)) running.emplace_back(name, scenario.configure(name));
+  }
   nlohmann::json layers = nlohmann::json::array();
   double start_m = context.chamber.sensor_gap_m;
   for (std::size_t i = 0; i < context.chamber.layers.size(); ++i) {
@@ -166,10 +171,8 @@ nlohmann::json chamber_json(const Scenario& scenario) {
                {"optical_extinction_per_km", fog.optical_extinction_per_km()},
                {"visibility_m", finite_or_null(fog.visibility_m())},
                {"sensors", nlohmann::json::object()}};
-      for (const SensorSetting& setting : scenario.sensors) {
-        if (!scenario.runs(setting.type->name())) continue;
-        entry["sensors"][std::string(setting.type->name())] =
-            setting.type->fog_report(setting.params, layer.fog, layer.length_m, table).json;
+      for (const auto& [name, configured] : running) {
+        entry["sensors"][name] = configured->fog_report(layer.fog, layer.length_m, table).json;
       }
     }
     entry["index"] = i;
@@ -191,7 +194,7 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
   nlohmann::json sensors = nlohmann::json::object();
   for (const SensorOutcome& sensor : summary.sensors) {
     const sensor::Verdict v = sensor.summary->verdict();
-    sensors[std::string(sensor.type->name())] = {
+    sensors[std::string(sensor.kind->name())] = {
         {"sensor_limit_layers",
          v.layers_to_failure ? nlohmann::json(*v.layers_to_failure) : nlohmann::json(nullptr)},
         {"criterion", v.criterion},

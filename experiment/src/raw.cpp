@@ -78,8 +78,7 @@ RawPlan resolve_raw(const Scenario& scenario, const RawRequest& request) {
   plan.path = request.path;
   std::vector<std::string> offered;
   for (const std::string& name : scenario.experiment.sensors) {
-    const SensorSetting& setting = scenario.setting(name);
-    RawPlan::Sensor s{name, setting.type->raw_kinds(setting.params, context), {}, {}};
+    RawPlan::Sensor s{name, scenario.configure(name)->raw_kinds(), {}, {}};
     for (const sensor::RawKind& kind : s.kinds) offered.push_back(name + "." + kind.name);
     plan.sensors.push_back(std::move(s));
   }
@@ -122,8 +121,7 @@ RawPlan resolve_raw(const Scenario& scenario, const RawRequest& request) {
   std::size_t most_items = 0;
   for (const RawPlan::Sensor& s : plan.sensors) {
     if (s.chosen.empty()) continue;
-    const SensorSetting& setting = scenario.setting(s.name);
-    most_items = std::max(most_items, setting.type->items_per_step(setting.params, context));
+    most_items = std::max(most_items, scenario.configure(s.name)->items_per_step());
   }
   if (most_items == 0) {
     throw_invalid("--raw-select", request.kinds,
@@ -137,8 +135,7 @@ RawPlan resolve_raw(const Scenario& scenario, const RawRequest& request) {
   }
   for (RawPlan::Sensor& s : plan.sensors) {
     if (s.chosen.empty()) continue;
-    const SensorSetting& setting = scenario.setting(s.name);
-    const std::size_t count = setting.type->items_per_step(setting.params, context);
+    const std::size_t count = scenario.configure(s.name)->items_per_step();
     for (const std::size_t i : items) {
       if (i < count) s.items.push_back(i);
     }

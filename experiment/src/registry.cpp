@@ -9,37 +9,39 @@
 
 namespace fogradar::experiment {
 
-SensorRegistry::SensorRegistry(std::vector<std::shared_ptr<const sensor::SensorType>> types) {
-  for (auto& type : types) add(std::move(type));
+SensorRegistry::SensorRegistry(std::vector<std::shared_ptr<const sensor::SensorKind>> kinds) {
+  for (auto& kind : kinds) add(std::move(kind));
 }
 
-void SensorRegistry::add(std::shared_ptr<const sensor::SensorType> type) {
-  FOGRADAR_CHECK(type != nullptr);
+void SensorRegistry::add(std::shared_ptr<const sensor::SensorKind> kind) {
+  FOGRADAR_CHECK(kind != nullptr);
   std::set<std::string> keys;
-  for (const auto& other : types_) {
-    FOGRADAR_CHECK(other->name() != type->name());
-    FOGRADAR_CHECK(other->stream_key() != type->stream_key());
-    for (const Key<std::any>& key : other->keys().keys()) keys.insert(key.name);
+  for (const auto& other : kinds_) {
+    FOGRADAR_CHECK(other->name() != kind->name());
+    FOGRADAR_CHECK(other->stream_key() != kind->stream_key());
+    for (const Key<sensor::Params>& key : other->keys().keys()) keys.insert(key.name);
   }
-  for (const Key<std::any>& key : type->keys().keys()) FOGRADAR_CHECK(!keys.contains(key.name));
-  types_.push_back(std::move(type));
+  for (const Key<sensor::Params>& key : kind->keys().keys()) {
+    FOGRADAR_CHECK(!keys.contains(key.name));
+  }
+  kinds_.push_back(std::move(kind));
 }
 
-std::shared_ptr<const sensor::SensorType> SensorRegistry::find(std::string_view name) const {
-  for (const auto& type : types_) {
-    if (type->name() == name) return type;
+std::shared_ptr<const sensor::SensorKind> SensorRegistry::find(std::string_view name) const {
+  for (const auto& kind : kinds_) {
+    if (kind->name() == name) return kind;
   }
   return nullptr;
 }
 
 std::vector<std::string> SensorRegistry::names() const {
   std::vector<std::string> names;
-  for (const auto& type : types_) names.emplace_back(type->name());
+  for (const auto& kind : kinds_) names.emplace_back(kind->name());
   return names;
 }
 
 SensorRegistry standard_registry() {
-  return SensorRegistry({radar::sensor_type(), lidar::sensor_type(), camera::sensor_type()});
+  return SensorRegistry({radar::sensor_kind(), lidar::sensor_kind(), camera::sensor_kind()});
 }
 
 }  // namespace fogradar::experiment

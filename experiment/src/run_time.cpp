@@ -108,10 +108,10 @@ TimeEstimate estimate_run_time(const Scenario& scenario, unsigned requested_thre
   TimeEstimate e;
   std::size_t items = 0;
   for (const std::string& name : scenario.experiment.sensors) {
-    const SensorSetting& s = scenario.setting(name);
-    const std::size_t count = context.steps * s.type->items_per_step(s.params, context);
-    e.sensors.push_back(
-        {name, count, s.type->item_time(s.params, context), s.type->setup_time(s.params, context)});
+    const std::shared_ptr<const sensor::ConfiguredSensor> configured = scenario.configure(name);
+    const std::size_t count = context.steps * configured->items_per_step();
+    const sensor::Cost cost = configured->cost();
+    e.sensors.push_back({name, count, cost.item, cost.setup});
     items += count;
   }
   // The same count the runner starts (runner.cpp): one pool for every sensor's items.

@@ -21,7 +21,7 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
   std::size_t total = 0;
   for (const SensorRunEntry& sensor : sensors) {
     first_item.push_back(total);
-    total += steps * sensor.sensor->items_per_step();
+    total += steps * sensor.configured->items_per_step();
   }
   // The same count estimate_peak_memory (memory.hpp) sized the run for.
   const unsigned threads = worker_threads(options.threads, total);
@@ -41,10 +41,10 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
         const std::size_t s = static_cast<std::size_t>(
             std::upper_bound(first_item.begin(), first_item.end(), item) - first_item.begin() - 1);
         const std::size_t local = item - first_item[s],
-                          per_step = sensors[s].sensor->items_per_step();
+                          per_step = sensors[s].configured->items_per_step();
         if (!measure[s]) measure[s] = sensors[s].run->make_worker();
         const std::size_t step = local / per_step, index = local % per_step;
-        RandomStream stream = sensor_stream(seed, sensors[s].type->stream_key(), step, index);
+        RandomStream stream = sensor_stream(seed, sensors[s].kind->stream_key(), step, index);
         const std::unique_ptr<sensor::RawSink> raw =
             options.raw != nullptr ? options.raw->sink(s, step, index) : nullptr;
         try {
@@ -74,7 +74,7 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
 
 const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
   for (const SensorRunEntry& entry : sensors) {
-    if (entry.type->name() == name) return *entry.run;
+    if (entry.kind->name() == name) return *entry.run;
   }
   throw_invalid("experiment.sensors", name, "a sensor that ran");
 }
@@ -82,17 +82,16 @@ const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
 std::string sensor_identity(const Scenario& scenario, const SensorSetting& setting) {
   Scenario alone = scenario;
   for (SensorSetting& other : alone.sensors) {
-    if (other.type != setting.type) other.params = other.type->default_params();
+    if (other.kind != setting.kind) other.params = other.kind->defaults();
   }
-  alone.experiment.sensors = {std::string(setting.type->name())};
+  alone.experiment.sensors = {std::string(setting.kind->name())};
   return to_toml(alone);
 }
 
-std::shared_ptr<const sensor::Sensor> SensorCache::sensor(const Scenario& scenario,
-                                                          const SensorSetting& setting,
-                                                          const sensor::Context& context,
-                                                          const propagation::SegelsteinTable& water,
-                                                          const StopToken& stop) {
+std::shared_ptr<const sensor::Sensor> SensorCache::sensor(
+    const Scenario& scenario, const SensorSetting& setting,
+    const sensor::ConfiguredSensor& configured, const propagation::SegelsteinTable& water,
+    const StopToken& stop) {
   std::string identity = sensor_identity(scenario, setting);
   {
     const std::lock_guard lock(mutex_);
@@ -104,8 +103,7 @@ std::shared_ptr<const sensor::Sensor> SensorCache::sensor(const Scenario& scenar
       return made_.back().second;
     }
   }
-  std::shared_ptr<const sensor::Sensor> made =
-      setting.type->make_or_stop(setting.params, context, water, stop);
+  std::shared_ptr<const sensor::Sensor> made = configured.make(water, stop);
   const std::lock_guard lock(mutex_);
   if (made_.size() == capacity) made_.erase(made_.begin());
   made_.emplace_back(std::move(identity), made);
@@ -123,12 +121,13 @@ Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& wa
   const StopToken token(stop);
   for (const std::string& name : scenario_.experiment.sensors) {
     const SensorSetting& setting = scenario_.setting(name);
+    std::shared_ptr<const sensor::ConfiguredSensor> configured =
+        setting.kind->configure(*setting.params, context_);
     try {
-      sensors_.push_back({setting.type,
-                          cache
-                              ? cache->sensor(scenario_, setting, context_, water, token)
-                              : setting.type->make_or_stop(setting.params, context_, water, token),
-                          nullptr});
+      std::shared_ptr<const sensor::Sensor> made =
+          cache ? cache->sensor(scenario_, setting, *configured, water, token)
+                : configured->make(water, token);
+      sensors_.push_back({setting.kind, std::move(configured), std::move(made), nullptr});
     } catch (const Stopped&) {
       throw Interrupted();
     }
@@ -138,7 +137,7 @@ Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& wa
 ExperimentResult Simulation::run(const RunOptions& options) const {
   ExperimentResult result;
   for (const SensorRunEntry& m : sensors_) {
-    result.sensors.push_back({m.type, m.sensor, m.sensor->begin_run()});
+    result.sensors.push_back({m.kind, m.configured, m.sensor, m.sensor->begin_run()});
   }
   // Per-step state first, on this thread.
   for (const SensorRunEntry& entry : result.sensors) {
@@ -151,8 +150,8 @@ ExperimentResult Simulation::run(const RunOptions& options) const {
 SensorRunEntry Simulation::begin_run(std::string_view sensor) const {
   std::string running;
   for (const SensorRunEntry& m : sensors_) {
-    if (m.type->name() == sensor) return {m.type, m.sensor, m.sensor->begin_run()};
-    running += (running.empty() ? "" : ", ") + std::string(m.type->name());
+    if (m.kind->name() == sensor) return {m.kind, m.configured, m.sensor, m.sensor->begin_run()};
+    running += (running.empty() ? "" : ", ") + std::string(m.kind->name());
   }
   throw_invalid("sensor", sensor, "a sensor of experiment.sensors: " + running);
 }
@@ -161,9 +160,8 @@ ItemRun::ItemRun(const Simulation& simulation, std::string_view sensor)
     : entry_(simulation.begin_run(sensor)),
       seed_(simulation.context().seed),
       steps_(simulation.context().steps) {
-  const SensorSetting& setting = simulation.scenario().setting(sensor);
-  items_per_step_ = entry_.type->items_per_step(setting.params, simulation.context());
-  kinds_ = entry_.type->raw_kinds(setting.params, simulation.context());
+  items_per_step_ = entry_.configured->items_per_step();
+  kinds_ = entry_.configured->raw_kinds();
   prepared_.assign(steps_, false);
 }
 
@@ -176,14 +174,14 @@ void ItemRun::measure(std::size_t step, std::size_t index, sensor::RawSink* raw)
   if (index >= items_per_step_) {
     throw_invalid("index", static_cast<double>(index),
                   "an integer in [0, " + std::to_string(items_per_step_ - 1) + "] (" +
-                      std::string(entry_.type->item_noun()) + " per step)");
+                      entry_.kind->info().item_noun + " per step)");
   }
   if (!prepared_[step]) {
     entry_.run->prepare_step(step);
     prepared_[step] = true;
   }
   if (!worker_) worker_ = entry_.run->make_worker();
-  RandomStream stream = sensor_stream(seed_, entry_.type->stream_key(), step, index);
+  RandomStream stream = sensor_stream(seed_, entry_.kind->stream_key(), step, index);
   worker_->measure(step, index, stream, raw, StopToken());
 }
 
@@ -196,7 +194,7 @@ std::string item_nouns(const Scenario& scenario) {
   const std::vector<std::string>& names = scenario.experiment.sensors;
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i > 0) text += i + 1 == names.size() ? " and " : ", ";
-    text += scenario.setting(names[i]).type->item_noun();
+    text += scenario.setting(names[i]).kind->info().item_noun;
   }
   return text;
 }

@@ -16,17 +16,29 @@ std::string_view paper_scenario_text();
 
 using detail::parse_over;
 
+SensorSetting::SensorSetting(std::shared_ptr<const sensor::SensorKind> of_kind,
+                             std::unique_ptr<sensor::Params> values)
+    : kind(std::move(of_kind)), params(std::move(values)) {}
+
+SensorSetting::SensorSetting(const SensorSetting& other)
+    : kind(other.kind), params(other.params ? other.params->clone() : nullptr) {}
+
+SensorSetting& SensorSetting::operator=(const SensorSetting& other) {
+  if (this != &other) *this = SensorSetting(other);
+  return *this;
+}
+
 Scenario::Scenario(const SensorRegistry& registry) {
-  for (const auto& type : registry.types()) {
-    sensors.push_back({type, type->default_params()});
-    experiment.sensors.emplace_back(type->name());
+  for (const auto& kind : registry.kinds()) {
+    sensors.emplace_back(kind, kind->defaults());
+    experiment.sensors.emplace_back(kind->name());
   }
   keys_ = std::make_shared<const detail::ScenarioKeys>(sensors);
 }
 
 SensorSetting& Scenario::setting(std::string_view name) {
   for (SensorSetting& s : sensors) {
-    if (s.type->name() == name) return s;
+    if (s.kind->name() == name) return s;
   }
   throw_invalid("experiment.sensors", name, "a registered sensor");
 }
@@ -51,7 +63,7 @@ const KeyTable<Scenario>& Scenario::keys() const { return detail::keys_of(*this)
 void Scenario::validate() const {
   keys().check(*this);
   const sensor::Context shared = context();
-  for (const SensorSetting& s : sensors) s.type->validate(s.params, shared);
+  for (const SensorSetting& s : sensors) s.kind->configure(*s.params, shared);
 }
 
 propagation::ChamberSpec Scenario::chamber_spec() const {
@@ -84,6 +96,11 @@ sensor::Context Scenario::context() const {
       .measurements_per_step = experiment.measurements_per_step,
       .seed = experiment.seed,
       .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use())};
+}
+
+std::shared_ptr<const sensor::ConfiguredSensor> Scenario::configure(std::string_view name) const {
+  const SensorSetting& s = setting(name);
+  return s.kind->configure(*s.params, context());
 }
 
 std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }

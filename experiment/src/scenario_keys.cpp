@@ -173,14 +173,14 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
 // other sensors'.
 std::vector<KeyTable<Scenario>> key_parts(const std::vector<SensorSetting>& sensors) {
   std::vector<std::string> names;
-  for (const SensorSetting& setting : sensors) names.emplace_back(setting.type->name());
+  for (const SensorSetting& setting : sensors) names.emplace_back(setting.kind->name());
   std::vector<KeyTable<Scenario>> parts;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     if (i == 1) parts.push_back(experiment_keys(names));
     KeyTable<Scenario> part;
     part.include(
-        sensors[i].type->keys(), [i](auto& scenario) -> auto& {
-          return scenario.sensors[i].params;
+        sensors[i].kind->keys(), [i](auto& scenario) -> auto& {
+          return *scenario.sensors[i].params;
         });
     parts.push_back(std::move(part));
   }
@@ -196,7 +196,7 @@ namespace detail {
 // (so [fog] is the experiment's although the radar declares fog.clutter_scatterers_per_bin); a
 // section's own keys come first, keys other parts declare in it after them.
 ScenarioKeys::ScenarioKeys(const std::vector<SensorSetting>& sensors) {
-  for (const SensorSetting& setting : sensors) types.push_back(setting.type.get());
+  for (const SensorSetting& setting : sensors) kinds.push_back(setting.kind.get());
   const std::size_t experiment_part = sensors.empty() ? 0 : 1;
   std::vector<std::size_t> part_of;
   std::vector<KeyTable<Scenario>> parts = key_parts(sensors);
@@ -229,9 +229,9 @@ const ScenarioKeys& keys_of(const Scenario& s) {
   FOGRADAR_CHECK(s.keys_ != nullptr);  // a moved-from scenario has none
   const ScenarioKeys& keys = *s.keys_;
   // The tables read and write sensors[i] by index.
-  FOGRADAR_CHECK(keys.types.size() == s.sensors.size());
+  FOGRADAR_CHECK(keys.kinds.size() == s.sensors.size());
   for (std::size_t i = 0; i < s.sensors.size(); ++i) {
-    FOGRADAR_CHECK(keys.types[i] == s.sensors[i].type.get());
+    FOGRADAR_CHECK(keys.kinds[i] == s.sensors[i].kind.get());
   }
   return keys;
 }

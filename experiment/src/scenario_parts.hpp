@@ -33,7 +33,7 @@ struct Section {
 struct ScenarioKeys {
   explicit ScenarioKeys(const std::vector<SensorSetting>& sensors);
 
-  std::vector<const sensor::SensorType*> types;  // the sensors they were made for, in order
+  std::vector<const sensor::SensorKind*> kinds;  // the sensors they were made for, in order
   KeyTable<Scenario> all;                        // every key, in part order
   std::vector<Section> sections;
 };

@@ -114,7 +114,6 @@ class Made : public sensor::Sensor, public std::enable_shared_from_this<Made> {
     for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
   }
 
-  std::size_t items_per_step() const override { return lidar_->params().scans_per_step; }
   std::unique_ptr<sensor::SensorRun> begin_run() const override;
 
   const sensor::Context& context() const { return context_; }
@@ -137,7 +136,7 @@ class Run : public sensor::SensorRun {
         fog_(made_->context().steps) {
     for (std::size_t k = 0; k < steps_->size(); ++k) {
       (*steps_)[k].active_layers = k;
-      (*steps_)[k].scans.resize(made_->items_per_step());
+      (*steps_)[k].scans.resize(lidar_->params().scans_per_step);
     }
   }
 
@@ -208,96 +207,36 @@ std::unique_ptr<sensor::SensorRun> Made::begin_run() const {
   return std::make_unique<Run>(shared_from_this());
 }
 
-class Type : public sensor::SensorType {
+class Configured : public sensor::ConfiguredSensor {
  public:
-  std::string_view name() const override { return "lidar"; }
-  std::uint64_t stream_key() const override { return lidar::stream_key; }
-  std::string_view item_noun() const override { return "lidar scans"; }
-  std::string_view curve_caption() const override {
-    return "median target intensity (a missing target counted as 0)";
-  }
-  std::any default_params() const override { return LidarParams{}; }
-  const KeyTable<std::any>& keys() const override { return keys_; }
+  Configured(const LidarParams& params, const sensor::Context& context)
+      : p_(params), context_(context) {}
 
-  void validate(const std::any& params, const sensor::Context& context) const override {
-    keys_.check(params);
-    // Fog from the aperture on returns the integral of dr / r^2, which diverges at r = 0 unless
-    // the overlap function takes the receiver's view to 0 there.
-    const LidarParams& p = sensor::params_of<LidarParams>(params);
-    if (p.overlap_range_m == 0.0 && context.chamber.sensor_gap_m == 0.0) {
-      throw_invalid("lidar.overlap_range_m", p.overlap_range_m,
-                    "> 0 with chamber.sensor_gap_m = 0: the fog then begins at the lidar, whose "
-                    "return without an overlap function diverges there (the integral of dr / r^2)");
-    }
-  }
+  std::size_t items_per_step() const override { return p_.scans_per_step; }
 
-  std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {
-    return sensor::params_of<LidarParams>(params).scans_per_step;
-  }
-
-  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
-                            unsigned threads) const override {
-    const LidarParams& p = sensor::params_of<LidarParams>(params);
+  sensor::MemoryPart memory(unsigned threads) const override {
+    const LidarParams& p = p_;
     std::ostringstream detail;
     detail.precision(6);
     detail << "lidar.scans_per_step = " << p.scans_per_step << " of " << p.beam_count()
            << " beams: lidar.field_of_view_deg = " << p.field_of_view_deg
            << " / lidar.angular_step_deg = " << p.angular_step_deg;
-    return {.bytes = lidar_memory_bytes(p, context.steps, threads),
+    return {.bytes = lidar_memory_bytes(p, context_.steps, threads),
             .detail = detail.str(),
             .key = "lidar.scans_per_step"};
   }
 
-  sensor::TimePart item_time(const std::any& params, const sensor::Context&) const override {
-    const LidarParams& p = sensor::params_of<LidarParams>(params);
-    const std::size_t beams = p.beam_count(), samples = p.samples_per_beam();
-    std::ostringstream detail;
-    detail.precision(6);
-    detail << beams << " beams (lidar.field_of_view_deg = " << p.field_of_view_deg
-           << " / lidar.angular_step_deg = " << p.angular_step_deg << ") x " << samples
-           << " samples (2 lidar.max_range_m = " << p.max_range_m
-           << " m / c / lidar.sample_interval_ns = " << p.sample_interval_ns << ")";
-    return {.item_seconds =
-                static_cast<double>(beams) *
-                (static_cast<double>(samples) * scan_seconds_per_sample + scan_seconds_per_beam),
-            .detail = detail.str(),
-            .key = samples >= beams ? "lidar.sample_interval_ns" : "lidar.angular_step_deg",
-            .items_key = "lidar.scans_per_step"};
-  }
+  sensor::Cost cost() const override { return {.item = item_time(), .setup = setup_time()}; }
 
-  sensor::SetupTime setup_time(const std::any& params,
-                               const sensor::Context& context) const override {
-    const LidarParams& p = sensor::params_of<LidarParams>(params);
-    const double fogs = fog_seconds(p, context.chamber);
-    const double beams = static_cast<double>(context.steps * p.scans_per_step * p.beam_count());
-    std::ostringstream detail;
-    detail.precision(3);
-    detail << "fog optics at lidar.wavelength_m = " << p.wavelength_m << ": " << fogs << " s";
-    return {.make_seconds = fogs,
-            .run_seconds = beams * summary_seconds_per_beam,
-            .report_seconds = fogs + beams * files_seconds_per_beam,
-            .detail = detail.str(),
-            .key = "fog.droplets"};
-  }
-
-  std::vector<sensor::RawKind> raw_kinds(const std::any& params,
-                                         const sensor::Context& context) const override {
-    return lidar_raw_kinds(sensor::params_of<LidarParams>(params), context.chamber.layers.size());
-  }
-
-  bool owns_file_name(std::string_view file_name) const override {
-    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
-           std::end(file_names);
+  std::vector<sensor::RawKind> raw_kinds() const override {
+    return lidar_raw_kinds(p_, context_.chamber.layers.size());
   }
 
   // The layer's extinction alpha and backscatter beta_pi at the lidar's wavelength (Mie, resolved
   // by the Lidar itself), their ratio, and the two-way Beer-Lambert loss 10 log10(e) 2 alpha L.
-  sensor::Band band() const override { return sensor::Band::optical; }
-
-  sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
-                               double layer_length_m,
+  sensor::FogReport fog_report(const propagation::FogSpec& spec, double layer_length_m,
                                const propagation::SegelsteinTable& water) const override {
-    const LidarParams& p = sensor::params_of<LidarParams>(params);
+    const LidarParams& p = p_;
     propagation::ChamberSpec chamber;
     chamber.layers = {propagation::FogLayerSpec{.length_m = layer_length_m, .fog = spec}};
     const Lidar lidar(p, chamber, water);
@@ -317,19 +256,81 @@ class Type : public sensor::SensorType {
             .line = line.str()};
   }
 
-  std::shared_ptr<const sensor::Sensor> make(
-      const std::any& params, const sensor::Context& context,
-      const propagation::SegelsteinTable& water) const override {
-    return std::make_shared<Made>(sensor::params_of<LidarParams>(params), context, water);
+  std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
+                                             const StopToken& stop) const override {
+    stop.check();
+    return std::make_shared<Made>(p_, context_, water);
   }
 
  private:
-  KeyTable<std::any> keys_ = sensor::erase_keys(lidar_keys());
+  sensor::TimePart item_time() const {
+    const LidarParams& p = p_;
+    const std::size_t beams = p.beam_count(), samples = p.samples_per_beam();
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << beams << " beams (lidar.field_of_view_deg = " << p.field_of_view_deg
+           << " / lidar.angular_step_deg = " << p.angular_step_deg << ") x " << samples
+           << " samples (2 lidar.max_range_m = " << p.max_range_m
+           << " m / c / lidar.sample_interval_ns = " << p.sample_interval_ns << ")";
+    return {.item_seconds =
+                static_cast<double>(beams) *
+                (static_cast<double>(samples) * scan_seconds_per_sample + scan_seconds_per_beam),
+            .detail = detail.str(),
+            .key = samples >= beams ? "lidar.sample_interval_ns" : "lidar.angular_step_deg",
+            .items_key = "lidar.scans_per_step"};
+  }
+
+  sensor::SetupTime setup_time() const {
+    const LidarParams& p = p_;
+    const double fogs = fog_seconds(p, context_.chamber);
+    const double beams = static_cast<double>(context_.steps * p.scans_per_step * p.beam_count());
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics at lidar.wavelength_m = " << p.wavelength_m << ": " << fogs << " s";
+    return {.make_seconds = fogs,
+            .run_seconds = beams * summary_seconds_per_beam,
+            .report_seconds = fogs + beams * files_seconds_per_beam,
+            .detail = detail.str(),
+            .key = "fog.droplets"};
+  }
+
+  LidarParams p_;
+  sensor::Context context_;
+};
+
+class Kind : public sensor::Kind<LidarParams> {
+ public:
+  Kind()
+      : sensor::Kind<LidarParams>(
+            {.name = "lidar",
+             .stream_key = lidar::stream_key,
+             .band = sensor::Band::optical,
+             .item_noun = "lidar scans",
+             .curve_caption = "median target intensity (a missing target counted as 0)"},
+            lidar_keys()) {}
+
+  bool owns_file_name(std::string_view file_name) const override {
+    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
+           std::end(file_names);
+  }
+
+ protected:
+  std::shared_ptr<const sensor::ConfiguredSensor> configured(
+      const LidarParams& p, const sensor::Context& context) const override {
+    // Fog from the aperture on returns the integral of dr / r^2, which diverges at r = 0 unless
+    // the overlap function takes the receiver's view to 0 there.
+    if (p.overlap_range_m == 0.0 && context.chamber.sensor_gap_m == 0.0) {
+      throw_invalid("lidar.overlap_range_m", p.overlap_range_m,
+                    "> 0 with chamber.sensor_gap_m = 0: the fog then begins at the lidar, whose "
+                    "return without an overlap function diverges there (the integral of dr / r^2)");
+    }
+    return std::make_shared<Configured>(p, context);
+  }
 };
 
 }  // namespace
 
-std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+std::shared_ptr<const sensor::SensorKind> sensor_kind() { return std::make_shared<Kind>(); }
 
 std::vector<sensor::RawKind> lidar_raw_kinds(const LidarParams& params, std::size_t layer_count) {
   const std::size_t beams = params.beam_count(), samples = params.samples_per_beam();

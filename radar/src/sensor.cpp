@@ -183,7 +183,7 @@ RadarRun::RadarRun(std::shared_ptr<const RadarSensor> sensor)
         chamber.two_way_attenuation_db(chamber.target_range_m(), sensor_->active(k));
     step.radome_two_way_loss_db = sensor_->radome_two_way_loss_db();
     step.target_film_loss_db = sensor_->target_film_loss_db();
-    step.records.resize(sensor_->items_per_step());
+    step.records.resize(sensor_->context().measurements_per_step);
   }
 }
 

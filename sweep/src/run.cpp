@@ -46,7 +46,7 @@ json run_once(const experiment::Scenario& scenario, const propagation::Segelstei
     const Table table = parse_csv(outcome.summary->summary_csv());
     const sensor::Verdict verdict = outcome.summary->verdict();
     json s = {
-        {"sensor", std::string(outcome.type->name())},
+        {"sensor", std::string(outcome.kind->name())},
         {"columns", table.columns},
         {"rows", table.rows},
         {"limit", verdict.layers_to_failure ? json(*verdict.layers_to_failure) : json(nullptr)},
@@ -109,10 +109,8 @@ std::vector<std::size_t> cost_order(const SweepSpec& spec, const std::vector<Poi
     std::size_t items = 0;
     for (std::size_t s = 0; s <= p.setups.size(); ++s) {
       const experiment::Scenario& scenario = s == 0 ? p.scenario : p.setups[s - 1];
-      const sensor::Context context = scenario.context();
       for (const std::string& name : scenario.experiment.sensors) {
-        const experiment::SensorSetting& setting = scenario.setting(name);
-        items += context.steps * setting.type->items_per_step(setting.params, context) *
+        items += scenario.steps() * scenario.configure(name)->items_per_step() *
                  (s == 0 ? spec.replications : 1);
       }
     }
@@ -199,10 +197,8 @@ SweepEstimate estimate(const SweepSpec& spec, const std::vector<Point>& points,
       e.peak_bytes = std::max(e.peak_bytes, bytes);
       largest = &scenario;
     }
-    const sensor::Context context = scenario.context();
     for (const std::string& name : scenario.experiment.sensors) {
-      const experiment::SensorSetting& setting = scenario.setting(name);
-      e.items += context.steps * setting.type->items_per_step(setting.params, context);
+      e.items += scenario.steps() * scenario.configure(name)->items_per_step();
     }
   }
   if (largest != nullptr) experiment::require_memory_within(*largest, options.threads, limit);

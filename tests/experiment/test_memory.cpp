@@ -61,6 +61,7 @@ TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {
 
 TEST(MemoryEstimate, TheFrameDominatesALargeRun) {
   Scenario s = small_frame();
+  radar_of(s).radar.sample_rate_hz = 1.28e9;  // 65536 samples fill the paper's 51.2 us chirp
   radar_of(s).radar.samples_per_chirp = 65536;
   radar_of(s).radar.chirps_per_frame = 16384;
   const MemoryEstimate e = estimate_peak_memory(s, 1);

@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include "fogradar/core/error.hpp"
@@ -22,6 +23,7 @@
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/stats/format.hpp"
+#include "sensors.hpp"
 
 namespace fogradar::experiment {
 namespace {
@@ -134,7 +136,6 @@ class RangeFinder : public sensor::Sensor, public std::enable_shared_from_this<R
                                  1e-3);
     }
   }
-  std::size_t items_per_step() const override { return params.shots_per_step; }
   std::unique_ptr<sensor::SensorRun> begin_run() const override;
 
   RangeFinderParams params;
@@ -190,67 +191,73 @@ std::unique_ptr<sensor::SensorRun> RangeFinder::begin_run() const {
   return std::make_unique<RangeFinderRun>(shared_from_this());
 }
 
-class RangeFinderType : public sensor::SensorType {
+// The range finder for one scenario: its parameters, whose keys hold allowed values, and the
+// chamber.
+class ConfiguredRangeFinder : public sensor::ConfiguredSensor {
  public:
-  std::string_view name() const override { return "rangefinder"; }
-  std::uint64_t stream_key() const override { return 3; }
-  std::string_view item_noun() const override { return "range finder shots"; }
-  std::string_view curve_caption() const override { return "echo rate"; }
-  std::any default_params() const override { return RangeFinderParams{}; }
-  const KeyTable<std::any>& keys() const override { return keys_; }
-  void validate(const std::any& params, const sensor::Context&) const override {
-    keys_.check(params);
+  ConfiguredRangeFinder(const RangeFinderParams& p, const sensor::Context& c)
+      : params_(p), context_(c) {}
+  std::size_t items_per_step() const override { return params_.shots_per_step; }
+  sensor::Cost cost() const override {
+    return {.item = {.item_seconds = 1e-7,
+                     .detail = "one shot",
+                     .key = "rangefinder.shots_per_step",
+                     .items_key = "rangefinder.shots_per_step"},
+            .setup = {.make_seconds = 0.0,
+                      .run_seconds = 0.0,
+                      .report_seconds = 0.0,
+                      .detail = "nothing to make",
+                      .key = "rangefinder.shots_per_step"}};
   }
-  std::size_t items_per_step(const std::any& params, const sensor::Context&) const override {
-    return sensor::params_of<RangeFinderParams>(params).shots_per_step;
-  }
-  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
-                            unsigned) const override {
-    return {.bytes = context.steps * sensor::params_of<RangeFinderParams>(params).shots_per_step *
-                     sizeof(Shot),
+  sensor::MemoryPart memory(unsigned) const override {
+    return {.bytes = context_.steps * params_.shots_per_step * sizeof(Shot),
             .detail = "rangefinder.shots_per_step",
             .key = "rangefinder.shots_per_step"};
   }
-  sensor::TimePart item_time(const std::any&, const sensor::Context&) const override {
-    return {.item_seconds = 1e-7,
-            .detail = "one shot",
-            .key = "rangefinder.shots_per_step",
-            .items_key = "rangefinder.shots_per_step"};
-  }
-  sensor::SetupTime setup_time(const std::any&, const sensor::Context&) const override {
-    return {.make_seconds = 0.0,
-            .run_seconds = 0.0,
-            .report_seconds = 0.0,
-            .detail = "nothing to make",
-            .key = "rangefinder.shots_per_step"};
-  }
-  std::vector<sensor::RawKind> raw_kinds(const std::any&, const sensor::Context&) const override {
-    return {};
-  }
-  bool owns_file_name(std::string_view name) const override {
-    return name == "rangefinder_shots.csv" || name == "rangefinder_summary.json";
-  }
-  sensor::Band band() const override { return sensor::Band::optical; }
-  sensor::FogReport fog_report(const std::any&, const propagation::FogSpec& fog, double length_m,
+  std::vector<sensor::RawKind> raw_kinds() const override { return {}; }
+  sensor::FogReport fog_report(const propagation::FogSpec& fog, double length_m,
                                const propagation::SegelsteinTable& water) const override {
     const double t =
         std::exp(-2.0 * propagation::Fog(fog, water).optical_extinction_per_km() * 1e-3 * length_m);
     return {.json = {{"two_way_transmittance_per_layer", t}}, .line = "  rangefinder"};
   }
-  std::shared_ptr<const sensor::Sensor> make(
-      const std::any& params, const sensor::Context& context,
-      const propagation::SegelsteinTable& water) const override {
-    return std::make_shared<RangeFinder>(sensor::params_of<RangeFinderParams>(params), context,
-                                         water);
+  std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
+                                             const StopToken&) const override {
+    return std::make_shared<RangeFinder>(params_, context_, water);
   }
 
  private:
-  KeyTable<std::any> keys_ = sensor::erase_keys(range_finder_keys());
+  RangeFinderParams params_;
+  sensor::Context context_;
+};
+
+sensor::KindInfo range_finder_info() {
+  return {.name = "rangefinder",
+          .stream_key = 3,
+          .band = sensor::Band::optical,
+          .item_noun = "range finder shots",
+          .curve_caption = "echo rate"};
+}
+
+class RangeFinderKind : public sensor::Kind<RangeFinderParams> {
+ public:
+  explicit RangeFinderKind(sensor::KindInfo info = range_finder_info(),
+                           KeyTable<RangeFinderParams> keys = range_finder_keys())
+      : sensor::Kind<RangeFinderParams>(std::move(info), std::move(keys)) {}
+  bool owns_file_name(std::string_view name) const override {
+    return name == "rangefinder_shots.csv" || name == "rangefinder_summary.json";
+  }
+
+ protected:
+  std::shared_ptr<const sensor::ConfiguredSensor> configured(
+      const RangeFinderParams& params, const sensor::Context& context) const override {
+    return std::make_shared<ConfiguredRangeFinder>(params, context);
+  }
 };
 
 SensorRegistry four_sensors() {
   SensorRegistry registry = standard_registry();
-  registry.add(std::make_shared<RangeFinderType>());
+  registry.add(std::make_shared<RangeFinderKind>());
   return registry;
 }
 
@@ -356,22 +363,35 @@ TEST(Registry, TheFourthSensorLeavesTheOthersFilesUnchanged) {
   EXPECT_EQ(compared, 5u + 5u + 4u);
 }
 
+// A scenario holds each kind's parameters as the kind's own struct, opaque to experiment/: a copy
+// of the scenario holds a copy of them, and the struct is reached only as what it is.
+TEST(Registry, AScenarioCopiesItsSensorsParametersAndKnowsTheirStruct) {
+  const Scenario original = parse_scenario(four_toml, "four.toml", four_sensors());
+  Scenario copy = original;
+  lidar_of(copy).scans_per_step = 7;
+  copy.params<RangeFinderParams>("rangefinder").shots_per_step = 11;
+  EXPECT_EQ(lidar_of(original).scans_per_step, 2u);
+  EXPECT_EQ(original.params<RangeFinderParams>("rangefinder").shots_per_step, 9u);
+  EXPECT_EQ(copy.configure("rangefinder")->items_per_step(), 11u);
+  EXPECT_EQ(original.configure("rangefinder")->items_per_step(), 9u);
+  EXPECT_THROW((void)copy.params<RangeFinderParams>("lidar"), std::bad_cast);
+}
+
 // A registry holds each name, stream key and scenario key once: a second sensor that would share
 // one is refused, whatever it measures.
 TEST(Registry, RefusesASensorThatSharesANameAStreamOrAKey) {
-  struct Renamed : RangeFinderType {
-    std::string_view name() const override { return "twin"; }
-    std::uint64_t stream_key() const override { return 4; }
-  };
-  struct SameStream : RangeFinderType {
-    std::string_view name() const override { return "other"; }
-    const KeyTable<std::any>& keys() const override { return no_keys; }
-    KeyTable<std::any> no_keys;
-  };
+  sensor::KindInfo renamed = range_finder_info();
+  renamed.name = "twin";
+  renamed.stream_key = 4;
+  sensor::KindInfo same_stream = range_finder_info();
+  same_stream.name = "other";
   SensorRegistry registry = four_sensors();
-  EXPECT_THROW(registry.add(std::make_shared<RangeFinderType>()), InternalError);  // the name
-  EXPECT_THROW(registry.add(std::make_shared<Renamed>()), InternalError);     // rangefinder.* keys
-  EXPECT_THROW(registry.add(std::make_shared<SameStream>()), InternalError);  // stream key 3
+  EXPECT_THROW(registry.add(std::make_shared<RangeFinderKind>()), InternalError);  // the name
+  EXPECT_THROW(registry.add(std::make_shared<RangeFinderKind>(renamed)),
+               InternalError);  // rangefinder.* keys
+  EXPECT_THROW(
+      registry.add(std::make_shared<RangeFinderKind>(same_stream, KeyTable<RangeFinderParams>())),
+      InternalError);  // stream key 3
   EXPECT_EQ(registry.names(),
             (std::vector<std::string>{"radar", "lidar", "camera", "rangefinder"}));
 }

@@ -1,7 +1,7 @@
 // libFuzzer target (scripts/fuzz.sh, docs/architecture.md "Fuzzing"): arbitrary bytes as a scenario
 // file, through everything `fogradar run` does before its first item: parse_scenario (the byte
 // check, toml++, the key readers, Scenario::validate), the memory estimate and every running
-// sensor as the run builds it (sensor::SensorType::start: the radar's chamber, scene and chain with
+// sensor as the run builds it (ConfiguredSensor::make: the radar's chamber, scene and chain with
 // its plans, windows and CFAR design and RadarChain::check_compatible; the lidar and the camera
 // with each layer's fog resolved at their wavelengths). Bad input must end in InvalidParameter;
 // anything else (another exception, a failed FOGRADAR_CHECK, a sanitizer report, a hang) is a
@@ -27,10 +27,8 @@ void set_up_sensors(const fogradar::experiment::Scenario& scenario) {
   using namespace fogradar;
   static const propagation::SegelsteinTable table;  // immutable, costly to build: made once
   experiment::require_memory_within(scenario, 1, chain_memory_limit_bytes);
-  const sensor::Context context = scenario.context();
   for (const std::string& name : scenario.experiment.sensors) {
-    const experiment::SensorSetting& setting = scenario.setting(name);
-    setting.type->make(setting.params, context, table);
+    scenario.configure(name)->make(table, StopToken());
   }
 }
 

@@ -13,8 +13,8 @@
 
 namespace fogradar::camera {
 
-// The camera's entry in the registry.
-std::shared_ptr<const sensor::SensorType> sensor_type();
+// The camera's kind, for the registry.
+std::shared_ptr<const sensor::SensorKind> sensor_kind();
 
 // The camera's raw data per frame (docs/data-out.md): its grey image.
 enum RawKindIndex : std::size_t { raw_images = 0 };

@@ -18,9 +18,9 @@ namespace fogradar::experiment {
 inline constexpr std::size_t process_baseline_bytes = std::size_t{16} << 20;
 
 // Peak memory of run_experiment plus writing the results: each running sensor's own estimate
-// (sensor::SensorType::memory) with the threads the run starts, and the process itself. An upper
-// estimate from buffer sizes, not a measurement; docs/scenario.md gives its ratio to measured peak
-// RSS.
+// (sensor::ConfiguredSensor::memory) with the threads the run starts, and the process itself. An
+// upper estimate from buffer sizes, not a measurement; docs/scenario.md gives its ratio to measured
+// peak RSS.
 struct MemoryEstimate {
   struct Part {
     std::string sensor;

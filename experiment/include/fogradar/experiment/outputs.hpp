@@ -21,7 +21,7 @@ namespace fogradar::experiment {
 class PathLock;
 
 // Whether a file name is one a result set can hold: summary.json, scenario.toml, benchmark.svg, or
-// one of a registered sensor's (sensor::SensorType::owns_file_name). A set's files have such names;
+// one of a registered sensor's (sensor::SensorKind::owns_file_name). A set's files have such names;
 // a set written before sets were recorded (record_file_name) is known by them alone.
 using ResultFileNames = std::function<bool(std::string_view)>;
 ResultFileNames result_file_names(const Scenario& scenario);

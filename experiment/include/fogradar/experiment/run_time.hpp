@@ -14,9 +14,9 @@ namespace fogradar::experiment {
 
 // A run's wall time from cost models: the process's own part (its start, the scenario read, the
 // summary and the result files written, a constant), each running sensor's set-up
-// (sensor::SensorType::setup_time: made, its steps prepared, summarised, its fog reports and files)
-// and the chamber's part of summary.json, all on one thread; and each sensor's items times its own
-// estimate of one (sensor::SensorType::item_time), shared by the threads the run starts. A cost
+// (sensor::ConfiguredSensor::cost's setup: made, its steps prepared, summarised, its fog reports
+// and files) and the chamber's part of summary.json, all on one thread; and each sensor's items
+// times its own estimate of one (cost's item), shared by the threads the run starts. A cost
 // model, not a measurement: docs/scenario.md ("Time limit") gives its ratio to measured wall times
 // and the calibration that measured its constants.
 struct TimeEstimate {

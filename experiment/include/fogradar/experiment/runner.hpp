@@ -23,9 +23,11 @@
 
 namespace fogradar::experiment {
 
-// One sensor of a run, as experiment.sensors names it.
+// One sensor of a run, as experiment.sensors names it: its kind, configured for the scenario, made,
+// and its run.
 struct SensorRunEntry {
-  std::shared_ptr<const sensor::SensorType> type;
+  std::shared_ptr<const sensor::SensorKind> kind;
+  std::shared_ptr<const sensor::ConfiguredSensor> configured;
   std::shared_ptr<const sensor::Sensor> sensor;
   std::shared_ptr<sensor::SensorRun> run;
 };
@@ -66,10 +68,11 @@ std::string sensor_identity(const Scenario& scenario, const SensorSetting& setti
 class SensorCache {
  public:
   static constexpr std::size_t capacity = 16;
-  // The cached sensor, or one made now (throws Stopped when `stop` is asked for while it is made).
+  // The cached sensor, or one `configured` makes now (throws Stopped when `stop` is asked for while
+  // it is made).
   std::shared_ptr<const sensor::Sensor> sensor(const Scenario& scenario,
                                                const SensorSetting& setting,
-                                               const sensor::Context& context,
+                                               const sensor::ConfiguredSensor& configured,
                                                const propagation::SegelsteinTable& water,
                                                const StopToken& stop = StopToken());
 
@@ -115,7 +118,7 @@ class ItemRun {
 
   std::size_t steps() const { return steps_; }
   std::size_t items_per_step() const { return items_per_step_; }
-  // The raw data kinds the sensor offers (sensor::SensorType::raw_kinds).
+  // The raw data kinds the sensor offers (sensor::ConfiguredSensor::raw_kinds).
   const std::vector<sensor::RawKind>& raw_kinds() const { return kinds_; }
   // Measures item `index` of step `step` into `raw` (may be null); InvalidParameter naming "step"
   // or "index" out of range. Prepares the step the first time one of its items is measured.

@@ -7,7 +7,6 @@
 // compiled in and is the base every scenario file overrides.
 #pragma once
 
-#include <any>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -64,10 +63,18 @@ struct ScenarioKeys;
 const ScenarioKeys& keys_of(const Scenario& scenario);
 }  // namespace detail
 
-// One registered sensor's parameters (its own struct, sensor::params_of).
+// One registered sensor's parameters (its own struct, sensor::params_of); copies copy them.
 struct SensorSetting {
-  std::shared_ptr<const sensor::SensorType> type;
-  std::any params;
+  SensorSetting(std::shared_ptr<const sensor::SensorKind> of_kind,
+                std::unique_ptr<sensor::Params> values);
+  SensorSetting(const SensorSetting& other);
+  SensorSetting& operator=(const SensorSetting& other);
+  SensorSetting(SensorSetting&&) noexcept = default;
+  SensorSetting& operator=(SensorSetting&&) noexcept = default;
+  ~SensorSetting() = default;
+
+  std::shared_ptr<const sensor::SensorKind> kind;
+  std::unique_ptr<sensor::Params> params;
 };
 
 struct Scenario {
@@ -81,15 +88,15 @@ struct Scenario {
   // are made for them).
   std::vector<SensorSetting> sensors;
 
-  // The parameters of the sensor named `name`, as its own struct (throws std::bad_any_cast for
-  // another type, InvalidParameter for an unregistered name).
+  // The parameters of the sensor named `name`, as its own struct (throws std::bad_cast for another
+  // struct, InvalidParameter for an unregistered name).
   template <class Params>
   Params& params(std::string_view name) {
-    return sensor::params_of<Params>(setting(name).params);
+    return sensor::params_of<Params>(*setting(name).params);
   }
   template <class Params>
   const Params& params(std::string_view name) const {
-    return sensor::params_of<Params>(setting(name).params);
+    return sensor::params_of<Params>(*setting(name).params);
   }
   SensorSetting& setting(std::string_view name);
   const SensorSetting& setting(std::string_view name) const;
@@ -102,6 +109,9 @@ struct Scenario {
   propagation::ChamberSpec chamber_spec() const;
   // What every sensor is given besides its own keys.
   sensor::Context context() const;
+  // The sensor named `name` configured for this scenario (SensorKind::configure: InvalidParameter
+  // naming the key its parameters break, its own or the chamber's).
+  std::shared_ptr<const sensor::ConfiguredSensor> configure(std::string_view name) const;
   // Every key of the scenario, as the file lays them out: the first sensor's sections, then
   // [chamber], [fog] and [experiment], then the other sensors' (the paper scenario's order).
   const KeyTable<Scenario>& keys() const;

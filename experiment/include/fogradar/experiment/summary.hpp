@@ -13,7 +13,7 @@
 namespace fogradar::experiment {
 
 struct SensorOutcome {
-  std::shared_ptr<const sensor::SensorType> type;
+  std::shared_ptr<const sensor::SensorKind> kind;
   std::shared_ptr<const sensor::SensorSummary> summary;
 };
 
@@ -25,7 +25,7 @@ struct ExperimentSummary {
   template <class Report>
   const Report& of(std::string_view name) const {
     for (const SensorOutcome& outcome : sensors) {
-      if (outcome.type->name() == name) return dynamic_cast<const Report&>(*outcome.summary);
+      if (outcome.kind->name() == name) return dynamic_cast<const Report&>(*outcome.summary);
     }
     throw_invalid("experiment.sensors", name, "a sensor that ran");
   }

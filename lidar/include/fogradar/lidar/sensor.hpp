@@ -13,8 +13,8 @@
 
 namespace fogradar::lidar {
 
-// The lidar's entry in the registry.
-std::shared_ptr<const sensor::SensorType> sensor_type();
+// The lidar's kind, for the registry.
+std::shared_ptr<const sensor::SensorKind> sensor_kind();
 
 // The lidar's raw data per scan (docs/data-out.md), by index: the received waveforms, the echoes
 // and the ground truth's stretches, in a chamber of `layer_count` layers.

@@ -32,8 +32,8 @@ struct SensorParams {
 // The keys of SensorParams: radar_param_keys(), target_keys() and fog.clutter_scatterers_per_bin.
 KeyTable<SensorParams> sensor_keys();
 
-// The radar's entry in the registry.
-std::shared_ptr<const sensor::SensorType> sensor_type();
+// The radar's kind, for the registry.
+std::shared_ptr<const sensor::SensorKind> sensor_kind();
 
 // The radar's raw data per measurement (docs/data-out.md), by index: the beat signal, the
 // range-Doppler map |X|^2 and the detections, with their axes; the beat's two parts (synthesis.hpp,
@@ -80,15 +80,15 @@ class RadarReport : public sensor::SensorSummary {
   virtual const std::vector<StepResult>& steps() const = 0;
 };
 
-// The radar made for one scenario: the chamber resolved at its sweep centre, the scene, the chain
-// (FFT plans, windows, CFAR design), made once and shared by every run and worker.
+// The radar made for one scenario (its configured sensor's make): the chamber resolved at its sweep
+// centre, the scene, the chain (FFT plans, windows, CFAR design), made once and shared by every run
+// and worker.
 class RadarSensor : public sensor::Sensor, public std::enable_shared_from_this<RadarSensor> {
  public:
   // Throws Stopped when `stop` is asked for while the chain's CFAR threshold is designed.
   RadarSensor(const SensorParams& params, const sensor::Context& context,
               const propagation::SegelsteinTable& water, const StopToken& stop = StopToken());
 
-  std::size_t items_per_step() const override { return context_.measurements_per_step; }
   std::unique_ptr<sensor::SensorRun> begin_run() const override;
 
   const SensorParams& params() const { return params_; }

@@ -1,23 +1,26 @@
-// The one shape every sensor has (docs/architecture.md): experiment/, cli/ and python/ know a
-// sensor only through this interface, and one registry in experiment/ names the sensors that
-// implement it (pbrt-v4's Medium: a small interface, one factory that names the types). A sensor
-// folder (radar/, lidar/, camera/) provides:
+// The one shape every sensor has (docs/architecture.md, "The sensor interface"): experiment/, cli/
+// and python/ know a sensor only through this interface, and one registry in experiment/ lists the
+// kinds that implement it (pbrt-v4's Medium: a small interface, one factory that names the types).
+// A sensor folder (radar/, lidar/, camera/) provides:
 //
-//   SensorType     its name, scenario keys, validation, memory and time estimates, raw data kinds,
-//                  result file names and its view of a fog (`fogradar fog`); it makes
-//   Sensor         the sensor for one scenario: what every run shares (chamber, plans, tables,
-//                  optics), made once, immutable, safe to share between threads; it begins
-//   SensorRun      one run: per-step state, then the items measured by
-//   Worker         per-thread workers from their own random streams, then
-//   SensorSummary  its per-step statistics, limit verdict, printed table, JSON summary, result
-//                  files and benchmark curve.
+//   SensorKind        its name and stream key (KindInfo), its keys over its own parameter struct
+//                     with their defaults, and configure(params, context): its keys checked with
+//                     what they cannot check alone, the
+//   ConfiguredSensor  the sensor for one scenario, typed: its items per step, cost, memory, raw
+//                     data kinds and view of the fog, and make(): the
+//   Sensor            what every run shares (chamber, plans, tables, optics), made once,
+//                     immutable, safe to share between threads; it begins
+//   SensorRun         one run: per-step state, then the items measured by
+//   Worker            per-thread workers from their own random streams, then
+//   SensorSummary     its per-step statistics, limit verdict, printed table, JSON summary, result
+//                     files and benchmark curve.
 //
-// A sensor's parameters travel through experiment/ as a std::any holding its own struct; its keys
-// (core/keys.hpp) read and write them. Items are keyed (seed, sensor's stream key, step, index), so
-// a run is byte-identical for any thread count and adding a sensor never changes another's numbers.
+// Kind<P> implements SensorKind over a parameter struct P once: experiment/ holds a kind's
+// parameters as an opaque Params, which only the kind's keys and configure() read. Items are keyed
+// (seed, sensor's stream key, step, index), so a run is byte-identical for any thread count and
+// adding a sensor never changes another's numbers.
 #pragma once
 
-#include <any>
 #include <complex>
 #include <cstddef>
 #include <cstdint>
@@ -209,84 +212,136 @@ class SensorRun {
   virtual std::unique_ptr<const SensorSummary> summarize() const = 0;
 };
 
-// A sensor made for one scenario (SensorType::make): what all its runs share, made once. Const and
-// safe to use from several threads at once; every run begun from it is its own.
+// A sensor made for one scenario (ConfiguredSensor::make): what all its runs share, made once.
+// Const and safe to use from several threads at once; every run begun from it is its own.
 class Sensor {
  public:
   virtual ~Sensor() = default;
-  virtual std::size_t items_per_step() const = 0;
   virtual std::unique_ptr<SensorRun> begin_run() const = 0;
 };
 
-class SensorType {
+// What a run costs: one item's CPU time, and the rest of the sensor's work in a run.
+struct Cost {
+  TimePart item;
+  SetupTime setup;
+};
+
+// A sensor configured for one scenario (SensorKind::configure): its parameters checked against the
+// scenario's chamber, cheap to make; what a run of it needs is made by make().
+class ConfiguredSensor {
  public:
-  virtual ~SensorType() = default;
+  virtual ~ConfiguredSensor() = default;
+  virtual std::size_t items_per_step() const = 0;
+  // Its CPU time, estimated with a cost model whose constants the sensor states.
+  virtual Cost cost() const = 0;
+  // Peak memory of its part of a run with `threads` workers.
+  virtual MemoryPart memory(unsigned threads) const = 0;
+  virtual std::vector<RawKind> raw_kinds() const = 0;
+  // A fog layer as the sensor sees it (`fogradar fog`, summary.json's chamber): of the kind's band
+  // (KindInfo::band).
+  virtual FogReport fog_report(const propagation::FogSpec& fog, double layer_length_m,
+                               const propagation::SegelsteinTable& water) const = 0;
+  // Makes the sensor for its scenario; `water` is used while it is made, not kept. Throws Stopped
+  // when `stop` is asked for inside set-up work that can be long (the radar's CFAR design).
+  virtual std::shared_ptr<const Sensor> make(const propagation::SegelsteinTable& water,
+                                             const StopToken& stop) const = 0;
+};
+
+// What a kind states of itself, the same for every scenario.
+struct KindInfo {
   // The scenario's name of the sensor ("radar"): experiment.sensors, its section, its files'
   // prefix.
-  virtual std::string_view name() const = 0;
+  std::string name;
   // Its random streams' key (sensor_stream); distinct in one registry.
-  virtual std::uint64_t stream_key() const = 0;
-  // Its items in words, for progress: "radar measurements".
-  virtual std::string_view item_noun() const = 0;
-  // What its benchmark curve shows, for benchmark.svg's caption: "median target RCS as a power
-  // ratio".
-  virtual std::string_view curve_caption() const = 0;
-
-  // Its parameters with every key at its default, and its keys over them (one table, made with the
-  // type and shared by every scenario of it).
-  virtual std::any default_params() const = 0;
-  virtual const KeyTable<std::any>& keys() const = 0;
-  // Checks its keys (keys().check) and what they cannot check alone, the bounds that involve the
-  // chamber; throws InvalidParameter naming the scenario key (its own or the chamber's).
-  virtual void validate(const std::any& params, const Context& context) const = 0;
-  virtual std::size_t items_per_step(const std::any& params, const Context& context) const = 0;
-  virtual MemoryPart memory(const std::any& params, const Context& context,
-                            unsigned threads) const = 0;
-  // The CPU time of one of its items (valid params and context).
-  virtual TimePart item_time(const std::any& params, const Context& context) const = 0;
-  // The CPU time of the rest of its work in a run (valid params and context).
-  virtual SetupTime setup_time(const std::any& params, const Context& context) const = 0;
-  virtual std::vector<RawKind> raw_kinds(const std::any& params, const Context& context) const = 0;
-  // Whether a file of this name in a result directory is one of the sensor's result files.
-  virtual bool owns_file_name(std::string_view file_name) const = 0;
+  std::uint64_t stream_key = 0;
   // Where in the spectrum it works: a radio sensor sees a fog through its liquid water, an optical
   // one through its droplets' extinction (`fogradar fog --lwc-from kunkel` ties the two by an
   // empirical law instead of one droplet distribution, so they are two fogs there).
-  virtual Band band() const = 0;
-  virtual FogReport fog_report(const std::any& params, const propagation::FogSpec& fog,
-                               double layer_length_m,
-                               const propagation::SegelsteinTable& water) const = 0;
-  // Makes the sensor for a scenario (valid params and context); `water` is used while it is made,
-  // not kept.
-  virtual std::shared_ptr<const Sensor> make(const std::any& params, const Context& context,
-                                             const propagation::SegelsteinTable& water) const = 0;
-  // The same, honouring `stop` (throws Stopped) inside set-up work that can be long (the radar's
-  // CFAR design); a type whose making is short makes the sensor as above.
-  virtual std::shared_ptr<const Sensor> make_or_stop(const std::any& params, const Context& context,
-                                                     const propagation::SegelsteinTable& water,
-                                                     const StopToken& stop) const {
-    stop.check();
-    return make(params, context, water);
-  }
+  Band band = Band::optical;
+  // Its items in words, for progress: "radar measurements".
+  std::string item_noun;
+  // What its benchmark curve shows, for benchmark.svg's caption: "median target RCS as a power
+  // ratio".
+  std::string curve_caption;
 };
 
-// A sensor's parameters inside the std::any experiment/ carries.
-template <class Params>
-Params& params_of(std::any& params) {
-  return std::any_cast<Params&>(params);
+// A kind's parameters as experiment/ holds them: its own struct (ParamsOf), read and written by the
+// kind's keys; params_of gives the struct to code that knows it (tests, benchmarks).
+class Params {
+ public:
+  virtual ~Params() = default;
+  virtual std::unique_ptr<Params> clone() const = 0;
+};
+
+template <class P>
+class ParamsOf final : public Params {
+ public:
+  ParamsOf() = default;
+  explicit ParamsOf(P v) : value(std::move(v)) {}
+  std::unique_ptr<Params> clone() const override { return std::make_unique<ParamsOf>(value); }
+  P value;
+};
+
+// Throws std::bad_cast when `params` holds another struct.
+template <class P>
+P& params_of(Params& params) {
+  return dynamic_cast<ParamsOf<P>&>(params).value;
 }
-template <class Params>
-const Params& params_of(const std::any& params) {
-  return std::any_cast<const Params&>(params);
+template <class P>
+const P& params_of(const Params& params) {
+  return dynamic_cast<const ParamsOf<P>&>(params).value;
 }
 
-// A sensor's key table over its parameters, lifted to the std::any that holds them.
-template <class Params>
-KeyTable<std::any> erase_keys(KeyTable<Params> keys) {
-  KeyTable<std::any> table;
-  table.include(
-      std::move(keys), [](auto& params) -> auto& { return params_of<Params>(params); });
-  return table;
-}
+class SensorKind {
+ public:
+  virtual ~SensorKind() = default;
+  virtual const KindInfo& info() const = 0;
+  // Its keys over its parameters (one table, made with the kind and shared by every scenario).
+  virtual const KeyTable<Params>& keys() const = 0;
+  // Its parameters with every key at its default.
+  virtual std::unique_ptr<Params> defaults() const = 0;
+  // Checks its keys (keys().check) and what they cannot check alone, the bounds that involve the
+  // chamber, and configures the sensor for the scenario; throws InvalidParameter naming the
+  // scenario key (its own or the chamber's).
+  virtual std::shared_ptr<const ConfiguredSensor> configure(const Params& params,
+                                                            const Context& context) const = 0;
+  // Whether a file of this name in a result directory is one of the sensor's result files.
+  virtual bool owns_file_name(std::string_view file_name) const = 0;
+
+  std::string_view name() const { return info().name; }
+  std::uint64_t stream_key() const { return info().stream_key; }
+};
+
+// A kind over its own parameter struct P: it gives its info and keys to the constructor and
+// implements configured() (its keys already checked) and owns_file_name().
+template <class P>
+class Kind : public SensorKind {
+ public:
+  Kind(KindInfo info, KeyTable<P> keys) : info_(std::move(info)), typed_keys_(std::move(keys)) {
+    keys_.include(
+        typed_keys_, [](auto& params) -> auto& { return params_of<P>(params); });
+  }
+
+  const KindInfo& info() const final { return info_; }
+  const KeyTable<Params>& keys() const final { return keys_; }
+  std::unique_ptr<Params> defaults() const final { return std::make_unique<ParamsOf<P>>(); }
+  std::shared_ptr<const ConfiguredSensor> configure(const Params& params,
+                                                    const Context& context) const final {
+    const P& p = params_of<P>(params);
+    typed_keys_.check(p);
+    return configured(p, context);
+  }
+
+ protected:
+  // The sensor configured for `context` from `params`, whose keys hold allowed values; throws
+  // InvalidParameter for a bound across its keys and the chamber's.
+  virtual std::shared_ptr<const ConfiguredSensor> configured(const P& params,
+                                                             const Context& context) const = 0;
+
+ private:
+  KindInfo info_;
+  KeyTable<P> typed_keys_;
+  KeyTable<Params> keys_;
+};
 
 }  // namespace fogradar::sensor

@@ -1,6 +1,6 @@
-// The radar as a sensor::SensorType: its keys and checks, its memory and time, its files and fog.
+// The radar as a sensor kind (sensor/sensor.hpp): its keys and checks, and the radar configured
+// for a scenario: its memory and time, its raw data kinds, its view of the fog; its files.
 #include <algorithm>
-#include <any>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -72,18 +72,138 @@ const char* const file_names[] = {"radar_samples.csv", "radar_detections.csv", "
 // The radar's files as fogradar 0.1 named them: an earlier result set is still replaced whole.
 const char* const earlier_file_names[] = {"samples.csv", "summary.csv", "rcs_boxplot.svg"};
 
-class Type : public sensor::SensorType {
+// The radar for one scenario: its parameters, checked against the chamber, and the context.
+class Configured : public sensor::ConfiguredSensor {
  public:
-  std::string_view name() const override { return "radar"; }
-  std::uint64_t stream_key() const override { return radar::stream_key; }
-  std::string_view item_noun() const override { return "radar measurements"; }
-  std::string_view curve_caption() const override { return "median target RCS as a power ratio"; }
-  std::any default_params() const override { return SensorParams{}; }
-  const KeyTable<std::any>& keys() const override { return keys_; }
+  Configured(const SensorParams& params, const sensor::Context& context)
+      : p_(params), context_(context) {}
 
-  void validate(const std::any& params, const sensor::Context& context) const override {
-    keys_.check(params);  // the CFAR's window against the range profile too (radar_param_keys)
-    const SensorParams& p = sensor::params_of<SensorParams>(params);
+  std::size_t items_per_step() const override { return context_.measurements_per_step; }
+
+  sensor::MemoryPart memory(unsigned threads) const override {
+    const MemoryEstimate e = memory_estimate(p_, context_.steps * context_.measurements_per_step);
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << "radar.samples_per_chirp = " << p_.radar.samples_per_chirp
+           << " x radar.chirps_per_frame = " << p_.radar.chirps_per_frame << ": " << threads
+           << " x " << mib(e.per_thread_bytes)
+           << " MiB frame workspace; experiment.measurements_per_step = "
+           << context_.measurements_per_step << ": " << mib(e.records_bytes)
+           << " MiB per-measurement records; " << mib(e.shared_bytes) << " MiB windows and plans";
+    return {.bytes = threads * e.per_thread_bytes + e.shared_bytes + e.records_bytes,
+            .detail = detail.str(),
+            .key = "radar.samples_per_chirp"};
+  }
+
+  sensor::Cost cost() const override { return {.item = item_time(), .setup = setup_time()}; }
+
+  std::vector<sensor::RawKind> raw_kinds() const override { return radar_raw_kinds(p_); }
+
+  // The fog at the radar's sweep centre: specific attenuation, backscatter, and the two-way loss
+  // through one layer, 2 A L.
+  sensor::FogReport fog_report(const propagation::FogSpec& spec, double layer_length_m,
+                               const propagation::SegelsteinTable& water) const override {
+    const propagation::Fog fog(spec, water);
+    const propagation::FogOptics o = fog.at_frequency(p_.radar.centre_frequency_hz);
+    const double loss_db = 2.0 * o.specific_attenuation_db_per_km * layer_length_m * 1e-3;
+    std::ostringstream line;
+    line << "  radar (" << o.frequency_hz * 1e-9 << " GHz)         2-way loss " << loss_db << " dB";
+    return {.json = {{"frequency_hz", o.frequency_hz},
+                     {"specific_attenuation_db_per_km", o.specific_attenuation_db_per_km},
+                     {"volume_backscatter_m2_per_m3", o.volume_backscatter_m2_per_m3},
+                     {"two_way_loss_db_per_layer", loss_db}},
+            .line = line.str()};
+  }
+
+  std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
+                                             const StopToken& stop) const override {
+    return std::make_shared<RadarSensor>(p_, context_, water, stop);
+  }
+
+ private:
+  sensor::TimePart item_time() const {
+    const RadarParams& p = p_.radar;
+    const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
+    const double tones = mean_clutter_tones(p_, context_);
+    const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
+    const double reference_cells = static_cast<double>(p.cfar.reference_cells());
+    const double edge_references =
+        p.cfar.kind == CfarKind::os
+            ? 0.0
+            : static_cast<double>(p.chirps_per_frame) * 2.0 *
+                  static_cast<double>(std::size_t{p.cfar.guard_cells} + p.cfar.training_cells) *
+                  reference_cells;
+    const double edge_seconds = p.cfar.kind == CfarKind::os
+                                    ? cells * reference_cells * frame_seconds_per_sorted_reference
+                                    : edge_references * frame_seconds_per_edge_reference;
+    std::ostringstream detail;
+    detail.precision(6);
+    detail << "radar.samples_per_chirp = " << p.samples_per_chirp
+           << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
+           << " objects (" << scene_objects_per_frame
+           << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
+           << " x cells), about " << tones
+           << " fog clutter tones (fog.clutter_scatterers_per_bin = "
+           << p_.clutter_scatterers_per_bin << " per range bin of the active layers), "
+           << edge_references
+           << " CFAR edge-cell additions (2 x (processing.cfar.guard_cells + training_cells) x N "
+              "per Doppler row)";
+    const double rest =
+        cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
+                 objects * frame_seconds_per_cell_and_object) +
+        tones * static_cast<double>(p.samples_per_chirp) * frame_seconds_per_tone_sample;
+    return {.item_seconds = rest + edge_seconds,
+            .detail = detail.str(),
+            .key = edge_seconds > rest                         ? "processing.cfar.training_cells"
+                   : p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
+                                                               : "radar.chirps_per_frame",
+            .items_key = "experiment.measurements_per_step"};
+  }
+
+  sensor::SetupTime setup_time() const {
+    const SetupCost c = setup_cost(p_, context_);
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "fog optics " << c.fog_seconds << " s, chain " << c.chain_seconds
+           << " s, CFAR design (processing.cfar.kind = " << to_string(p_.radar.cfar.kind)
+           << ", processing.cfar.threshold_design = " << to_string(p_.radar.cfar.threshold_design)
+           << ") " << c.cfar_design_seconds << " s";
+    const double largest = std::max({c.fog_seconds, c.chain_seconds, c.cfar_design_seconds});
+    return {.make_seconds = c.fog_seconds + c.chain_seconds + c.cfar_design_seconds,
+            .run_seconds = c.summary_seconds,
+            .report_seconds = c.report_seconds,
+            .detail = detail.str(),
+            .key = largest == c.cfar_design_seconds ? "processing.cfar.threshold_design"
+                   : largest == c.chain_seconds     ? "radar.samples_per_chirp"
+                                                    : "fog.droplets"};
+  }
+
+  SensorParams p_;
+  sensor::Context context_;
+};
+
+class Kind : public sensor::Kind<SensorParams> {
+ public:
+  Kind()
+      : sensor::Kind<SensorParams>({.name = "radar",
+                                    .stream_key = radar::stream_key,
+                                    .band = sensor::Band::radio,
+                                    .item_noun = "radar measurements",
+                                    .curve_caption = "median target RCS as a power ratio"},
+                                   sensor_keys()) {}
+
+  bool owns_file_name(std::string_view file_name) const override {
+    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
+               std::end(file_names) ||
+           std::find(std::begin(earlier_file_names), std::end(earlier_file_names), file_name) !=
+               std::end(earlier_file_names);
+  }
+
+ protected:
+  std::shared_ptr<const sensor::ConfiguredSensor> configured(
+      const SensorParams& p, const sensor::Context& context) const override {
+    // The CFAR's window against the range profile is one of the keys' checks
+    // (radar_param_keys).
     const Scene scene = make_scene(p.target, p.clutter_scatterers_per_bin);
     scene.validate();
     // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
@@ -106,136 +226,8 @@ class Type : public sensor::SensorType {
           << limit_m << " m";
       throw_invalid("chamber.target_gap_m", context.chamber.target_gap_m, constraint.str());
     }
+    return std::make_shared<Configured>(p, context);
   }
-
-  std::size_t items_per_step(const std::any&, const sensor::Context& context) const override {
-    return context.measurements_per_step;
-  }
-
-  sensor::MemoryPart memory(const std::any& params, const sensor::Context& context,
-                            unsigned threads) const override {
-    const SensorParams& p = sensor::params_of<SensorParams>(params);
-    const MemoryEstimate e = memory_estimate(p, context.steps * context.measurements_per_step);
-    std::ostringstream detail;
-    detail.precision(6);
-    detail << "radar.samples_per_chirp = " << p.radar.samples_per_chirp
-           << " x radar.chirps_per_frame = " << p.radar.chirps_per_frame << ": " << threads << " x "
-           << mib(e.per_thread_bytes) << " MiB frame workspace; experiment.measurements_per_step = "
-           << context.measurements_per_step << ": " << mib(e.records_bytes)
-           << " MiB per-measurement records; " << mib(e.shared_bytes) << " MiB windows and plans";
-    return {.bytes = threads * e.per_thread_bytes + e.shared_bytes + e.records_bytes,
-            .detail = detail.str(),
-            .key = "radar.samples_per_chirp"};
-  }
-
-  sensor::TimePart item_time(const std::any& params,
-                             const sensor::Context& context) const override {
-    const RadarParams& p = sensor::params_of<SensorParams>(params).radar;
-    const double cells = static_cast<double>(p.samples_per_chirp * p.chirps_per_frame);
-    const double tones = mean_clutter_tones(sensor::params_of<SensorParams>(params), context);
-    const double objects = scene_objects_per_frame + p.cfar.false_alarm_probability * cells;
-    const double reference_cells = static_cast<double>(p.cfar.reference_cells());
-    const double edge_references =
-        p.cfar.kind == CfarKind::os
-            ? 0.0
-            : static_cast<double>(p.chirps_per_frame) * 2.0 *
-                  static_cast<double>(std::size_t{p.cfar.guard_cells} + p.cfar.training_cells) *
-                  reference_cells;
-    const double edge_seconds = p.cfar.kind == CfarKind::os
-                                    ? cells * reference_cells * frame_seconds_per_sorted_reference
-                                    : edge_references * frame_seconds_per_edge_reference;
-    std::ostringstream detail;
-    detail.precision(6);
-    detail << "radar.samples_per_chirp = " << p.samples_per_chirp
-           << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
-           << " objects (" << scene_objects_per_frame
-           << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
-           << " x cells), about " << tones
-           << " fog clutter tones (fog.clutter_scatterers_per_bin = "
-           << sensor::params_of<SensorParams>(params).clutter_scatterers_per_bin
-           << " per range bin of the active layers), " << edge_references
-           << " CFAR edge-cell additions (2 x (processing.cfar.guard_cells + training_cells) x N "
-              "per Doppler row)";
-    const double rest =
-        cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
-                 objects * frame_seconds_per_cell_and_object) +
-        tones * static_cast<double>(p.samples_per_chirp) * frame_seconds_per_tone_sample;
-    return {.item_seconds = rest + edge_seconds,
-            .detail = detail.str(),
-            .key = edge_seconds > rest                         ? "processing.cfar.training_cells"
-                   : p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
-                                                               : "radar.chirps_per_frame",
-            .items_key = "experiment.measurements_per_step"};
-  }
-
-  sensor::SetupTime setup_time(const std::any& params,
-                               const sensor::Context& context) const override {
-    const SensorParams& p = sensor::params_of<SensorParams>(params);
-    const SetupCost c = setup_cost(p, context);
-    std::ostringstream detail;
-    detail.precision(3);
-    detail << "fog optics " << c.fog_seconds << " s, chain " << c.chain_seconds
-           << " s, CFAR design (processing.cfar.kind = " << to_string(p.radar.cfar.kind)
-           << ", processing.cfar.threshold_design = " << to_string(p.radar.cfar.threshold_design)
-           << ") " << c.cfar_design_seconds << " s";
-    const double largest = std::max({c.fog_seconds, c.chain_seconds, c.cfar_design_seconds});
-    return {.make_seconds = c.fog_seconds + c.chain_seconds + c.cfar_design_seconds,
-            .run_seconds = c.summary_seconds,
-            .report_seconds = c.report_seconds,
-            .detail = detail.str(),
-            .key = largest == c.cfar_design_seconds ? "processing.cfar.threshold_design"
-                   : largest == c.chain_seconds     ? "radar.samples_per_chirp"
-                                                    : "fog.droplets"};
-  }
-
-  std::vector<sensor::RawKind> raw_kinds(const std::any& params,
-                                         const sensor::Context&) const override {
-    return radar_raw_kinds(sensor::params_of<SensorParams>(params));
-  }
-
-  bool owns_file_name(std::string_view file_name) const override {
-    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
-               std::end(file_names) ||
-           std::find(std::begin(earlier_file_names), std::end(earlier_file_names), file_name) !=
-               std::end(earlier_file_names);
-  }
-
-  // The fog at the radar's sweep centre: specific attenuation, backscatter, and the two-way loss
-  // through one layer, 2 A L.
-  sensor::Band band() const override { return sensor::Band::radio; }
-
-  sensor::FogReport fog_report(const std::any& params, const propagation::FogSpec& spec,
-                               double layer_length_m,
-                               const propagation::SegelsteinTable& water) const override {
-    const SensorParams& p = sensor::params_of<SensorParams>(params);
-    const propagation::Fog fog(spec, water);
-    const propagation::FogOptics o = fog.at_frequency(p.radar.centre_frequency_hz);
-    const double loss_db = 2.0 * o.specific_attenuation_db_per_km * layer_length_m * 1e-3;
-    std::ostringstream line;
-    line << "  radar (" << o.frequency_hz * 1e-9 << " GHz)         2-way loss " << loss_db << " dB";
-    return {.json = {{"frequency_hz", o.frequency_hz},
-                     {"specific_attenuation_db_per_km", o.specific_attenuation_db_per_km},
-                     {"volume_backscatter_m2_per_m3", o.volume_backscatter_m2_per_m3},
-                     {"two_way_loss_db_per_layer", loss_db}},
-            .line = line.str()};
-  }
-
-  std::shared_ptr<const sensor::Sensor> make(
-      const std::any& params, const sensor::Context& context,
-      const propagation::SegelsteinTable& water) const override {
-    return make_or_stop(params, context, water, StopToken());
-  }
-
-  std::shared_ptr<const sensor::Sensor> make_or_stop(const std::any& params,
-                                                     const sensor::Context& context,
-                                                     const propagation::SegelsteinTable& water,
-                                                     const StopToken& stop) const override {
-    return std::make_shared<RadarSensor>(sensor::params_of<SensorParams>(params), context, water,
-                                         stop);
-  }
-
- private:
-  KeyTable<std::any> keys_ = sensor::erase_keys(sensor_keys());
 };
 
 }  // namespace
@@ -249,6 +241,6 @@ KeyTable<SensorParams> sensor_keys() {
   return keys;
 }
 
-std::shared_ptr<const sensor::SensorType> sensor_type() { return std::make_shared<Type>(); }
+std::shared_ptr<const sensor::SensorKind> sensor_kind() { return std::make_shared<Kind>(); }
 
 }  // namespace fogradar::radar
