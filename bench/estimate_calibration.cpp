@@ -324,7 +324,7 @@ void sensor_parts(const propagation::SegelsteinTable& water) {
     std::vector<Case> make, per_run, per_report;
     for (const std::size_t scale : {1u, 4u}) {
       experiment::Scenario s = only(name);
-      s.experiment.measurements_per_step *= scale;
+      s.params<fogradar::radar::SensorParams>("radar").measurements_per_step *= scale;
       lidar_of(s).scans_per_step *= scale;
       camera_of(s).frames_per_step *= scale;
       const sensor::Context context = s.context();
@@ -376,7 +376,7 @@ void process(const std::string& fogradar) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "fogradar-calibration";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "tiny.toml") << "[experiment]\nmeasurements_per_step = 1\n[lidar]\n"
+  std::ofstream(dir / "tiny.toml") << "[radar]\nmeasurements_per_step = 1\n[lidar]\n"
                                       "scans_per_step = 1\n[camera]\nframes_per_step = 1\n";
   std::ofstream(dir / "tiny_sweep.toml") << "[sweep]\nbase = \"tiny.toml\"\n[[axis]]\n"
                                             "key = \"radar.tx_power_dbm\"\nvalues = [10.0]\n";

@@ -55,14 +55,14 @@ try:
             f.write(text)
         return path
 
-    write("base.toml", "[experiment]\nmeasurements_per_step = 600\n")
+    write("base.toml", "[radar]\nmeasurements_per_step = 600\n")
     points = 16
     values = ", ".join("%.1f" % (300.0 + 50.0 * i) for i in range(points))
     heavy = write("heavy.toml", f"[sweep]\nbase = \"base.toml\"\n[[axis]]\n"
                   f"key = \"fog.extinction_per_km\"\nvalues = [{values}]\n")
     cheap_values = ", ".join("%.1f" % (300.0 + 10.0 * i) for i in range(48))
-    write("cheap_base.toml", "[experiment]\nmeasurements_per_step = 4\nsensors = [\"radar\"]\n"
-          "max_active_layers = 1\n[radar]\nchirps_per_frame = 16\n")
+    write("cheap_base.toml", "[experiment]\nsensors = [\"radar\"]\n"
+          "max_active_layers = 1\n[radar]\nchirps_per_frame = 16\nmeasurements_per_step = 4\n")
     cheap = write("cheap.toml", f"[sweep]\nbase = \"cheap_base.toml\"\n[[axis]]\n"
                   f"key = \"fog.extinction_per_km\"\nvalues = [{cheap_values}]\n")
 

@@ -42,7 +42,7 @@ args = parser.parse_args()
 scenario = (fogradar.Scenario.from_file(args.scenario) if args.scenario
             else fogradar.Scenario.paper())
 scenario = scenario.with_overrides({"experiment.sensors": ["radar"],
-                                    "experiment.measurements_per_step": args.frames})
+                                    "radar.measurements_per_step": args.frames})
 sim = fogradar.Simulator(scenario)
 keep = ("range_doppler", "detections")
 frames = list(range(args.frames))

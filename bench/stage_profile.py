@@ -11,7 +11,7 @@ Usage:
   bench/stage_profile.py --fogradar build/release/cli/fogradar --scenario examples/bench_small.toml \
       [--measurements 1000] [--threads 1] [--frequency 5000] [--ratio 2.2] [--show-other 10]
 
---measurements rewrites experiment.measurements_per_step in a copy of the scenario, to collect more
+--measurements rewrites radar.measurements_per_step in a copy of the scenario, to collect more
 samples from a small frame. The grouping is by name only: a function shared by two stages (libm's
 sine and cosine serve the scene's paths and the peak searches) counts where the table below puts it.
 """

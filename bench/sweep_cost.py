@@ -4,7 +4,7 @@ a 40-point sweep of the paper scenario, timed as `fogradar sweep` and as 40 `fog
 same points' scenarios, in turn, round by round; CPU seconds (user + system of the child processes)
 and wall seconds, and their ratios sweep / runs as median [min, max]. Two sweeps: over
 fog.extinction_per_km (every sensor's optics change from point to point) and over
-processing.cfar.training_cells (only the radar's CFAR changes: the lidar and the camera are made
+radar.processing.cfar.training_cells (only the radar's CFAR changes: the lidar and the camera are made
 once). The contract: at most 1.15 for the first, less for the second.
 
 Usage: bench/sweep_cost.py [-n ROUNDS] [--fogradar PATH] [--threads N]"""
@@ -43,7 +43,7 @@ def summary(values):
 
 cases = {
     "fog.extinction_per_km": ["%.1f" % (100.0 + 50.0 * i) for i in range(40)],
-    "processing.cfar.training_cells": [str(8 + i) for i in range(40)],
+    "radar.processing.cfar.training_cells": [str(8 + i) for i in range(40)],
 }
 work = tempfile.mkdtemp(prefix="fogradar-sweep-cost-")
 try:

@@ -276,10 +276,12 @@ struct Series {
 int run(const Options& options) {
   experiment::Scenario scenario = experiment::load_scenario_file(options.scenario_path);
   if (options.measurements > 0)
-    scenario.experiment.measurements_per_step = static_cast<std::size_t>(options.measurements);
+    scenario.params<fogradar::radar::SensorParams>("radar").measurements_per_step =
+        static_cast<std::size_t>(options.measurements);
   scenario.validate();
   const std::size_t steps = scenario.steps();
-  const std::size_t frames = steps * scenario.experiment.measurements_per_step;
+  const std::size_t frames =
+      steps * scenario.params<fogradar::radar::SensorParams>("radar").measurements_per_step;
   const radar::RadarParams& radar_params = scenario.params<radar::SensorParams>("radar").radar;
   const std::size_t rows = radar_params.chirps_per_frame, columns = radar_params.samples_per_chirp;
   const unsigned all = std::max(1u, std::thread::hardware_concurrency());
@@ -290,7 +292,8 @@ int run(const Options& options) {
   std::printf(
       "  frame         %zu chirps x %zu samples (complex double), %zu frames = %zu steps x %zu "
       "measurements\n",
-      rows, columns, frames, steps, scenario.experiment.measurements_per_step);
+      rows, columns, frames, steps,
+      scenario.params<fogradar::radar::SensorParams>("radar").measurements_per_step);
   std::printf("  CPU           %s; %u hardware threads\n", cpu_model().c_str(), all);
   std::printf("  load average  %s (at start)\n", load_average().c_str());
   std::printf("  repeats       %d, interleaved; medians (min-max) reported\n", options.repeats);

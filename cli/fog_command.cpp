@@ -239,10 +239,9 @@ std::vector<std::pair<std::string, sensor::FogReport>> sensor_reports(
   std::vector<std::pair<std::string, sensor::FogReport>> reports;
   for (const experiment::SensorSetting& setting : paper.sensors) {
     const bool radio = setting.kind->info().band == sensor::Band::radio;
-    reports.emplace_back(
-        setting.kind->name(),
-        paper.configure(setting.kind->name())
-            ->fog_report(radio ? specs.by_lwc : specs.by_extinction, layer_length_m, table));
+    reports.emplace_back(setting.name, paper.configure(setting.name)
+                                           ->fog_report(radio ? specs.by_lwc : specs.by_extinction,
+                                                        layer_length_m, table));
   }
   return reports;
 }

@@ -1,5 +1,6 @@
 #include "fogradar/core/error.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -28,6 +29,34 @@ InvalidParameter::InvalidParameter(std::string field, const std::string& message
       field_(std::move(field)),
       message_(message),
       location_(std::move(location)) {}
+
+std::string with_section_renamed(std::string_view text, std::string_view from,
+                                 std::string_view to) {
+  const auto name_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
+  };
+  std::string out;
+  out.reserve(text.size());
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const bool starts_name = i == 0 || !name_char(text[i - 1]);
+    // A name follows the section's dot: "radar. " ends a sentence, "radar.x" names a key.
+    if (starts_name && text.substr(i).starts_with(from) && i + from.size() < text.size() &&
+        std::isalpha(static_cast<unsigned char>(text[i + from.size()])) != 0) {
+      out += to;
+      i += from.size();
+    } else {
+      out += text[i++];
+    }
+  }
+  return out;
+}
+
+InvalidParameter with_section_renamed(const InvalidParameter& e, std::string_view from,
+                                      std::string_view to) {
+  return InvalidParameter(with_section_renamed(e.field(), from, to),
+                          with_section_renamed(e.message(), from, to), e.location());
+}
 
 std::string message_number(double value) {
   if (std::isnan(value)) return "nan";

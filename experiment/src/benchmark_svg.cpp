@@ -12,12 +12,12 @@ namespace fogradar::experiment {
 namespace {
 
 // "Radar: median target RCS as a power ratio; lidar: ...; camera: target contrast." over every
-// registered sensor.
+// registered kind's own instance and every other instance that runs.
 std::string metrics_caption(const Scenario& scenario) {
   std::string text;
   for (const SensorSetting& setting : scenario.sensors) {
-    text += (text.empty() ? "" : "; ") + std::string(setting.kind->name()) + ": " +
-            setting.kind->info().curve_caption;
+    if (!setting.is_kinds_own() && !scenario.runs(setting.name)) continue;
+    text += (text.empty() ? "" : "; ") + setting.name + ": " + setting.kind->info().curve_caption;
   }
   if (!text.empty()) text.front() = static_cast<char>(std::toupper(text.front()));
   return text + ".";
@@ -55,7 +55,7 @@ std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& sum
   std::vector<stats::LineSeries> series;
   for (const SensorOutcome& sensor : summary.sensors) {
     const sensor::Curve c = sensor.summary->curve();
-    const std::string name(sensor.kind->name());
+    const std::string& name = sensor.name;
     stats::LineSeries line{.label = name + " " + c.metric,
                            .x = c.active_layers,
                            .y = c.relative_value,

@@ -110,15 +110,37 @@ ResultFileNames result_file_names(const Scenario& scenario) {
         std::end(common_file_names)) {
       return true;
     }
+    // "<instance>_<rest>", where the kind's own instance would write "<kind>_<rest>": an instance
+    // name may hold '_', so every split is tried.
+    for (std::size_t split = name.find('_'); split != std::string_view::npos;
+         split = name.find('_', split + 1)) {
+      const std::string_view rest = name.substr(split);
+      const bool owned = std::any_of(kinds.begin(), kinds.end(), [rest](const auto& kind) {
+        return kind->owns_file_name(std::string(kind->name()) + std::string(rest));
+      });
+      if (owned) return true;
+    }
     return std::any_of(kinds.begin(), kinds.end(),
                        [name](const auto& kind) { return kind->owns_file_name(name); });
   };
 }
 
+namespace {
+
+// A file of instance `outcome` under its own name: the kind names its files for its own instance
+// ("radar_summary.csv"), another instance's take its name ("radar_24_summary.csv").
+std::string instance_file_name(const SensorOutcome& outcome, const std::string& file) {
+  const std::string kind(outcome.kind->name());
+  if (outcome.name == kind || !file.starts_with(kind + "_")) return file;
+  return outcome.name + file.substr(kind.size());
+}
+
+}  // namespace
+
 std::string sensor_tables(const ExperimentSummary& summary) {
   std::string out;
   for (const SensorOutcome& sensor : summary.sensors) {
-    out += std::string(sensor.kind->name()) + '\n' + sensor.summary->table() + '\n';
+    out += sensor.name + '\n' + sensor.summary->table() + '\n';
   }
   return out;
 }
@@ -127,7 +149,7 @@ std::string benchmark_table(const ExperimentSummary& summary) {
   std::string out = "benchmark (the study's criterion: active fog layers until the sensor fails)\n";
   for (const SensorOutcome& sensor : summary.sensors) {
     const sensor::Verdict v = sensor.summary->verdict();
-    std::string name(sensor.kind->name());
+    std::string name = sensor.name;
     name.resize(std::max<std::size_t>(name.size() + 1, 7), ' ');
     out += name + "layers to failure: " +
            (v.layers_to_failure ? std::to_string(*v.layers_to_failure)
@@ -150,8 +172,9 @@ nlohmann::json chamber_json(const Scenario& scenario) {
   const propagation::SegelsteinTable table;
   std::vector<std::pair<std::string, std::shared_ptr<const sensor::ConfiguredSensor>>> running;
   for (const SensorSetting& setting : scenario.sensors) {
-    const std::string name(setting.kind->name());
-    if (scenario.runs(name)) running.emplace_back(name, scenario.configure(name));
+    if (scenario.runs(setting.name)) {
+      running.emplace_back(setting.name, scenario.configure(setting.name));
+    }
   }
   nlohmann::json layers = nlohmann::json::array();
   double start_m = context.chamber.sensor_gap_m;
@@ -194,7 +217,7 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
   nlohmann::json sensors = nlohmann::json::object();
   for (const SensorOutcome& sensor : summary.sensors) {
     const sensor::Verdict v = sensor.summary->verdict();
-    sensors[std::string(sensor.kind->name())] = {
+    sensors[sensor.name] = {
         {"sensor_limit_layers",
          v.layers_to_failure ? nlohmann::json(*v.layers_to_failure) : nlohmann::json(nullptr)},
         {"criterion", v.criterion},
@@ -211,7 +234,10 @@ std::vector<sensor::ResultFile> result_files(const Scenario& scenario,
                                              const ExperimentSummary& summary) {
   std::vector<sensor::ResultFile> files;
   for (const SensorOutcome& sensor : summary.sensors) {
-    for (sensor::ResultFile& file : sensor.summary->files()) files.push_back(std::move(file));
+    for (sensor::ResultFile& file : sensor.summary->files()) {
+      file.name = instance_file_name(sensor, file.name);
+      files.push_back(std::move(file));
+    }
   }
   files.push_back({"summary.json", summary_json(scenario, summary)});
   files.push_back({"scenario.toml", to_toml(scenario)});

@@ -44,7 +44,7 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
                           per_step = sensors[s].configured->items_per_step();
         if (!measure[s]) measure[s] = sensors[s].run->make_worker();
         const std::size_t step = local / per_step, index = local % per_step;
-        RandomStream stream = sensor_stream(seed, sensors[s].kind->stream_key(), step, index);
+        RandomStream stream = sensor_stream(seed, sensors[s].stream_key, step, index);
         const std::unique_ptr<sensor::RawSink> raw =
             options.raw != nullptr ? options.raw->sink(s, step, index) : nullptr;
         try {
@@ -74,7 +74,7 @@ void run_items(const std::vector<SensorRunEntry>& sensors, std::size_t steps, st
 
 const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
   for (const SensorRunEntry& entry : sensors) {
-    if (entry.kind->name() == name) return *entry.run;
+    if (entry.name == name) return *entry.run;
   }
   throw_invalid("experiment.sensors", name, "a sensor that ran");
 }
@@ -82,9 +82,9 @@ const sensor::SensorRun& ExperimentResult::run(std::string_view name) const {
 std::string sensor_identity(const Scenario& scenario, const SensorSetting& setting) {
   Scenario alone = scenario;
   for (SensorSetting& other : alone.sensors) {
-    if (other.kind != setting.kind) other.params = other.kind->defaults();
+    if (other.name != setting.name) other.params = other.kind->defaults();
   }
-  alone.experiment.sensors = {std::string(setting.kind->name())};
+  alone.experiment.sensors = {setting.name};
   return to_toml(alone);
 }
 
@@ -122,12 +122,13 @@ Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& wa
   for (const std::string& name : scenario_.experiment.sensors) {
     const SensorSetting& setting = scenario_.setting(name);
     std::shared_ptr<const sensor::ConfiguredSensor> configured =
-        setting.kind->configure(*setting.params, context_);
+        configure_instance(setting, context_);
     try {
       std::shared_ptr<const sensor::Sensor> made =
           cache ? cache->sensor(scenario_, setting, *configured, water, token)
                 : configured->make(water, token);
-      sensors_.push_back({setting.kind, std::move(configured), std::move(made), nullptr});
+      sensors_.push_back({setting.name, setting.stream_key(), setting.kind, std::move(configured),
+                          std::move(made), nullptr});
     } catch (const Stopped&) {
       throw Interrupted();
     }
@@ -137,7 +138,8 @@ Simulation::Simulation(Scenario scenario, const propagation::SegelsteinTable& wa
 ExperimentResult Simulation::run(const RunOptions& options) const {
   ExperimentResult result;
   for (const SensorRunEntry& m : sensors_) {
-    result.sensors.push_back({m.kind, m.configured, m.sensor, m.sensor->begin_run()});
+    result.sensors.push_back(
+        {m.name, m.stream_key, m.kind, m.configured, m.sensor, m.sensor->begin_run()});
   }
   // Per-step state first, on this thread.
   for (const SensorRunEntry& entry : result.sensors) {
@@ -150,8 +152,10 @@ ExperimentResult Simulation::run(const RunOptions& options) const {
 SensorRunEntry Simulation::begin_run(std::string_view sensor) const {
   std::string running;
   for (const SensorRunEntry& m : sensors_) {
-    if (m.kind->name() == sensor) return {m.kind, m.configured, m.sensor, m.sensor->begin_run()};
-    running += (running.empty() ? "" : ", ") + std::string(m.kind->name());
+    if (m.name == sensor) {
+      return {m.name, m.stream_key, m.kind, m.configured, m.sensor, m.sensor->begin_run()};
+    }
+    running += (running.empty() ? "" : ", ") + m.name;
   }
   throw_invalid("sensor", sensor, "a sensor of experiment.sensors: " + running);
 }
@@ -181,7 +185,7 @@ void ItemRun::measure(std::size_t step, std::size_t index, sensor::RawSink* raw)
     prepared_[step] = true;
   }
   if (!worker_) worker_ = entry_.run->make_worker();
-  RandomStream stream = sensor_stream(seed_, entry_.kind->stream_key(), step, index);
+  RandomStream stream = sensor_stream(seed_, entry_.stream_key, step, index);
   worker_->measure(step, index, stream, raw, StopToken());
 }
 

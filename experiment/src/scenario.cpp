@@ -16,12 +16,35 @@ std::string_view paper_scenario_text();
 
 using detail::parse_over;
 
-SensorSetting::SensorSetting(std::shared_ptr<const sensor::SensorKind> of_kind,
+std::shared_ptr<const sensor::ConfiguredSensor> configure_instance(const SensorSetting& s,
+                                                                   const sensor::Context& context) {
+  if (s.is_kinds_own()) return s.kind->configure(*s.params, context);
+  const std::string from = std::string(s.kind->name()) + ".", to = s.name + ".";
+  try {
+    return s.kind->configure(*s.params, context);
+  } catch (const InvalidParameter& e) {
+    throw with_section_renamed(e, from, to);
+  }
+}
+
+SensorSetting::SensorSetting(std::string instance_name,
+                             std::shared_ptr<const sensor::SensorKind> of_kind,
                              std::unique_ptr<sensor::Params> values)
-    : kind(std::move(of_kind)), params(std::move(values)) {}
+    : name(std::move(instance_name)), kind(std::move(of_kind)), params(std::move(values)) {}
 
 SensorSetting::SensorSetting(const SensorSetting& other)
-    : kind(other.kind), params(other.params ? other.params->clone() : nullptr) {}
+    : name(other.name), kind(other.kind), params(other.params ? other.params->clone() : nullptr) {}
+
+// FNV-1a of the name with the top bit set: the kinds' own keys are small integers.
+std::uint64_t SensorSetting::stream_key() const {
+  if (is_kinds_own()) return kind->stream_key();
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const char c : name) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ULL;
+  }
+  return hash | (std::uint64_t{1} << 63);
+}
 
 SensorSetting& SensorSetting::operator=(const SensorSetting& other) {
   if (this != &other) *this = SensorSetting(other);
@@ -30,17 +53,49 @@ SensorSetting& SensorSetting::operator=(const SensorSetting& other) {
 
 Scenario::Scenario(const SensorRegistry& registry) {
   for (const auto& kind : registry.kinds()) {
-    sensors.emplace_back(kind, kind->defaults());
+    sensors.emplace_back(std::string(kind->name()), kind, kind->defaults());
     experiment.sensors.emplace_back(kind->name());
   }
   keys_ = std::make_shared<const detail::ScenarioKeys>(sensors);
 }
 
+void Scenario::add_sensor(std::string_view name, std::string_view kind, std::string_view key) {
+  const auto of_kind = std::find_if(sensors.begin(), sensors.end(), [kind](const SensorSetting& s) {
+    return s.kind->name() == kind;
+  });
+  if (of_kind == sensors.end()) {
+    std::string kinds;
+    for (const SensorSetting& s : sensors) {
+      if (s.is_kinds_own()) kinds += (kinds.empty() ? "'" : ", '") + s.name + "'";
+    }
+    throw_invalid(std::string(key) + ".kind", kind, "one of " + kinds);
+  }
+  const bool well_formed = !name.empty() && name.front() >= 'a' && name.front() <= 'z' &&
+                           std::all_of(name.begin(), name.end(), [](char c) {
+                             return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                           });
+  // Every section, those of retired keys too ([processing] names where its keys went).
+  const auto taken = [this, name] {
+    for (const detail::Section& s : detail::keys_of(*this).sections) {
+      if (s.name.substr(0, s.name.find('.')) == name) return true;
+    }
+    return false;
+  };
+  if (!well_formed || taken()) {
+    throw InvalidParameter(std::string(key), "[" + std::string(name) +
+                                                 "]: a sensor instance's "
+                                                 "section must be " +
+                                                 std::string(instance_name_rule));
+  }
+  sensors.emplace_back(std::string(name), of_kind->kind, of_kind->kind->defaults());
+  keys_ = std::make_shared<const detail::ScenarioKeys>(sensors);
+}
+
 SensorSetting& Scenario::setting(std::string_view name) {
   for (SensorSetting& s : sensors) {
-    if (s.kind->name() == name) return s;
+    if (s.name == name) return s;
   }
-  throw_invalid("experiment.sensors", name, "a registered sensor");
+  throw_invalid("experiment.sensors", name, "a sensor instance of the scenario");
 }
 
 const SensorSetting& Scenario::setting(std::string_view name) const {
@@ -63,7 +118,7 @@ const KeyTable<Scenario>& Scenario::keys() const { return detail::keys_of(*this)
 void Scenario::validate() const {
   keys().check(*this);
   const sensor::Context shared = context();
-  for (const SensorSetting& s : sensors) s.kind->configure(*s.params, shared);
+  for (const SensorSetting& s : sensors) configure_instance(s, shared);
 }
 
 propagation::ChamberSpec Scenario::chamber_spec() const {
@@ -92,15 +147,14 @@ std::vector<std::size_t> switching_sequence(const SwitchingOrder& order, std::si
 sensor::Context Scenario::context() const {
   return {
       .chamber = chamber_spec(),
+      .target = target,
       .steps = steps(),
-      .measurements_per_step = experiment.measurements_per_step,
       .seed = experiment.seed,
       .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use())};
 }
 
 std::shared_ptr<const sensor::ConfiguredSensor> Scenario::configure(std::string_view name) const {
-  const SensorSetting& s = setting(name);
-  return s.kind->configure(*s.params, context());
+  return configure_instance(setting(name), context());
 }
 
 std::string_view paper_scenario_toml() { return detail::paper_scenario_text(); }

@@ -1,5 +1,5 @@
-// The scenario's keys: [chamber], [fog] and [experiment], and the file's layout of every part's
-// keys.
+// The scenario's keys: [chamber], [fog], [target] and [experiment], each sensor instance's, and
+// the file's layout of every part's keys.
 #include <cmath>
 #include <functional>
 #include <map>
@@ -84,11 +84,14 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
                                      .fog = s.fog});
   };
   keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
+  keys.include(sensor::target_world_keys(), FOGRADAR_KEY_FIELD(target));
 
   std::vector<std::string> names_quoted;
   for (const std::string& name : sensor_names) names_quoted.push_back(in_quotes(name));
-  const std::string allowed =
-      "a non-empty array of distinct names from " + joined(names_quoted, ", ");
+  const std::string allowed = "a non-empty array of distinct names from " +
+                              joined(names_quoted, ", ") +
+                              " (the sensor instances: each kind's own, and those a section "
+                              "names with `kind`)";
   ScenarioKey& sensors = keys.name_list(
       "experiment.sensors", [](const Scenario& s) { return s.experiment.sensors; },
       [](Scenario& s, const std::vector<std::string>& names) { s.experiment.sensors = names; },
@@ -110,10 +113,6 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
     }
     if (given.empty()) throw_invalid("experiment.sensors", "[]", allowed);
   });
-  keys.integer("experiment.measurements_per_step",
-               FOGRADAR_KEY_FIELD(experiment.measurements_per_step), 1, 1000000,
-               "the study's series length: measurements per step of the sensors that take its "
-               "measurements (the others count their own items)");
   // Its true upper bound is the chamber's layer count: the key's own bound is only the widest one
   // the reader accepts before it states that (chamber is read first), and the check states it too.
   // Not given, it follows the chamber: every layer. scenario.toml writes the value in force.
@@ -169,22 +168,42 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
   return keys;
 }
 
-// The scenario's keys in file order, one table per part: the first sensor's, the experiment's, the
-// other sensors'.
+// The `kind` of an instance other than its kind's own: read once, where the instance is added
+// (the reader adds it before it reads the keys); a file may repeat it, not change it.
+void add_kind_key(KeyTable<Scenario>& keys, const SensorSetting& setting, std::size_t i) {
+  const std::string kind(setting.kind->name());
+  keys.choice(
+      setting.name + ".kind",
+      [i](const Scenario& s) { return std::string(s.sensors[i].kind->name()); },
+      [i, kind, key = setting.name + ".kind"](const Scenario&, std::string_view name) {
+        if (name != kind) {
+          throw_invalid(key, name, "'" + kind + "', the kind the instance was made with");
+        }
+      },
+      {kind}, "the kind of this sensor instance: its keys are the kind's, under this section");
+}
+
+// The scenario's keys in file order, one table per part: the world's and the methodology's, then
+// each sensor instance's (its kind's keys, under its own section).
 std::vector<KeyTable<Scenario>> key_parts(const std::vector<SensorSetting>& sensors) {
   std::vector<std::string> names;
-  for (const SensorSetting& setting : sensors) names.emplace_back(setting.kind->name());
+  for (const SensorSetting& setting : sensors) names.push_back(setting.name);
   std::vector<KeyTable<Scenario>> parts;
+  parts.push_back(experiment_keys(names));
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    if (i == 1) parts.push_back(experiment_keys(names));
+    const SensorSetting& setting = sensors[i];
+    const auto params = [i](auto& scenario) -> auto& { return *scenario.sensors[i].params; };
     KeyTable<Scenario> part;
-    part.include(
-        sensors[i].kind->keys(), [i](auto& scenario) -> auto& {
-          return *scenario.sensors[i].params;
-        });
+    if (setting.is_kinds_own()) {
+      part.include(setting.kind->keys(), params);
+    } else {
+      add_kind_key(part, setting, i);
+      part.include(
+          setting.kind->keys().renamed(std::string(setting.kind->name()) + ".", setting.name + "."),
+          params);
+    }
     parts.push_back(std::move(part));
   }
-  if (sensors.size() < 2) parts.push_back(experiment_keys(names));
   return parts;
 }
 
@@ -193,11 +212,13 @@ std::vector<KeyTable<Scenario>> key_parts(const std::vector<SensorSetting>& sens
 namespace detail {
 
 // A section belongs to the part that declares it first, the experiment's part before the sensors'
-// (so [fog] is the experiment's although the radar declares fog.clutter_scatterers_per_bin); a
-// section's own keys come first, keys other parts declare in it after them.
+// (so [target] is the world's although the radar refuses its moved keys there); a section's own
+// keys come first, keys other parts declare in it after them.
 ScenarioKeys::ScenarioKeys(const std::vector<SensorSetting>& sensors) {
-  for (const SensorSetting& setting : sensors) kinds.push_back(setting.kind.get());
-  const std::size_t experiment_part = sensors.empty() ? 0 : 1;
+  for (const SensorSetting& setting : sensors) {
+    kinds.push_back(setting.kind.get());
+    names.push_back(setting.name);
+  }
   std::vector<std::size_t> part_of;
   std::vector<KeyTable<Scenario>> parts = key_parts(sensors);
   for (std::size_t p = 0; p < parts.size(); ++p) {
@@ -206,9 +227,6 @@ ScenarioKeys::ScenarioKeys(const std::vector<SensorSetting>& sensors) {
   }
   const std::vector<Key<Scenario>>& keys = all.keys();
   std::map<std::string, std::size_t, std::less<>> owner;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    if (part_of[i] == experiment_part) owner.emplace(keys[i].section(), experiment_part);
-  }
   for (std::size_t i = 0; i < keys.size(); ++i) owner.emplace(keys[i].section(), part_of[i]);
   const auto section_of = [&](std::string_view name) -> Section& {
     for (Section& s : sections) {
@@ -231,7 +249,7 @@ const ScenarioKeys& keys_of(const Scenario& s) {
   // The tables read and write sensors[i] by index.
   FOGRADAR_CHECK(keys.kinds.size() == s.sensors.size());
   for (std::size_t i = 0; i < s.sensors.size(); ++i) {
-    FOGRADAR_CHECK(keys.kinds[i] == s.sensors[i].kind.get());
+    FOGRADAR_CHECK(keys.kinds[i] == s.sensors[i].kind.get() && keys.names[i] == s.sensors[i].name);
   }
   return keys;
 }

@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <map>
 #include <string>
@@ -26,6 +27,13 @@ struct Section {
   std::string name;
   std::size_t part = 0;  // of key_parts()
   std::vector<const Key<Scenario>*> keys;
+
+  // A section of retired keys alone ([processing]) is read, to name where they went, and is
+  // neither written nor documented.
+  bool retired() const {
+    return std::all_of(keys.begin(), keys.end(),
+                       [](const Key<Scenario>* key) { return key->type == KeyType::retired; });
+  }
 };
 
 // A scenario's keys and the file's layout of them, made once from its sensors (Scenario's
@@ -33,8 +41,9 @@ struct Section {
 struct ScenarioKeys {
   explicit ScenarioKeys(const std::vector<SensorSetting>& sensors);
 
-  std::vector<const sensor::SensorKind*> kinds;  // the sensors they were made for, in order
-  KeyTable<Scenario> all;                        // every key, in part order
+  std::vector<const sensor::SensorKind*> kinds;  // the instances they were made for, in order
+  std::vector<std::string> names;
+  KeyTable<Scenario> all;  // every key, in part order
   std::vector<Section> sections;
 };
 
@@ -77,6 +86,10 @@ bool is_element_key(std::string_view key);
 // `key` in `s`'s key table; refuses it (InvalidParameter naming `key`) where `s` has no such
 // element or the element no such key.
 ElementKey element_key(const Scenario& s, const std::string& key);
+
+// Adds the sensor instances the sections of `root` make (`[radar_24] kind = "radar"`).
+void add_instances(Scenario& s, const toml::table& root, std::string_view source_name,
+                   LineNumbers line_numbers);
 
 // scenario_reader.cpp
 

@@ -61,7 +61,7 @@ IntegerRange integer_range(const ScenarioKey& key, const Scenario& s,
     const bool listed = layers_in_file || !s.chamber.layers.empty();
     return {0, static_cast<std::int64_t>(count), integer_range_of_active(count, listed)};
   }
-  // A key read through functions names its own set (target.swerling: 0, 1, 3).
+  // A key read through functions names its own set (radar.target.swerling: 0, 1, 3).
   if (key.integer_low == std::numeric_limits<std::int64_t>::min()) {
     return {key.integer_low, key.integer_high, "an integer (" + key.allowed + ")"};
   }
@@ -104,7 +104,7 @@ class Reader {
     for (const ScenarioKey& key : keys.all.keys()) {
       if (!key.group.empty()) groups_[key.group].emplace_back(key.short_name());
     }
-    std::vector<std::string> top;
+    std::vector<std::string> top, shown_top;
     for (const Section& s : sections) {
       declared_.insert(s.name);
       for (std::size_t dot = s.name.find('.'); dot != std::string::npos;
@@ -113,12 +113,16 @@ class Reader {
       }
       const std::string first = s.name.substr(0, s.name.find('.'));
       if (std::find(top.begin(), top.end(), first) == top.end()) top.push_back(first);
+      if (!s.retired() && std::find(shown_top.begin(), shown_top.end(), first) == shown_top.end()) {
+        shown_top.push_back(first);
+      }
     }
     for (const auto& [name, node] : root_) {
       const std::string key(name.str());
       if (std::find(top.begin(), top.end(), key) == top.end()) {
         throw_at(source_, shown(node.source().begin.line), key,
-                 "unknown section or key '" + key + "' (sections: " + joined(top, ", ") + ")");
+                 "unknown section or key '" + key + "' (sections: " + joined(shown_top, ", ") +
+                     "; a further sensor instance gives its kind: [" + key + "] kind = \"radar\")");
       }
     }
     for (const Section& section : sections) {
@@ -234,8 +238,8 @@ class Reader {
     return (interval ? "a number in " : "a number ") + allowed;
   }
 
-  // A key whose bound involves other keys (processing.cfar.guard_cells) states its true range in
-  // its check; the widest value the reader takes draws it out.
+  // A key whose bound involves other keys (radar.processing.cfar.guard_cells) states its true range
+  // in its check; the widest value the reader takes draws it out.
   std::optional<std::string> bound_by_others(const ScenarioKey& key) const {
     if (!key.cross_check) return std::nullopt;
     return refusal(
@@ -249,7 +253,7 @@ class Reader {
     return "a string, " + range.value_or("one of " + plain(key.allowed));
   }
 
-  // A key read through functions (target.swerling) names its own set when given none of it.
+  // A key read through functions (radar.target.swerling) names its own set when given none of it.
   std::string integer_text(const ScenarioKey& key, const IntegerRange& range) const {
     if (key.integer_low != std::numeric_limits<std::int64_t>::min()) return range.text;
     const std::optional<std::string> own = refusal(key, [&key](Scenario& probe) {
@@ -541,6 +545,7 @@ class Reader {
 Scenario read_over(Scenario s, const toml::table& root, std::string_view text,
                    std::string_view source_name, LineNumbers line_numbers,
                    const std::vector<KeyValue>& element_values) {
+  add_instances(s, root, source_name, line_numbers);
   Reader reader(root, text, source_name, s, line_numbers, element_values);
   try {
     reader.read();

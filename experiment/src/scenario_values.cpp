@@ -1,9 +1,11 @@
-// Values set over a scenario by key: an element's keys, the keys a scenario takes, and the values
-// a program gives read as a file's.
+// Values set over a scenario by key: the sensor instances a file makes, an element's keys, the keys
+// a scenario takes, and the values a program gives read as a file's.
 #include "fogradar/experiment/scenario_values.hpp"
 
 #include <algorithm>
 #include <charconv>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,34 @@
 
 namespace fogradar::experiment {
 namespace detail {
+
+// Adds the sensor instances the file's sections make (`[radar_24] kind = "radar"`), before any key
+// is read: their keys are the scenario's from then on.
+void add_instances(Scenario& s, const toml::table& root, std::string_view source_name,
+                   LineNumbers line_numbers) {
+  std::set<std::string> sections;
+  for (const Section& section : keys_of(s).sections) {
+    sections.insert(section.name.substr(0, section.name.find('.')));
+  }
+  for (const auto& [name, node] : root) {
+    const std::string section(name.str());
+    const toml::table* table = node.as_table();
+    if (sections.contains(section) || table == nullptr || !table->contains("kind")) continue;
+    const toml::node& kind = *table->get("kind");
+    const std::size_t line = line_numbers == LineNumbers::shown ? kind.source().begin.line : 0;
+    try {
+      const std::optional<std::string> kind_name = kind.value<std::string>();
+      if (!kind_name) {
+        throw InvalidParameter(section + ".kind", section +
+                                                      ".kind must be a string naming a "
+                                                      "sensor kind, e.g. kind = \"radar\"");
+      }
+      s.add_sensor(section, *kind_name, section);
+    } catch (const InvalidParameter& e) {
+      throw_at(source_name, line, e.field(), e.message());
+    }
+  }
+}
 
 bool is_element_key(std::string_view key) { return key.find('[') != std::string_view::npos; }
 

@@ -114,6 +114,11 @@ std::string to_toml(const Scenario& s) {
   };
   for (std::size_t i = 0; i < sections.size(); ++i) {
     const Section& section = sections[i];
+    const bool part_ends = i + 1 == sections.size() || sections[i + 1].part != section.part;
+    if (section.retired()) {
+      if (part_ends) flush_arrays();
+      continue;
+    }
     std::string block = "[" + section.name + "]\n";
     for (const ScenarioKey* key : section.keys) {
       if (key->type == KeyType::retired || !key->takes_effect(s)) continue;
@@ -135,7 +140,7 @@ std::string to_toml(const Scenario& s) {
       block += std::string(key->short_name()) + " = " + toml_value(*key, s) + "\n";
     }
     blocks.push_back(block);
-    if (i + 1 == sections.size() || sections[i + 1].part != section.part) flush_arrays();
+    if (part_ends) flush_arrays();
   }
   return "# fogradar resolved scenario: every key, as used by the run\n\n" + joined(blocks, "\n");
 }
@@ -143,6 +148,7 @@ std::string to_toml(const Scenario& s) {
 std::vector<std::string> top_level_sections(const Scenario& s) {
   std::vector<std::string> top;
   for (const Section& section : detail::keys_of(s).sections) {
+    if (section.retired()) continue;
     const std::string first = section.name.substr(0, section.name.find('.'));
     if (std::find(top.begin(), top.end(), first) == top.end()) top.push_back(first);
   }

@@ -362,7 +362,7 @@ PYBIND11_MODULE(_core, m) {
              for (const experiment::SensorOutcome& s : r.summary.sensors) {
                const sensor::Verdict v = s.summary->verdict();
                py::dict row;
-               row["sensor"] = std::string(s.kind->name());
+               row["sensor"] = s.name;
                row["layers_to_failure"] = v.layers_to_failure
                                               ? py::object(py::int_(*v.layers_to_failure))
                                               : py::object(py::none());

@@ -78,18 +78,18 @@ class Configured : public sensor::ConfiguredSensor {
   Configured(const SensorParams& params, const sensor::Context& context)
       : p_(params), context_(context) {}
 
-  std::size_t items_per_step() const override { return context_.measurements_per_step; }
+  std::size_t items_per_step() const override { return p_.measurements_per_step; }
 
   sensor::MemoryPart memory(unsigned threads) const override {
-    const MemoryEstimate e = memory_estimate(p_, context_.steps * context_.measurements_per_step);
+    const MemoryEstimate e = memory_estimate(p_, context_.steps * p_.measurements_per_step);
     std::ostringstream detail;
     detail.precision(6);
     detail << "radar.samples_per_chirp = " << p_.radar.samples_per_chirp
            << " x radar.chirps_per_frame = " << p_.radar.chirps_per_frame << ": " << threads
            << " x " << mib(e.per_thread_bytes)
-           << " MiB frame workspace; experiment.measurements_per_step = "
-           << context_.measurements_per_step << ": " << mib(e.records_bytes)
-           << " MiB per-measurement records; " << mib(e.shared_bytes) << " MiB windows and plans";
+           << " MiB frame workspace; radar.measurements_per_step = " << p_.measurements_per_step
+           << ": " << mib(e.records_bytes) << " MiB per-measurement records; "
+           << mib(e.shared_bytes) << " MiB windows and plans";
     return {.bytes = threads * e.per_thread_bytes + e.shared_bytes + e.records_bytes,
             .detail = detail.str(),
             .key = "radar.samples_per_chirp"};
@@ -141,12 +141,13 @@ class Configured : public sensor::ConfiguredSensor {
     detail << "radar.samples_per_chirp = " << p.samples_per_chirp
            << " x radar.chirps_per_frame = " << p.chirps_per_frame << " cells, about " << objects
            << " objects (" << scene_objects_per_frame
-           << " + processing.cfar.false_alarm_probability = " << p.cfar.false_alarm_probability
-           << " x cells), about " << tones
+           << " + radar.processing.cfar.false_alarm_probability = "
+           << p.cfar.false_alarm_probability << " x cells), about " << tones
            << " fog clutter tones (fog.clutter_scatterers_per_bin = "
            << p_.clutter_scatterers_per_bin << " per range bin of the active layers), "
            << edge_references
-           << " CFAR edge-cell additions (2 x (processing.cfar.guard_cells + training_cells) x N "
+           << " CFAR edge-cell additions (2 x (radar.processing.cfar.guard_cells + training_cells) "
+              "x N "
               "per Doppler row)";
     const double rest =
         cells * (std::log2(cells) * frame_seconds_per_cell_log2_cell +
@@ -154,10 +155,10 @@ class Configured : public sensor::ConfiguredSensor {
         tones * static_cast<double>(p.samples_per_chirp) * frame_seconds_per_tone_sample;
     return {.item_seconds = rest + edge_seconds,
             .detail = detail.str(),
-            .key = edge_seconds > rest                         ? "processing.cfar.training_cells"
+            .key = edge_seconds > rest ? "radar.processing.cfar.training_cells"
                    : p.samples_per_chirp >= p.chirps_per_frame ? "radar.samples_per_chirp"
                                                                : "radar.chirps_per_frame",
-            .items_key = "experiment.measurements_per_step"};
+            .items_key = "radar.measurements_per_step"};
   }
 
   sensor::SetupTime setup_time() const {
@@ -165,15 +166,15 @@ class Configured : public sensor::ConfiguredSensor {
     std::ostringstream detail;
     detail.precision(3);
     detail << "fog optics " << c.fog_seconds << " s, chain " << c.chain_seconds
-           << " s, CFAR design (processing.cfar.kind = " << to_string(p_.radar.cfar.kind)
-           << ", processing.cfar.threshold_design = " << to_string(p_.radar.cfar.threshold_design)
-           << ") " << c.cfar_design_seconds << " s";
+           << " s, CFAR design (radar.processing.cfar.kind = " << to_string(p_.radar.cfar.kind)
+           << ", radar.processing.cfar.threshold_design = "
+           << to_string(p_.radar.cfar.threshold_design) << ") " << c.cfar_design_seconds << " s";
     const double largest = std::max({c.fog_seconds, c.chain_seconds, c.cfar_design_seconds});
     return {.make_seconds = c.fog_seconds + c.chain_seconds + c.cfar_design_seconds,
             .run_seconds = c.summary_seconds,
             .report_seconds = c.report_seconds,
             .detail = detail.str(),
-            .key = largest == c.cfar_design_seconds ? "processing.cfar.threshold_design"
+            .key = largest == c.cfar_design_seconds ? "radar.processing.cfar.threshold_design"
                    : largest == c.chain_seconds     ? "radar.samples_per_chirp"
                                                     : "fog.droplets"};
   }
@@ -204,7 +205,7 @@ class Kind : public sensor::Kind<SensorParams> {
       const SensorParams& p, const sensor::Context& context) const override {
     // The CFAR's window against the range profile is one of the keys' checks
     // (radar_param_keys).
-    const Scene scene = make_scene(p.target, p.clutter_scatterers_per_bin);
+    const Scene scene = make_scene(p.target, context.target, p.clutter_scatterers_per_bin);
     scene.validate();
     // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
     // (docs/radar.md).
@@ -236,8 +237,33 @@ KeyTable<SensorParams> sensor_keys() {
   KeyTable<SensorParams> keys;
   keys.include(radar_param_keys(), FOGRADAR_KEY_FIELD(radar));
   keys.include(target_keys(), FOGRADAR_KEY_FIELD(target));
-  keys.integer("fog.clutter_scatterers_per_bin", FOGRADAR_KEY_FIELD(clutter_scatterers_per_bin), 1,
-               64, "random point scatterers per range bin that make up the radar's fog clutter");
+  keys.integer("radar.measurements_per_step", FOGRADAR_KEY_FIELD(measurements_per_step), 1, 1000000,
+               "the study's series length: measurements (frames) per step");
+  keys.number("radar.height_m", FOGRADAR_KEY_FIELD(target.sensor_height_m), closed(0.0, 100.0),
+              "radar height above the floor; boresight is horizontal");
+  keys.integer("radar.clutter_scatterers_per_bin", FOGRADAR_KEY_FIELD(clutter_scatterers_per_bin),
+               1, 64, "random point scatterers per range bin that make up the radar's fog clutter");
+  // Keys a scenario gave before the radar's own view of the target, its chain and its series moved
+  // under [radar]: each is refused with its new place.
+  for (const char* name : {"processing.window", "processing.association_gate_m"}) {
+    keys.retired(name, std::string("it is radar.") + name + " now, in the radar's own section");
+  }
+  for (const char* name : {"kind", "guard_cells", "training_cells", "false_alarm_probability",
+                           "os_rank", "threshold_design"}) {
+    keys.retired(
+        std::string("processing.cfar.") + name,
+        std::string("it is radar.processing.cfar.") + name + " now, in the radar's own section");
+  }
+  for (const char* name : {"model", "rcs_dbsm", "swerling", "height_m"}) {
+    keys.retired(std::string("target.") + name, std::string("it is radar.target.") + name +
+                                                    " now: the radar's own view of the target");
+  }
+  keys.retired("target.sensor_height_m", "it is radar.height_m now, in the radar's own section");
+  keys.retired("fog.clutter_scatterers_per_bin",
+               "it is radar.clutter_scatterers_per_bin now, in the radar's own section");
+  keys.retired("experiment.measurements_per_step",
+               "each sensor counts its own items now: radar.measurements_per_step (the radar's "
+               "series), lidar.scans_per_step, camera.frames_per_step");
   return keys;
 }
 

@@ -211,8 +211,9 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
     target +=
         ", Swerling " + std::string(to_string(t.swerling)) + ", " + num(t.height_m) + " m high";
   }
-  target += t.floor_multipath
-                ? ", floor multipath (reflection " + num(t.floor_reflection_coefficient) + ")"
+  const sensor::TargetWorld& world = context.target;
+  target += world.floor_multipath
+                ? ", floor multipath (reflection " + num(world.floor_reflection_coefficient) + ")"
                 : ", no floor multipath";
   target += "; " + num(target_range_m) + " m from the radar behind " + layer_lengths(c);
   std::string cfar = "CFAR " + upper(to_string(r.cfar.kind)) + " (" +
@@ -235,7 +236,7 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
           std::string(to_string(r.sweep_direction)) + "-sweep centred on " +
           num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
           cfar + ".",
-      "n = " + std::to_string(context.measurements_per_step) + " measurements per step, seed " +
+      "n = " + std::to_string(params.measurements_per_step) + " measurements per step, seed " +
           std::to_string(context.seed) + ".",
       "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
   };

@@ -112,28 +112,28 @@ KeyTable<RadarParams> radar_param_keys() {
               closed(0.0, 0.01),
               "water film on the radome's outer face (the study's water-covered sensor), with the "
               "water model and temperature of the first layer's fog; also without a radome");
-  keys.choice("processing.window", FOGRADAR_KEY_FIELD(window), window_type_names,
+  keys.choice("radar.processing.window", FOGRADAR_KEY_FIELD(window), window_type_names,
               "range and Doppler window");
-  keys.number("processing.association_gate_m", FOGRADAR_KEY_FIELD(association_gate_m),
+  keys.number("radar.processing.association_gate_m", FOGRADAR_KEY_FIELD(association_gate_m),
               closed(0.0, 1e3),
               "the tracked target is the strongest detection within this of the chamber's target "
               "range");
-  keys.include(cfar_keys("processing.cfar."), FOGRADAR_KEY_FIELD(cfar));
+  keys.include(cfar_keys("radar.processing.cfar."), FOGRADAR_KEY_FIELD(cfar));
   // The CFAR slides along range, one Doppler bin at a time: its window must fit in a range profile.
   const auto profile = [](const RadarParams& p) {
     return "a profile of radar.samples_per_chirp = " + std::to_string(p.samples_per_chirp) +
            " cells";
   };
-  Key<RadarParams>& guard = keys.at("processing.cfar.guard_cells");
+  Key<RadarParams>& guard = keys.at("radar.processing.cfar.guard_cells");
   guard
       .within([profile](const RadarParams& p) {
-        return p.cfar.guard_bound(p.samples_per_chirp, "processing.cfar.", profile(p));
+        return p.cfar.guard_bound(p.samples_per_chirp, "radar.processing.cfar.", profile(p));
       })
       .documented_as(guard.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
-  Key<RadarParams>& training = keys.at("processing.cfar.training_cells");
+  Key<RadarParams>& training = keys.at("radar.processing.cfar.training_cells");
   training
       .within([profile](const RadarParams& p) {
-        return p.cfar.training_bound(p.samples_per_chirp, "processing.cfar.", profile(p));
+        return p.cfar.training_bound(p.samples_per_chirp, "radar.processing.cfar.", profile(p));
       })
       .documented_as(training.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
   return keys;

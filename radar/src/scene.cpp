@@ -135,10 +135,10 @@ void Scene::validate() const {
     require_in_range(prefix + "rcs_m2", c.rcs_m2, 0.0, 1e6);
     require_in_range(prefix + "radial_velocity_m_per_s", c.radial_velocity_m_per_s, -300.0, 300.0);
   }
-  require_in_range("target.sensor_height_m", sensor_height_m, 0.0, 100.0);
+  require_in_range("radar.height_m", sensor_height_m, 0.0, 100.0);
   require_in_range("target.floor_reflection_coefficient", floor.reflection_coefficient, -1.0, 1.0);
   require_in_range("target.micro_motion_std_m", micro_motion_std_m, 0.0, 0.1);
-  require_in_range("target.clutter_scatterers_per_bin", clutter_scatterers_per_bin, 1.0, 64.0);
+  require_in_range("radar.clutter_scatterers_per_bin", clutter_scatterers_per_bin, 1.0, 64.0);
   require_in_range("radome_two_way_transmittance", radome_two_way_transmittance, 0.0, 1.0);
   require_in_range("target_film_reflectance", target_film_reflectance, 0.0, 1.0);
 }

@@ -138,7 +138,7 @@ RadarSensor::RadarSensor(const SensorParams& params, const sensor::Context& cont
                          const propagation::SegelsteinTable& water, const StopToken& stop)
     : params_(params),
       context_(context),
-      scene_(make_scene(params.target, params.clutter_scatterers_per_bin)),
+      scene_(make_scene(params.target, context.target, params.clutter_scatterers_per_bin)),
       chamber_(context.chamber, params.radar.centre_frequency_hz, water),
       chain_(params.radar, FftPlanner::shipped_wisdom, stop) {
   chain_.check_compatible(scene_, chamber_);
@@ -153,7 +153,7 @@ RadarSensor::RadarSensor(const SensorParams& params, const sensor::Context& cont
       radome.water_film_m, chamber_.layer(0).optics.refractive_index, radome_index,
       radome.thickness_m, wavelength_m);
   target_film_loss_db_ = propagation::conductor_film_loss_db(
-      params.target.water_film_m,
+      context.target.water_film_m,
       chamber_.layer(chamber_.layer_count() - 1).optics.refractive_index, wavelength_m);
   scene_.radome_two_way_transmittance = db_to_power_ratio(-radome_two_way_loss_db_);
   scene_.target_film_reflectance = db_to_power_ratio(-target_film_loss_db_);
@@ -183,7 +183,7 @@ RadarRun::RadarRun(std::shared_ptr<const RadarSensor> sensor)
         chamber.two_way_attenuation_db(chamber.target_range_m(), sensor_->active(k));
     step.radome_two_way_loss_db = sensor_->radome_two_way_loss_db();
     step.target_film_loss_db = sensor_->target_film_loss_db();
-    step.records.resize(sensor_->context().measurements_per_step);
+    step.records.resize(sensor_->params().measurements_per_step);
   }
 }
 
@@ -245,7 +245,7 @@ std::unique_ptr<const sensor::SensorSummary> RadarRun::summarize() const {
   RadarSummary summary = radar::summarize(*steps_, sensor_->cfar_threshold_db(),
                                           sensor_->expected_false_alarm_cells_per_frame());
   summary.velocity_fold =
-      velocity_fold(sensor_->params().target.radial_velocity_m_per_s, sensor_->chain().derived());
+      velocity_fold(sensor_->context().target.radial_velocity_m_per_s, sensor_->chain().derived());
   return std::make_unique<Report>(sensor_->params(), sensor_->context(), steps_,
                                   std::move(summary));
 }

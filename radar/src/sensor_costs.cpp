@@ -47,7 +47,7 @@ SetupCost setup_cost(const SensorParams& params, const sensor::Context& context)
                    propagation::bulk_optics_seconds(layers[i].fog.droplets, wavelength_m);
   }
   const double cells = static_cast<double>(r.samples_per_chirp * r.chirps_per_frame);
-  const double per_step = static_cast<double>(context.measurements_per_step);
+  const double per_step = static_cast<double>(params.measurements_per_step);
   const double steps = static_cast<double>(context.steps);
   return {
       .fog_seconds = fog_seconds,

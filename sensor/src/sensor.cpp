@@ -5,6 +5,26 @@
 
 namespace fogradar::sensor {
 
+KeyTable<TargetWorld> target_world_keys() {
+  KeyTable<TargetWorld> keys("target.");
+  keys.boolean("floor_multipath", FOGRADAR_KEY_FIELD(floor_multipath),
+               "the floor reflects between sensor and target (the radar's two-ray paths)");
+  keys.number("floor_reflection_coefficient", FOGRADAR_KEY_FIELD(floor_reflection_coefficient),
+              closed(-1.0, 1.0), "real amplitude reflection coefficient of the floor")
+      .when([](const TargetWorld& t) { return t.floor_multipath; },
+            "with target.floor_multipath = true");
+  keys.number("micro_motion_std_m", FOGRADAR_KEY_FIELD(micro_motion_std_m), closed(0.0, 0.1),
+              "rms line-of-sight jitter of each scattering centre per measurement (the radar's)");
+  keys.number(
+      "radial_velocity_m_per_s", FOGRADAR_KEY_FIELD(radial_velocity_m_per_s), closed(-300.0, 300.0),
+      "the whole target's radial velocity, + receding; beyond a radar's unambiguous velocity "
+      "λ/(4 T_i) (19.0 m/s for the paper radar) its estimate folds into it and the run warns");
+  keys.number("water_film_m", FOGRADAR_KEY_FIELD(water_film_m), closed(0.0, 0.01),
+              "water film on the target's metal surfaces (the study's water-covered target), with "
+              "the water model and temperature of the last layer's fog (the radar's echo)");
+  return keys;
+}
+
 propagation::ActiveLayers Context::active(std::size_t step) const {
   if (switching_order.empty()) return propagation::first_layers_active(step, chamber.layers.size());
   return propagation::layers_switched_on(switching_order, step, chamber.layers.size());

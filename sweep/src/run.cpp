@@ -46,7 +46,7 @@ json run_once(const experiment::Scenario& scenario, const propagation::Segelstei
     const Table table = parse_csv(outcome.summary->summary_csv());
     const sensor::Verdict verdict = outcome.summary->verdict();
     json s = {
-        {"sensor", std::string(outcome.kind->name())},
+        {"sensor", outcome.name},
         {"columns", table.columns},
         {"rows", table.rows},
         {"limit", verdict.layers_to_failure ? json(*verdict.layers_to_failure) : json(nullptr)},

@@ -85,7 +85,7 @@ done
 # Each case works in a parent of its own so that "no temporary files" means an empty listing besides DIR.
 small="$src/tests/cli/small.toml"
 # The paper scenario with 5000 measurements per step runs for many seconds: still going when signalled.
-printf '[experiment]\nmeasurements_per_step = 5000\n' >"$work/long.toml"
+printf '[radar]\nmeasurements_per_step = 5000\n' >"$work/long.toml"
 digest() { (cd "$1" && sha256sum -- * 2>&1); }
 leftovers() { ls -A "$1" | grep -v -x "$2"; }  # anything in parent $1 besides the result directory $2
 # wait_for_staging PARENT: until the run has created its staging directory (at most 5 s).
@@ -230,16 +230,16 @@ printf '[radar]\ntx_power_w = 1\n' >"$work/unknown.toml"
 printf '[radar]\ntx_power_dbm = "ten"\n' >"$work/type.toml"
 printf '[chamber]\nlayer_count = 0\n' >"$work/zero.toml"
 printf '[experiment]\nmax_active_layers = 9\n' >"$work/many.toml"
-printf '[processing.cfar]\ntraining_cells = 400\n' >"$work/cfar.toml"
+printf '[radar.processing.cfar]\ntraining_cells = 400\n' >"$work/cfar.toml"
 printf '[radar]\ncentre_frequency_hz = 5e13\n' >"$work/freq.toml"
 printf '[radar]\ncarrier_frequency_hz = 77e9\n' >"$work/carrier.toml"
 printf '[fog]\nwater_model = "segelstein"\ntemperature_c = 0\n' >"$work/cold-table.toml"
 printf '[fog]\nlwc_g_per_m3 = nan\n' >"$work/nan.toml"
 printf '[radar\n' >"$work/malformed.toml"
-printf '[processing]\nwindow = ""\n' >"$work/empty-window.toml"
+printf '[radar.processing]\nwindow = ""\n' >"$work/empty-window.toml"
 printf '[fog]\nwater_model = ""\n' >"$work/empty-water.toml"
 printf '[radar]\nsamples_per_chirp = 5000000000\n' >"$work/huge-samples.toml"
-printf '[fog]\nclutter_scatterers_per_bin = 65\n' >"$work/clutter.toml"
+printf '[radar]\nclutter_scatterers_per_bin = 65\n' >"$work/clutter.toml"
 printf '[experiment]\nseed = -1\n' >"$work/seed.toml"
 printf '[experiment]\nsensors = ["radar", "sonar"]\n' >"$work/sonar.toml"
 printf '[experiment]\nsensors = []\n' >"$work/no-sensors.toml"
@@ -251,7 +251,7 @@ printf '[lidar]\nrange_m = 3\n' >"$work/lidar-unknown.toml"
 printf '[camera.exposure]\nmode = "manual"\n' >"$work/camera-mode.toml"
 printf '[camera.roi.target]\nlog_sigma = nan\n' >"$work/camera-sigma.toml"
 printf '[camera]\nframes_per_step = 1.5\n' >"$work/camera-frames.toml"
-printf '[radar]\nsamples_per_chirp = 32\n[processing.cfar]\nguard_cells = 20\n' >"$work/guard.toml"
+printf '[radar]\nsamples_per_chirp = 32\n[radar.processing.cfar]\nguard_cells = 20\n' >"$work/guard.toml"
 printf '[radar]\nsample_rate_hz = 5e6\nsamples_per_chirp = 256\n[chamber]\ntarget_gap_m = 40\n' >"$work/far.toml"
 printf '[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n' >"$work/layers.toml"
 printf '[fog]\nlwc_g_per_m3 = 0.1\nvisibility_m = 20\n' >"$work/two-densities.toml"
@@ -266,9 +266,9 @@ expect_bad_run too-many-active "many.toml:2: experiment.max_active_layers = 9" "
   --scenario "$work/many.toml"
 expect_bad_run too-many-active-given "layers.toml:4: experiment.max_active_layers = 3" \
   "[0, chamber.layer_count = 2] (chamber.layer_count at line 2)" --scenario "$work/layers.toml"
-expect_bad_run cfar-window "cfar.toml:2: processing.cfar.training_cells = 400" "[1, 253]" --scenario "$work/cfar.toml"
-expect_bad_run guard-fills-profile "guard.toml:4: processing.cfar.guard_cells = 20" \
-  "[0, 7] with processing.cfar.training_cells = 8 and a profile of radar.samples_per_chirp = 32 cells" \
+expect_bad_run cfar-window "cfar.toml:2: radar.processing.cfar.training_cells = 400" "[1, 253]" --scenario "$work/cfar.toml"
+expect_bad_run guard-fills-profile "guard.toml:4: radar.processing.cfar.guard_cells = 20" \
+  "[0, 7] with radar.processing.cfar.training_cells = 8 and a profile of radar.samples_per_chirp = 32 cells" \
   --scenario "$work/guard.toml"
 expect_bad_run target-beyond-range "far.toml:5: chamber.target_gap_m = 40" "radar.sample_rate_hz at line 2" \
   --scenario "$work/far.toml"
@@ -278,13 +278,13 @@ expect_bad_run table-temperature "cold-table.toml:3: fog.temperature_c = 0" "lie
   --scenario "$work/cold-table.toml"
 expect_bad_run nan-lwc "nan.toml:2: fog.lwc_g_per_m3 = nan" "[0, 100]" --scenario "$work/nan.toml"
 expect_bad_run malformed malformed.toml:1 "malformed TOML" --scenario "$work/malformed.toml"
-expect_bad_run empty-window "empty-window.toml:2: processing.window = ''" "one of rectangular, hann" \
+expect_bad_run empty-window "empty-window.toml:2: radar.processing.window = ''" "one of rectangular, hann" \
   --scenario "$work/empty-window.toml"
 expect_bad_run empty-water-model "empty-water.toml:2: fog.water_model = ''" "one of liebe, segelstein" \
   --scenario "$work/empty-water.toml"
 expect_bad_run integer-documented-range "radar.samples_per_chirp = 5000000000" "an integer in [16, 512]: the samples fit in the chirp" \
   --scenario "$work/huge-samples.toml"
-expect_bad_run clutter-range "fog.clutter_scatterers_per_bin = 65" "an integer in [1, 64]" --scenario "$work/clutter.toml"
+expect_bad_run clutter-range "radar.clutter_scatterers_per_bin = 65" "an integer in [1, 64]" --scenario "$work/clutter.toml"
 expect_bad_run scenario-seed "seed.toml:2: experiment.seed = -1" "an integer in [0, 9223372036854775807]" \
   --scenario "$work/seed.toml"
 expect_bad_run unknown-sensor 'sonar.toml:2: experiment.sensors' '"sonar" is no sensor' --scenario "$work/sonar.toml"
@@ -362,7 +362,7 @@ expect_bad_run minus-nan "minus-nan.toml:2: radar.chirp_interval_s = -nan:" "[ra
 # --- memory limit (docs/scenario.md, "Memory limit"): refused up front, before any frame exists -----
 printf '[radar]\nsamples_per_chirp = 65536\nchirps_per_frame = 16384\nchirp_duration_s = 6.5536e-3\nchirp_interval_s = 6.5536e-3\n' \
   >"$work/huge.toml"
-for key in radar.samples_per_chirp radar.chirps_per_frame experiment.measurements_per_step --threads; do
+for key in radar.samples_per_chirp radar.chirps_per_frame radar.measurements_per_step --threads; do
   start=$(date +%s)
   expect_bad "huge-$key" "$key" "more than the limit of 8192 MiB" run --scenario "$work/huge.toml" \
     --out "$work/bad-huge-$key" --memory-limit-mib 8192

@@ -9,7 +9,7 @@ expect_bad unknown-subcommand "unknown subcommand 'frob'" "one of run, scenario,
 "$fogradar" scenario | grep -q '^\[experiment\]' && pass || fail "fogradar scenario prints no [experiment]"
 # The key tables of the docs are the keys' declarations as `fogradar scenario --keys` prints them.
 "$src/scripts/update-docs.sh" --check "$fogradar" 2>"$work/stale" && pass || fail "$(cat "$work/stale")"
-expect_bad keys-unknown-section "--keys" "a section of the scenario: radar, processing, target" scenario --keys radr
+expect_bad keys-unknown-section "--keys" "a section of the scenario: chamber, fog, target, experiment, radar" scenario --keys radr
 
 
 finish

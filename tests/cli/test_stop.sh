@@ -107,7 +107,7 @@ rc=$?
 # 0.2 s of CPU for GO/SO/OS), SIGTERM 0.2 s after the run holds its staging directory.
 for kind in go so os; do
   mkdir -p "$work/s_$kind"
-  printf '[experiment]\nsensors = ["radar"]\n[processing.cfar]\nkind = "%s"\nguard_cells = 0\ntraining_cells = 32\n' \
+  printf '[experiment]\nsensors = ["radar"]\n[radar.processing.cfar]\nkind = "%s"\nguard_cells = 0\ntraining_cells = 32\n' \
     "$kind" >"$work/s_$kind.toml"
   set -m
   "$fogradar" run --scenario "$work/s_$kind.toml" --threads 1 --out "$work/s_$kind/out" >/dev/null 2>"$work/s_$kind.err" &

@@ -85,6 +85,26 @@ TEST(Error, LocationIsKeptApartFromTheMessage) {
   EXPECT_TRUE(nowhere.location().empty());
 }
 
+// A second sensor of a kind states the kind's keys under its own section: every key name that
+// starts with the kind's section moves, and nothing else (a sentence's "radar." or another
+// section's "lidar.radar_x").
+TEST(Error, KeysMoveToAnInstancesSectionAndNothingElseDoes) {
+  EXPECT_EQ(with_section_renamed("radar.samples_per_chirp = 600: must be in [16, "
+                                 "radar.chirp_duration_s x radar.sample_rate_hz = 512]",
+                                 "radar.", "radar_24."),
+            "radar_24.samples_per_chirp = 600: must be in [16, radar_24.chirp_duration_s x "
+            "radar_24.sample_rate_hz = 512]");
+  EXPECT_EQ(with_section_renamed("seen by the radar. radar.", "radar.", "radar_24."),
+            "seen by the radar. radar.");
+  EXPECT_EQ(with_section_renamed("lidar.radar.x, xradar.y, (radar.z)", "radar.", "r2."),
+            "lidar.radar.x, xradar.y, (r2.z)");
+  const InvalidParameter moved = with_section_renamed(
+      InvalidParameter("radar.adc_bits", "radar.adc_bits = 30: must be in [0, 24]", {"f.toml", 3}),
+      "radar.", "radar_24.");
+  EXPECT_EQ(moved.field(), "radar_24.adc_bits");
+  EXPECT_STREQ(moved.what(), "f.toml:3: radar_24.adc_bits = 30: must be in [0, 24]");
+}
+
 TEST(Error, CheckIsAnInternalError) {
   EXPECT_THROW(FOGRADAR_CHECK(1 + 1 == 3), InternalError);
   EXPECT_NO_THROW(FOGRADAR_CHECK(1 + 1 == 2));

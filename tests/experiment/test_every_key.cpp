@@ -41,11 +41,9 @@ constexpr const char* uniform_base_toml = R"(
 [chamber]
 layer_count = 2
 
-[experiment]
-measurements_per_step = 3
-
 [radar]
 chirps_per_frame = 16
+measurements_per_step = 3
 
 [lidar]
 scans_per_step = 2
@@ -67,11 +65,9 @@ fog = { lwc_g_per_m3 = 0.3 }
 length_m = 0.5
 fog = { extinction_per_km = 600.0, temperature_c = 10.0 }
 
-[experiment]
-measurements_per_step = 3
-
 [radar]
 chirps_per_frame = 16
+measurements_per_step = 3
 
 [lidar]
 scans_per_step = 2
@@ -103,9 +99,9 @@ const std::map<std::string, Needed>& enabled_by() {
       {"radar.adc_full_scale_dbm", {{"radar.adc_bits", "12"}}},
       {"radar.radome.relative_permittivity", {{"radar.radome.thickness_m", "0.003"}}},
       {"radar.radome.loss_tangent", {{"radar.radome.thickness_m", "0.003"}}},
-      {"processing.cfar.os_rank", {{"processing.cfar.kind", "os"}}},
-      {"target.swerling", {{"target.model", "point"}}},
-      {"target.height_m", {{"target.model", "point"}}},
+      {"radar.processing.cfar.os_rank", {{"radar.processing.cfar.kind", "os"}}},
+      {"radar.target.swerling", {{"radar.target.model", "point"}}},
+      {"radar.target.height_m", {{"radar.target.model", "point"}}},
       {"fog.droplets.diameter_m", {{"fog.droplets.distribution", "monodisperse"}}},
       {"fog.droplets.alpha", {{"fog.droplets.distribution", "modified_gamma"}}},
       {"fog.droplets.gamma", {{"fog.droplets.distribution", "modified_gamma"}}},
@@ -133,9 +129,11 @@ const std::map<std::string, Needed>& room_for() {
       {"radar.chirp_duration_s", {{"radar.chirp_interval_s", "1e-4"}}},
       {"fog.water_model", {{"fog.temperature_c", "25"}}},
       {"chamber.layers[].fog.water_model", {{"chamber.layers[].fog.temperature_c", "25"}}},
-      {"processing.cfar.kind", {{"processing.cfar.false_alarm_probability", "0.01"}}},
-      {"processing.cfar.guard_cells", {{"processing.cfar.false_alarm_probability", "0.01"}}},
-      {"processing.cfar.threshold_design", {{"processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.kind", {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.guard_cells",
+       {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.threshold_design",
+       {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
   };
   return table;
 }
@@ -151,7 +149,7 @@ const std::map<std::string, std::string>& no_effect() {
 // with the reason.
 const std::map<std::string, std::string>& no_effect_when() {
   static const std::map<std::string, std::string> table{
-      {"processing.cfar.threshold_design | processing.window = \"rectangular\"",
+      {"radar.processing.cfar.threshold_design | radar.processing.window = \"rectangular\"",
        "the rectangular window leaves the noise cells uncorrelated, for which the correlated "
        "design's factors are the independent ones"},
       {"lidar.scan_rate_hz | lidar.fog_fluctuation.log_std = 0.0",

@@ -58,10 +58,10 @@ geometric_std = 1.2
 sensors = ["radar", "lidar", "camera"]
 max_active_layers = 3
 switching_order = [1, 2, 0]
-measurements_per_step = 4
 
 [radar]
 chirps_per_frame = 16
+measurements_per_step = 4
 
 [lidar]
 scans_per_step = 3
@@ -329,8 +329,8 @@ TEST(Layers, LidarTargetEchoFollowsEq4WithoutFogFluctuation) {
 // naming itself, the value as typed and the true range.
 TEST(Layers, ActiveLayersFollowTheChamber) {
   const char* radar_only =
-      "[experiment]\nsensors = [\"radar\"]\nmeasurements_per_step = 2\n"
-      "[radar]\nchirps_per_frame = 16\n";
+      "[experiment]\nsensors = [\"radar\"]\n"
+      "[radar]\nchirps_per_frame = 16\nmeasurements_per_step = 2\n";
   const Scenario two = parse_scenario("[chamber]\nlayer_count = 2\n", "two.toml");
   EXPECT_EQ(two.steps(), 3u);
   EXPECT_EQ(two.context().steps, 3u);

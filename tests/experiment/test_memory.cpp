@@ -10,6 +10,7 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/lidar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 
 namespace fogradar::experiment {
@@ -21,7 +22,7 @@ Scenario small_frame() {
   radar_of(s).radar.samples_per_chirp = 64;
   radar_of(s).radar.chirps_per_frame = 16;
   radar_of(s).clutter_scatterers_per_bin = 4;
-  s.experiment.measurements_per_step = 3;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 3;
   s.experiment.max_active_layers = 4;  // 5 steps: 15 measurements
   return s;
 }
@@ -80,7 +81,7 @@ TEST(MemoryEstimate, RefusalNamesTheKeysAndTheLimit) {
     const std::string message = e.what();
     for (const char* key :
          {"radar.samples_per_chirp = 64", "radar.chirps_per_frame = 16",
-          "experiment.measurements_per_step = 3", "--threads 2", "--memory-limit-mib"}) {
+          "radar.measurements_per_step = 3", "--threads 2", "--memory-limit-mib"}) {
       EXPECT_NE(message.find(key), std::string::npos) << key << " missing from: " << message;
     }
   }

@@ -17,6 +17,7 @@
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/experiment/runner.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 #include "validation.hpp"
 
@@ -34,12 +35,12 @@ constexpr const char* kGroup = "experiment: geometry and Doppler";
 Scenario moving(double velocity_m_per_s, double chirp_s) {
   Scenario s = paper_scenario();
   s.experiment.sensors = {"radar"};
-  s.experiment.measurements_per_step = 20;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 20;
   radar::RadarParams& r = radar_of(s).radar;
   r.samples_per_chirp = static_cast<std::size_t>(std::lround(chirp_s * r.sample_rate_hz));
   r.chirp_duration_s = chirp_s;
   r.chirp_interval_s = chirp_s;
-  radar_of(s).target.radial_velocity_m_per_s = velocity_m_per_s;
+  s.target.radial_velocity_m_per_s = velocity_m_per_s;
   return s;
 }
 
@@ -204,7 +205,7 @@ TEST(MovingTarget, AVelocityBeyondTheUnambiguousOneIsWarned) {
   EXPECT_NEAR(fold.at("range_error_m").get<double>(), range_error_m, 1e-9);
 
   Scenario still = scenario;
-  radar_of(still).target.radial_velocity_m_per_s = 0.0;
+  still.target.radial_velocity_m_per_s = 0.0;
   const double measured_error_m =
       mean_range_m(run) - mean_range_m(run_experiment(still, {.threads = 2, .progress = {}}));
   validate({.id = "experiment.moving_target.folded_velocity.range_error",
@@ -222,8 +223,8 @@ TEST(MovingTarget, AVelocityBeyondTheUnambiguousOneIsWarned) {
   for (const auto& [velocity, chirp_s] :
        {std::pair{5.0, 51.2e-6}, std::pair{-5.0, 51.2e-6}, std::pair{25.0, 25.6e-6}}) {
     Scenario inside = moving(velocity, chirp_s);
-    radar_of(inside).target.radial_velocity_m_per_s = velocity;
-    inside.experiment.measurements_per_step = 2;
+    inside.target.radial_velocity_m_per_s = velocity;
+    inside.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 2;
     const auto quiet =
         radar_run(run_experiment(inside, {.threads = 2, .progress = {}})).summarize();
     EXPECT_TRUE(quiet->warnings().empty()) << velocity << " m/s: " << quiet->warnings()[0];

@@ -17,6 +17,7 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/lidar/outputs.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 
 namespace fogradar::experiment {
@@ -31,7 +32,7 @@ Scenario small_three_sensors() {
   Scenario s = paper_scenario();
   s.experiment.sensors = {"radar", "lidar", "camera"};
   radar_of(s).radar.chirps_per_frame = 16;
-  s.experiment.measurements_per_step = 4;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 4;
   lidar_of(s).scans_per_step = 3;
   lidar_of(s).field_of_view_deg = 12.0;
   camera_of(s).frames_per_step = 2;

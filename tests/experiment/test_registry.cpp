@@ -266,9 +266,9 @@ SensorRegistry four_sensors() {
 constexpr const char* four_toml = R"(
 [radar]
 chirps_per_frame = 16
+measurements_per_step = 3
 [experiment]
 sensors = ["radar", "lidar", "camera", "rangefinder"]
-measurements_per_step = 3
 [lidar]
 scans_per_step = 2
 field_of_view_deg = 12.0

@@ -14,6 +14,7 @@
 #include "fogradar/experiment/run_time.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 
 namespace fogradar::experiment {
@@ -104,7 +105,7 @@ TEST(RunTimeEstimate, ItemsGrowLinearlyInMeasurementsAndTheSensorIsMadeOnce) {
   s.experiment.sensors = {"radar"};
   std::vector<TimeEstimate> e;
   for (const std::size_t m : {100u, 200u, 300u}) {
-    s.experiment.measurements_per_step = m;
+    s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = m;
     e.push_back(estimate_run_time(s, 1));
   }
   EXPECT_NEAR(e[2].cpu_seconds() - e[1].cpu_seconds(), e[1].cpu_seconds() - e[0].cpu_seconds(),
@@ -115,7 +116,7 @@ TEST(RunTimeEstimate, ItemsGrowLinearlyInMeasurementsAndTheSensorIsMadeOnce) {
   EXPECT_GT(e[0].process_seconds, 0.0);
   EXPECT_EQ(e[2].process_seconds, e[0].process_seconds);
   // The set-up is part of the wall time: a run of one measurement per step is not free.
-  s.experiment.measurements_per_step = 1;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 1;
   const TimeEstimate one = estimate_run_time(s, 1);
   EXPECT_GT(one.wall_seconds(), one.process_seconds + one.sensors.front().setup.make_seconds);
   EXPECT_GT(one.setup_seconds(), 10.0 * one.cpu_seconds());
@@ -202,7 +203,7 @@ TEST(RunTimeEstimate, RefusesOverTheLimitNamingTheKeyThatDominates) {
 TEST(RunTimeEstimate, RefusesASetUpOverTheLimitNamingItsKey) {
   Scenario s = paper_scenario();
   s.experiment.sensors = {"radar"};
-  s.experiment.measurements_per_step = 1;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 1;
   radar_of(s).radar.cfar.kind = radar::CfarKind::go;
   radar_of(s).radar.cfar.training_cells = 32;
   const TimeEstimate design = estimate_run_time(s, 1);
@@ -211,7 +212,7 @@ TEST(RunTimeEstimate, RefusesASetUpOverTheLimitNamingItsKey) {
     require_time_within(s, 1, 0.5 * design.wall_seconds());
     FAIL() << "the design was not refused";
   } catch (const InvalidParameter& e) {
-    EXPECT_EQ(e.field(), "processing.cfar.threshold_design") << e.what();
+    EXPECT_EQ(e.field(), "radar.processing.cfar.threshold_design") << e.what();
     EXPECT_NE(std::string(e.what()).find("CFAR design"), std::string::npos) << e.what();
   }
   radar_of(s).radar.cfar.threshold_design = radar::CfarThresholdDesign::independent;

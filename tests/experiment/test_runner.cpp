@@ -10,6 +10,7 @@
 #include "fogradar/core/units.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 #include "validation.hpp"
 
@@ -28,7 +29,7 @@ Scenario small_scenario() {
   Scenario s = paper_scenario();
   s.experiment.sensors = {"radar"};  // the radar's subject; test_multisensor.cpp runs all
   radar_of(s).radar.chirps_per_frame = 16;
-  s.experiment.measurements_per_step = 12;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 12;
   return s;
 }
 
@@ -66,8 +67,8 @@ TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
   Scenario s = small_scenario();
   radar::TargetSpec& target = radar_of(s).target;
   target.model = radar::TargetModel::point;
-  target.floor_multipath = false;
-  target.micro_motion_std_m = 0.0;
+  s.target.floor_multipath = false;
+  s.target.micro_motion_std_m = 0.0;
   const radar::RadarSummary summary = radar_report(summarize(run_experiment(s))).summary();
   ASSERT_EQ(summary.steps.size(), 5u);
   const std::string point = "10 dBsm point target at 10 m, 10 dBm, paper fog, 12 measurements";
@@ -132,7 +133,7 @@ TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
   radar_of(s).radar.tx_power_dbm = -19.0;
   radar::TargetSpec& target = radar_of(s).target;
   target.model = radar::TargetModel::point;
-  target.floor_multipath = false;
+  s.target.floor_multipath = false;
   target.rcs_dbsm = -8.0;  // a pedestrian
   s.chamber.layer_length_m = 3.0;
   s.fog.density = propagation::LiquidWaterContent{100.0};
@@ -192,7 +193,7 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   Scenario s = small_scenario();
   radar::TargetSpec& target = radar_of(s).target;
   target.model = radar::TargetModel::point;
-  target.floor_multipath = false;
+  s.target.floor_multipath = false;
   target.rcs_dbsm = -60.0;
   radar_of(s).radar.tx_power_dbm = -30.0;
   radar_of(s).radar.cfar.false_alarm_probability = 1e-2;
@@ -282,7 +283,7 @@ TEST(Runner, StopFlagEndsTheRunWithoutAResult) {
   const ExperimentResult full = run_experiment(s, {.threads = 2, .progress = {}, .stop = &stop});
   const std::vector<StepResult>& steps = radar_run(full).steps();
   EXPECT_EQ(steps.size() * steps.front().records.size(),
-            s.steps() * s.experiment.measurements_per_step);
+            s.steps() * s.params<fogradar::radar::SensorParams>("radar").measurements_per_step);
 }
 
 }  // namespace

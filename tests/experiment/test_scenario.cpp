@@ -6,6 +6,7 @@
 
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/scenario.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 
 namespace fogradar::experiment {
@@ -42,7 +43,7 @@ TEST(Scenario, PaperScenarioIsDesignSection4) {
   EXPECT_EQ(s.fog.water_model, propagation::WaterModel::liebe);
   EXPECT_EQ(radar_of(s).target.model, radar::TargetModel::evt);
   EXPECT_EQ(radar_of(s).target.rcs_dbsm, 10.0);
-  EXPECT_EQ(s.experiment.measurements_per_step, 200u);
+  EXPECT_EQ(s.params<fogradar::radar::SensorParams>("radar").measurements_per_step, 200u);
   EXPECT_FALSE(s.experiment.max_active_layers.has_value());  // every layer
   EXPECT_EQ(s.steps(), 5u);
   EXPECT_EQ(s.experiment.seed, 1u);
@@ -171,7 +172,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadInput{"malformed", "[radar\ncentre_frequency_hz = 77e9\n", "toml", 1, "malformed TOML"},
         BadInput{"unknown_section", "[radr]\nx = 1\n", "radr", 1,
-                 "sections: radar, processing, target, chamber, fog, experiment"},
+                 "sections: chamber, fog, target, experiment, radar, lidar, camera"},
         BadInput{"unknown_key", "[radar]\ntx_power_w = 0.01\n", "radar.tx_power_w", 2,
                  "known keys of [radar]: adc_bits"},
         BadInput{"wrong_type", "[radar]\n\ntx_power_dbm = \"ten\"\n", "radar.tx_power_dbm", 3,
@@ -195,40 +196,43 @@ INSTANTIATE_TEST_SUITE_P(
                  "[chamber]\nlayer_count = 2\n[experiment]\nmax_active_layers = 3\n",
                  "experiment.max_active_layers", 4, "[0, chamber.layer_count = 2]",
                  "chamber.layer_count at line 2"},
-        BadInput{"cfar_wider_than_profile", "[processing.cfar]\ntraining_cells = 300\n",
-                 "processing.cfar.training_cells", 2, "[1, 253]", "radar.samples_per_chirp = 512"},
+        BadInput{"cfar_wider_than_profile", "[radar.processing.cfar]\ntraining_cells = 300\n",
+                 "radar.processing.cfar.training_cells", 2, "[1, 253]",
+                 "radar.samples_per_chirp = 512"},
         BadInput{"cfar_wider_than_given_profile",
-                 "[radar]\nsamples_per_chirp = 32\n[processing.cfar]\nguard_cells = "
+                 "[radar]\nsamples_per_chirp = 32\n[radar.processing.cfar]\nguard_cells = "
                  "4\ntraining_cells = 20\n",
-                 "processing.cfar.training_cells", 5,
-                 "[1, 11] with processing.cfar.guard_cells = 4",
+                 "radar.processing.cfar.training_cells", 5,
+                 "[1, 11] with radar.processing.cfar.guard_cells = 4",
                  "radar.samples_per_chirp at line 2"},
-        BadInput{"guard_cells_fill_the_profile", "[processing.cfar]\nguard_cells = 300\n",
-                 "processing.cfar.guard_cells", 2,
-                 "[0, 247] with processing.cfar.training_cells = 8",
+        BadInput{"guard_cells_fill_the_profile", "[radar.processing.cfar]\nguard_cells = 300\n",
+                 "radar.processing.cfar.guard_cells", 2,
+                 "[0, 247] with radar.processing.cfar.training_cells = 8",
                  "radar.samples_per_chirp = 512"},
         // The key the file gives is named by its line although the other key breaks the rule.
         BadInput{"paper_guard_cells_in_a_given_profile", "[radar]\nsamples_per_chirp = 16\n",
-                 "processing.cfar.training_cells", 2, "[1, 5]",
+                 "radar.processing.cfar.training_cells", 2, "[1, 5]",
                  "radar.samples_per_chirp at line 2"},
-        BadInput{"huge_guard_cells", "[processing.cfar]\nguard_cells = 4294967296\n",
-                 "processing.cfar.guard_cells", 2,
-                 "in [0, 247] with processing.cfar.training_cells = 8 and a profile of "
+        BadInput{"huge_guard_cells", "[radar.processing.cfar]\nguard_cells = 4294967296\n",
+                 "radar.processing.cfar.guard_cells", 2,
+                 "in [0, 247] with radar.processing.cfar.training_cells = 8 and a profile of "
                  "radar.samples_per_chirp = 512 cells"},
-        BadInput{"huge_os_rank",
-                 "[processing.cfar]\nkind = \"os\"\ntraining_cells = 4\nos_rank = 70000\n",
-                 "processing.cfar.os_rank", 4,
-                 "an integer in [0, 2 x processing.cfar.training_cells = 8] (0: the default rank "
-                 "round(3N/4))",
-                 "processing.cfar.training_cells at line 3"},
+        BadInput{
+            "huge_os_rank",
+            "[radar.processing.cfar]\nkind = \"os\"\ntraining_cells = 4\nos_rank = 70000\n",
+            "radar.processing.cfar.os_rank", 4,
+            "an integer in [0, 2 x radar.processing.cfar.training_cells = 8] (0: the default rank "
+            "round(3N/4))",
+            "radar.processing.cfar.training_cells at line 3"},
         BadInput{"os_rank_beyond_training",
-                 "[processing.cfar]\nkind = \"os\"\ntraining_cells = 4\nos_rank = 9\n",
-                 "processing.cfar.os_rank", 4, "[0, 2 x processing.cfar.training_cells = 8]",
-                 "processing.cfar.training_cells at line 3"},
+                 "[radar.processing.cfar]\nkind = \"os\"\ntraining_cells = 4\nos_rank = 9\n",
+                 "radar.processing.cfar.os_rank", 4,
+                 "[0, 2 x radar.processing.cfar.training_cells = 8]",
+                 "radar.processing.cfar.training_cells at line 3"},
         // Keys that would do nothing are refused, naming what makes them work.
-        BadInput{"os_rank_without_os", "[processing.cfar]\nos_rank = 4\n",
-                 "processing.cfar.os_rank", 2,
-                 "takes effect only with processing.cfar.kind = \"os\""},
+        BadInput{"os_rank_without_os", "[radar.processing.cfar]\nos_rank = 4\n",
+                 "radar.processing.cfar.os_rank", 2,
+                 "takes effect only with radar.processing.cfar.kind = \"os\""},
         BadInput{"full_scale_without_adc", "[radar]\nadc_full_scale_dbm = -30\n",
                  "radar.adc_full_scale_dbm", 2, "takes effect only with radar.adc_bits > 0"},
         BadInput{"floor_coefficient_without_floor",
@@ -259,33 +263,34 @@ INSTANTIATE_TEST_SUITE_P(
                  "= 25 with fog.water_model", "fog.water_model at line 2"},
         BadInput{"liebe_below_its_range", "[fog]\ntemperature_c = -25\n", "fog.temperature_c", 2,
                  "[-20, 50]"},
-        BadInput{"unknown_window", "[processing]\nwindow = \"kaiser\"\n", "processing.window", 2,
-                 "one of rectangular, hann"},
-        BadInput{"unknown_cfar", "[processing.cfar]\nkind = \"xx\"\n", "processing.cfar.kind", 2,
-                 "one of ca, go, so, os"},
-        BadInput{"unknown_threshold_design", "[processing.cfar]\nthreshold_design = \"iid\"\n",
-                 "processing.cfar.threshold_design", 2, "one of correlated, independent"},
+        BadInput{"unknown_window", "[radar.processing]\nwindow = \"kaiser\"\n",
+                 "radar.processing.window", 2, "one of rectangular, hann"},
+        BadInput{"unknown_cfar", "[radar.processing.cfar]\nkind = \"xx\"\n",
+                 "radar.processing.cfar.kind", 2, "one of ca, go, so, os"},
+        BadInput{"unknown_threshold_design",
+                 "[radar.processing.cfar]\nthreshold_design = \"iid\"\n",
+                 "radar.processing.cfar.threshold_design", 2, "one of correlated, independent"},
         // An empty name is a given name, refused like any other unknown one (it kept the default).
         BadInput{"empty_sweep_direction", "[radar]\nsweep_direction = \"\"\n",
                  "radar.sweep_direction", 2, "'': must be one of up, down"},
-        BadInput{"empty_window", "[processing]\nwindow = \"\"\n", "processing.window", 2,
-                 "'': must be one of rectangular"},
-        BadInput{"empty_cfar_kind", "[processing.cfar]\nkind = \"\"\n", "processing.cfar.kind", 2,
-                 "'': must be one of ca"},
-        BadInput{"empty_threshold_design", "[processing.cfar]\nthreshold_design = \"\"\n",
-                 "processing.cfar.threshold_design", 2, "'': must be one of correlated"},
-        BadInput{"empty_target_model", "[target]\nmodel = \"\"\n", "target.model", 2,
+        BadInput{"empty_window", "[radar.processing]\nwindow = \"\"\n", "radar.processing.window",
+                 2, "'': must be one of rectangular"},
+        BadInput{"empty_cfar_kind", "[radar.processing.cfar]\nkind = \"\"\n",
+                 "radar.processing.cfar.kind", 2, "'': must be one of ca"},
+        BadInput{"empty_threshold_design", "[radar.processing.cfar]\nthreshold_design = \"\"\n",
+                 "radar.processing.cfar.threshold_design", 2, "'': must be one of correlated"},
+        BadInput{"empty_target_model", "[radar.target]\nmodel = \"\"\n", "radar.target.model", 2,
                  "'': must be one of evt, point"},
         BadInput{"empty_water_model", "[fog]\nwater_model = \"\"\n", "fog.water_model", 2,
                  "'': must be one of liebe, segelstein"},
         BadInput{"empty_distribution", "[fog.droplets]\ndistribution = \"\"\n",
                  "fog.droplets.distribution", 2, "'': must be one of 'lognormal'"},
-        BadInput{"pfa_out_of_range", "[processing.cfar]\nfalse_alarm_probability = 1.5\n",
-                 "processing.cfar.false_alarm_probability", 2, "(0, 1)"},
-        BadInput{"negative_integer", "[experiment]\nmeasurements_per_step = -3\n",
-                 "experiment.measurements_per_step", 2, "an integer in [1, 1000000]"},
-        BadInput{"zero_measurements", "[experiment]\nmeasurements_per_step = 0\n",
-                 "experiment.measurements_per_step", 2, "an integer in [1, 1000000]"},
+        BadInput{"pfa_out_of_range", "[radar.processing.cfar]\nfalse_alarm_probability = 1.5\n",
+                 "radar.processing.cfar.false_alarm_probability", 2, "(0, 1)"},
+        BadInput{"negative_integer", "[radar]\nmeasurements_per_step = -3\n",
+                 "radar.measurements_per_step", 2, "an integer in [1, 1000000]"},
+        BadInput{"zero_measurements", "[radar]\nmeasurements_per_step = 0\n",
+                 "radar.measurements_per_step", 2, "an integer in [1, 1000000]"},
         // Integer keys state their documented range, not the C type's.
         BadInput{"samples_beyond_unsigned", "[radar]\nsamples_per_chirp = 5000000000\n",
                  "radar.samples_per_chirp", 2,
@@ -297,8 +302,8 @@ INSTANTIATE_TEST_SUITE_P(
                  2, "an integer in [1, 16384]"},
         BadInput{"too_many_adc_bits", "[radar]\nadc_bits = 25\n", "radar.adc_bits", 2,
                  "an integer in [0, 24]"},
-        BadInput{"no_clutter_scatterers", "[fog]\nclutter_scatterers_per_bin = 0\n",
-                 "fog.clutter_scatterers_per_bin", 2, "an integer in [1, 64]"},
+        BadInput{"no_clutter_scatterers", "[radar]\nclutter_scatterers_per_bin = 0\n",
+                 "radar.clutter_scatterers_per_bin", 2, "an integer in [1, 64]"},
         BadInput{"negative_seed", "[experiment]\nseed = -1\n", "experiment.seed", 2,
                  "an integer in [0, 9223372036854775807]"},
         BadInput{"sensors_not_an_array", "[experiment]\nsensors = \"radar\"\n",
@@ -328,11 +333,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "radar.sample_rate_hz = 512"},
         BadInput{"bad_reflection", "[target]\nfloor_reflection_coefficient = -1.5\n",
                  "target.floor_reflection_coefficient", 2, "[-1, 1]"},
-        BadInput{"bad_swerling", "[target]\nmodel = \"point\"\nswerling = 2\n", "target.swerling",
-                 3, "one of 0, 1, 3"},
-        BadInput{"negative_swerling", "[target]\nmodel = \"point\"\nswerling = -1\n",
-                 "target.swerling", 3, "'-1': must be one of 0, 1, 3"},
-        BadInput{"bad_target_model", "[target]\nmodel = \"truck\"\n", "target.model", 2,
+        BadInput{"bad_swerling", "[radar.target]\nmodel = \"point\"\nswerling = 2\n",
+                 "radar.target.swerling", 3, "one of 0, 1, 3"},
+        BadInput{"negative_swerling", "[radar.target]\nmodel = \"point\"\nswerling = -1\n",
+                 "radar.target.swerling", 3, "'-1': must be one of 0, 1, 3"},
+        BadInput{"bad_target_model", "[radar.target]\nmodel = \"truck\"\n", "radar.target.model", 2,
                  "one of evt, point"},
         BadInput{"bool_as_number", "[target]\nfloor_multipath = 1\n", "target.floor_multipath", 2,
                  "= 1: must be true or false"},
@@ -437,15 +442,17 @@ TEST(Scenario, EveryMessageQuotesTheValueAsTypedAndTheTrueRange) {
        "5.12e-05, 1]"},
       {"[radar]\nsweep_direction = 3\n",
        "bad.toml:2: radar.sweep_direction = 3: must be a string, one of up, down"},
-      {"[target]\nmodel = \"point\"\nswerling = \"one\"\n",
-       "bad.toml:3: target.swerling = 'one': must be an integer, one of 0, 1, 3"},
+      {"[radar.target]\nmodel = \"point\"\nswerling = \"one\"\n",
+       "bad.toml:3: radar.target.swerling = 'one': must be an integer, one of 0, 1, 3"},
       // Keys that would do nothing are refused, naming what makes them work.
-      {"[target]\nswerling = 1\n",
-       "bad.toml:2: target.swerling = 1: takes effect only with target.model = \"point\" (the "
+      {"[radar.target]\nswerling = 1\n",
+       "bad.toml:2: radar.target.swerling = 1: takes effect only with radar.target.model = "
+       "\"point\" (the "
        "EVT's "
        "five centres have heights of their own and a steady RCS)"},
-      {"[target]\nheight_m = 1.1\n",
-       "bad.toml:2: target.height_m = 1.1: takes effect only with target.model = \"point\" (the "
+      {"[radar.target]\nheight_m = 1.1\n",
+       "bad.toml:2: radar.target.height_m = 1.1: takes effect only with radar.target.model = "
+       "\"point\" (the "
        "EVT's five centres have heights of their own and a steady RCS)"},
       {"[camera]\nframes_per_step = true\n",
        "bad.toml:2: camera.frames_per_step = true: must be an integer in [1, 100000]"},
@@ -536,7 +543,7 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
   EXPECT_EQ(
       parse_scenario("[experiment]\nseed = 9223372036854775807\n", "seed.toml").experiment.seed,
       9223372036854775807u);
-  EXPECT_EQ(radar_of(parse_scenario("[processing.cfar]\nguard_cells = 247\n", "guard.toml"))
+  EXPECT_EQ(radar_of(parse_scenario("[radar.processing.cfar]\nguard_cells = 247\n", "guard.toml"))
                 .radar.cfar.guard_cells,
             247u);
   // Each number key at both ends of its docs/scenario.md range (the others at their paper values).
@@ -547,7 +554,8 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
       "[radar]\nsweep_bandwidth_hz = 38.5e9\nsample_rate_hz = 1e10\n",  // range: c fs Tc / (2 B)
       "[radar]\nchirp_duration_s = 1e-2\nchirp_interval_s = 1\n",
       "[radar]\nchirp_interval_s = 51.2e-6\n",
-      "[radar]\nsamples_per_chirp = 16\n[processing.cfar]\nguard_cells = 0\ntraining_cells = 7\n",
+      "[radar]\nsamples_per_chirp = 16\n[radar.processing.cfar]\nguard_cells = 0\ntraining_cells = "
+      "7\n",
       "[radar]\nsample_rate_hz = 1e10\n",
       "[radar]\nchirps_per_frame = 1\n",
       "[radar]\nchirps_per_frame = 16384\n",
@@ -559,11 +567,11 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
       "[radar]\nadc_bits = 24\nadc_full_scale_dbm = -100\nphase_noise_rms_rad = "
       "3.141592653589793\n",
       "[radar]\nadc_bits = 1\nadc_full_scale_dbm = 30\nphase_noise_rms_rad = 0\n",
-      "[processing]\nassociation_gate_m = 1000\n",
-      "[processing.cfar]\nkind = \"os\"\nos_rank = 16\n",
-      "[target]\nrcs_dbsm = -60\n",
-      "[target]\nrcs_dbsm = 60\n",
-      "[target]\nmodel = \"point\"\nheight_m = 100\nsensor_height_m = 100\n",
+      "[radar.processing]\nassociation_gate_m = 1000\n",
+      "[radar.processing.cfar]\nkind = \"os\"\nos_rank = 16\n",
+      "[radar.target]\nrcs_dbsm = -60\n",
+      "[radar.target]\nrcs_dbsm = 60\n",
+      "[radar.target]\nmodel = \"point\"\nheight_m = 100\n[radar]\nheight_m = 100\n",
       "[target]\nfloor_reflection_coefficient = -1\nmicro_motion_std_m = 0.1\n",
       "[target]\nfloor_reflection_coefficient = 1\n",
       "[chamber]\nsensor_gap_m = 0\ntarget_gap_m = 0\nlayer_count = 1000\nlayer_length_m = 0.05\n",
@@ -571,12 +579,12 @@ TEST(Scenario, DocumentedBoundsAreAccepted) {
       "[fog]\nlwc_g_per_m3 = 100\n",
       "[fog]\nvisibility_m = 1e-3\n",
       "[fog]\nvisibility_m = 1e7\n",
-      "[fog]\nclutter_scatterers_per_bin = 64\n",
+      "[radar]\nclutter_scatterers_per_bin = 64\n",
       "[fog.droplets]\nmedian_diameter_m = 1e-8\ngeometric_std = 1.01\n",
       "[fog.droplets]\nmedian_diameter_m = 1e-3\ngeometric_std = 3\n",
       "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-8\n",
       "[fog.droplets]\ndistribution = \"monodisperse\"\ndiameter_m = 1e-3\n",
-      "[experiment]\nmeasurements_per_step = 1000000\nmax_active_layers = 0\n",
+      "[radar]\nmeasurements_per_step = 1000000\n[experiment]\nmax_active_layers = 0\n",
       "[radar.radome]\nthickness_m = 0.05\nrelative_permittivity = 100\nloss_tangent = 1\n"
       "water_film_m = 0.01\n",
       "[radar.radome]\nthickness_m = 1e-4\nrelative_permittivity = 1\nloss_tangent = 0\n",

@@ -8,6 +8,7 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/experiment/capture.hpp"
 #include "fogradar/experiment/runner.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"
 
 namespace fogradar::experiment {
@@ -16,7 +17,7 @@ namespace {
 Scenario small_scenario() {
   Scenario s = paper_scenario();
   radar_of(s).radar.chirps_per_frame = 16;
-  s.experiment.measurements_per_step = 6;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 6;
   lidar_of(s).scans_per_step = 3;
   camera_of(s).frames_per_step = 2;
   return s;

@@ -44,13 +44,15 @@ TEST(TomlBytes, NonAsciiInCommentsAndStringsReadsAsBefore) {
 TEST(TomlBytes, StringsEndWhereTomlEndsThem) {
   // After a multi-line string closed by five quotes, and after an escaped quote, text is bare
   // again.
-  EXPECT_EQ(error_of("[target]\nmodel = \"\"\"e\n\"\"\"\"\"\nk\xC3\xA9 = 1\n")
+  EXPECT_EQ(error_of("[radar.target]\nmodel = \"\"\"e\n\"\"\"\"\"\nk\xC3\xA9 = 1\n")
                 .rfind("f.toml:4: non-ASCII", 0),
             0u);
-  EXPECT_EQ(error_of("[target]\nmodel = \"a\\\"b\" k\xC3\xA9\n").rfind("f.toml:2: non-ASCII", 0),
-            0u);
-  EXPECT_EQ(error_of("[target]\nmodel = '''a\n''''' k\xC3\xA9\n").rfind("f.toml:3: non-ASCII", 0),
-            0u);
+  EXPECT_EQ(
+      error_of("[radar.target]\nmodel = \"a\\\"b\" k\xC3\xA9\n").rfind("f.toml:2: non-ASCII", 0),
+      0u);
+  EXPECT_EQ(
+      error_of("[radar.target]\nmodel = '''a\n''''' k\xC3\xA9\n").rfind("f.toml:3: non-ASCII", 0),
+      0u);
 }
 
 TEST(TomlBytes, InvalidUtf8IsRefusedAnywhere) {

@@ -209,7 +209,7 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
     t.set("chamber", "layer_length_m", uniform_length_m);
   }
   for (const auto& [key, value] : draw_fog(d)) t.set("fog", key, value);
-  t.set_integer("fog", "clutter_scatterers_per_bin", d.integer(1, 8));
+  t.set_integer("radar", "clutter_scatterers_per_bin", d.integer(1, 8));
   std::string layer_tables;
   if (listed) {
     for (const double l : lengths) {
@@ -259,33 +259,34 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
       std::vector<std::string>{"rectangular", "hann", "hamming", "blackman_harris", "chebyshev"});
   out.window = window;
   out.window_mainlobe_half_width_bins = mainlobe_half_width_bins(window);
-  t.set("processing", "window", quoted(window));
-  t.set("processing", "association_gate_m", d.uniform(0.2, 1.0));
+  t.set("radar.processing", "window", quoted(window));
+  t.set("radar.processing", "association_gate_m", d.uniform(0.2, 1.0));
   const std::string kind = d.pick(std::vector<std::string>{"ca", "go", "so", "os"});
   const std::int64_t guard = d.integer(0, 4);
   const std::int64_t training = d.integer(2, std::min<std::int64_t>(12, (samples - 1) / 2 - guard));
-  t.set("processing.cfar", "kind", quoted(kind));
-  t.set_integer("processing.cfar", "guard_cells", guard);
-  t.set_integer("processing.cfar", "training_cells", training);
-  t.set("processing.cfar", "false_alarm_probability", d.log_uniform(1e-7, 1e-3));
+  t.set("radar.processing.cfar", "kind", quoted(kind));
+  t.set_integer("radar.processing.cfar", "guard_cells", guard);
+  t.set_integer("radar.processing.cfar", "training_cells", training);
+  t.set("radar.processing.cfar", "false_alarm_probability", d.log_uniform(1e-7, 1e-3));
   if (kind == "os" && d.chance(0.5))
-    t.set_integer("processing.cfar", "os_rank", d.integer(1, 2 * training));
+    t.set_integer("radar.processing.cfar", "os_rank", d.integer(1, 2 * training));
   const bool correlated = d.chance(0.5);
-  t.set("processing.cfar", "threshold_design", quoted(correlated ? "correlated" : "independent"));
+  t.set("radar.processing.cfar", "threshold_design",
+        quoted(correlated ? "correlated" : "independent"));
 
   const bool point = d.chance(0.5);
   const double sensor_height_m = d.uniform(0.2, 1.5);
   double centre_height_m = 0.85;  // the EVT's highest centre
-  t.set("target", "model", quoted(point ? "point" : "evt"));
+  t.set("radar.target", "model", quoted(point ? "point" : "evt"));
   if (point) {
-    t.set_integer("target", "swerling", d.pick(std::vector<std::int64_t>{0, 1, 3}));
+    t.set_integer("radar.target", "swerling", d.pick(std::vector<std::int64_t>{0, 1, 3}));
     centre_height_m = d.uniform(0.0, 1.5);
-    t.set("target", "height_m", centre_height_m);
+    t.set("radar.target", "height_m", centre_height_m);
   }
   out.target_depth_m = point ? 0.0 : 0.30;  // the EVT's rear light centres, 30 cm behind
   out.target_height_span_m = sensor_height_m + centre_height_m;
-  t.set("target", "rcs_dbsm", d.uniform(-10.0, 20.0));
-  t.set("target", "sensor_height_m", sensor_height_m);
+  t.set("radar.target", "rcs_dbsm", d.uniform(-10.0, 20.0));
+  t.set("radar", "height_m", sensor_height_m);
   const bool multipath = d.chance(0.5);
   t.set_boolean("target", "floor_multipath", multipath);
   if (multipath) t.set("target", "floor_reflection_coefficient", d.uniform(-1.0, 1.0));
@@ -300,7 +301,7 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   std::string sensors;
   for (const std::string& s : out.sensors) sensors += (sensors.empty() ? "" : ", ") + quoted(s);
   t.set("experiment", "sensors", "[" + sensors + "]");
-  t.set_integer("experiment", "measurements_per_step", d.integer(1, 6));
+  t.set_integer("radar", "measurements_per_step", d.integer(1, 6));
   // Not given, the run goes to every layer of the chamber.
   out.max_active_layers = layer_count;
   if (d.chance(0.7)) {

@@ -12,7 +12,7 @@ import fogradar
 
 # A fog whose radar clutter the CFAR detects: 3 g/m^3 of 50 um drops (the paper's fog gives no fog
 # detection at 77 GHz).
-WET = {"experiment.sensors": ["radar"], "experiment.measurements_per_step": 10,
+WET = {"experiment.sensors": ["radar"], "radar.measurements_per_step": 10,
        "fog.lwc_g_per_m3": 3.0,
        "fog.droplets": {"distribution": "monodisperse", "diameter_m": 50e-6}}
 
@@ -126,7 +126,7 @@ def test_a_clipping_adc_labels_its_products_clipping_and_claims_no_margin():
     counted a noise false alarm, and the benchmark claims no SNR margin above the CFAR threshold
     (the old run claimed 40.8 dB and 3 noise false alarms per frame)."""
     scenario = fogradar.Scenario.from_dict({"experiment.sensors": ["radar"],
-                                            "experiment.measurements_per_step": 10,
+                                            "radar.measurements_per_step": 10,
                                             "radar.adc_bits": 12,
                                             "radar.adc_full_scale_dbm": -80.0})
     results = fogradar.Simulator(scenario).run()

@@ -63,7 +63,7 @@ def test_a_run_twice_gives_the_same_results(paper_sim):
 
 
 def _long_scenario():
-    return fogradar.Scenario.from_dict({"experiment.measurements_per_step": 20000,
+    return fogradar.Scenario.from_dict({"radar.measurements_per_step": 20000,
                                         "experiment.sensors": ["radar"]})
 
 

@@ -29,8 +29,8 @@ BAD_SCENARIOS = [
     ({"lidar": {"background": [{"x0_m": 1.0, "reflectivity": 7.0}]}},
      "lidar.background[0].reflectivity"),                                      # element range
     ({"experiment": {"max_active_layers": 9}}, "experiment.max_active_layers"),  # bound by a key
-    ({"processing": {"cfar": {"training_cells": 400}}},
-     "processing.cfar.training_cells"),                                        # CFAR profile
+    ({"radar": {"processing": {"cfar": {"training_cells": 400}}}},
+     "radar.processing.cfar.training_cells"),                                        # CFAR profile
     ({"chamber": {"target_gap_m": 500.0}}, "chamber.target_gap_m"),            # radar's range
 ]
 
@@ -117,7 +117,7 @@ def test_dotted_and_nested_keys_and_files_give_the_same_scenario(tmp_path):
 
 
 def test_overrides_make_a_new_scenario_and_keep_the_rest():
-    base = fogradar.Scenario.from_dict({"experiment.measurements_per_step": 7})
+    base = fogradar.Scenario.from_dict({"radar.measurements_per_step": 7})
     thicker = base.with_overrides({"fog.visibility_m": 30.0, "radar.tx_power_dbm": 5.0})
     assert base.to_dict()["radar"]["tx_power_dbm"] != 5.0
     assert "extinction_per_km" in base.to_dict()["fog"]  # the paper's fog density
@@ -125,7 +125,7 @@ def test_overrides_make_a_new_scenario_and_keep_the_rest():
     assert resolved["radar"]["tx_power_dbm"] == 5.0
     # Another of the fog density's keys selects itself (docs/scenario.md).
     assert resolved["fog"]["visibility_m"] == 30.0 and "extinction_per_km" not in resolved["fog"]
-    assert resolved["experiment"]["measurements_per_step"] == 7
+    assert resolved["radar"]["measurements_per_step"] == 7
 
 
 def test_a_scenario_round_trips_through_its_dict():

@@ -41,7 +41,7 @@ def test_detections_are_attributed_by_the_chain_s_ground_truth():
            "fog.droplets": {"distribution": "monodisperse", "diameter_m": 50e-6}}
     answer = pd.DataFrame({"range_m": [10.2, 2.5, 4.5, 14.0], "value": [1.0, 2.0, 2.5, 3.0]})
     for extra, fog in ((wet, [0.0, 1.0, 1.0, 2.0, 2.0]), ({}, [0.0] * 5)):
-        scenario = fogradar.Scenario.from_dict(dict({"experiment.measurements_per_step": 3,
+        scenario = fogradar.Scenario.from_dict(dict({"radar.measurements_per_step": 3,
                                                      "experiment.sensors": ["radar"]}, **extra))
         report = fogradar.stability(scenario, "radar", lambda m: answer, keep="detections")
         table = report.table.set_index("active_layers")

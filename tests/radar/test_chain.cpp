@@ -1023,12 +1023,12 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
   sensor::Context context;
   context.chamber = paper_chamber_spec();
   context.steps = 1;
-  context.measurements_per_step = 20;
   SensorParams dry;
+  dry.measurements_per_step = 20;
   dry.radar.chirps_per_frame = 16;
   dry.target.model = TargetModel::point;
-  dry.target.floor_multipath = false;
-  dry.target.micro_motion_std_m = 0.0;
+  context.target.floor_multipath = false;
+  context.target.micro_motion_std_m = 0.0;
   dry.target.height_m = dry.target.sensor_height_m;
   struct Case {
     const char* name;
@@ -1042,7 +1042,7 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
     MeasurementWorkspace ws = sensor.chain().make_workspace();
     Measurement m;
     std::vector<double> rcs;
-    for (std::size_t i = 0; i < context.measurements_per_step; ++i) {
+    for (std::size_t i = 0; i < dry.measurements_per_step; ++i) {
       RandomStream rng(context.seed, 0, i);
       sensor.chain().measure(sensor.scene(), sensor.chamber(), none, rng, ws, m);
       EXPECT_TRUE(m.target.has_value());
@@ -1064,8 +1064,9 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
     SensorParams wet = dry;
     wet.radar.radome.thickness_m = c.radome_m;
     wet.radar.radome.water_film_m = c.radome_film_m;
-    wet.target.water_film_m = c.target_film_m;
-    const RadarSensor sensor(wet, context, table);
+    sensor::Context wet_context = context;
+    wet_context.target.water_film_m = c.target_film_m;
+    const RadarSensor sensor(wet, wet_context, table);
     const double loss_db = sensor.radome_two_way_loss_db() + sensor.target_film_loss_db();
     if (c.radome_m == 0.0) {
       EXPECT_NEAR(sensor.radome_two_way_loss_db(),
@@ -1114,10 +1115,10 @@ TEST(WaterFilm, LossesReachTheSummaryJsonAndTheLossColumn) {
   sensor::Context context;
   context.chamber = paper_chamber_spec();
   context.steps = 2;
-  context.measurements_per_step = 1;
   SensorParams wet;
+  wet.measurements_per_step = 1;
   wet.radar.radome.water_film_m = 0.1e-3;
-  wet.target.water_film_m = 0.1e-3;
+  context.target.water_film_m = 0.1e-3;
   const auto sensor = std::make_shared<RadarSensor>(wet, context, test::segelstein_table());
   const RadarRun run(sensor);
   const std::unique_ptr<const sensor::SensorSummary> report = run.summarize();
@@ -1136,7 +1137,10 @@ TEST(WaterFilm, LossesReachTheSummaryJsonAndTheLossColumn) {
   EXPECT_NE(table.find(cell), std::string::npos) << table;
   EXPECT_NE(table.find("of the radome with its water film"), std::string::npos) << table;
   // Dry: no such line.
-  const auto dry = std::make_shared<RadarSensor>(SensorParams{}, context, test::segelstein_table());
+  sensor::Context dry_context = context;
+  dry_context.target.water_film_m = 0.0;
+  const auto dry =
+      std::make_shared<RadarSensor>(SensorParams{}, dry_context, test::segelstein_table());
   EXPECT_EQ(RadarRun(dry).summarize()->table().find("water film"), std::string::npos);
 }
 

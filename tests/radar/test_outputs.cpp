@@ -14,6 +14,7 @@
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/summary.hpp"
 #include "fogradar/radar/outputs.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "radar_sensor.hpp"
 
 namespace fogradar::experiment {
@@ -30,7 +31,7 @@ Scenario mixed_scenario() {
   s.experiment.sensors = {"radar"};  // the radar's subject; test_multisensor.cpp runs all
   radar_of(s).radar.chirps_per_frame = 16;
   radar_of(s).radar.cfar.false_alarm_probability = 1e-2;
-  s.experiment.measurements_per_step = 8;
+  s.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 8;
   radar_of(s).target.rcs_dbsm = -55.0;
   s.fog.density = propagation::LiquidWaterContent{100.0};
   s.fog.droplets = propagation::Monodisperse{0.5e-3};

@@ -93,7 +93,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
       {"radar.noise_figure_db", &RadarParams::noise_figure_db, -1.0, 50.0},
       {"radar.reference_temperature_k", &RadarParams::reference_temperature_k, 0.0, 2000.0},
       {"radar.phase_noise_rms_rad", &RadarParams::phase_noise_rms_rad, -0.1, 4.0},
-      {"processing.association_gate_m", &RadarParams::association_gate_m, -1.0, 2e3},
+      {"radar.processing.association_gate_m", &RadarParams::association_gate_m, -1.0, 2e3},
   };
   for (const DoubleField& f : fields) {
     for (const double bad : {f.too_low, f.too_high, kNaN, -kInf, kInf}) {
@@ -116,19 +116,19 @@ TEST(RadarParams, RejectsEveryInvalidField) {
   // The samples must fit in the chirp: 1024 samples at 10 MS/s need 102.4 us > 51.2 us.
   expect_rejected([](RadarParams& p) { p.samples_per_chirp = 1024; }, "radar.samples_per_chirp");
   // Every field is named by its scenario key (radar_param_keys), the CFAR's under
-  // [processing.cfar].
+  // [radar.processing.cfar].
   expect_rejected([](RadarParams& p) { p.cfar.training_cells = 0; },
-                  "processing.cfar.training_cells");
+                  "radar.processing.cfar.training_cells");
   expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = 1.0; },
-                  "processing.cfar.false_alarm_probability");
+                  "radar.processing.cfar.false_alarm_probability");
   expect_rejected([](RadarParams& p) { p.cfar.false_alarm_probability = kNaN; },
-                  "processing.cfar.false_alarm_probability");
+                  "radar.processing.cfar.false_alarm_probability");
   expect_rejected(
       [](RadarParams& p) {
         p.cfar.kind = CfarKind::os;
         p.cfar.os_rank = 17;
       },
-      "processing.cfar.os_rank");
+      "radar.processing.cfar.os_rank");
   // The radome, [radar.radome]: a thickness or film below 0, a permittivity below 1 (vacuum), a
   // negative loss tangent, each beyond its range, and NaN.
   for (const double bad : {-1e-3, 0.06, kNaN}) {
@@ -161,7 +161,7 @@ TEST(RadarParams, RejectsEveryInvalidField) {
         p.samples_per_chirp = 16;
         p.sample_rate_hz = 1e6;
       },
-      "processing.cfar.training_cells");
+      "radar.processing.cfar.training_cells");
 }
 
 // Paper radar (examples/paper.toml): the derived quantities by the textbook relations [Ri14, PJ62].
@@ -351,7 +351,7 @@ TEST(Scene, RejectsEveryInvalidField) {
                           "target.centres[0].height_m");
     expect_scene_rejected([&](Scene& s) { s.centres[0].radial_velocity_m_per_s = bad * 10.0; },
                           "target.centres[0].radial_velocity_m_per_s");
-    expect_scene_rejected([&](Scene& s) { s.sensor_height_m = bad; }, "target.sensor_height_m");
+    expect_scene_rejected([&](Scene& s) { s.sensor_height_m = bad; }, "radar.height_m");
   }
   for (const double bad : {-1.0, 2e6, kNaN}) {
     expect_scene_rejected([&](Scene& s) { s.centres[0].rcs_m2 = bad; }, "target.centres[0].rcs_m2");
@@ -372,9 +372,9 @@ TEST(Scene, RejectsEveryInvalidField) {
                           "target.micro_motion_std_m");
   }
   expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 0; },
-                        "target.clutter_scatterers_per_bin");
+                        "radar.clutter_scatterers_per_bin");
   expect_scene_rejected([](Scene& s) { s.clutter_scatterers_per_bin = 65; },
-                        "target.clutter_scatterers_per_bin");
+                        "radar.clutter_scatterers_per_bin");
   for (const double bad : {-0.1, 1.1, kNaN}) {
     expect_scene_rejected([&](Scene& s) { s.radome_two_way_transmittance = bad; },
                           "radome_two_way_transmittance");
@@ -385,18 +385,19 @@ TEST(Scene, RejectsEveryInvalidField) {
 
 // [target] water_film_m: a film below 0, beyond 10 mm, or NaN is refused by its key's name.
 TEST(TargetKeys, RejectsAnInvalidWaterFilm) {
-  const KeyTable<TargetSpec> keys = target_keys();
-  EXPECT_NO_THROW(keys.check(TargetSpec{.water_film_m = 0.01}));
+  const KeyTable<sensor::TargetWorld> keys = sensor::target_world_keys();
+  EXPECT_NO_THROW(keys.check(sensor::TargetWorld{.water_film_m = 0.01}));
   for (const double bad : {-1e-4, 0.011, kNaN}) {
-    EXPECT_EQ(test_support::rejected_field([&] { keys.check(TargetSpec{.water_film_m = bad}); }),
-              "target.water_film_m")
+    EXPECT_EQ(
+        test_support::rejected_field([&] { keys.check(sensor::TargetWorld{.water_film_m = bad}); }),
+        "target.water_film_m")
         << bad;
   }
 }
 
 TEST(Scene, SwerlingNamesRoundTrip) {
   for (const Swerling s : {Swerling::zero, Swerling::one, Swerling::three})
-    EXPECT_EQ(swerling_names.parse(to_string(s), "target.swerling"), s);
+    EXPECT_EQ(swerling_names.parse(to_string(s), "radar.target.swerling"), s);
   try {
     swerling_names.parse("2", "target.centres[1].swerling");
     ADD_FAILURE() << "accepted Swerling 2";

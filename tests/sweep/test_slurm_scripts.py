@@ -65,7 +65,7 @@ with tempfile.TemporaryDirectory() as work:
     os.chmod(os.path.join(bin_dir, "srun"), stat.S_IRWXU)
     env = dict(os.environ, PATH=bin_dir + ":" + os.environ["PATH"])
     with open(os.path.join(work, "small.toml"), "w") as f:
-        f.write("[experiment]\nmeasurements_per_step = 8\n[lidar]\nscans_per_step = 4\n"
+        f.write("[radar]\nmeasurements_per_step = 8\n[lidar]\nscans_per_step = 4\n"
                 "[camera]\nframes_per_step = 2\n")
     with open(os.path.join(work, "study.toml"), "w") as f:
         f.write("[sweep]\nbase = \"small.toml\"\n[[axis]]\nkey = \"fog.extinction_per_km\"\n"

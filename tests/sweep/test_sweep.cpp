@@ -47,7 +47,7 @@ range = { from = 100.0, to = 1000.0, count = 3, spacing = "log" }
 keys = ["radar.centre_frequency_hz", "radar.sweep_bandwidth_hz"]
 values = [[76.5e9, 1e9], [24.125e9, 250e6]]
 [[axis]]
-key = "processing.cfar.training_cells"
+key = "radar.processing.cfar.training_cells"
 range = { from = 8, to = 16, count = 3 }
 )");
   ASSERT_EQ(spec.axes.size(), 3u);
@@ -73,7 +73,7 @@ range = { from = 8, to = 16, count = 3 }
   // Numbers as their shortest exact text (std::to_chars).
   EXPECT_EQ(points[0].label(),
             "fog.extinction_per_km = 100.0, radar.centre_frequency_hz = 2.4125e+10, "
-            "radar.sweep_bandwidth_hz = 2.5e+08, processing.cfar.training_cells = 8");
+            "radar.sweep_bandwidth_hz = 2.5e+08, radar.processing.cfar.training_cells = 8");
   EXPECT_EQ(points[1].values[3].second.text, "12");
   EXPECT_EQ(points[3].values[1].second.text, "7.65e+10");
   EXPECT_EQ(points[6].values[0].second.toml, points[7].values[0].second.toml);
@@ -137,22 +137,22 @@ TEST(SweepFile, EveryBadSweepFileIsRefusedNamingItsKeyAndLine) {
       "spacing = \"log\" }\n",
       "axis[0].range.from", "must be > 0 for spacing = \"log\"");
   expect(
-      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"radar.height_m\"]\n"
       "distribution = \"normal\"\nmean = 0.5\nstd = -0.1\n",
-      "uncertain.keys.target.sensor_height_m.std", "must be > 0");
+      "uncertain.keys.radar.height_m.std", "must be > 0");
   expect(
-      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"radar.height_m\"]\n"
       "distribution = \"uniform\"\nlow = 0.6\nhigh = 0.4\n",
-      "uncertain.keys.target.sensor_height_m.high", "must be > low");
+      "uncertain.keys.radar.height_m.high", "must be > low");
   expect(
-      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"radar.height_m\"]\n"
       "distribution = \"beta\"\n",
-      "uncertain.keys.target.sensor_height_m.distribution", "must be one of");
+      "uncertain.keys.radar.height_m.distribution", "must be one of");
   // A draw outside the key's range: named as the uncertain key that drew it.
   expect(
-      "[uncertain]\nsetups = 8\n[uncertain.keys.\"target.sensor_height_m\"]\n"
+      "[uncertain]\nsetups = 8\n[uncertain.keys.\"radar.height_m\"]\n"
       "distribution = \"uniform\"\nlow = -5.0\nhigh = -4.0\n",
-      "uncertain.keys.target.sensor_height_m", "drew -");
+      "uncertain.keys.radar.height_m", "drew -");
   expect("[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = [900.0\n", "toml", "malformed TOML");
 }
 
@@ -249,7 +249,7 @@ TEST(Uncertain, LatinHypercubeDrawsFillEveryStratumOnce) {
   const SweepSpec spec = parse(R"(
 [uncertain]
 setups = 50
-[uncertain.keys."target.sensor_height_m"]
+[uncertain.keys."radar.height_m"]
 distribution = "normal"
 mean = 0.5
 std = 0.01
@@ -275,8 +275,8 @@ values = [0.0002]
       return *std::find_if(setup.begin(), setup.end(),
                            [&](const auto& v) { return v.first == key; });
     };
-    normal_strata.push_back(static_cast<int>(
-        std::floor(normal_cdf(*drawn("target.sensor_height_m").second.number) * 50.0)));
+    normal_strata.push_back(
+        static_cast<int>(std::floor(normal_cdf(*drawn("radar.height_m").second.number) * 50.0)));
     uniform_strata.push_back(static_cast<int>(std::floor(
         (*drawn("target.floor_reflection_coefficient").second.number + 0.9) / 0.4 * 50.0)));
     EXPECT_EQ(*drawn("target.micro_motion_std_m").second.number, 0.0002);
@@ -293,7 +293,7 @@ values = [0.0002]
             .group = kGroup,
             .quantity = "largest |k-th sorted stratum - k| of 50 Latin hypercube draws",
             .unit = "strata",
-            .conditions = "target.sensor_height_m normal, mean 0.5, std 0.01, 50 setups",
+            .conditions = "radar.height_m normal, mean 0.5, std 0.01, 50 setups",
             .reference = 0.0,
             .source = "definition of Latin hypercube sampling; strata by the normal CDF (erfc)",
             .value = static_cast<double>(normal_offset),

@@ -111,8 +111,8 @@ values = [[94e9, 1e9], [24.125e9, 250e6], [77e9, 1e9]]
 [sweep]
 base = "radar_only.toml"
 """)
-    write("radar_only.toml", "[experiment]\nsensors = [\"radar\"]\nmeasurements_per_step = 5\n"
-          "max_active_layers = 1\n[radar]\nchirps_per_frame = 16\n")
+    write("radar_only.toml", "[experiment]\nsensors = [\"radar\"]\n"
+          "max_active_layers = 1\n[radar]\nchirps_per_frame = 16\nmeasurements_per_step = 5\n")
     freq_out = os.path.join(work, "freq")
     sweep(freq_file, freq_out)
     points = rows(os.path.join(freq_out, "points.csv"))
@@ -128,7 +128,7 @@ base = "radar_only.toml"
         print(f"{f_hz / 1e9:g} GHz: loss / loss(77 GHz) {measured:.5f}, P.840 {expected:.5f}")
 
     # Threads, a SIGKILL and a resume, the values reversed: the same tables.
-    small = write("small.toml", "[experiment]\nmeasurements_per_step = 12\n[lidar]\n"
+    small = write("small.toml", "[radar]\nmeasurements_per_step = 12\n[lidar]\n"
                   "scans_per_step = 6\n[camera]\nframes_per_step = 3\n")
     axis = "[sweep]\nbase = \"small.toml\"\n[[axis]]\nkey = \"fog.extinction_per_km\"\nvalues = "
     forward = write("forward.toml", axis + "[150.0, 300.0, 600.0, 900.0, 1500.0, 2500.0]\n")
@@ -159,7 +159,7 @@ base = "radar_only.toml"
     # before is reused (committed by its resolved scenario, not its index) and the tables are a
     # fresh sweep's byte for byte.
     grid = ("[sweep]\nbase = \"small.toml\"\n[[axis]]\nkey = \"fog.extinction_per_km\"\n"
-            "values = {}\n[[axis]]\nkey = \"processing.cfar.training_cells\"\nvalues = [8, 16]\n")
+            "values = {}\n[[axis]]\nkey = \"radar.processing.cfar.training_cells\"\nvalues = [8, 16]\n")
     before = write("before.toml", grid.format("[300.0, 900.0]"))
     extended = write("extended.toml", grid.format("[300.0, 600.0, 900.0]"))
     grown, kept = os.path.join(work, "grown"), os.path.join(work, "kept")
@@ -182,7 +182,7 @@ base = "radar_only.toml"
         with open(os.path.join(kept, "points", point["point"], "scenario.toml")) as f:
             text = f.read()
         check(f"extinction_per_km = {point['fog.extinction_per_km']}\n" in text and
-              f"training_cells = {point['processing.cfar.training_cells']}\n" in text,
+              f"training_cells = {point['radar.processing.cfar.training_cells']}\n" in text,
               f"points/{point['point']}/scenario.toml is another point's")
     # Resumed without --keep-points: the result sets of points that moved are removed, not left
     # under another point's index (points 0 and 1 stayed where they were).
@@ -198,7 +198,7 @@ base = "radar_only.toml"
 base = "small.toml"
 [uncertain]
 setups = 3
-[uncertain.keys."target.sensor_height_m"]
+[uncertain.keys."radar.height_m"]
 distribution = "discrete"
 values = [0.5]
 [uncertain.keys."target.floor_reflection_coefficient"]

@@ -67,7 +67,7 @@ with tempfile.TemporaryDirectory() as work:
             f.write(text)
         return path
 
-    write("small.toml", "[experiment]\nmeasurements_per_step = 12\n[lidar]\n"
+    write("small.toml", "[radar]\nmeasurements_per_step = 12\n[lidar]\n"
           "scans_per_step = 6\n[camera]\nframes_per_step = 3\n")
 
     # One axis: comparison.svg and limits.svg as a line plot.
@@ -158,7 +158,7 @@ with tempfile.TemporaryDirectory() as work:
 base = "small.toml"
 [uncertain]
 setups = 3
-[uncertain.keys."target.sensor_height_m"]
+[uncertain.keys."radar.height_m"]
 distribution = "uniform"
 low = 0.45
 high = 0.55

@@ -58,7 +58,7 @@ with tempfile.TemporaryDirectory() as work:
 
     # Points of unequal cost (the camera's frames and the lidar's scans vary with the axis), so the
     # queue's order differs from the points' order.
-    write("small.toml", "[experiment]\nmeasurements_per_step = 12\n[lidar]\nscans_per_step = 6\n"
+    write("small.toml", "[radar]\nmeasurements_per_step = 12\n[lidar]\nscans_per_step = 6\n"
           "[camera]\nframes_per_step = 3\n")
     sweep_file = write("sweep.toml", "[sweep]\nbase = \"small.toml\"\n[[axis]]\n"
                        "key = \"fog.extinction_per_km\"\n"
@@ -133,7 +133,7 @@ with tempfile.TemporaryDirectory() as work:
 
         # A worker killed once a point is committed: the job ends (the launcher takes about a
         # second to stop rank 0, so these points are slower); --resume on MPI finishes it.
-        write("slow.toml", "[experiment]\nmeasurements_per_step = 60\n[lidar]\nscans_per_step = 6\n"
+        write("slow.toml", "[radar]\nmeasurements_per_step = 60\n[lidar]\nscans_per_step = 6\n"
               "[camera]\nframes_per_step = 3\n")
         with open(sweep_file) as f:
             slow_file = write("slow_sweep.toml", f.read().replace("small.toml", "slow.toml"))

@@ -37,6 +37,14 @@ class InvalidParameter : public std::invalid_argument {
   InputLocation location_;
 };
 
+// `text` with every key name under section `from` ("radar.", at the start of a name: not after a
+// letter, digit, '_' or '.') moved under `to` ("radar_24."): a second sensor of a kind states its
+// keys, written for the kind's own section, under its own.
+std::string with_section_renamed(std::string_view text, std::string_view from, std::string_view to);
+// `e` with its field and message so renamed, its location kept.
+InvalidParameter with_section_renamed(const InvalidParameter& e, std::string_view from,
+                                      std::string_view to);
+
 // A number as bad-input messages write it: ten significant digits, "1e+09"; NaN and the
 // infinities as TOML and the command line spell them ("nan", "inf", "-inf"), not as a stream does.
 std::string message_number(double value);

@@ -426,6 +426,18 @@ class KeyTable {
   void include(KeyTable<Sub>&& table, Projection project) {
     for (Key<Sub>& sub : table.keys_) keys_.push_back(lift(std::move(sub), project));
   }
+  // The table with its keys under section `from` ("radar.") moved under `to` ("radar_24."): their
+  // names, texts and messages (with_section_renamed); the keys elsewhere are left out. A second
+  // sensor of a kind takes the kind's keys so.
+  KeyTable renamed(std::string_view from, std::string_view to) const {
+    KeyTable out(prefix_);
+    for (const Key<P>& key : keys_) {
+      if (!std::string_view(key.name).starts_with(from)) continue;
+      out.keys_.push_back(renamed_key(key, std::string(from), std::string(to)));
+    }
+    return out;
+  }
+
   // Appends `table`'s keys (over P, already named in full) as they are.
   void append(KeyTable&& table) {
     keys_.insert(keys_.end(), std::make_move_iterator(table.keys_.begin()),
@@ -445,6 +457,47 @@ class KeyTable {
 
   template <class Sub>
   friend class KeyTable;
+
+  // `f` rethrowing its InvalidParameter renamed.
+  template <class R, class... A>
+  static void rename_errors(std::function<R(A...)>& f, const std::string& from,
+                            const std::string& to) {
+    if (!f) return;
+    f = [f = std::move(f), from, to](A... a) -> R {
+      try {
+        return f(std::forward<A>(a)...);
+      } catch (const InvalidParameter& e) {
+        throw with_section_renamed(e, from, to);
+      }
+    };
+  }
+
+  static Key<P> renamed_key(Key<P> key, const std::string& from, const std::string& to) {
+    key.name = with_section_renamed(key.name, from, to);
+    key.allowed = with_section_renamed(key.allowed, from, to);
+    key.meaning = with_section_renamed(key.meaning, from, to);
+    key.applies_text = with_section_renamed(key.applies_text, from, to);
+    rename_errors(key.set_number, from, to);
+    rename_errors(key.set_integer, from, to);
+    rename_errors(key.set_boolean, from, to);
+    rename_errors(key.set_text, from, to);
+    rename_errors(key.set_list, from, to);
+    rename_errors(key.set_indices, from, to);
+    rename_errors(key.array_resize, from, to);
+    rename_errors(key.check, from, to);
+    rename_errors(key.cross_check, from, to);
+    if (key.array_element) {
+      key.array_element = [f = std::move(key.array_element), from, to](std::size_t i,
+                                                                       KeyTable<P>& out) {
+        KeyTable<P> element;
+        f(i, element);
+        KeyTable<P> moved = element.renamed(from, to);
+        out.keys_.insert(out.keys_.end(), std::make_move_iterator(moved.keys_.begin()),
+                         std::make_move_iterator(moved.keys_.end()));
+      };
+    }
+    return key;
+  }
 
   template <class Sub, class Projection>
   static Key<P> lift(Key<Sub> sub, Projection project) {

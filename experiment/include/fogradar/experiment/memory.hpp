@@ -46,7 +46,7 @@ std::size_t default_memory_limit_bytes();
 // Throws InvalidParameter, when estimate_peak_memory(scenario, requested_threads) exceeds
 // limit_bytes, naming the estimate, the limit, --threads and each running sensor's part with its
 // keys and values (e.g. the radar's radar.samples_per_chirp, radar.chirps_per_frame and
-// experiment.measurements_per_step). Its field is the key of the largest part.
+// radar.measurements_per_step). Its field is the key of the largest part.
 void require_memory_within(const Scenario& scenario, unsigned requested_threads,
                            std::size_t limit_bytes);
 

@@ -67,9 +67,9 @@ RunsEstimate estimate_runs(const std::vector<const Scenario*>& runs, unsigned re
 // Throws InvalidParameter, when estimate_run_time(scenario, requested_threads) exceeds
 // limit_seconds, naming the estimate, --time-limit and each running sensor's part with its keys and
 // values. Its field is the key that dominates: when a sensor's set-up is the largest part, its
-// set-up's key (processing.cfar.threshold_design); else, of the sensor whose items cost most, the
-// key of its item size when one of its items alone exceeds the limit (lidar.sample_interval_ns),
-// else that of its item count (lidar.scans_per_step).
+// set-up's key (radar.processing.cfar.threshold_design); else, of the sensor whose items cost most,
+// the key of its item size when one of its items alone exceeds the limit
+// (lidar.sample_interval_ns), else that of its item count (lidar.scans_per_step).
 void require_time_within(const Scenario& scenario, unsigned requested_threads,
                          double limit_seconds);
 

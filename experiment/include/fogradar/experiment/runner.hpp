@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -23,9 +24,11 @@
 
 namespace fogradar::experiment {
 
-// One sensor of a run, as experiment.sensors names it: its kind, configured for the scenario, made,
-// and its run.
+// One sensor instance of a run, as experiment.sensors names it: its name and random streams' key,
+// its kind, configured for the scenario, made, and its run.
 struct SensorRunEntry {
+  std::string name;
+  std::uint64_t stream_key = 0;
   std::shared_ptr<const sensor::SensorKind> kind;
   std::shared_ptr<const sensor::ConfiguredSensor> configured;
   std::shared_ptr<const sensor::Sensor> sensor;

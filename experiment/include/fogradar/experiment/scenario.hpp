@@ -1,10 +1,11 @@
 // A scenario: everything one run of the study's methodology needs, as read from a TOML file: the
-// chamber ([chamber]), its fog ([fog]), the methodology ([experiment]) and every registered
-// sensor's own sections (the radar's [radar], [processing], [target]; [lidar]; [camera]), each
-// sensor's parameters read and written by the keys it declares (sensor/sensor.hpp,
-// core/keys.hpp). Keys carry their units in their names; docs/scenario.md lists them with
-// defaults and ranges (`fogradar scenario --keys`). The paper scenario (examples/paper.toml) is
-// compiled in and is the base every scenario file overrides.
+// world every sensor sees (the chamber [chamber], its fog [fog], the target [target]), the
+// methodology ([experiment]) and each sensor instance's own section ([radar], [lidar], [camera],
+// and any further instance of a kind, `[radar_24] kind = "radar"`), each instance's parameters read
+// and written by the keys its kind declares (sensor/sensor.hpp, core/keys.hpp). Keys carry their
+// units in their names; docs/scenario.md lists them with defaults and ranges (`fogradar scenario
+// --keys`). The paper scenario (examples/paper.toml) is compiled in and is the base every scenario
+// file overrides.
 #pragma once
 
 #include <cstddef>
@@ -46,11 +47,10 @@ using SwitchingOrder = std::variant<SwitchingFrom, std::vector<std::size_t>>;
 std::vector<std::size_t> switching_sequence(const SwitchingOrder& order, std::size_t layer_count);
 
 struct ExperimentSpec {
-  // Which sensors run, by name (experiment.sensors): non-empty, no repeats, each registered; each
-  // sees the same chamber, and their results are reported in this order. Scenario's constructor
-  // names every registered sensor.
+  // Which sensor instances run, by name (experiment.sensors): non-empty, no repeats, each an
+  // instance of the scenario; each sees the same chamber, and their results are reported in this
+  // order. Scenario's constructor names every registered kind's instance.
   std::vector<std::string> sensors;
-  std::size_t measurements_per_step = 200;
   // Steps k = 0 .. max_active_layers; none given: every layer of the chamber (Scenario::steps).
   std::optional<std::size_t> max_active_layers;
   SwitchingOrder switching_order = SwitchingFrom::sensor;
@@ -63,9 +63,12 @@ struct ScenarioKeys;
 const ScenarioKeys& keys_of(const Scenario& scenario);
 }  // namespace detail
 
-// One registered sensor's parameters (its own struct, sensor::params_of); copies copy them.
+// One sensor instance: its name, its kind and its parameters (the kind's own struct,
+// sensor::params_of); copies copy them. The instance named after its kind ("radar") is the kind's
+// own, whose section is the kind's; any other ("radar_24") has a section of its own with the kind's
+// keys under it.
 struct SensorSetting {
-  SensorSetting(std::shared_ptr<const sensor::SensorKind> of_kind,
+  SensorSetting(std::string instance_name, std::shared_ptr<const sensor::SensorKind> of_kind,
                 std::unique_ptr<sensor::Params> values);
   SensorSetting(const SensorSetting& other);
   SensorSetting& operator=(const SensorSetting& other);
@@ -73,9 +76,25 @@ struct SensorSetting {
   SensorSetting& operator=(SensorSetting&&) noexcept = default;
   ~SensorSetting() = default;
 
+  // Its random streams' key: the kind's for the kind's own instance, so that its numbers do not
+  // depend on which other instances exist; for another, one made from its name.
+  std::uint64_t stream_key() const;
+  bool is_kinds_own() const { return name == kind->name(); }
+
+  std::string name;
   std::shared_ptr<const sensor::SensorKind> kind;
   std::unique_ptr<sensor::Params> params;
 };
+
+// The rule for a sensor instance's name, as messages state it.
+inline constexpr std::string_view instance_name_rule =
+    "a name of lower-case letters, digits and '_' that starts with a letter and is no other "
+    "section's";
+
+// The instance configured for `context` (SensorKind::configure), its messages naming its own keys
+// ("radar_24.samples_per_chirp" where the kind's name "radar.samples_per_chirp").
+std::shared_ptr<const sensor::ConfiguredSensor> configure_instance(const SensorSetting& setting,
+                                                                   const sensor::Context& context);
 
 struct Scenario {
   // Every sensor of `registry` at its defaults, each of them running.
@@ -84,12 +103,20 @@ struct Scenario {
   ChamberLayout chamber;
   propagation::FogSpec fog;
   ExperimentSpec experiment;
-  // Every registered sensor, in the registry's order; fixed by the constructor (the scenario's keys
-  // are made for them).
+  // The world's target: its floor, motion and water film ([target]), seen by every sensor.
+  sensor::TargetWorld target;
+  // Every sensor instance: the registered kinds' own, in the registry's order, then those
+  // add_sensor() added. Change the list only through add_sensor (the scenario's keys are made for
+  // it).
   std::vector<SensorSetting> sensors;
 
-  // The parameters of the sensor named `name`, as its own struct (throws std::bad_cast for another
-  // struct, InvalidParameter for an unregistered name).
+  // Adds an instance `name` of the kind named `kind`, at the kind's defaults (not running until
+  // experiment.sensors names it). Throws InvalidParameter naming `key` for a name that breaks
+  // instance_name_rule or is taken, or a kind that is not registered.
+  void add_sensor(std::string_view name, std::string_view kind, std::string_view key);
+
+  // The parameters of the sensor instance named `name`, as its own struct (throws std::bad_cast
+  // for another struct, InvalidParameter for a name that is no instance).
   template <class Params>
   Params& params(std::string_view name) {
     return sensor::params_of<Params>(*setting(name).params);
@@ -104,7 +131,7 @@ struct Scenario {
   bool runs(std::string_view name) const;
   // Steps k = 0 .. experiment.max_active_layers, every layer of the chamber where it is not given.
   std::size_t steps() const;
-  // Throws InvalidParameter naming the scenario key (e.g. "processing.cfar.training_cells").
+  // Throws InvalidParameter naming the scenario key (e.g. "radar.processing.cfar.training_cells").
   void validate() const;
   propagation::ChamberSpec chamber_spec() const;
   // What every sensor is given besides its own keys.
@@ -112,8 +139,8 @@ struct Scenario {
   // The sensor named `name` configured for this scenario (SensorKind::configure: InvalidParameter
   // naming the key its parameters break, its own or the chamber's).
   std::shared_ptr<const sensor::ConfiguredSensor> configure(std::string_view name) const;
-  // Every key of the scenario, as the file lays them out: the first sensor's sections, then
-  // [chamber], [fog] and [experiment], then the other sensors' (the paper scenario's order).
+  // Every key of the scenario, as the file lays them out: the world's and the methodology's
+  // sections ([chamber], [fog], [target], [experiment]), then each sensor instance's.
   const KeyTable<Scenario>& keys() const;
 
  private:

@@ -13,6 +13,7 @@
 namespace fogradar::experiment {
 
 struct SensorOutcome {
+  std::string name;  // the instance's
   std::shared_ptr<const sensor::SensorKind> kind;
   std::shared_ptr<const sensor::SensorSummary> summary;
 };
@@ -25,7 +26,7 @@ struct ExperimentSummary {
   template <class Report>
   const Report& of(std::string_view name) const {
     for (const SensorOutcome& outcome : sensors) {
-      if (outcome.kind->name() == name) return dynamic_cast<const Report&>(*outcome.summary);
+      if (outcome.name == name) return dynamic_cast<const Report&>(*outcome.summary);
     }
     throw_invalid("experiment.sensors", name, "a sensor that ran");
   }

@@ -101,8 +101,8 @@ struct CfarConfig {
   unsigned effective_os_rank() const noexcept;
 };
 
-// The scenario keys of a CFAR under `prefix` ("processing.cfar."): kind, guard and training cells
-// per side, design P_fa, OS rank and threshold design.
+// The scenario keys of a CFAR under `prefix` ("radar.processing.cfar."): kind, guard and training
+// cells per side, design P_fa, OS rank and threshold design.
 KeyTable<CfarConfig> cfar_keys(std::string prefix);
 
 // Threshold factor alpha for the config's kind, N and design Pfa for independent cells (see the

@@ -67,13 +67,15 @@ struct RadarParams {
   Radome radome;
 
   // Throws InvalidParameter naming the scenario key (radar_param_keys: "radar.<field>",
-  // "processing.window", "processing.association_gate_m", "processing.cfar.<field>") and the
+  // "radar.processing.window", "radar.processing.association_gate_m",
+  // "radar.processing.cfar.<field>") and the
   // allowed range.
   void validate() const;
 };
 
-// The scenario keys of the radar and its processing chain: [radar], [radar.radome], [processing]
-// and [processing.cfar] (docs/scenario.md). thermal_noise is no key (tests switch it off).
+// The scenario keys of the radar and its processing chain: [radar], [radar.radome],
+// [radar.processing] and [radar.processing.cfar] (docs/scenario.md). thermal_noise is no key (tests
+// switch it off).
 KeyTable<RadarParams> radar_param_keys();
 
 // Everything the chain derives from RadarParams.

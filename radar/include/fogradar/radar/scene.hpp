@@ -64,7 +64,9 @@ struct Scene {
   double radome_two_way_transmittance = 1.0;
   double target_film_reflectance = 1.0;
 
-  void validate() const;  // names "target.<field>" / "target.centres[i].<field>"
+  // Names the key of a field a scenario sets ("radar.height_m", "target.micro_motion_std_m"), or
+  // "target.centres[i].<field>" for a centre.
+  void validate() const;
 };
 
 // One non-fluctuating centre on boresight at the sensor height, no micro-motion, no floor.

@@ -1,6 +1,6 @@
 // The radar as a sensor of the experiment (sensor/sensor.hpp): its parameters and
-// scenario keys ([radar], [processing], [processing.cfar], [target] and the fog clutter's
-// fog.clutter_scatterers_per_bin), one run on the chamber (the chain made once, one frame per
+// scenario keys ([radar] with [radar.processing], [radar.processing.cfar] and [radar.target]), one
+// run on the chamber (the chain made once, one frame per
 // item), and what experiment/ writes of it: radar_samples.csv, radar_summary.csv,
 // radar_summary.json, radar_rcs_boxplot.svg.
 #pragma once
@@ -27,9 +27,10 @@ struct SensorParams {
   TargetSpec target;
   // Random point scatterers per range bin that make up the fog clutter (Scene).
   unsigned clutter_scatterers_per_bin = 4;
+  std::size_t measurements_per_step = 200;  // the study's series: frames per step
 };
 
-// The keys of SensorParams: radar_param_keys(), target_keys() and fog.clutter_scatterers_per_bin.
+// The keys of SensorParams: radar_param_keys(), target_keys() and radar.clutter_scatterers_per_bin.
 KeyTable<SensorParams> sensor_keys();
 
 // The radar's kind, for the registry.

@@ -41,12 +41,26 @@
 
 namespace fogradar::sensor {
 
-// What a scenario gives every sensor besides its own keys: the chamber, the methodology's steps
-// (k = 0 .. steps - 1 active layers, switched on in the switching order) and the seed.
+// The target and the floor as the world has them ([target]), the same for every sensor: what each
+// sensor's own view of the target (its model, RCS or reflectivity) does not decide.
+struct TargetWorld {
+  bool floor_multipath = true;                 // the floor under sensor and target reflects
+  double floor_reflection_coefficient = -0.7;  // real amplitude coefficient, every angle
+  double micro_motion_std_m = 0.2e-3;          // rms line-of-sight jitter per measurement
+  double radial_velocity_m_per_s = 0.0;        // the whole target's, + receding
+  double water_film_m = 0.0;                   // water film on the target's metal surfaces
+};
+
+// The keys of [target] over the world's target.
+KeyTable<TargetWorld> target_world_keys();
+
+// What a scenario gives every sensor besides its own keys: the chamber and the target in it, the
+// methodology's steps (k = 0 .. steps - 1 active layers, switched on in the switching order) and
+// the seed.
 struct Context {
   propagation::ChamberSpec chamber;
+  TargetWorld target;
   std::size_t steps = 5;
-  std::size_t measurements_per_step = 200;  // experiment.measurements_per_step: the study's series
   std::uint64_t seed = 1;
   // The layer indices (0 at the sensor) in the order they are switched on; empty: from the sensor,
   // the study's order.
@@ -102,7 +116,7 @@ struct SetupTime {
   double run_seconds = 0.0;     // each run: begin_run, every step prepared, summarize
   double report_seconds = 0.0;  // a result set (`fogradar run`): its fog reports and result files
   std::string detail;           // what make_seconds is made of, with its keys and values
-  std::string key;              // the key that sizes it most ("processing.cfar.threshold_design")
+  std::string key;  // the key that sizes it most ("radar.processing.cfar.threshold_design")
 };
 
 enum class Band { radio, optical };
