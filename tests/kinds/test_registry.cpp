@@ -3,12 +3,14 @@
 // tests/CMakeLists.txt, from which the build generates kinds_registry(), as it generates
 // standard_registry() from the top CMakeLists.txt's. It runs through run_experiment on the same
 // chamber with them; it gets its keys read, refused and written back, its table, files, benchmark
-// curve and limit, and the three others' files do not change by a byte. Nothing in experiment/ or
-// cli/ knows it.
+// curve and limit, its result set written and replaced, and the three others' files do not change
+// by a byte. Nothing in experiment/ or cli/ knows it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -137,6 +139,32 @@ TEST(Registry, AKindOfTheTestTreesListRunsBesideTheStudysThree) {
   }
   // The standard registry does not know it.
   EXPECT_THROW(parse_scenario(four_toml, "four.toml"), InvalidParameter);
+}
+
+// The result set as `fogradar run` writes it: the run's files, the range finder's among them, go
+// into the output directory in one step; a second run replaces them, its files being known as the
+// range finder's (owns_file_name), where a file no kind owns is refused and left in place.
+TEST(Registry, ItsResultFilesAreWrittenAndReplacedInTheOutputDirectory) {
+  namespace fs = std::filesystem;
+  const SensorRegistry registry = four_sensors();
+  Scenario s = parse_scenario(four_toml, "four.toml", registry);
+  s.experiment.sensors = {"camera", "rangefinder"};
+  const fs::path dir = fs::path(::testing::TempDir()) / "fogradar_kinds_result_set";
+  fs::remove_all(dir);
+  const auto write = [&] {
+    OutputDirectory out(dir, result_file_names(s));
+    return out.replace(
+        result_files(s, summarize(run_experiment(s, {.threads = 2, .progress = {}}))));
+  };
+  ASSERT_TRUE(write());
+  ASSERT_TRUE(fs::exists(dir / "rangefinder_shots.csv"));
+  ASSERT_TRUE(fs::exists(dir / "rangefinder_summary.json"));
+  EXPECT_TRUE(write());  // its own files are replaced
+  EXPECT_TRUE(fs::exists(dir / "rangefinder_shots.csv"));
+  std::ofstream(dir / "rangefinder_notes.txt") << "the user's\n";
+  EXPECT_THROW(write(), InvalidParameter);
+  EXPECT_TRUE(fs::exists(dir / "rangefinder_notes.txt"));
+  fs::remove_all(dir);
 }
 
 // Adding a sensor never changes another's numbers: the three study sensors' files are the same
