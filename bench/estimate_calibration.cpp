@@ -29,6 +29,7 @@
 #include "fogradar/lidar/sensor.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/radar/cfar_design.hpp"
+#include "fogradar/radar/costs.hpp"
 #include "fogradar/radar/measurement.hpp"
 #include "fogradar/radar/noise_correlation.hpp"
 #include "fogradar/radar/sensor.hpp"

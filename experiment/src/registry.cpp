@@ -2,10 +2,7 @@
 
 #include <set>
 
-#include "fogradar/camera/sensor.hpp"
 #include "fogradar/core/error.hpp"
-#include "fogradar/lidar/sensor.hpp"
-#include "fogradar/radar/sensor.hpp"
 
 namespace fogradar::experiment {
 
@@ -38,10 +35,6 @@ std::vector<std::string> SensorRegistry::names() const {
   std::vector<std::string> names;
   for (const auto& kind : kinds_) names.emplace_back(kind->name());
   return names;
-}
-
-SensorRegistry standard_registry() {
-  return SensorRegistry({radar::sensor_kind(), lidar::sensor_kind(), camera::sensor_kind()});
 }
 
 }  // namespace fogradar::experiment

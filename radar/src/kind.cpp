@@ -14,8 +14,10 @@
 #include "fogradar/core/error.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/propagation/water.hpp"
+#include "fogradar/radar/costs.hpp"
 #include "fogradar/radar/scene.hpp"
 #include "fogradar/radar/sensor.hpp"
+#include "radar_sensor.hpp"
 
 namespace fogradar::radar {
 namespace {

@@ -1,5 +1,3 @@
-#include "fogradar/radar/sensor.hpp"
-
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -16,6 +14,7 @@
 #include "fogradar/radar/outputs.hpp"
 #include "fogradar/radar/scene.hpp"
 #include "fogradar/stats/format.hpp"
+#include "radar_sensor.hpp"
 
 namespace fogradar::radar {
 namespace {
@@ -27,15 +26,17 @@ std::string counted(std::size_t count, std::string_view noun) {
 
 class Report : public RadarReport {
  public:
-  Report(const SensorParams& params, const sensor::Context& context,
+  Report(std::shared_ptr<const RadarSensor> sensor,
          std::shared_ptr<const std::vector<StepResult>> steps, RadarSummary summary)
-      : params_(params),
-        context_(context),
-        steps_(std::move(steps)),
-        summary_(std::move(summary)) {}
+      : sensor_(std::move(sensor)), steps_(std::move(steps)), summary_(std::move(summary)) {}
 
   const RadarSummary& summary() const override { return summary_; }
   const std::vector<StepResult>& steps() const override { return *steps_; }
+  const RadarChain& chain() const override { return sensor_->chain(); }
+  const Scene& scene() const override { return sensor_->scene(); }
+  const propagation::Chamber& chamber() const override { return sensor_->chamber(); }
+  double radome_two_way_loss_db() const override { return sensor_->radome_two_way_loss_db(); }
+  double target_film_loss_db() const override { return sensor_->target_film_loss_db(); }
 
   sensor::Verdict verdict() const override {
     sensor::Verdict v{.layers_to_failure = summary_.sensor_limit_layers,
@@ -65,7 +66,8 @@ class Report : public RadarReport {
             {"radar_detections.csv", detections_csv(*steps_)},
             {"radar_summary.csv", summary_csv()},
             {"radar_summary.json", json().dump(2) + '\n'},
-            {"radar_rcs_boxplot.svg", rcs_boxplot_svg(params_, context_, summary_)}};
+            {"radar_rcs_boxplot.svg",
+             rcs_boxplot_svg(sensor_->params(), sensor_->context(), summary_)}};
   }
 
   // The median target RCS as a linear power ratio to clear weather: 10^((m_k - m_0) / 10); 0 at a
@@ -100,7 +102,7 @@ class Report : public RadarReport {
       std::string w = "the radar's ADC clipped ";
       w += percent_of_samples(static_cast<double>(clipped) / static_cast<double>(samples));
       w += " % of the samples (radar.adc_full_scale_dbm = ";
-      w += stats::format_number(params_.radar.adc_full_scale_dbm, 0);
+      w += stats::format_number(sensor_->params().radar.adc_full_scale_dbm, 0);
       w += "): its RCS reads low";
       found.push_back(std::move(w));
     }
@@ -109,8 +111,7 @@ class Report : public RadarReport {
   }
 
  private:
-  SensorParams params_;
-  sensor::Context context_;
+  std::shared_ptr<const RadarSensor> sensor_;
   std::shared_ptr<const std::vector<StepResult>> steps_;
   RadarSummary summary_;
 };
@@ -246,8 +247,7 @@ std::unique_ptr<const sensor::SensorSummary> RadarRun::summarize() const {
                                           sensor_->expected_false_alarm_cells_per_frame());
   summary.velocity_fold =
       velocity_fold(sensor_->context().target.radial_velocity_m_per_s, sensor_->chain().derived());
-  return std::make_unique<Report>(sensor_->params(), sensor_->context(), steps_,
-                                  std::move(summary));
+  return std::make_unique<Report>(sensor_, steps_, std::move(summary));
 }
 
 }  // namespace fogradar::radar

@@ -8,7 +8,7 @@
 
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/radar/cfar_design.hpp"
-#include "fogradar/radar/sensor.hpp"
+#include "fogradar/radar/costs.hpp"
 #include "fogradar/radar/window.hpp"
 
 namespace fogradar::radar {

@@ -9,6 +9,7 @@
 #include "fogradar/experiment/memory.hpp"
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/lidar/outputs.hpp"
+#include "fogradar/radar/costs.hpp"
 #include "fogradar/radar/scene.hpp"
 #include "fogradar/radar/sensor.hpp"
 #include "sensors.hpp"

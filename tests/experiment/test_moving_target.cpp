@@ -44,15 +44,13 @@ Scenario moving(double velocity_m_per_s, double chirp_s) {
   return s;
 }
 
-const std::vector<radar::StepResult>& steps_of(const ExperimentResult& r) {
-  return radar_run(r).steps();
-}
+std::vector<radar::StepResult> steps_of(const ExperimentResult& r) { return radar_run(r)->steps(); }
 
 TEST(MovingTarget, VelocityAndCoupledRangeReadBack) {
   const double chirp_s = 25.6e-6;
   const ExperimentResult still =
       run_experiment(moving(0.0, chirp_s), {.threads = 2, .progress = {}});
-  const radar::RadarDerived d = radar_run(still).sensor().chain().derived();
+  const radar::RadarDerived d = radar_run(still)->chain().derived();
   const double v_bin = d.velocity_resolution_m_per_s;
   validate({.id = "experiment.moving_target.max_unambiguous_velocity.25.6us",
             .group = kGroup,
@@ -81,10 +79,11 @@ TEST(MovingTarget, VelocityAndCoupledRangeReadBack) {
         2.0 * v / d.wavelength_m * speed_of_light_m_per_s / (2.0 * d.chirp_slope_hz_per_s);
     std::size_t compared = 0;
     double farthest_m_per_s = v;  // the measured velocity farthest from v, of every measurement
-    for (std::size_t k = 0; k < steps_of(run).size(); ++k) {
-      for (std::size_t i = 0; i < steps_of(run)[k].records.size(); ++i) {
-        const radar::MeasurementRecord& m = steps_of(run)[k].records[i];
-        const radar::MeasurementRecord& s = steps_of(still)[k].records[i];
+    const std::vector<radar::StepResult> moved = steps_of(run), rest = steps_of(still);
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      for (std::size_t i = 0; i < moved[k].records.size(); ++i) {
+        const radar::MeasurementRecord& m = moved[k].records[i];
+        const radar::MeasurementRecord& s = rest[k].records[i];
         ASSERT_TRUE(m.detected && s.detected) << v << " m/s, step " << k << ", " << i;
         if (std::abs(m.velocity_m_per_s - v) >= std::abs(farthest_m_per_s - v))
           farthest_m_per_s = m.velocity_m_per_s;
@@ -119,7 +118,7 @@ TEST(MovingTarget, VelocityAndCoupledRangeReadBack) {
 TEST(MovingTarget, BeyondTheUnambiguousVelocityTheEstimateFolds) {
   const ExperimentResult run =
       run_experiment(moving(25.0, 51.2e-6), {.threads = 2, .progress = {}});
-  const radar::RadarDerived d = radar_run(run).sensor().chain().derived();
+  const radar::RadarDerived d = radar_run(run)->chain().derived();
   const double folded = 25.0 - 2.0 * d.max_unambiguous_velocity_m_per_s;
   validate({.id = "experiment.moving_target.folded_velocity.25mps.51.2us",
             .group = kGroup,
@@ -183,7 +182,7 @@ TEST(MovingTarget, AVelocityBeyondTheUnambiguousOneIsWarned) {
       2.0 * (25.0 - folded) / lambda_m * speed_of_light_m_per_s / (2.0 * slope_hz_per_s);
 
   const ExperimentResult run = run_experiment(scenario, {.threads = 2, .progress = {}});
-  const auto summary = radar_run(run).summarize();
+  const auto summary = radar_run(run);
   const std::vector<std::string> warnings = summary->warnings();
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("target.radial_velocity_m_per_s"), std::string::npos) << warnings[0];
@@ -225,8 +224,7 @@ TEST(MovingTarget, AVelocityBeyondTheUnambiguousOneIsWarned) {
     Scenario inside = moving(velocity, chirp_s);
     inside.target.radial_velocity_m_per_s = velocity;
     inside.params<fogradar::radar::SensorParams>("radar").measurements_per_step = 2;
-    const auto quiet =
-        radar_run(run_experiment(inside, {.threads = 2, .progress = {}})).summarize();
+    const auto quiet = radar_run(run_experiment(inside, {.threads = 2, .progress = {}}));
     EXPECT_TRUE(quiet->warnings().empty()) << velocity << " m/s: " << quiet->warnings()[0];
     EXPECT_EQ(quiet->table().find("velocity folded"), std::string::npos) << velocity;
     EXPECT_TRUE(quiet->json().at("velocity_fold").is_null()) << velocity;

@@ -265,21 +265,21 @@ TEST(StopInsideAnItem, ARadarFrameSeesTheStop) {
   radar_of(s).radar.chirps_per_frame = 16;
   const Simulation simulation(s);
   const SensorRunEntry entry = simulation.begin_run("radar");
-  const radar::RadarRun& run = dynamic_cast<const radar::RadarRun&>(*entry.run);
-  const radar::RadarSensor& sensor = run.sensor();
+  const std::shared_ptr<const sensor::SensorSummary> summary = entry.run->summarize();
+  const radar::RadarReport& sensor = dynamic_cast<const radar::RadarReport&>(*summary);
   radar::MeasurementWorkspace ws = sensor.chain().make_workspace();
   radar::Measurement with_token, without;
   std::atomic<bool> stop{true};
   EXPECT_THROW((void)sensor.chain().make_workspace(StopToken(&stop)), Stopped);
   RandomStream first(7);
-  EXPECT_THROW(sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), first, ws,
-                                      with_token, radar::FrameTaps{}, StopToken(&stop)),
+  EXPECT_THROW(sensor.chain().measure(sensor.scene(), sensor.chamber(), s.context().active(4),
+                                      first, ws, with_token, radar::FrameTaps{}, StopToken(&stop)),
                Stopped);
   stop = false;
   RandomStream a(7), b(7);
-  sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), a, ws, with_token,
+  sensor.chain().measure(sensor.scene(), sensor.chamber(), s.context().active(4), a, ws, with_token,
                          radar::FrameTaps{}, StopToken(&stop));
-  sensor.chain().measure(sensor.scene(), sensor.chamber(), sensor.active(4), b, ws, without);
+  sensor.chain().measure(sensor.scene(), sensor.chamber(), s.context().active(4), b, ws, without);
   ASSERT_EQ(with_token.detections.size(), without.detections.size());
   for (std::size_t d = 0; d < without.detections.size(); ++d) {
     EXPECT_EQ(with_token.detections[d].range_m, without.detections[d].range_m);

@@ -37,8 +37,9 @@ TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
   const Scenario s = small_scenario();
   const ExperimentResult one_run = run_experiment(s, {.threads = 1, .progress = {}});
   const ExperimentResult three_run = run_experiment(s, {.threads = 3, .progress = {}});
-  const std::vector<StepResult>& one = radar_run(one_run).steps();
-  const std::vector<StepResult>& three = radar_run(three_run).steps();
+  const auto one_report = radar_run(one_run), three_report = radar_run(three_run);
+  const std::vector<StepResult>& one = one_report->steps();
+  const std::vector<StepResult>& three = three_report->steps();
   ASSERT_EQ(one.size(), 5u);
   for (std::size_t k = 0; k < one.size(); ++k) {
     for (std::size_t i = 0; i < one[k].records.size(); ++i) {
@@ -57,7 +58,7 @@ TEST(Runner, SameSeedSameResultsForAnyThreadCount) {
   Scenario other_seed = s;
   other_seed.experiment.seed = 2;
   const ExperimentResult other = run_experiment(other_seed, {.threads = 2, .progress = {}});
-  EXPECT_NE(radar_run(other).steps()[0].records[0].rcs_dbsm, one[0].records[0].rcs_dbsm);
+  EXPECT_NE(radar_run(other)->steps()[0].records[0].rcs_dbsm, one[0].records[0].rcs_dbsm);
 }
 
 // A non-fluctuating 10 dBsm point target at the chamber's 10 m, no multipath, no micro-motion:
@@ -198,8 +199,9 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   radar_of(s).radar.tx_power_dbm = -30.0;
   radar_of(s).radar.cfar.false_alarm_probability = 1e-2;
   const ExperimentResult run = run_experiment(s, {.threads = 2, .progress = {}});
-  EXPECT_DOUBLE_EQ(radar_run(run).sensor().expected_false_alarm_cells_per_frame(), 1e-2 * 16 * 512);
-  const std::vector<StepResult>& steps = radar_run(run).steps();
+  const auto report = radar_run(run);
+  EXPECT_DOUBLE_EQ(report->summary().expected_false_alarm_cells_per_frame, 1e-2 * 16 * 512);
+  const std::vector<StepResult>& steps = report->steps();
   std::size_t associations = 0, false_alarms = 0;
   for (const StepResult& step : steps) {
     for (const MeasurementRecord& r : step.records) {
@@ -281,7 +283,8 @@ TEST(Runner, StopFlagEndsTheRunWithoutAResult) {
 
   stop = false;
   const ExperimentResult full = run_experiment(s, {.threads = 2, .progress = {}, .stop = &stop});
-  const std::vector<StepResult>& steps = radar_run(full).steps();
+  const auto report = radar_run(full);
+  const std::vector<StepResult>& steps = report->steps();
   EXPECT_EQ(steps.size() * steps.front().records.size(),
             s.steps() * s.params<fogradar::radar::SensorParams>("radar").measurements_per_step);
 }

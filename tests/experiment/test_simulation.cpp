@@ -35,8 +35,9 @@ TEST(Simulation, RunsRepeatBitForBit) {
   const Simulation simulation(small_scenario());
   const ExperimentResult first = simulation.run({.threads = 2, .progress = {}});
   const ExperimentResult second = simulation.run({.threads = 1, .progress = {}});
-  const std::vector<radar::StepResult>& a = radar_run(first).steps();
-  const std::vector<radar::StepResult>& b = radar_run(second).steps();
+  const auto first_report = radar_run(first), second_report = radar_run(second);
+  const std::vector<radar::StepResult>& a = first_report->steps();
+  const std::vector<radar::StepResult>& b = second_report->steps();
   ASSERT_EQ(a.size(), 5u);
   for (std::size_t k = 0; k < a.size(); ++k) {
     for (std::size_t i = 0; i < a[k].records.size(); ++i) {
@@ -46,13 +47,14 @@ TEST(Simulation, RunsRepeatBitForBit) {
   }
   // The two runs' records are their own: the sensor is shared, the storage is not.
   EXPECT_NE(&a, &b);
-  EXPECT_EQ(&radar_run(first).sensor(), &radar_run(second).sensor());
+  EXPECT_EQ(&first_report->chain(), &second_report->chain());
 }
 
 TEST(Simulation, AnItemAloneIsTheRunsItemWithItsRawData) {
   const Simulation simulation(small_scenario());
   const ExperimentResult result = simulation.run();
-  const std::vector<radar::StepResult>& steps = radar_run(result).steps();
+  const auto report = radar_run(result);
+  const std::vector<radar::StepResult>& steps = report->steps();
   ItemRun items(simulation, "radar");
   EXPECT_EQ(items.steps(), 5u);
   EXPECT_EQ(items.items_per_step(), 6u);

@@ -25,6 +25,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <set>
 #include <string>
@@ -1011,15 +1012,26 @@ struct Airy {
   }
 };
 
-// The study's water-covered sensor and target through the scenario's keys (RadarSensor): a point
-// target of 10 dBsm at 10 m in the paper chamber, no fog switched on, thermal noise on. The films
-// take the fog's water index at 77 GHz (Liebe, 20 C). RadarSensor's losses equal Airy's closed
-// forms to 1e-9 dB (film only, no radome), and the median RCS of 20 measurements drops by the sum
-// of the losses within 0.02 dB: the wet and dry frames share their streams and differ by the
-// noise's effect alone, a power estimate at detection SNR rho scattering by sqrt(2 / rho)
+// The radar made through its kind (configure, make) and the report of a run begun on it, before any
+// measurement: the chain, scene, chamber and film losses the sensor was made with.
+std::shared_ptr<const RadarReport> made_radar(const SensorParams& params,
+                                              const sensor::Context& context) {
+  const std::shared_ptr<const sensor::Sensor> made =
+      sensor_kind()
+          ->configure(sensor::ParamsOf<SensorParams>(params), context)
+          ->make(test::segelstein_table(), StopToken());
+  return std::dynamic_pointer_cast<const RadarReport>(
+      std::shared_ptr<const sensor::SensorSummary>(made->begin_run()->summarize()));
+}
+
+// The study's water-covered sensor and target through the scenario's keys (the radar's kind): a
+// point target of 10 dBsm at 10 m in the paper chamber, no fog switched on, thermal noise on. The
+// films take the fog's water index at 77 GHz (Liebe, 20 C). The made radar's losses equal Airy's
+// closed forms to 1e-9 dB (film only, no radome), and the median RCS of 20 measurements drops by
+// the sum of the losses within 0.02 dB: the wet and dry frames share their streams and differ by
+// the noise's effect alone, a power estimate at detection SNR rho scattering by sqrt(2 / rho)
 // relative (0.011 dB at the 55 dB the test requires), the median of 20 frames by about 0.003 dB.
 TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
-  const propagation::SegelsteinTable& table = test::segelstein_table();
   sensor::Context context;
   context.chamber = paper_chamber_spec();
   context.steps = 1;
@@ -1037,7 +1049,7 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
   const Case cases[] = {{"radome_film_only", 0.0, 0.1e-3, 0.0},
                         {"target_film_only", 0.0, 0.0, 0.2e-3},
                         {"half_wave_radome_and_both_films", 1.1432e-3, 0.1e-3, 0.1e-3}};
-  const auto median_rcs_dbsm = [&](const RadarSensor& sensor, double* snr_db) {
+  const auto median_rcs_dbsm = [&](const RadarReport& sensor, double* snr_db) {
     const propagation::ActiveLayers none = context.active(0);
     MeasurementWorkspace ws = sensor.chain().make_workspace();
     Measurement m;
@@ -1054,7 +1066,8 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
     return 0.5 * (rcs[rcs.size() / 2 - 1] + rcs[rcs.size() / 2]);
   };
   double dry_snr_db = std::numeric_limits<double>::infinity();
-  const RadarSensor dry_sensor(dry, context, table);
+  const std::shared_ptr<const RadarReport> dry_made = made_radar(dry, context);
+  const RadarReport& dry_sensor = *dry_made;
   EXPECT_EQ(dry_sensor.radome_two_way_loss_db(), 0.0);
   EXPECT_EQ(dry_sensor.target_film_loss_db(), 0.0);
   const double dry_dbsm = median_rcs_dbsm(dry_sensor, &dry_snr_db);
@@ -1066,7 +1079,8 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
     wet.radar.radome.water_film_m = c.radome_film_m;
     sensor::Context wet_context = context;
     wet_context.target.water_film_m = c.target_film_m;
-    const RadarSensor sensor(wet, wet_context, table);
+    const std::shared_ptr<const RadarReport> made = made_radar(wet, wet_context);
+    const RadarReport& sensor = *made;
     const double loss_db = sensor.radome_two_way_loss_db() + sensor.target_film_loss_db();
     if (c.radome_m == 0.0) {
       EXPECT_NEAR(sensor.radome_two_way_loss_db(),
@@ -1119,16 +1133,15 @@ TEST(WaterFilm, LossesReachTheSummaryJsonAndTheLossColumn) {
   wet.measurements_per_step = 1;
   wet.radar.radome.water_film_m = 0.1e-3;
   context.target.water_film_m = 0.1e-3;
-  const auto sensor = std::make_shared<RadarSensor>(wet, context, test::segelstein_table());
-  const RadarRun run(sensor);
-  const std::unique_ptr<const sensor::SensorSummary> report = run.summarize();
+  const std::shared_ptr<const RadarReport> report = made_radar(wet, context);
+  const RadarReport* sensor = report.get();
   const nlohmann::json json = report->json();
   for (std::size_t k = 0; k < context.steps; ++k) {
     const nlohmann::json& step = json["steps"][k];
     EXPECT_EQ(step["radome_two_way_loss_db"].get<double>(), sensor->radome_two_way_loss_db());
     EXPECT_EQ(step["target_film_loss_db"].get<double>(), sensor->target_film_loss_db());
   }
-  const RadarSummary& summary = dynamic_cast<const RadarReport&>(*report).summary();
+  const RadarSummary& summary = report->summary();
   const double total_db = summary.steps[1].two_way_attenuation_db +
                           sensor->radome_two_way_loss_db() + sensor->target_film_loss_db();
   char cell[32];
@@ -1139,9 +1152,7 @@ TEST(WaterFilm, LossesReachTheSummaryJsonAndTheLossColumn) {
   // Dry: no such line.
   sensor::Context dry_context = context;
   dry_context.target.water_film_m = 0.0;
-  const auto dry =
-      std::make_shared<RadarSensor>(SensorParams{}, dry_context, test::segelstein_table());
-  EXPECT_EQ(RadarRun(dry).summarize()->table().find("water film"), std::string::npos);
+  EXPECT_EQ(made_radar(SensorParams{}, dry_context)->table().find("water film"), std::string::npos);
 }
 
 // Fog volume clutter. Derivation of the expected processed cell power (docs/radar.md, "Fog

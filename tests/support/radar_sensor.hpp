@@ -1,6 +1,8 @@
 // Typed access to the radar of a scenario and of a run's summary, for the tests.
 #pragma once
 
+#include <memory>
+
 #include "fogradar/experiment/runner.hpp"
 #include "fogradar/experiment/scenario.hpp"
 #include "fogradar/experiment/summary.hpp"
@@ -13,9 +15,11 @@ inline const radar::SensorParams& radar_of(const Scenario& s) {
   return s.params<radar::SensorParams>("radar");
 }
 
-// The radar's run: its chain and its records, step by step.
-inline const radar::RadarRun& radar_run(const ExperimentResult& r) {
-  return dynamic_cast<const radar::RadarRun&>(r.run("radar"));
+// The radar's report of a run (its run's summary): its records, step by step, and the radar as
+// made, its chain and scene.
+inline std::shared_ptr<const radar::RadarReport> radar_run(const ExperimentResult& r) {
+  return std::dynamic_pointer_cast<const radar::RadarReport>(
+      std::shared_ptr<const sensor::SensorSummary>(r.run("radar").summarize()));
 }
 
 inline const radar::RadarReport& radar_report(const ExperimentSummary& s) {

@@ -57,7 +57,7 @@ struct Scene {
   // one range bin to the radar is left out: the far-field radar equation (R^-4) does not hold there
   // (a 25 dBi antenna's far field starts at about 1 m at 77 GHz) and the radar cannot resolve it.
   unsigned clutter_scatterers_per_bin = 4;
-  // The water-covered sensor and target (RadarSensor makes them from [radar.radome] and
+  // The water-covered sensor and target (the made radar sets them from [radar.radome] and
   // [target] water_film_m): the power through the radome and its film, out and back, on every
   // path, fog clutter included; and the reflectance of the target's film on metal, on the target's
   // paths. 1: dry, no radome.
