@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
       cpu_s.push_back(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
     }
     const camera::CameraSummary summary = camera::summarize(camera.params(), steps);
-    std::printf("%s", camera::step_table(summary).c_str());
+    std::printf("%s", camera::summary_table(summary).c_str());
     std::printf("camera part (construction + %zu steps + summary), CPU time: median %.4f s\n",
                 steps.size(), median(cpu_s));
     std::printf(
@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
       const std::string folder = out_dir + "/" + reading.folder + "/";
       write_file(folder + "camera_histograms.svg", camera::histograms_svg(summary));
       write_file(folder + "camera_histograms.csv", camera::histograms_csv(summary));
-      write_file(folder + "camera_summary.csv", camera::summary_csv(summary));
+      write_file(folder + "camera_summary.csv", camera::step_table(summary).csv());
       write_file(folder + "camera_summary.json", camera::summary_json(summary).dump(2) + "\n");
     }
   }

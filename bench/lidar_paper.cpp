@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   const lidar::LidarSummary summary = lidar::summarize(sensor, steps, actives);
   const std::vector<std::pair<std::string, std::string>> files = {
       {"lidar_echoes.csv", lidar::lidar_echoes_csv(sensor, steps)},
-      {"lidar_summary.csv", lidar::lidar_summary_csv(summary)},
+      {"lidar_summary.csv", lidar::lidar_step_table(summary).csv()},
       {"lidar_summary.json", lidar::lidar_summary_json(sensor, summary).dump(2) + "\n"},
       {"lidar_intensity_boxplot.svg", lidar::lidar_intensity_boxplot_svg(sensor, summary)},
       {"lidar_scans.svg", lidar::lidar_scans_svg(sensor, steps)}};

@@ -68,7 +68,10 @@ std::string counted_layers(std::size_t count) {
 class Report : public CameraReport {
  public:
   Report(const CameraParams& params, std::shared_ptr<const std::vector<CameraStepResult>> steps)
-      : params_(params), steps_(std::move(steps)), summary_(summarize(params, *steps_)) {}
+      : params_(params),
+        steps_(std::move(steps)),
+        summary_(summarize(params, *steps_)),
+        table_(camera::step_table(summary_)) {}
 
   const std::vector<CameraStepResult>& steps() const override { return *steps_; }
   const CameraSummary& summary() const override { return summary_; }
@@ -86,13 +89,13 @@ class Report : public CameraReport {
     return v;
   }
 
-  std::string table() const override { return step_table(summary_); }
+  const sensor::StepTable& step_table() const override { return table_; }
+  std::string table() const override { return summary_table(summary_); }
   nlohmann::json json() const override { return summary_json(summary_); }
-  std::string summary_csv() const override { return camera::summary_csv(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
     std::vector<sensor::ResultFile> files = {{"camera_histograms.csv", histograms_csv(summary_)},
-                                             {"camera_summary.csv", summary_csv()},
+                                             {"camera_summary.csv", table_.csv()},
                                              {"camera_summary.json", json().dump(2) + '\n'},
                                              {"camera_histograms.svg", histograms_svg(summary_)}};
     if (params_.write_roi_images) {
@@ -121,6 +124,7 @@ class Report : public CameraReport {
   CameraParams params_;
   std::shared_ptr<const std::vector<CameraStepResult>> steps_;
   CameraSummary summary_;
+  sensor::StepTable table_;
 };
 
 // The camera made for one scenario: its bands' fog optics on the chamber (Camera), made once.

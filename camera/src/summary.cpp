@@ -18,10 +18,6 @@ nlohmann::json json_number(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
 }
 
-std::string pad(const std::string& text, std::size_t width) {
-  return text.size() >= width ? text : std::string(width - text.size(), ' ') + text;
-}
-
 // "3 layers", or "not reached" with the last step's contrast.
 std::string limit_verdict(const CameraSummary& summary) {
   if (summary.sensor_limit_layers) {
@@ -86,40 +82,50 @@ std::string histograms_csv(const CameraSummary& summary) {
   return csv;
 }
 
-std::string summary_csv(const CameraSummary& summary) {
-  std::string csv =
-      "active_layers,frames,mean_grey,std_grey,p05_grey,p95_grey,tonal_range,target_contrast,"
-      "relative_contrast,edges_above_threshold,clear_edges,transmittance\n";
-  for (const CameraStepSummary& s : summary.steps) {
-    csv += std::to_string(s.active_layers) + "," + std::to_string(s.frames) + "," +
-           format_number(s.mean_grey) + "," + format_number(s.std_grey) + "," +
-           format_number(s.p05_grey) + "," + format_number(s.p95_grey) + "," +
-           format_number(s.tonal_range) + "," + format_number(s.target_contrast) + "," +
-           format_number(s.relative_contrast) + "," + format_number(s.edges_above_threshold) + "," +
-           std::to_string(s.clear_edges) + "," + format_number(s.transmittance) + "\n";
-  }
-  return csv;
+sensor::StepTable step_table(const CameraSummary& summary) {
+  using S = CameraStepSummary;
+  const std::vector<S>& steps = summary.steps;
+  sensor::StepTable t(steps.size());
+  t.integer("active_layers", "", steps, [](const S& s) { return s.active_layers; });
+  t.integer("frames", "", steps, [](const S& s) { return s.frames; });
+  // The CSV writes its numbers to 10 significant digits.
+  const auto number = [&t, &steps](const char* name, double S::*field) {
+    t.number(name, "", steps, [field](const S& s) { return s.*field; }).csv_digits(10);
+  };
+  number("mean_grey", &S::mean_grey);
+  number("std_grey", &S::std_grey);
+  number("p05_grey", &S::p05_grey);
+  number("p95_grey", &S::p95_grey);
+  number("tonal_range", &S::tonal_range);
+  number("target_contrast", &S::target_contrast);
+  number("relative_contrast", &S::relative_contrast);
+  number("edges_above_threshold", &S::edges_above_threshold);
+  t.integer("clear_edges", "", steps, [](const S& s) { return s.clear_edges; });
+  number("transmittance", &S::transmittance);
+  t.text("grey_range", "", steps, [](const S& s) {
+     return format_fixed(s.p05_grey, 0) + "-" + format_fixed(s.p95_grey, 0);
+   }).printed_only();
+
+  const auto fixed = [](const char* head, std::size_t width, int decimals) {
+    return sensor::Printed{
+        .heads = {head}, .width = width, .precision = decimals, .signless_zero = true};
+  };
+  t.print_layout("        ", "");
+  t.print("active_layers", {.heads = {"layers"}, .width = 6});
+  t.print("mean_grey", fixed("mean", 7, 1));
+  t.print("std_grey", fixed("std", 7, 1));
+  t.print("grey_range", {.heads = {"p05-p95"}, .width = 9});
+  t.print("target_contrast", fixed("contrast", 10, 3));
+  t.print("relative_contrast", fixed("rel.contrast", 14, 3));
+  t.print("edges_above_threshold", fixed("edges>thr", 11, 1));
+  t.print("clear_edges", {.heads = {" (clear)"}, .width = 0, .prefix = " (", .suffix = ")"});
+  return t;
 }
 
 nlohmann::json summary_json(const CameraSummary& summary) {
-  nlohmann::json steps = nlohmann::json::array();
-  for (const CameraStepSummary& s : summary.steps) {
-    steps.push_back({{"active_layers", s.active_layers},
-                     {"frames", s.frames},
-                     {"mean_grey", json_number(s.mean_grey)},
-                     {"std_grey", json_number(s.std_grey)},
-                     {"p05_grey", json_number(s.p05_grey)},
-                     {"p95_grey", json_number(s.p95_grey)},
-                     {"tonal_range", json_number(s.tonal_range)},
-                     {"target_contrast", json_number(s.target_contrast)},
-                     {"relative_contrast", json_number(s.relative_contrast)},
-                     {"edges_above_threshold", json_number(s.edges_above_threshold)},
-                     {"clear_edges", s.clear_edges},
-                     {"transmittance", json_number(s.transmittance)}});
-  }
   nlohmann::json object = {{"criterion", summary.criterion},
                            {"clear_contrast", json_number(summary.clear_contrast)},
-                           {"steps", steps}};
+                           {"steps", step_table(summary).json()}};
   object["sensor_limit_layers"] =
       summary.sensor_limit_layers ? nlohmann::json(*summary.sensor_limit_layers) : nlohmann::json();
   return object;
@@ -164,18 +170,8 @@ std::string roi_pgm(const CameraParams& params, const CameraFrame& frame) {
   return pgm;
 }
 
-std::string step_table(const CameraSummary& summary) {
-  std::string table =
-      "        layers   mean    std  p05-p95  contrast  rel.contrast  edges>thr (clear)\n";
-  for (const CameraStepSummary& s : summary.steps) {
-    table += "        " + pad(std::to_string(s.active_layers), 6) +
-             pad(format_fixed(s.mean_grey, 1), 7) + pad(format_fixed(s.std_grey, 1), 7) +
-             pad(format_fixed(s.p05_grey, 0) + "-" + format_fixed(s.p95_grey, 0), 9) +
-             pad(format_fixed(s.target_contrast, 3), 10) +
-             pad(format_fixed(s.relative_contrast, 3), 14) +
-             pad(format_fixed(s.edges_above_threshold, 1), 11) + " (" +
-             std::to_string(s.clear_edges) + ")\n";
-  }
+std::string summary_table(const CameraSummary& summary) {
+  std::string table = step_table(summary).printed();
   table += "camera limit (" + summary.criterion + "): " + limit_verdict(summary) + "\n";
   return table;
 }

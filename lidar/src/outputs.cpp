@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <string_view>
+#include <utility>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/stats/format.hpp"
@@ -21,15 +23,6 @@ nlohmann::json number_or_null(double value) {
 
 // Shortest text that reads back to exactly `value`; NaN -> "".
 std::string exact(double value) { return stats::format_number(value, 0); }
-
-std::string joined(const std::vector<double>& values) {
-  std::string text;
-  for (const double v : values) {
-    if (!text.empty()) text += ';';
-    text += exact(v);
-  }
-  return text;
-}
 
 std::string px(double v) { return stats::format_fixed(v, 2); }
 
@@ -66,63 +59,83 @@ std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResu
   return out;
 }
 
-std::string lidar_summary_csv(const LidarSummary& summary) {
-  std::string out =
-      "active_layers,scans,target_detections,target_detection_rate,target_told_rate,"
-      "intensity_mean,intensity_std,intensity_min,intensity_q1,intensity_median,intensity_q3,"
-      "intensity_max,intensity_whisker_low,intensity_whisker_high,intensity_outliers,eq4_intensity,"
-      "fog_echo_rate,median_first_echo_range_m,beams_through_fog,sensor_limit\n";
-  for (const LidarStepSummary& s : summary.steps) {
-    const stats::BoxPlot& b = s.target_intensity;
-    const double numbers[] = {s.target_detection_rate,
-                              s.target_told_rate,
-                              b.mean,
-                              b.std_dev,
-                              b.min,
-                              b.q1,
-                              b.median,
-                              b.q3,
-                              b.max,
-                              b.whisker_low,
-                              b.whisker_high};
-    out += std::to_string(s.active_layers) + ',' + std::to_string(s.scans) + ',' +
-           std::to_string(s.target_detections);
-    for (const double v : numbers) out += ',' + exact(v);
-    out += ',' + joined(b.outliers) + ',' + exact(s.eq4_intensity) + ',' + exact(s.fog_echo_rate) +
-           ',' + exact(s.median_first_echo_range_m) + ',' + std::to_string(s.beams_through_fog) +
-           ',' + (summary.sensor_limit_layers == s.active_layers ? "1" : "0") + '\n';
+sensor::StepTable lidar_step_table(const LidarSummary& summary) {
+  using S = LidarStepSummary;
+  const std::vector<S>& steps = summary.steps;
+  sensor::StepTable t(steps.size());
+  t.integer("active_layers", "", steps, [](const S& s) { return s.active_layers; });
+  t.integer("scans", "", steps, [](const S& s) { return s.scans; });
+  t.integer("target_detections", "", steps, [](const S& s) { return s.target_detections; });
+  t.number("target_detection_rate", "", steps, [](const S& s) { return s.target_detection_rate; });
+  t.number("target_told_rate", "", steps, [](const S& s) { return s.target_told_rate; });
+  // The target intensity's box plot: intensity_<statistic> in the CSV, one object in the JSON.
+  using stats::BoxPlot;
+  t.integer("intensity_n", "", steps, [](const S& s) { return s.target_intensity.n; })
+      .in_csv(false)
+      .in_json("/target_intensity/n");
+  const std::pair<const char*, double BoxPlot::*> statistics[] = {
+      {"mean", &BoxPlot::mean},
+      {"std", &BoxPlot::std_dev},
+      {"min", &BoxPlot::min},
+      {"q1", &BoxPlot::q1},
+      {"median", &BoxPlot::median},
+      {"q3", &BoxPlot::q3},
+      {"max", &BoxPlot::max},
+      {"whisker_low", &BoxPlot::whisker_low},
+      {"whisker_high", &BoxPlot::whisker_high}};
+  for (const auto& [statistic, field] : statistics) {
+    t.number(std::string("intensity_") + statistic, "", steps, [field](const S& s) {
+       return s.target_intensity.*field;
+     }).in_json(std::string("/target_intensity/") + statistic);
   }
-  return out;
+  t.numbers("intensity_outliers", "", steps, [](const S& s) {
+     return s.target_intensity.outliers;
+   }).in_json("/target_intensity/outliers");
+  t.number("eq4_intensity", "", steps, [](const S& s) { return s.eq4_intensity; });
+  t.number("fog_echo_rate", "", steps, [](const S& s) { return s.fog_echo_rate; });
+  t.number("median_first_echo_range", "m", steps,
+           [](const S& s) { return s.median_first_echo_range_m; });
+  t.integer("beams_through_fog", "", steps, [](const S& s) { return s.beams_through_fog; });
+  t.integer("sensor_limit", "", steps, [&summary](const S& s) {
+     return summary.sensor_limit_layers == s.active_layers;
+   }).in_json("");
+
+  // No beam crosses the fog at 0 active layers: the printed table shows neither fog figure when
+  // either has no value.
+  const auto fog_figure = [](double S::*figure) {
+    return [figure](const S& s) {
+      return std::isnan(s.fog_echo_rate) || std::isnan(s.median_first_echo_range_m)
+                 ? std::numeric_limits<double>::quiet_NaN()
+                 : s.*figure;
+    };
+  };
+  t.number("printed_fog_echo_rate", "", steps, fog_figure(&S::fog_echo_rate)).printed_only();
+  t.number("printed_first_echo_range", "m", steps, fog_figure(&S::median_first_echo_range_m))
+      .printed_only();
+  const auto intensity_head = [](const char* head) {
+    return sensor::Printed{.heads = {head, "intens."}, .width = 9, .precision = 1};
+  };
+  t.print("active_layers", {.heads = {"layers", ""}, .width = 6});
+  t.print("scans", {.heads = {"scans", ""}, .width = 5});
+  t.print("target_detection_rate",
+          {.heads = {"target", "det. %"}, .width = 8, .precision = 1, .scale = 100.0});
+  t.print("target_told_rate", {.heads = {"told", "%"}, .width = 8, .precision = 1, .scale = 100.0});
+  t.print("intensity_median", intensity_head("median"));
+  t.print("eq4_intensity", intensity_head("eq. 4"));
+  t.print("intensity_q1", intensity_head("q1"));
+  t.print("intensity_q3", intensity_head("q3"));
+  t.print("intensity_max", intensity_head("max"));
+  t.print("printed_fog_echo_rate", {.heads = {"fog echo", "rate %"},
+                                    .width = 9,
+                                    .precision = 1,
+                                    .scale = 100.0,
+                                    .missing = "-"});
+  t.print("printed_first_echo_range_m",
+          {.heads = {"1st echo", "median m"}, .width = 10, .precision = 3, .missing = "-"});
+  return t;
 }
 
 nlohmann::json lidar_summary_json(const Lidar& lidar, const LidarSummary& summary) {
-  nlohmann::json steps = nlohmann::json::array();
-  for (const LidarStepSummary& s : summary.steps) {
-    const stats::BoxPlot& b = s.target_intensity;
-    steps.push_back({
-        {"active_layers", s.active_layers},
-        {"scans", s.scans},
-        {"target_detections", s.target_detections},
-        {"target_detection_rate", s.target_detection_rate},
-        {"target_told_rate", s.target_told_rate},
-        {"target_intensity",
-         {{"n", b.n},
-          {"mean", number_or_null(b.mean)},
-          {"std", number_or_null(b.std_dev)},
-          {"min", number_or_null(b.min)},
-          {"q1", number_or_null(b.q1)},
-          {"median", number_or_null(b.median)},
-          {"q3", number_or_null(b.q3)},
-          {"max", number_or_null(b.max)},
-          {"whisker_low", number_or_null(b.whisker_low)},
-          {"whisker_high", number_or_null(b.whisker_high)},
-          {"outliers", b.outliers}}},
-        {"eq4_intensity", s.eq4_intensity},
-        {"fog_echo_rate", number_or_null(s.fog_echo_rate)},
-        {"median_first_echo_range_m", number_or_null(s.median_first_echo_range_m)},
-        {"beams_through_fog", s.beams_through_fog},
-    });
-  }
   nlohmann::json layers = nlohmann::json::array();
   for (std::size_t i = 0; i < lidar.layer_count(); ++i) {
     layers.push_back({{"start_m", lidar.layer_start_m(i)},
@@ -144,7 +157,7 @@ nlohmann::json lidar_summary_json(const Lidar& lidar, const LidarSummary& summar
       {"window_two_way_transmittance", lidar.window_two_way_transmittance()},
       {"clear_weather_margin", clear_margin(lidar)},
       {"layers", layers},
-      {"steps", steps},
+      {"steps", lidar_step_table(summary).json()},
       {"sensor_limit_layers", summary.sensor_limit_layers
                                   ? nlohmann::json(*summary.sensor_limit_layers)
                                   : nlohmann::json(nullptr)},
@@ -308,29 +321,7 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
 
 std::string lidar_summary_table(const LidarSummary& summary) {
   std::ostringstream out;
-  char line[256];
-  constexpr const char* header = "%6s %5s %8s %8s %9s %9s %9s %9s %9s %9s %10s\n";
-  std::snprintf(line, sizeof line, header, "layers", "scans", "target", "told", "median", "eq. 4",
-                "q1", "q3", "max", "fog echo", "1st echo");
-  out << line;
-  std::snprintf(line, sizeof line, header, "", "", "det. %", "%", "intens.", "intens.", "intens.",
-                "intens.", "intens.", "rate %", "median m");
-  out << line;
-  for (const LidarStepSummary& s : summary.steps) {
-    const stats::BoxPlot& b = s.target_intensity;
-    std::snprintf(line, sizeof line, "%6zu %5zu %8.1f %8.1f %9.1f %9.1f %9.1f %9.1f %9.1f",
-                  s.active_layers, s.scans, 100.0 * s.target_detection_rate,
-                  100.0 * s.target_told_rate, b.median, s.eq4_intensity, b.q1, b.q3, b.max);
-    out << line;
-    // No beam crosses the fog at 0 active layers: its two columns have no value then.
-    if (std::isnan(s.fog_echo_rate) || std::isnan(s.median_first_echo_range_m)) {
-      std::snprintf(line, sizeof line, " %9s %10s\n", "-", "-");
-    } else {
-      std::snprintf(line, sizeof line, " %9.1f %10.3f\n", 100.0 * s.fog_echo_rate,
-                    s.median_first_echo_range_m);
-    }
-    out << line;
-  }
+  out << lidar_step_table(summary).printed();
   out << "target det. %: scans with a target-origin echo in the beam through the target's centre;\n"
          "told %: and no fog echo there at least as intense; intensity: that echo's, 0 when\n"
          "missing (the study's Fig. 6); eq. 4: the study's eq. 4 for that echo, the clear\n"

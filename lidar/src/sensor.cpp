@@ -52,7 +52,8 @@ class Report : public LidarReport {
          std::span<const propagation::ActiveLayers> active)
       : lidar_(std::move(lidar)),
         steps_(std::move(steps)),
-        summary_(summarize(*lidar_, *steps_, active)) {}
+        summary_(summarize(*lidar_, *steps_, active)),
+        table_(lidar_step_table(summary_)) {}
 
   const Lidar& lidar() const override { return *lidar_; }
   const std::vector<LidarStepResult>& steps() const override { return *steps_; }
@@ -71,13 +72,13 @@ class Report : public LidarReport {
     return v;
   }
 
+  const sensor::StepTable& step_table() const override { return table_; }
   std::string table() const override { return lidar_summary_table(summary_); }
   nlohmann::json json() const override { return lidar_summary_json(*lidar_, summary_); }
-  std::string summary_csv() const override { return lidar_summary_csv(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
     return {{"lidar_echoes.csv", lidar_echoes_csv(*lidar_, *steps_)},
-            {"lidar_summary.csv", summary_csv()},
+            {"lidar_summary.csv", table_.csv()},
             {"lidar_summary.json", json().dump(2) + '\n'},
             {"lidar_intensity_boxplot.svg", lidar_intensity_boxplot_svg(*lidar_, summary_)},
             {"lidar_scans.svg", lidar_scans_svg(*lidar_, *steps_)}};
@@ -103,6 +104,7 @@ class Report : public LidarReport {
   std::shared_ptr<const Lidar> lidar_;
   std::shared_ptr<const std::vector<LidarStepResult>> steps_;
   LidarSummary summary_;
+  sensor::StepTable table_;
 };
 
 // The lidar made for one scenario: its beams, fog and detector on the chamber (Lidar), made once.

@@ -198,14 +198,14 @@ class Results:
 
     def summary(self):
         """One DataFrame, a row per sensor x step: ``sensor``, ``active_layers`` and each
-        sensor's summary columns by their CSV names (<sensor>_summary.csv)."""
+        sensor's summary columns by their CSV names (<sensor>_summary.csv), made from the
+        sensors' typed step tables: integers as int64, numbers as float64 (NaN where none),
+        lists of numbers (outliers) as lists."""
         frames = []
-        for sensor in self._core.scenario.sensors:
-            name = f"{sensor}_summary.csv"
-            if name in self.files:
-                frame = self.table(name)
-                frame.insert(0, "sensor", sensor)
-                frames.append(frame)
+        for table in self._core.step_tables():
+            frame = pd.DataFrame(table["columns"])
+            frame.insert(0, "sensor", table["sensor"])
+            frames.append(frame)
         summary = pd.concat(frames, ignore_index=True, sort=False)
         first = ["sensor", "active_layers"]
         return summary[first + [c for c in summary.columns if c not in first]]

@@ -159,6 +159,38 @@ py::list kinds_to_python(const std::vector<sensor::RawKind>& kinds) {
   return out;
 }
 
+// Every sensor's step table, its CSV columns by header in their order: integers and numbers as
+// NumPy arrays, texts as str, lists of numbers as lists.
+py::list step_tables_to_python(const experiment::ExperimentSummary& summary) {
+  py::list out;
+  for (const experiment::SensorOutcome& s : summary.sensors) {
+    py::dict columns;
+    for (const sensor::Column& c : s.summary->step_table().columns()) {
+      if (!c.csv) continue;
+      const auto count = static_cast<py::ssize_t>(s.summary->step_table().steps());
+      switch (c.type) {
+        case sensor::ColumnType::integer:
+          columns[py::str(c.header())] = py::array_t<std::int64_t>(count, c.integers.data());
+          break;
+        case sensor::ColumnType::number:
+          columns[py::str(c.header())] = py::array_t<double>(count, c.numbers.data());
+          break;
+        case sensor::ColumnType::text:
+          columns[py::str(c.header())] = py::cast(c.texts);
+          break;
+        case sensor::ColumnType::numbers:
+          columns[py::str(c.header())] = py::cast(c.lists);
+          break;
+      }
+    }
+    py::dict entry;
+    entry["sensor"] = s.name;
+    entry["columns"] = columns;
+    out.append(entry);
+  }
+  return out;
+}
+
 // A run's outcome: the scenario it ran and every sensor's summary.
 struct Results {
   Scenario scenario;
@@ -352,6 +384,7 @@ PYBIND11_MODULE(_core, m) {
              }
              return files;
            })
+      .def("step_tables", [](const Results& r) { return step_tables_to_python(r.summary); })
       .def("tables",
            [](const Results& r) {
              return experiment::sensor_tables(r.summary) + experiment::benchmark_table(r.summary);

@@ -24,15 +24,6 @@ nlohmann::json number_or_null(double value) {
 // Shortest text that reads back to exactly `value` (std::to_chars); NaN -> "" (docs/scenario.md).
 std::string exact(double value) { return stats::format_number(value, 0); }
 
-std::string joined_outliers(const std::vector<double>& outliers) {
-  std::string text;
-  for (double v : outliers) {
-    if (!text.empty()) text += ';';
-    text += exact(v);
-  }
-  return text;
-}
-
 // Scenario numbers in captions: three significant digits ("0.2", "1e-06").
 std::string num(double value) { return stats::format_number(value, 3); }
 
@@ -110,8 +101,8 @@ std::string layer_fogs(const propagation::ChamberSpec& c) {
   if (one_fog(c)) return "Fog in each active layer: " + fog_words(c.layers[0].fog) + ".";
   std::string text;
   for (std::size_t i = 0; i < c.layers.size(); ++i) {
-    text += (text.empty() ? "" : " ") + std::string("Fog in layer ") + std::to_string(i) + ": " +
-            fog_words(c.layers[i].fog) + ".";
+    if (!text.empty()) text += ' ';
+    text += "Fog in layer " + std::to_string(i) + ": " + fog_words(c.layers[i].fog) + ".";
   }
   return text;
 }
@@ -312,80 +303,108 @@ std::string detections_csv(const std::vector<StepResult>& steps) {
   return out;
 }
 
-std::string summary_csv(const RadarSummary& summary) {
-  std::string out =
-      "active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,"
-      "q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,"
-      "median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,"
-      "radome_two_way_loss_db,target_film_loss_db,"
-      "confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,"
-      "adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame\n";
-  for (const StepSummary& s : summary.steps) {
-    const stats::BoxPlot& b = s.rcs;
-    const double numbers[] = {s.detection_rate, b.mean, b.std_dev, b.min,         b.q1,
-                              b.median,         b.q3,   b.max,     b.whisker_low, b.whisker_high};
-    const double after_outliers[] = {s.median_shift_db,
-                                     s.p_value,
-                                     s.median_shift_ci95.low,
-                                     s.median_shift_ci95.high,
-                                     s.median_snr_db,
-                                     s.two_way_attenuation_db,
-                                     s.radome_two_way_loss_db,
-                                     s.target_film_loss_db,
-                                     s.confusion_rate,
-                                     s.false_association_rate,
-                                     s.false_alarms_per_frame,
-                                     s.fog_detections_per_frame,
-                                     s.adc_clipped_fraction,
-                                     s.clipping_detections_per_frame,
-                                     s.sidelobe_detections_per_frame};
-    out += std::to_string(s.active_layers) + ',' + std::to_string(s.n) + ',' +
-           std::to_string(s.detections);
-    for (double v : numbers) out += ',' + exact(v);
-    out += ',' + joined_outliers(b.outliers);
-    for (double v : after_outliers) out += ',' + exact(v);
-    out += '\n';
-  }
-  return out;
+sensor::StepTable step_table(const RadarSummary& summary) {
+  const std::vector<StepSummary>& steps = summary.steps;
+  sensor::StepTable t(steps.size());
+  t.integer("active_layers", "", steps, [](const StepSummary& s) { return s.active_layers; });
+  t.integer("n", "", steps, [](const StepSummary& s) { return s.n; });
+  t.integer("detections", "", steps, [](const StepSummary& s) { return s.detections; });
+  t.number("detection_rate", "", steps, [](const StepSummary& s) { return s.detection_rate; });
+  t.number("mean", "dbsm", steps, [](const StepSummary& s) { return s.rcs.mean; });
+  t.number("std", "db", steps, [](const StepSummary& s) { return s.rcs.std_dev; });
+  t.number("min", "dbsm", steps, [](const StepSummary& s) { return s.rcs.min; });
+  t.number("q1", "dbsm", steps, [](const StepSummary& s) { return s.rcs.q1; });
+  t.number("median", "dbsm", steps, [](const StepSummary& s) { return s.rcs.median; });
+  t.number("q3", "dbsm", steps, [](const StepSummary& s) { return s.rcs.q3; });
+  t.number("max", "dbsm", steps, [](const StepSummary& s) { return s.rcs.max; });
+  t.number("whisker_low", "dbsm", steps, [](const StepSummary& s) { return s.rcs.whisker_low; });
+  t.number("whisker_high", "dbsm", steps, [](const StepSummary& s) { return s.rcs.whisker_high; });
+  t.numbers("outliers", "", steps, [](const StepSummary& s) { return s.rcs.outliers; });
+  t.number("median_shift", "db", steps, [](const StepSummary& s) { return s.median_shift_db; });
+  t.number("p_value", "", steps, [](const StepSummary& s) { return s.p_value; });
+  t.number("median_shift_ci95_low", "db", steps, [](const StepSummary& s) {
+     return s.median_shift_ci95.low;
+   }).in_json("/median_shift_ci95_db/0");
+  t.number("median_shift_ci95_high", "db", steps, [](const StepSummary& s) {
+     return s.median_shift_ci95.high;
+   }).in_json("/median_shift_ci95_db/1");
+  t.number("median_snr", "db", steps, [](const StepSummary& s) { return s.median_snr_db; });
+  t.number("two_way_attenuation", "db", steps,
+           [](const StepSummary& s) { return s.two_way_attenuation_db; });
+  t.number("radome_two_way_loss", "db", steps,
+           [](const StepSummary& s) { return s.radome_two_way_loss_db; });
+  t.number("target_film_loss", "db", steps,
+           [](const StepSummary& s) { return s.target_film_loss_db; });
+  t.number("confusion_rate", "", steps, [](const StepSummary& s) { return s.confusion_rate; });
+  t.number("false_association_rate", "", steps,
+           [](const StepSummary& s) { return s.false_association_rate; });
+  t.number("false_alarms_per_frame", "", steps,
+           [](const StepSummary& s) { return s.false_alarms_per_frame; });
+  t.number("fog_detections_per_frame", "", steps,
+           [](const StepSummary& s) { return s.fog_detections_per_frame; });
+  t.number("adc_clipped_fraction", "", steps,
+           [](const StepSummary& s) { return s.adc_clipped_fraction; });
+  t.number("clipping_detections_per_frame", "", steps,
+           [](const StepSummary& s) { return s.clipping_detections_per_frame; });
+  t.number("sidelobe_detections_per_frame", "", steps,
+           [](const StepSummary& s) { return s.sidelobe_detections_per_frame; });
+
+  // The printed table's own figures: the layer count starred where only the surviving detections
+  // make the RCS statistics, the CFAR's design false alarms, the IQR and the total two-way loss.
+  t.text("layers", "", steps, [](const StepSummary& s) {
+     std::string layers = std::to_string(s.active_layers);
+     if (survivors_only(s)) layers += '*';
+     return layers;
+   }).printed_only();
+  t.number("design_per_frame", "", steps, [&summary](const StepSummary&) {
+     return summary.expected_false_alarm_cells_per_frame;
+   }).printed_only();
+  t.number("iqr", "db", steps, [](const StepSummary& s) {
+     return s.rcs.q3 - s.rcs.q1;
+   }).printed_only();
+  t.number("loss", "db", steps, [](const StepSummary& s) {
+     return s.two_way_attenuation_db + s.radome_two_way_loss_db + s.target_film_loss_db;
+   }).printed_only();
+  // printf's output, an en dash where a statistic does not exist (a shift against 0 layers at 0
+  // layers, a p-value of one sample): the terminal shows no "nan".
+  const auto percent = [](const char* head, const char* unit) {
+    return sensor::Printed{.heads = {head, unit}, .width = 8, .precision = 1, .scale = 100.0};
+  };
+  const auto fixed = [](const char* head, const char* unit) {
+    return sensor::Printed{.heads = {head, unit}, .width = 9, .precision = 3};
+  };
+  const auto statistic = [](std::vector<std::string> heads) {
+    return sensor::Printed{
+        .heads = std::move(heads), .width = 9, .precision = 3, .missing = "\u2013"};
+  };
+  t.print("layers", {.heads = {"layers", ""}, .width = 6});
+  t.print("n", {.heads = {"n", ""}, .width = 5});
+  t.print("detection_rate", percent("target", "det. %"));
+  t.print("confusion_rate", percent("confused", "%"));
+  t.print("false_association_rate", percent("false", "assoc %"));
+  t.print("fog_detections_per_frame", fixed("fog", "det./f"));
+  t.print("false_alarms_per_frame", fixed("false", "alarms/f"));
+  t.print("design_per_frame", fixed("design", "/frame"));
+  t.print("median_dbsm", statistic({"median", "dBsm"}));
+  t.print("iqr_db", statistic({"IQR", "dB"}));
+  t.print("mean_dbsm", statistic({"mean", "dBsm"}));
+  t.print("std_db", statistic({"std", "dB"}));
+  t.print("median_shift_db", statistic({"shift", "HL dB"}));
+  t.print("median_shift_ci95_low_db", statistic({"95 % interval", "dB"}));
+  t.print("median_shift_ci95_high_db", statistic({}));
+  sensor::Printed p = statistic({"p", ""});
+  p.general = true;
+  t.print("p_value", p);
+  sensor::Printed loss = statistic({"loss", "dB 2-way"});
+  loss.width = 8;
+  loss.precision = 4;
+  t.print("loss_db", loss);
+  return t;
 }
 
 nlohmann::json summary_json(const RadarSummary& summary) {
-  nlohmann::json steps = nlohmann::json::array();
-  for (const StepSummary& s : summary.steps) {
-    const stats::BoxPlot& b = s.rcs;
-    steps.push_back(
-        {{"active_layers", s.active_layers},
-         {"n", s.n},
-         {"detections", s.detections},
-         {"detection_rate", s.detection_rate},
-         {"mean_dbsm", number_or_null(b.mean)},
-         {"std_db", number_or_null(b.std_dev)},
-         {"min_dbsm", number_or_null(b.min)},
-         {"q1_dbsm", number_or_null(b.q1)},
-         {"median_dbsm", number_or_null(b.median)},
-         {"q3_dbsm", number_or_null(b.q3)},
-         {"max_dbsm", number_or_null(b.max)},
-         {"whisker_low_dbsm", number_or_null(b.whisker_low)},
-         {"whisker_high_dbsm", number_or_null(b.whisker_high)},
-         {"outliers", b.outliers},
-         {"median_shift_db", number_or_null(s.median_shift_db)},
-         {"median_shift_ci95_db",
-          {number_or_null(s.median_shift_ci95.low), number_or_null(s.median_shift_ci95.high)}},
-         {"p_value", number_or_null(s.p_value)},
-         {"median_snr_db", number_or_null(s.median_snr_db)},
-         {"two_way_attenuation_db", s.two_way_attenuation_db},
-         {"radome_two_way_loss_db", s.radome_two_way_loss_db},
-         {"target_film_loss_db", s.target_film_loss_db},
-         {"confusion_rate", s.confusion_rate},
-         {"false_association_rate", s.false_association_rate},
-         {"false_alarms_per_frame", s.false_alarms_per_frame},
-         {"fog_detections_per_frame", s.fog_detections_per_frame},
-         {"adc_clipped_fraction", s.adc_clipped_fraction},
-         {"clipping_detections_per_frame", s.clipping_detections_per_frame},
-         {"sidelobe_detections_per_frame", s.sidelobe_detections_per_frame}});
-  }
   return {
-      {"steps", steps},
+      {"steps", step_table(summary).json()},
       {"sensor_limit_layers", summary.sensor_limit_layers
                                   ? nlohmann::json(*summary.sensor_limit_layers)
                                   : nlohmann::json(nullptr)},
@@ -443,17 +462,6 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
   return stats::box_plot_svg(series, options);
 }
 
-// A right-aligned number of `width` characters, or an en dash where it does not exist (a shift
-// against 0 layers at 0 layers, a p-value of one sample): the terminal shows no "nan".
-std::string table_cell(double value, int width, const char* format) {
-  char text[64];
-  if (!std::isfinite(value)) {
-    return std::string(static_cast<std::size_t>(width - 1), ' ') + "\u2013";
-  }
-  std::snprintf(text, sizeof text, format, width, value);
-  return text;
-}
-
 std::string velocity_fold_text(const VelocityFold& fold) {
   char text[400];
   std::snprintf(text, sizeof text,
@@ -474,33 +482,7 @@ std::string percent_of_samples(double fraction) {
 std::string summary_table(const RadarSummary& summary) {
   std::ostringstream out;
   char line[320];
-  constexpr const char* header =
-      "%6s %5s %8s %8s %8s %9s %9s %9s %9s %9s %9s %9s %9s %19s %9s %8s\n";
-  std::snprintf(line, sizeof line, header, "layers", "n", "target", "confused", "false", "fog",
-                "false", "design", "median", "IQR", "mean", "std", "shift", "95 % interval", "p",
-                "loss");
-  out << line;
-  std::snprintf(line, sizeof line, header, "", "", "det. %", "%", "assoc %", "det./f", "alarms/f",
-                "/frame", "dBsm", "dB", "dBsm", "dB", "HL dB", "dB", "", "dB 2-way");
-  out << line;
-  for (const StepSummary& s : summary.steps) {
-    std::snprintf(line, sizeof line,
-                  survivors_only(s) ? "%5zu* %5zu %8.1f %8.1f %8.1f %9.3f %9.3f %9.3f"
-                                    : "%6zu %5zu %8.1f %8.1f %8.1f %9.3f %9.3f %9.3f",
-                  s.active_layers, s.n, 100.0 * s.detection_rate, 100.0 * s.confusion_rate,
-                  100.0 * s.false_association_rate, s.fog_detections_per_frame,
-                  s.false_alarms_per_frame, summary.expected_false_alarm_cells_per_frame);
-    out << line;
-    for (const double value :
-         {s.rcs.median, s.rcs.q3 - s.rcs.q1, s.rcs.mean, s.rcs.std_dev, s.median_shift_db,
-          s.median_shift_ci95.low, s.median_shift_ci95.high}) {
-      out << ' ' << table_cell(value, 9, "%*.3f");
-    }
-    const double loss_db =
-        s.two_way_attenuation_db + s.radome_two_way_loss_db + s.target_film_loss_db;
-    out << ' ' << table_cell(s.p_value, 9, "%*.3g") << ' ' << table_cell(loss_db, 8, "%*.4f")
-        << '\n';
-  }
+  out << step_table(summary).printed();
   out << "target det. %: a target-origin detection in the gate; confused %: no target detection\n"
          "or a fog detection at least as strong (the limit: the first step above 50 %); false\n"
          "assoc. %: a fog or noise detection in the gate instead of the target (a miss); fog\n"

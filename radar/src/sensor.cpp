@@ -28,7 +28,10 @@ class Report : public RadarReport {
  public:
   Report(std::shared_ptr<const RadarSensor> sensor,
          std::shared_ptr<const std::vector<StepResult>> steps, RadarSummary summary)
-      : sensor_(std::move(sensor)), steps_(std::move(steps)), summary_(std::move(summary)) {}
+      : sensor_(std::move(sensor)),
+        steps_(std::move(steps)),
+        summary_(std::move(summary)),
+        table_(radar::step_table(summary_)) {}
 
   const RadarSummary& summary() const override { return summary_; }
   const std::vector<StepResult>& steps() const override { return *steps_; }
@@ -57,14 +60,14 @@ class Report : public RadarReport {
     return v;
   }
 
+  const sensor::StepTable& step_table() const override { return table_; }
   std::string table() const override { return summary_table(summary_); }
   nlohmann::json json() const override { return summary_json(summary_); }
-  std::string summary_csv() const override { return radar::summary_csv(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
     return {{"radar_samples.csv", samples_csv(*steps_)},
             {"radar_detections.csv", detections_csv(*steps_)},
-            {"radar_summary.csv", summary_csv()},
+            {"radar_summary.csv", table_.csv()},
             {"radar_summary.json", json().dump(2) + '\n'},
             {"radar_rcs_boxplot.svg",
              rcs_boxplot_svg(sensor_->params(), sensor_->context(), summary_)}};
@@ -114,6 +117,7 @@ class Report : public RadarReport {
   std::shared_ptr<const RadarSensor> sensor_;
   std::shared_ptr<const std::vector<StepResult>> steps_;
   RadarSummary summary_;
+  sensor::StepTable table_;
 };
 
 }  // namespace

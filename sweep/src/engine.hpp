@@ -98,17 +98,11 @@ std::string envelope_svg(const SweepSpec& spec, const std::vector<Point>& points
 void write_origin(const SweepDirectory& out, const std::filesystem::path& sweep_directory);
 SweepSpec read_spec(const std::filesystem::path& dir);
 
-// The CSV writer and parser (csv.cpp).
+// The CSV writer (csv.cpp).
 // A number in the fewest digits that read back as it (std::to_chars).
 std::string shortest(double value);
 // RFC 4180: a field with a comma, a quote or a line break is quoted, its quotes doubled.
-std::string csv_field(std::string_view text);
-// A sensor's summary CSV (no quoted fields: the sensors write none).
-struct Table {
-  std::vector<std::string> columns;
-  std::vector<std::vector<std::string>> rows;
-};
-Table parse_csv(const std::string& text);
+using sensor::csv_field;
 
 // Whether a summary column is the step (the active layers), not a statistic (tables.cpp).
 bool is_step_column(const std::string& column);

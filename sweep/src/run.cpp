@@ -27,8 +27,6 @@ namespace fogradar::sweep {
 namespace {
 
 namespace fs = std::filesystem;
-using detail::parse_csv;
-using detail::Table;
 using detail::with_seed;
 using nlohmann::json;
 
@@ -43,12 +41,12 @@ json run_once(const experiment::Scenario& scenario, const propagation::Segelstei
   if (keep != nullptr) *keep = experiment::result_files(scenario, summary);
   json sensors = json::array();
   for (const experiment::SensorOutcome& outcome : summary.sensors) {
-    const Table table = parse_csv(outcome.summary->summary_csv());
+    const sensor::StepTable& table = outcome.summary->step_table();
     const sensor::Verdict verdict = outcome.summary->verdict();
     json s = {
         {"sensor", outcome.name},
-        {"columns", table.columns},
-        {"rows", table.rows},
+        {"columns", table.csv_headers()},
+        {"rows", table.csv_cells()},
         {"limit", verdict.layers_to_failure ? json(*verdict.layers_to_failure) : json(nullptr)},
         {"criterion", verdict.criterion},
         {"margin", verdict.margin}};

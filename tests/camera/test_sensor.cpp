@@ -261,7 +261,7 @@ TEST(Summary, ResultFiles) {
   const std::string histograms = histograms_csv(summary);
   EXPECT_EQ(std::count(histograms.begin(), histograms.end(), '\n'), 1 + 5 * 256);
   EXPECT_TRUE(histograms.starts_with("active_layers,grey_level,count\n0,0,"));
-  const std::string csv = summary_csv(summary);
+  const std::string csv = step_table(summary).csv();
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
   const nlohmann::json json = summary_json(summary);
   EXPECT_EQ(json["steps"].size(), 5u);
@@ -272,7 +272,7 @@ TEST(Summary, ResultFiles) {
   const std::string pgm = roi_pgm(params, steps[0].frames[0]);
   EXPECT_TRUE(pgm.starts_with("P5\n160 120\n255\n"));
   EXPECT_EQ(pgm.size(), std::string("P5\n160 120\n255\n").size() + 160 * 120);
-  EXPECT_NE(step_table(summary).find("camera limit"), std::string::npos);
+  EXPECT_NE(summary_table(summary).find("camera limit"), std::string::npos);
   EXPECT_GT(memory_bytes(params, 5), 5u * 2u * 160u * 120u);
   EXPECT_EQ(rejected_field([&] { roi_pgm(default_camera().params(), CameraFrame{}); }),
             "camera.write_roi_images");

@@ -100,7 +100,8 @@ TEST(Registry, AKindOfTheTestTreesListRunsBesideTheStudysThree) {
 
   // Its table and its benchmark line where `fogradar run` prints them.
   const std::string tables = sensor_tables(summary);
-  EXPECT_NE(tables.find("rangefinder\nlayers  rate  transmittance\n0  1  1\n1  1  0.165299\n"),
+  EXPECT_NE(tables.find("rangefinder\nlayers   rate  transmittance\n     0      1              1\n"
+                        "     1      1       0.165299\n"),
             std::string::npos)
       << tables;
   const std::string benchmark = benchmark_table(summary);

@@ -689,7 +689,7 @@ TEST(LidarPaperScenario, ResultFilesAndMemoryEstimate) {
   const nlohmann::json json = lidar_summary_json(*run.lidar, run.summary);
   EXPECT_EQ(json.at("sensor_limit_layers"), 1);
   EXPECT_EQ(json.at("steps").size(), 5u);
-  const std::string summary_csv = lidar_summary_csv(run.summary);
+  const std::string summary_csv = lidar_step_table(run.summary).csv();
   EXPECT_EQ(std::count(summary_csv.begin(), summary_csv.end(), '\n'), 6);
   EXPECT_EQ(test_support::xml_error(lidar_intensity_boxplot_svg(*run.lidar, run.summary)), "");
   EXPECT_EQ(test_support::xml_error(lidar_scans_svg(*run.lidar, run.steps)), "");

@@ -1774,7 +1774,7 @@ TEST(Adc, ClippedFractionReachesTheSummaryExactly) {
               expected, samples);
   EXPECT_EQ(summary.steps[0].adc_clipped_fraction, fraction);
 
-  const std::string csv = summary_csv(summary);
+  const std::string csv = step_table(summary).csv();
   const std::string header = csv.substr(0, csv.find('\n'));
   const std::string last =
       ",adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame";

@@ -198,7 +198,7 @@ TEST_F(Outputs, DetectionsCsvHoldsEveryDetectionOfEveryFrame) {
 // outlier array the CSV's ';'-list) with the same doubles, and no CSV column without a JSON field.
 TEST_F(Outputs, SummaryCsvHasEveryPerStepFieldOfSummaryJson) {
   const nlohmann::json json = radar::summary_json(radar_summary());
-  const std::vector<std::string> lines = lines_of(radar::summary_csv(radar_summary()));
+  const std::vector<std::string> lines = lines_of(radar::step_table(radar_summary()).csv());
   const std::vector<std::string> header = split(lines.front(), ',');
   const nlohmann::json& steps = json.at("steps");
   ASSERT_EQ(lines.size(), steps.size() + 1);

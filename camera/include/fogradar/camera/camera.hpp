@@ -16,6 +16,7 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
+#include "fogradar/sensor/step_table.hpp"
 
 namespace fogradar::camera {
 
@@ -155,11 +156,13 @@ CameraSummary summarize(const CameraParams& params, const std::vector<CameraStep
 // Result files as strings.
 std::string histograms_csv(
     const CameraSummary& summary);  // camera_histograms.csv: active_layers,grey_level,count
-std::string summary_csv(const CameraSummary& summary);      // camera_summary.csv: one row per step
+// The per-step statistics as typed columns: camera_summary.csv (step_table(s).csv()), the steps of
+// summary_json, and the columns of summary_table.
+sensor::StepTable step_table(const CameraSummary& summary);
 nlohmann::json summary_json(const CameraSummary& summary);  // the object summary.json embeds
 std::string histograms_svg(const CameraSummary& summary);   // camera_histograms.svg (Fig. 7)
 std::string roi_pgm(const CameraParams& params, const CameraFrame& frame);  // binary PGM (P5)
-std::string step_table(const CameraSummary& summary);                       // the terminal table
+std::string summary_table(const CameraSummary& summary);                    // the terminal table
 
 // Bytes the run holds for the camera: frames x (histogram + optional image) per step.
 std::size_t memory_bytes(const CameraParams& params, std::size_t step_count);

@@ -9,6 +9,7 @@
 
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/lidar/summary.hpp"
+#include "fogradar/sensor/step_table.hpp"
 
 namespace fogradar::lidar {
 
@@ -16,8 +17,9 @@ namespace fogradar::lidar {
 // row per echo, item = the scan's index in its step, layer a fog echo's chamber layer (0 nearest
 // the sensor), -1 for the others.
 std::string lidar_echoes_csv(const Lidar& lidar, const std::vector<LidarStepResult>& steps);
-// lidar_summary.csv: one row per step.
-std::string lidar_summary_csv(const LidarSummary& summary);
+// The per-step statistics as typed columns: lidar_summary.csv (lidar_step_table(s).csv()), the
+// steps of lidar_summary_json, and the columns of lidar_summary_table.
+sensor::StepTable lidar_step_table(const LidarSummary& summary);
 // The object summary.json embeds (and lidar_summary.json holds): per step statistics, the sensor
 // limit and its criterion, and the derived sensor figures (alpha, beta_pi per layer, threshold,
 // clear-weather margin at the target).

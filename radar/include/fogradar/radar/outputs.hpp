@@ -20,8 +20,9 @@ std::string samples_csv(const std::vector<StepResult>& steps);
 // velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated" (the received power at the
 // receiver input; in_gate and associated 0 or 1).
 std::string detections_csv(const std::vector<StepResult>& steps);
-// radar_summary.csv: one row per step with every per-step field of summary_json.
-std::string summary_csv(const RadarSummary& summary);
+// The per-step statistics as typed columns: radar_summary.csv (step_table(s).csv()), the steps of
+// summary_json, and the columns of summary_table with the figures only it prints.
+sensor::StepTable step_table(const RadarSummary& summary);
 // radar_summary.json (and summary.json's sensors.radar.summary): the steps, the limit with its
 // criterion, the CFAR's design false alarms, the attenuation margin and the statistics used.
 nlohmann::json summary_json(const RadarSummary& summary);

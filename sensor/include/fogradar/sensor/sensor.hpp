@@ -12,8 +12,8 @@
 //                     immutable, safe to share between threads; it begins
 //   SensorRun         one run: per-step state, then the items measured by
 //   Worker            per-thread workers from their own random streams, then
-//   SensorSummary     its per-step statistics, limit verdict, printed table, JSON summary, result
-//                     files and benchmark curve.
+//   SensorSummary     its per-step statistics (a StepTable of typed columns), limit verdict,
+//                     printed table, JSON summary, result files and benchmark curve.
 //
 // Kind<P> implements SensorKind over a parameter struct P once: experiment/ holds a kind's
 // parameters as an opaque Params, which only the kind's keys and configure() read. Items are keyed
@@ -38,6 +38,7 @@
 #include "fogradar/core/stop.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
+#include "fogradar/sensor/step_table.hpp"
 
 namespace fogradar::sensor {
 
@@ -187,13 +188,15 @@ class SensorSummary {
  public:
   virtual ~SensorSummary() = default;
   virtual Verdict verdict() const = 0;
-  // The per-step table `fogradar run` prints under the sensor's name.
+  // Its per-step statistics, a column `active_layers` and the others named with their units: its
+  // <name>_summary.csv, the steps of its JSON, its printed table's columns, a sweep's rows.
+  virtual const StepTable& step_table() const = 0;
+  // The per-step table `fogradar run` prints under the sensor's name: step_table().printed() and
+  // its notes.
   virtual std::string table() const = 0;
-  // <name>_summary.json, embedded in summary.json as sensors.<name>.summary.
+  // <name>_summary.json, embedded in summary.json as sensors.<name>.summary: step_table().json() as
+  // its "steps" and the run's figures besides.
   virtual nlohmann::json json() const = 0;
-  // Its per-step statistics as CSV, one row per step, a column `active_layers` and the others
-  // named with their units (<name>_summary.csv; a sweep's results.csv gathers them).
-  virtual std::string summary_csv() const = 0;
   // Every result file of the sensor's own.
   virtual std::vector<ResultFile> files() const = 0;
   virtual Curve curve() const = 0;

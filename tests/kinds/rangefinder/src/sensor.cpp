@@ -35,13 +35,32 @@ struct StepShots {
 
 class RangeFinderSummary : public sensor::SensorSummary {
  public:
-  explicit RangeFinderSummary(std::vector<StepShots> steps) : steps_(std::move(steps)) {
+  explicit RangeFinderSummary(std::vector<StepShots> steps)
+      : steps_(std::move(steps)), table_(steps_.size()) {
     for (std::size_t k = 0; k < steps_.size(); ++k) {
       if (rate(k) < 0.5) {
         limit_ = k;
         break;
       }
     }
+    // Its per-step columns, declared once: the CSV, the JSON's steps and the printed table.
+    std::vector<std::int64_t> layers;
+    std::vector<double> rates, transmittances;
+    for (std::size_t k = 0; k < steps_.size(); ++k) {
+      layers.push_back(static_cast<std::int64_t>(k));
+      rates.push_back(rate(k));
+      transmittances.push_back(steps_[k].transmittance);
+    }
+    table_.integer("active_layers", "", layers);
+    table_.number("echo_rate", "", rates).csv_digits(17);
+    table_.number("transmittance", "", transmittances).in_csv(false);
+    table_.print("active_layers", {.heads = {"layers"}, .width = 6});
+    table_.print("echo_rate", {.heads = {"rate"}, .width = 6, .general = true});
+    table_.print("transmittance", {.heads = {"transmittance"},
+                                   .width = 14,
+                                   .general = true,
+                                   .precision = 6,
+                                   .signless_zero = true});
   }
   double rate(std::size_t k) const {
     std::size_t hits = 0;
@@ -53,28 +72,9 @@ class RangeFinderSummary : public sensor::SensorSummary {
             .criterion = "fewer than 50 % of the shots return an echo",
             .margin = limit_ ? "" : "echoes in every step"};
   }
-  std::string table() const override {
-    std::string out = "layers  rate  transmittance\n";
-    for (std::size_t k = 0; k < steps_.size(); ++k) {
-      out += std::to_string(k) + "  " + stats::format_number(rate(k), 3) + "  " +
-             stats::format_number(steps_[k].transmittance, 6) + "\n";
-    }
-    return out;
-  }
-  nlohmann::json json() const override {
-    nlohmann::json steps = nlohmann::json::array();
-    for (std::size_t k = 0; k < steps_.size(); ++k) {
-      steps.push_back({{"active_layers", k}, {"detection_rate", rate(k)}});
-    }
-    return {{"steps", steps}};
-  }
-  std::string summary_csv() const override {
-    std::string csv = "active_layers,echo_rate\n";
-    for (std::size_t k = 0; k < steps_.size(); ++k) {
-      csv += std::to_string(k) + "," + stats::format_number(rate(k), 17) + "\n";
-    }
-    return csv;
-  }
+  const sensor::StepTable& step_table() const override { return table_; }
+  std::string table() const override { return table_.printed(); }
+  nlohmann::json json() const override { return {{"steps", table_.json()}}; }
   std::vector<sensor::ResultFile> files() const override {
     std::string csv = "active_layers,shot,detected,range_m\n";
     for (std::size_t k = 0; k < steps_.size(); ++k) {
@@ -84,7 +84,9 @@ class RangeFinderSummary : public sensor::SensorSummary {
                (s.detected ? stats::format_number(s.range_m, 0) : "") + "\n";
       }
     }
-    return {{"rangefinder_shots.csv", csv}, {"rangefinder_summary.json", json().dump(2) + "\n"}};
+    return {{"rangefinder_shots.csv", csv},
+            {"rangefinder_summary.csv", table_.csv()},
+            {"rangefinder_summary.json", json().dump(2) + "\n"}};
   }
   sensor::Curve curve() const override {
     sensor::Curve c{
@@ -99,6 +101,7 @@ class RangeFinderSummary : public sensor::SensorSummary {
  private:
   std::vector<StepShots> steps_;
   std::optional<std::size_t> limit_;
+  sensor::StepTable table_;
 };
 
 // What every run of the range finder shares: its parameters and each layer's extinction.
@@ -219,7 +222,8 @@ class RangeFinderKind : public sensor::Kind<RangeFinderParams> {
  public:
   RangeFinderKind() : sensor::Kind<RangeFinderParams>(range_finder_info(), range_finder_keys()) {}
   bool owns_file_name(std::string_view name) const override {
-    return name == "rangefinder_shots.csv" || name == "rangefinder_summary.json";
+    return name == "rangefinder_shots.csv" || name == "rangefinder_summary.csv" ||
+           name == "rangefinder_summary.json";
   }
 
  protected:
