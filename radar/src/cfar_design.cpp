@@ -147,8 +147,11 @@ bool designs_for_correlation(const CfarConfig& config, const NoiseCorrelation& n
 }  // namespace
 
 std::size_t cfar_correlation_lags(const CfarConfig& config) {
-  return std::min<std::size_t>(std::size_t{config.guard_cells} + config.reference_cells(),
-                               kCfarCorrelationLags);
+  // The ring's columns span 2 (g + n) on either side of a clipped guard.
+  const std::size_t span = config.shape == CfarShape::range
+                               ? std::size_t{config.guard_cells} + config.reference_cells()
+                               : 2 * (std::size_t{config.guard_cells} + config.training_cells);
+  return std::min<std::size_t>(span, kCfarCorrelationLags);
 }
 
 std::size_t cfar_design_training_cells(const CfarConfig& config, const NoiseCorrelation& noise) {

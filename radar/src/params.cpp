@@ -136,6 +136,24 @@ KeyTable<RadarParams> radar_param_keys() {
         return p.cfar.training_bound(p.samples_per_chirp, "processing.cfar.", profile(p));
       })
       .documented_as(training.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
+  // The ring's Doppler rows are distinct around the circular Doppler axis of chirps_per_frame rows.
+  const auto map = [](const RadarParams& p) {
+    return "a map of radar.chirps_per_frame = " + std::to_string(p.chirps_per_frame) + " rows";
+  };
+  Key<RadarParams>& doppler_guard = keys.at("processing.cfar.doppler_guard_cells");
+  doppler_guard
+      .within([map](const RadarParams& p) {
+        return p.cfar.doppler_guard_bound(p.chirps_per_frame, "processing.cfar.", map(p));
+      })
+      .documented_as(doppler_guard.allowed +
+                     ", with 2·(doppler guard + doppler training) + 1 ≤ chirps_per_frame");
+  Key<RadarParams>& doppler_training = keys.at("processing.cfar.doppler_training_cells");
+  doppler_training
+      .within([map](const RadarParams& p) {
+        return p.cfar.doppler_training_bound(p.chirps_per_frame, "processing.cfar.", map(p));
+      })
+      .documented_as(doppler_training.allowed +
+                     ", with 2·(doppler guard + doppler training) + 1 ≤ chirps_per_frame");
   return keys;
 }
 

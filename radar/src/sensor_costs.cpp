@@ -52,9 +52,17 @@ SetupCost setup_cost(const SensorParams& params, const sensor::Context& context)
   return {
       .fog_seconds = fog_seconds,
       .chain_seconds = chain_seconds + cells * chain_seconds_per_cell,
-      .cfar_design_seconds = cfar_design_seconds(
-          r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
-                                           cfar_correlation_lags(r.cfar))),
+      .cfar_design_seconds =
+          r.cfar.shape == CfarShape::range
+              ? cfar_design_seconds(
+                    r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
+                                                     cfar_correlation_lags(r.cfar)))
+              : cfar_ring_design_seconds(
+                    r.cfar,
+                    window_noise_correlation(make_window(r.window, r.samples_per_chirp),
+                                             cfar_correlation_lags(r.cfar)),
+                    window_noise_correlation(make_window(r.window, r.chirps_per_frame),
+                                             cfar_doppler_correlation_lags(r.cfar))),
       .summary_seconds = steps * per_step *
                          (summary_seconds_per_measurement + per_step * summary_seconds_per_pair),
       .report_seconds = fog_seconds + steps * per_step * files_seconds_per_measurement};

@@ -104,6 +104,12 @@ const std::map<std::string, Needed>& enabled_by() {
       {"radar.radome.relative_permittivity", {{"radar.radome.thickness_m", "0.003"}}},
       {"radar.radome.loss_tangent", {{"radar.radome.thickness_m", "0.003"}}},
       {"processing.cfar.os_rank", {{"processing.cfar.kind", "os"}}},
+      {"processing.cfar.doppler_guard_cells",
+       {{"processing.cfar.shape", "range_doppler"},
+        {"processing.cfar.false_alarm_probability", "0.01"}}},
+      {"processing.cfar.doppler_training_cells",
+       {{"processing.cfar.shape", "range_doppler"},
+        {"processing.cfar.false_alarm_probability", "0.01"}}},
       {"target.swerling", {{"target.model", "point"}}},
       {"target.height_m", {{"target.model", "point"}}},
       {"fog.droplets.diameter_m", {{"fog.droplets.distribution", "monodisperse"}}},
@@ -136,6 +142,14 @@ const std::map<std::string, Needed>& room_for() {
       {"processing.cfar.kind", {{"processing.cfar.false_alarm_probability", "0.01"}}},
       {"processing.cfar.guard_cells", {{"processing.cfar.false_alarm_probability", "0.01"}}},
       {"processing.cfar.threshold_design", {{"processing.cfar.false_alarm_probability", "0.01"}}},
+      {"processing.cfar.shape", {{"processing.cfar.false_alarm_probability", "0.01"}}},
+      // The range-Doppler ring's many cells hold its noise estimate steady: its size changes which
+      // cells detect only where some lie near the threshold.
+      {"processing.cfar.training_cells", {{"processing.cfar.false_alarm_probability", "0.01"}}},
+      {"processing.cfar.doppler_guard_cells",
+       {{"processing.cfar.false_alarm_probability", "0.01"}}},
+      {"processing.cfar.doppler_training_cells",
+       {{"processing.cfar.false_alarm_probability", "0.01"}}},
   };
   return table;
 }
