@@ -51,8 +51,7 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
   keys.integer("training_cells", FOGRADAR_KEY_FIELD(training_cells), 1, 32767, "per side");
   keys.number("false_alarm_probability", FOGRADAR_KEY_FIELD(false_alarm_probability),
               open(0.0, 1.0), "design P_fa");
-  keys.integer("os_rank", FOGRADAR_KEY_FIELD(os_rank), 0, 65534,
-               "OS rank k; 0 = round(3/4 · N)")
+  keys.integer("os_rank", FOGRADAR_KEY_FIELD(os_rank), 0, 65534, "OS rank k; 0 = round(3/4 · N)")
       .within([prefix](const CfarConfig& c) { return c.os_rank_bound(prefix); })
       .documented_as("integer 0 or [1, N] (N = 2·training, or the ring's cells)")
       .when([](const CfarConfig& c) { return c.kind == CfarKind::os; },

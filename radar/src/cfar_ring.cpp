@@ -184,7 +184,7 @@ double cfar_ring_design_seconds(const CfarConfig& config, const NoiseCorrelation
   // Per geometry: CA's eigenvalue solves, ~12 x (N + 1)^3, as for the range shape; the sampled
   // kinds' reference vectors, dense products of N^2 per sample (the ring's Cholesky factor is not
   // banded). Measured (Release, the shared 2-core machine, Hann in both dimensions, N = 132-468):
-  // 0.5-1.1 x this for the sampled kinds, 0.3-0.6 x for CA.
+  // 0.5-1.2 x this for the sampled kinds, 0.3-0.6 x for CA.
   const double exact =
       geometries * (2.2e-5 + 12.0 * 3.8e-10 * (cells + 1.0) * (cells + 1.0) * (cells + 1.0));
   if (config.kind == CfarKind::ca) return exact;

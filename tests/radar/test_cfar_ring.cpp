@@ -290,7 +290,9 @@ TEST_P(RingRealisedPfa, DesignValueAtOneInAThousandWithHannInBothDimensions) {
 
 INSTANTIATE_TEST_SUITE_P(EveryKind, RingRealisedPfa,
                          ::testing::Values(CfarKind::ca, CfarKind::go, CfarKind::so, CfarKind::os),
-                         [](const auto& kind_info) { return std::string(to_string(kind_info.param)); });
+                         [](const auto& kind_info) {
+                           return std::string(to_string(kind_info.param));
+                         });
 
 // A frame of white noise (unit variance per sample) and tones centred on range cell k and Doppler
 // bin d, each of `snr_db` per cell after the chain's gains, through the chain's windows and FFTs.

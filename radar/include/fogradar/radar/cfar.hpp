@@ -36,11 +36,11 @@
 // Requirement: profile length >= 2 (guard + training) + 1, the full window; shorter profiles
 // are rejected with InvalidParameter naming "cfar.training_cells" and its allowed range.
 //
-// SHAPE range_doppler (cfar_map.hpp): the reference cells of cell (d, k) of a range-Doppler map
-// are a ring, the window's rectangle of 2 (guard + training) + 1 range cells by
-// 2 (doppler_guard + doppler_training) + 1 Doppler rows less the guard rectangle around the cell.
-// Along range the window follows the edge policy above; along Doppler it wraps (the Doppler axis is
-// circular). With doppler_guard = doppler_training = 0 it is the range CFAR of every row.
+// SHAPE range_doppler (CfarDetector::detect_map, cfar_ring.cpp): the reference cells of cell (d, k)
+// of a range-Doppler map are a ring, the window's rectangle of 2 (guard + training) + 1 range cells
+// by 2 (doppler_guard + doppler_training) + 1 Doppler rows less the guard rectangle around the
+// cell. Along range the window follows the edge policy above; along Doppler it wraps (the Doppler
+// axis is circular). With doppler_guard = doppler_training = 0 it is the range CFAR of every row.
 #pragma once
 
 #include <array>
@@ -190,8 +190,8 @@ class CfarDetector {
   explicit CfarDetector(const CfarConfig& config);
   // For profiles whose noise cells are correlated as `noise` says (window_noise_correlation of the
   // range window for a range profile): the factors of design_cfar_threshold_factors, one for the
-  // interior cells and one per edge position. Validates both. Throws Stopped when `stop` is asked
-  // for during the design.
+  // interior cells and one per edge position (range_doppler: the constructor below with white
+  // Doppler rows). Validates both. Throws Stopped when `stop` is asked for during the design.
   CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise,
                const StopToken& stop = StopToken());
   // For either shape: range the constructor above (doppler_noise unread); range_doppler the ring's
