@@ -21,6 +21,11 @@ inline constexpr std::size_t kSamples = std::size_t{1} << 14;
 // same draws serve every geometry of a design (common random numbers).
 std::vector<std::complex<double>> standard_draws(std::size_t big_n, std::uint64_t seed);
 
+// Cells on each side of a structure point within which two geometries must agree to share a factor
+// (cfar_design.cpp): the largest lag with |rho| >= 1e-2 up to lag 16, plus one; a correlation that
+// has not decayed by then shares nothing (a reach no geometry meets).
+std::size_t structure_cells(const NoiseCorrelation& noise);
+
 // True when no two cells of a geometry spanning `span` cells are correlated.
 bool white_within(const NoiseCorrelation& noise, std::size_t span);
 

@@ -52,19 +52,6 @@ bool designs_for_correlation(const CfarConfig& config, const NoiseCorrelation& r
            white_within(doppler_noise, cfar_doppler_correlation_lags(config)));
 }
 
-// A correlation's structure reach, as cfar_design.cpp's structure_cells (there for one row).
-std::size_t range_reach(const NoiseCorrelation& noise) {
-  std::size_t reach = 0;
-  const std::size_t size = noise.coefficients.size();
-  for (std::size_t m = 1; m < size && m <= 16; ++m) {
-    if (std::abs(noise.coefficients[m]) >= 1e-2) reach = m;
-  }
-  for (std::size_t m = 17; m + 16 < size; ++m) {
-    if (std::abs(noise.coefficients[m]) >= 1e-2) return std::size_t{1} << 40;  // no sharing
-  }
-  return reach + 1;
-}
-
 // The range position whose geometry the cell `i` cells from the end shares (header of
 // design_cfar_ring_threshold_factors): cells with their guard clipped and the interior are their
 // own; the others, with L = i - g reference columns on the left, share with L' = n / 2 (or the
@@ -138,7 +125,7 @@ CfarThresholdFactors design_cfar_ring_threshold_factors(const CfarConfig& config
   FOGRADAR_CHECK(config.shape == CfarShape::range_doppler);
   const std::size_t reach = std::size_t{config.guard_cells} + config.training_cells;
   const bool correlated = designs_for_correlation(config, range_noise, doppler_noise);
-  const std::size_t k = range_reach(range_noise);
+  const std::size_t k = structure_cells(range_noise);
   const CellNoise noise{range_noise, doppler_noise};
   std::map<std::size_t, std::vector<std::complex<double>>> draws;  // by the geometry's N
   std::map<std::size_t, double> solved;                            // by representative position
@@ -173,7 +160,7 @@ CfarThresholdFactors design_cfar_ring_threshold_factors(const CfarConfig& config
 double cfar_ring_design_seconds(const CfarConfig& config, const NoiseCorrelation& range_noise,
                                 const NoiseCorrelation& doppler_noise) {
   if (!designs_for_correlation(config, range_noise, doppler_noise)) return 0.0;
-  const std::size_t k = range_reach(range_noise);
+  const std::size_t k = structure_cells(range_noise);
   std::vector<std::size_t> positions;
   for (std::size_t i = 0; i <= std::size_t{config.guard_cells} + config.training_cells; ++i)
     positions.push_back(representative(i, config, k));
@@ -213,7 +200,8 @@ void CfarDetector::detect_map(std::span<const double> power, std::size_t rows,
     for (std::size_t d = 0; d < rows; ++d) {
       workspace.cells.clear();
       for_each_ring_cell(r, config_, [&](std::size_t column, std::ptrdiff_t row) {
-        const std::size_t at = (d + rows + static_cast<std::size_t>(row + 1) - 1) % rows;
+        const auto at =
+            static_cast<std::size_t>(static_cast<std::ptrdiff_t>(d + rows) + row) % rows;
         workspace.cells.push_back(power[at * columns + column]);
       });
       double estimate = 0.0;
