@@ -92,8 +92,9 @@ std::size_t cells_per_side(std::size_t profile_length) {
 
 const char* const window_rule = " (2 (guard + training) + 1 <= profile length)";
 const char* const doppler_rule =
-    " (2 (doppler guard + doppler training) + 1 <= Doppler rows: distinct rows around the circular "
-    "Doppler axis)";
+    " (2 (doppler guard + doppler training) + 1 <= Doppler rows - 1: distinct rows around the "
+    "circular Doppler axis, fewer than all, whose noise a tapered window's zero end sample makes "
+    "linearly dependent)";
 
 }  // namespace
 
@@ -156,8 +157,8 @@ void CfarConfig::validate_profile_length(std::size_t profile_length,
 
 CrossBound CfarConfig::doppler_training_bound(std::size_t rows, std::string_view prefix,
                                               std::string_view map) const {
-  const double most =
-      static_cast<double>(cells_per_side(rows)) - static_cast<double>(doppler_guard_cells);
+  const double most = static_cast<double>(cells_per_side(rows > 0 ? rows - 1 : 0)) -
+                      static_cast<double>(doppler_guard_cells);
   return CrossBound{.range = closed(0.0, most),
                     .low_text = "0",
                     .high_text = message_number(most),
@@ -169,7 +170,7 @@ CrossBound CfarConfig::doppler_training_bound(std::size_t rows, std::string_view
 
 CrossBound CfarConfig::doppler_guard_bound(std::size_t rows, std::string_view prefix,
                                            std::string_view map) const {
-  const std::size_t usable = cells_per_side(rows);
+  const std::size_t usable = cells_per_side(rows > 0 ? rows - 1 : 0);
   const double most =
       doppler_guard_cells <= usable
           ? static_cast<double>(usable)
@@ -202,7 +203,7 @@ CrossBound CfarConfig::ring_size_bound(std::string_view prefix) const {
 
 void CfarConfig::validate_map_rows(std::size_t rows, std::string_view prefix) const {
   if (shape != CfarShape::range_doppler ||
-      rows >= 2 * (std::size_t{doppler_guard_cells} + doppler_training_cells) + 1)
+      rows >= 2 * (std::size_t{doppler_guard_cells} + doppler_training_cells) + 2)
     return;
   const std::string map = "a map of " + std::to_string(rows) + " Doppler rows";
   const CrossBound guard = doppler_guard_bound(rows, prefix, map);

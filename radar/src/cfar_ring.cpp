@@ -183,7 +183,9 @@ void CfarDetector::detect_map(std::span<const double> power, std::size_t rows,
   FOGRADAR_CHECK(config_.shape == CfarShape::range_doppler);
   FOGRADAR_CHECK(rows > 0 && power.size() % rows == 0);
   const std::size_t columns = power.size() / rows;
-  config_.validate_profile_length(columns);
+  // Fewer columns than the profile's (the ring reaches every row of them; a tapered window's zero
+  // end sample makes the noise of all of them linearly dependent).
+  config_.validate_profile_length(columns > 0 ? columns - 1 : 0);
   config_.validate_map_rows(rows);
   const std::size_t reach = std::size_t{config_.guard_cells} + config_.training_cells;
   workspace.threshold.resize(power.size());

@@ -108,8 +108,11 @@ struct CfarConfig {
   // ring's cells for range_doppler).
   CrossBound os_rank_bound(std::string_view prefix) const;
   // range_doppler: the Doppler rows' bound a map of `rows` rows sets, 2 (doppler_guard +
-  // doppler_training) + 1 <= rows (distinct rows around the circular Doppler axis), blaming the
-  // training rows (guard rows: as guard_bound); and the ring's size bound, at most
+  // doppler_training) + 1 <= rows - 1 (distinct rows around the circular Doppler axis, and fewer
+  // than all: a tapered window's zero end sample makes the noise of all rows linearly dependent, so
+  // that the design's correlation matrix would be singular), blaming the training rows (guard rows:
+  // as guard_bound); the range cells' bounds are training_bound's and guard_bound's for a profile
+  // one cell shorter, for the same reason; and the ring's size bound, at most
   // kCfarRingMaxCells reference cells (its threshold design's cost grows as N^2 to N^3).
   CrossBound doppler_training_bound(std::size_t rows, std::string_view prefix,
                                     std::string_view map) const;
