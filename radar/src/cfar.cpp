@@ -31,8 +31,15 @@ CfarDetector::CfarDetector(const CfarConfig& config) : CfarDetector(config, Nois
 
 CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise,
                            const StopToken& stop)
+    : CfarDetector(config, noise, NoiseCorrelation{}, stop) {}
+
+CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& range_noise,
+                           const NoiseCorrelation& doppler_noise, const StopToken& stop)
     : config_(config) {
-  CfarThresholdFactors factors = design_cfar_threshold_factors(config, noise, stop);
+  CfarThresholdFactors factors =
+      config.shape == CfarShape::range
+          ? design_cfar_threshold_factors(config, range_noise, stop)
+          : design_cfar_ring_threshold_factors(config, range_noise, doppler_noise, stop);
   alpha_ = factors.interior;
   edge_alpha_ = std::move(factors.edge);
   // The scale of the sums' thresholds: CA divides by N, GO/SO by n (the sums are of n cells).
@@ -43,6 +50,7 @@ CfarDetector::CfarDetector(const CfarConfig& config, const NoiseCorrelation& noi
 }
 
 void CfarDetector::detect(std::span<const double> power, CfarWorkspace& workspace) const {
+  FOGRADAR_CHECK(config_.shape == CfarShape::range);  // range_doppler: detect_map
   config_.validate_profile_length(power.size());
   const std::size_t length = power.size();
   const std::size_t guard = config_.guard_cells;
@@ -148,6 +156,7 @@ void CfarDetector::detect_four(std::span<const std::complex<double>> rows,
   constexpr std::size_t profiles = CfarFourWorkspace::profiles;
   FOGRADAR_CHECK(rows.size() % profiles == 0);
   const std::size_t length = rows.size() / profiles;
+  FOGRADAR_CHECK(config_.shape == CfarShape::range);  // range_doppler: detect_map
   config_.validate_profile_length(length);
   workspace.power.resize(profiles * length);
   workspace.pairs.resize(profiles * (length - 1));  // length >= 3 (validated)

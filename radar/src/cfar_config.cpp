@@ -1,6 +1,7 @@
 // The CFAR's names and configuration: its keys, the checks of a configuration against a profile,
 // and the reference cells a cell under test reads.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -29,10 +30,17 @@ std::vector<std::ptrdiff_t> cfar_reference_offsets(const CfarConfig& config,
   return offsets;
 }
 
+std::size_t CfarConfig::shape_reference_cells() const noexcept {
+  if (shape == CfarShape::range) return reference_cells();
+  const std::size_t g = guard_cells, n = training_cells;
+  const std::size_t gd = doppler_guard_cells, nd = doppler_training_cells;
+  return 2 * n * (2 * (gd + nd) + 1) + 2 * nd * (2 * g + 1);
+}
+
 unsigned CfarConfig::effective_os_rank() const noexcept {
   if (os_rank != 0) return os_rank;
-  // round(3N/4), N = 2 n: (3N + 2) / 4 in integers, at least 1.
-  const std::uint64_t big_n = 2ULL * training_cells;
+  // round(3N/4): (3N + 2) / 4 in integers, at least 1.
+  const std::uint64_t big_n = shape_reference_cells();
   return static_cast<unsigned>(std::max<std::uint64_t>(1, (3 * big_n + 2) / 4));
 }
 
@@ -43,18 +51,33 @@ KeyTable<CfarConfig> cfar_keys(std::string prefix) {
   keys.integer("training_cells", FOGRADAR_KEY_FIELD(training_cells), 1, 32767, "per side");
   keys.number("false_alarm_probability", FOGRADAR_KEY_FIELD(false_alarm_probability),
               open(0.0, 1.0), "design P_fa");
-  keys.integer("os_rank", FOGRADAR_KEY_FIELD(os_rank), 0, 65534,
-               "OS rank k; 0 = round(3/4 · 2·training)")
+  keys.integer("os_rank", FOGRADAR_KEY_FIELD(os_rank), 0, 65534, "OS rank k; 0 = round(3/4 · N)")
       .within([prefix](const CfarConfig& c) { return c.os_rank_bound(prefix); })
-      .documented_as("integer 0 or [1, 2·training]")
+      .documented_as("integer 0 or [1, N] (N = 2·training, or the ring's cells)")
       .when([](const CfarConfig& c) { return c.kind == CfarKind::os; },
             "with " + prefix + "kind = \"os\" (the other kinds average their cells)");
   keys.choice("threshold_design", FOGRADAR_KEY_FIELD(threshold_design), cfar_threshold_design_names,
-              "threshold factors solved for the noise cells as the range window correlates them, "
+              "threshold factors solved for the noise cells as the range window (and for "
+              "range_doppler the Doppler window) correlates them, "
               "so the realised P_fa is the design value (one factor for the interior cells and "
               "one per edge position; docs/radar.md §7); `independent` = the textbook iid factor, "
               "whose realised P_fa with a tapered window is higher (Hann: 2.2× at 1e-3, 10× at "
               "1e-6 for CA)");
+  keys.choice("shape", FOGRADAR_KEY_FIELD(shape), cfar_shape_names,
+              "reference cells along range in each Doppler row, or `range_doppler`: a ring over "
+              "the range-Doppler map, guard and training cells in both dimensions (docs/radar.md "
+              "§7.1)");
+  const auto ring = [](const CfarConfig& c) { return c.shape == CfarShape::range_doppler; };
+  const std::string ring_text = "with " + prefix + "shape = \"range_doppler\"";
+  keys.integer("doppler_guard_cells", FOGRADAR_KEY_FIELD(doppler_guard_cells), 0, 32766,
+               "Doppler rows per side inside the ring's guard (default 1)")
+      .when(ring, ring_text);
+  keys.integer("doppler_training_cells", FOGRADAR_KEY_FIELD(doppler_training_cells), 0, 32766,
+               "Doppler rows per side of the ring's training cells (default 2; 0 with 0 guard "
+               "rows: the range CFAR)")
+      .within([prefix](const CfarConfig& c) { return c.ring_size_bound(prefix); })
+      .documented_as("integer ≥ 0, with the ring at most 512 cells")
+      .when(ring, ring_text);
   return keys;
 }
 
@@ -68,6 +91,10 @@ std::size_t cells_per_side(std::size_t profile_length) {
 }
 
 const char* const window_rule = " (2 (guard + training) + 1 <= profile length)";
+const char* const doppler_rule =
+    " (2 (doppler guard + doppler training) + 1 <= Doppler rows - 1: distinct rows around the "
+    "circular Doppler axis, fewer than all, whose noise a tapered window's zero end sample makes "
+    "linearly dependent)";
 
 }  // namespace
 
@@ -102,11 +129,13 @@ CrossBound CfarConfig::guard_bound(std::size_t profile_length, std::string_view 
 }
 
 CrossBound CfarConfig::os_rank_bound(std::string_view prefix) const {
-  const auto big_n = static_cast<double>(reference_cells());
+  const auto big_n = static_cast<double>(shape_reference_cells());
   return CrossBound{
       .range = closed(0.0, big_n),
       .low_text = "0",
-      .high_text = "2 x " + std::string(prefix) + "training_cells = " + message_number(big_n),
+      .high_text = shape == CfarShape::range
+                       ? "2 x " + std::string(prefix) + "training_cells = " + message_number(big_n)
+                       : "the ring's reference cells N = " + message_number(big_n),
       .integer = true,
       .note = " (0: the default rank round(3N/4))"};
 }
@@ -124,6 +153,67 @@ void CfarConfig::validate_profile_length(std::size_t profile_length,
   if (!training.admits(training_cells)) {
     throw_invalid(std::string(prefix) + "training_cells", training_cells, training.constraint());
   }
+}
+
+CrossBound CfarConfig::doppler_training_bound(std::size_t rows, std::string_view prefix,
+                                              std::string_view map) const {
+  const double most = static_cast<double>(cells_per_side(rows > 0 ? rows - 1 : 0)) -
+                      static_cast<double>(doppler_guard_cells);
+  return CrossBound{.range = closed(0.0, most),
+                    .low_text = "0",
+                    .high_text = message_number(most),
+                    .integer = true,
+                    .note = " with " + std::string(prefix) +
+                            "doppler_guard_cells = " + std::to_string(doppler_guard_cells) +
+                            " and " + std::string(map) + doppler_rule};
+}
+
+CrossBound CfarConfig::doppler_guard_bound(std::size_t rows, std::string_view prefix,
+                                           std::string_view map) const {
+  const std::size_t usable = cells_per_side(rows > 0 ? rows - 1 : 0);
+  const double most =
+      doppler_guard_cells <= usable
+          ? static_cast<double>(usable)
+          : static_cast<double>(usable) - static_cast<double>(doppler_training_cells);
+  return CrossBound{.range = closed(0.0, most),
+                    .low_text = "0",
+                    .high_text = message_number(most),
+                    .integer = true,
+                    .note = " with " + std::string(prefix) +
+                            "doppler_training_cells = " + std::to_string(doppler_training_cells) +
+                            " and " + std::string(map) + doppler_rule};
+}
+
+CrossBound CfarConfig::ring_size_bound(std::string_view prefix) const {
+  // N = 2 n (2 g_d + 1) + n_d (4 n + 4 g + 2) <= kCfarRingMaxCells.
+  const double fixed = 2.0 * training_cells * (2.0 * doppler_guard_cells + 1.0);
+  const double per_row = 4.0 * training_cells + 4.0 * guard_cells + 2.0;
+  const double most = std::floor((static_cast<double>(kCfarRingMaxCells) - fixed) / per_row);
+  return CrossBound{
+      .range = closed(0.0, most),
+      .low_text = "0",
+      .high_text = message_number(most),
+      .integer = true,
+      .note = " with " + std::string(prefix) + "guard_cells = " + std::to_string(guard_cells) +
+              ", " + std::string(prefix) + "training_cells = " + std::to_string(training_cells) +
+              " and " + std::string(prefix) + "doppler_guard_cells = " +
+              std::to_string(doppler_guard_cells) + " (the ring's N = 2 n (2 (g_d + " +
+              "n_d) + 1) + 2 n_d (2 g + 1) at most " + std::to_string(kCfarRingMaxCells) + ")"};
+}
+
+void CfarConfig::validate_map_rows(std::size_t rows, std::string_view prefix) const {
+  if (shape != CfarShape::range_doppler ||
+      rows >= 2 * (std::size_t{doppler_guard_cells} + doppler_training_cells) + 2)
+    return;
+  const std::string map = "a map of " + std::to_string(rows) + " Doppler rows";
+  const CrossBound guard = doppler_guard_bound(rows, prefix, map);
+  if (!guard.admits(doppler_guard_cells)) {
+    throw_invalid(std::string(prefix) + "doppler_guard_cells", doppler_guard_cells,
+                  guard.constraint());
+  }
+  const CrossBound training = doppler_training_bound(rows, prefix, map);
+  throw_invalid(std::string(prefix) + "doppler_training_cells", doppler_training_cells,
+                training.constraint());
 }
 
 }  // namespace fogradar::radar

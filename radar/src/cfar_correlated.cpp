@@ -34,14 +34,13 @@ namespace {
 using Matrix = Eigen::MatrixXd;
 
 // R_ij = rho(p_i - p_j) for the cells at `positions`.
-Matrix correlation_matrix(const NoiseCorrelation& noise,
-                          std::span<const std::ptrdiff_t> positions) {
+Matrix correlation_matrix(const CellNoise& noise, std::span<const CfarCellOffset> positions) {
   const auto size = static_cast<Eigen::Index>(positions.size());
   Matrix r(size, size);
   for (Eigen::Index i = 0; i < size; ++i) {
     for (Eigen::Index j = 0; j < size; ++j) {
       r(i, j) =
-          noise.at(positions[static_cast<std::size_t>(i)] - positions[static_cast<std::size_t>(j)]);
+          noise.at(positions[static_cast<std::size_t>(i)], positions[static_cast<std::size_t>(j)]);
     }
   }
   return r;
@@ -170,14 +169,14 @@ std::optional<QuadraticTilt> quadratic_tilt(const Matrix& factor, const Tilt& ti
 // weight p/q, its noise estimate over s^2 and lambda = |mu|^2/s^2.
 class SampledPfa {
  public:
-  SampledPfa(const CfarConfig& config, const NoiseCorrelation& noise,
-             std::span<const std::ptrdiff_t> offsets, double tilt_alpha,
+  SampledPfa(const CfarConfig& config, const CellNoise& noise,
+             std::span<const CfarCellOffset> offsets, double tilt_alpha,
              std::span<const std::complex<double>> draws, const StopToken& stop)
       : stop_(stop) {
     const std::size_t big_n = offsets.size();
     const auto size = static_cast<Eigen::Index>(big_n);
-    std::vector<std::ptrdiff_t> positions(offsets.begin(), offsets.end());
-    positions.push_back(0);  // the cell under test last: its row of L gives mu and s
+    std::vector<CfarCellOffset> positions(offsets.begin(), offsets.end());
+    positions.push_back({});  // the cell under test last: its row of L gives mu and s
     const Matrix factor = cholesky_factor(correlation_matrix(noise, positions));
     const Matrix lr = factor.topLeftCorner(size, size);
     const Eigen::RowVectorXd l = factor.block(size, 0, 1, size);
@@ -327,17 +326,17 @@ class SampledPfa {
   std::vector<double> lambda_;
 };
 
-double log_pfa_ca_for(const NoiseCorrelation& noise, std::span<const std::ptrdiff_t> offsets,
+double log_pfa_ca_for(const CellNoise& noise, std::span<const CfarCellOffset> offsets,
                       double alpha) {
-  std::vector<std::ptrdiff_t> positions{0};
+  std::vector<CfarCellOffset> positions{{}};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   return log_pfa_ca_exact(cholesky_factor(correlation_matrix(noise, positions)), alpha);
 }
 
-double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise,
-                 std::span<const std::ptrdiff_t> offsets, double independent_factor,
+double ca_factor(const CfarConfig& config, const CellNoise& noise,
+                 std::span<const CfarCellOffset> offsets, double independent_factor,
                  const StopToken& stop) {
-  std::vector<std::ptrdiff_t> positions{0};
+  std::vector<CfarCellOffset> positions{{}};
   positions.insert(positions.end(), offsets.begin(), offsets.end());
   const Matrix factor = cholesky_factor(correlation_matrix(noise, positions));
   return solve_threshold_factor(
@@ -351,8 +350,8 @@ double ca_factor(const CfarConfig& config, const NoiseCorrelation& noise,
 // The factor whose tilts the sampled estimate uses: the kind's independent-cell factor scaled by
 // what the correlation does to CA's exact factor in the same geometry (the sampled factors land
 // within a few % of it, so the tilts sit where the estimate's mass is).
-double tilt_factor(const CfarConfig& config, const NoiseCorrelation& noise,
-                   std::span<const std::ptrdiff_t> offsets, double independent_factor,
+double tilt_factor(const CfarConfig& config, const CellNoise& noise,
+                   std::span<const CfarCellOffset> offsets, double independent_factor,
                    const StopToken& stop) {
   CfarConfig ca = config;
   ca.kind = CfarKind::ca;
@@ -369,8 +368,23 @@ bool white_within(const NoiseCorrelation& noise, std::size_t span) {
   return true;
 }
 
+std::vector<CfarCellOffset> along_range(std::span<const std::ptrdiff_t> offsets) {
+  std::vector<CfarCellOffset> cells;
+  cells.reserve(offsets.size());
+  for (const std::ptrdiff_t offset : offsets) cells.push_back({offset, 0});
+  return cells;
+}
+
 double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise,
                          std::span<const std::ptrdiff_t> offsets, double independent_factor,
+                         std::span<const std::complex<double>> draws, const StopToken& stop) {
+  const NoiseCorrelation one_row;
+  return correlated_factor(config, CellNoise{noise, one_row}, along_range(offsets),
+                           independent_factor, draws, stop);
+}
+
+double correlated_factor(const CfarConfig& config, const CellNoise& noise,
+                         std::span<const CfarCellOffset> offsets, double independent_factor,
                          std::span<const std::complex<double>> draws, const StopToken& stop) {
   if (config.kind == CfarKind::ca)
     return ca_factor(config, noise, offsets, independent_factor, stop);
@@ -384,10 +398,23 @@ double correlated_factor(const CfarConfig& config, const NoiseCorrelation& noise
 double correlated_false_alarm_probability(const CfarConfig& config, const NoiseCorrelation& noise,
                                           std::span<const std::ptrdiff_t> offsets, double alpha,
                                           CorrelatedPfaMethod method, std::uint64_t seed) {
+  const NoiseCorrelation one_row;
+  return correlated_cell_false_alarm_probability(config, noise, one_row, along_range(offsets),
+                                                 alpha, method, seed);
+}
+
+double correlated_cell_false_alarm_probability(const CfarConfig& config,
+                                               const NoiseCorrelation& range_noise,
+                                               const NoiseCorrelation& doppler_noise,
+                                               std::span<const CfarCellOffset> offsets,
+                                               double alpha, CorrelatedPfaMethod method,
+                                               std::uint64_t seed) {
   config.validate();
-  noise.validate();
+  range_noise.validate();
+  doppler_noise.validate();
   require_non_negative("cfar.threshold_factor", alpha);
   FOGRADAR_CHECK(offsets.size() == config.reference_cells());
+  const CellNoise noise{range_noise, doppler_noise};
   if (config.kind == CfarKind::ca && method == CorrelatedPfaMethod::automatic) {
     return std::exp(log_pfa_ca_for(noise, offsets, alpha));
   }

@@ -24,24 +24,6 @@ constexpr double kReachCorrelation = 1e-2;
 // Hamming 2, Blackman-Harris and the 80 dB Chebyshev 4 and 3: docs/radar.md §7).
 constexpr std::size_t kStructureLags = 16;
 
-// Cells on each side of a structure point (the cell under test's window, the end of a block, the
-// boundary of the GO/SO halves) within which two geometries must agree to share a factor: the
-// largest lag with |rho| >= kReachCorrelation, plus one. A correlation that has not decayed beyond
-// kStructureLags (the last kStructureLags lags aside: the DFT's correlation is circular, rho(m) =
-// rho(L - m) for a window of L samples) shares nothing: every geometry is its own, at n.
-std::size_t structure_cells(const NoiseCorrelation& noise) {
-  const std::size_t size = noise.coefficients.size();
-  std::size_t reach = 0;
-  for (std::size_t m = 1; m < size; ++m) {
-    if (std::abs(noise.coefficients[m]) < kReachCorrelation) continue;
-    if (m > kStructureLags && m + kStructureLags < size) {
-      return std::numeric_limits<std::size_t>::max() / 4;
-    }
-    if (m <= kStructureLags) reach = m;
-  }
-  return reach + 1;
-}
-
 // A reference geometry by its number of reference cells on the left of the cell under test, L in
 // [0, n] (n: the interior). Geometries whose L and n - L both reach K = structure_cells are the
 // same cells near every structure point and differ only in where the far cells lie: one of them, L
@@ -146,9 +128,30 @@ bool designs_for_correlation(const CfarConfig& config, const NoiseCorrelation& n
 
 }  // namespace
 
+// Cells on each side of a structure point (the cell under test's window, the end of a block, the
+// boundary of the GO/SO halves) within which two geometries must agree to share a factor: the
+// largest lag with |rho| >= kReachCorrelation, plus one. A correlation that has not decayed beyond
+// kStructureLags (the last kStructureLags lags aside: the DFT's correlation is circular, rho(m) =
+// rho(L - m) for a window of L samples) shares nothing: every geometry is its own, at n.
+std::size_t structure_cells(const NoiseCorrelation& noise) {
+  const std::size_t size = noise.coefficients.size();
+  std::size_t reach = 0;
+  for (std::size_t m = 1; m < size; ++m) {
+    if (std::abs(noise.coefficients[m]) < kReachCorrelation) continue;
+    if (m > kStructureLags && m + kStructureLags < size) {
+      return std::numeric_limits<std::size_t>::max() / 4;
+    }
+    if (m <= kStructureLags) reach = m;
+  }
+  return reach + 1;
+}
+
 std::size_t cfar_correlation_lags(const CfarConfig& config) {
-  return std::min<std::size_t>(std::size_t{config.guard_cells} + config.reference_cells(),
-                               kCfarCorrelationLags);
+  // The ring's columns span 2 (g + n) on either side of a clipped guard.
+  const std::size_t span = config.shape == CfarShape::range
+                               ? std::size_t{config.guard_cells} + config.reference_cells()
+                               : 2 * (std::size_t{config.guard_cells} + config.training_cells);
+  return std::min<std::size_t>(span, kCfarCorrelationLags);
 }
 
 std::size_t cfar_design_training_cells(const CfarConfig& config, const NoiseCorrelation& noise) {

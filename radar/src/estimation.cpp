@@ -244,6 +244,16 @@ void run_cfar(std::span<const std::complex<double>> map, std::size_t rows, std::
       ws.detected_cells.push_back(d * columns + k);
     }
   };
+  if (cfar.config().shape == CfarShape::range_doppler) {
+    ws.map_power.resize(rows * columns);
+    squared_magnitudes(map, ws.map_power);
+    cfar.detect_map(ws.map_power, rows, ws.cfar_map);
+    for (std::size_t cell : ws.cfar_map.detections) {
+      ws.detected[cell] = 1;
+      ws.detected_cells.push_back(cell);
+    }
+    return;
+  }
   std::size_t d = 0;
   for (; d + four <= rows; d += four) {
     cfar.detect_four(map.subspan(d * columns, four * columns), ws.cfar_four);

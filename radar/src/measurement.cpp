@@ -9,14 +9,19 @@
 
 namespace fogradar::radar {
 
-// The CFAR runs along range in every Doppler row, so its cells are correlated by the range window
-// (noise_correlation.hpp); the widest reference geometry spans guard + N cells.
+// The range CFAR runs along range in every Doppler row, so its cells are correlated by the range
+// window (noise_correlation.hpp); the widest reference geometry spans guard + N cells. The
+// range_doppler ring's cells are correlated by the Doppler window too.
 RadarChain::RadarChain(const RadarParams& params, FftPlanner planner, const StopToken& stop)
     : params_(params),
       derived_(derive(params)),
       processor_(params, planner),
       cfar_(params.cfar,
             window_noise_correlation(processor_.range_window(), cfar_correlation_lags(params.cfar)),
+            params.cfar.shape == CfarShape::range
+                ? NoiseCorrelation{}
+                : window_noise_correlation(processor_.doppler_window(),
+                                           cfar_doppler_correlation_lags(params.cfar)),
             stop),
       origin_classifier_(processor_, params_, derived_) {}
 

@@ -210,6 +210,12 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
   std::string cfar = "CFAR " + upper(to_string(r.cfar.kind)) + " (" +
                      std::to_string(r.cfar.guard_cells) + " guard + " +
                      std::to_string(r.cfar.training_cells) + " training cells per side";
+  if (r.cfar.shape == CfarShape::range_doppler) {
+    cfar += " in range, " + std::to_string(r.cfar.doppler_guard_cells) + " + " +
+            std::to_string(r.cfar.doppler_training_cells) +
+            " rows per side in Doppler: a ring of " +
+            std::to_string(r.cfar.shape_reference_cells()) + " cells";
+  }
   if (r.cfar.kind == CfarKind::os) {
     cfar += ", rank " + std::to_string(r.cfar.effective_os_rank());
   }

@@ -120,22 +120,49 @@ KeyTable<RadarParams> radar_param_keys() {
               "range");
   keys.include(cfar_keys("radar.processing.cfar."), FOGRADAR_KEY_FIELD(cfar));
   // The CFAR slides along range, one Doppler bin at a time: its window must fit in a range profile.
-  const auto profile = [](const RadarParams& p) {
+  // The range-Doppler ring spans its columns in every row it reaches: fewer than all of them (a
+  // tapered window's zero end sample makes the noise of all N cells linearly dependent).
+  const auto ring = [](const RadarParams& p) { return p.cfar.shape == CfarShape::range_doppler; };
+  const auto columns = [ring](const RadarParams& p) {
+    return ring(p) ? p.samples_per_chirp - 1 : p.samples_per_chirp;
+  };
+  const auto profile = [ring](const RadarParams& p) {
     return "a profile of radar.samples_per_chirp = " + std::to_string(p.samples_per_chirp) +
-           " cells";
+           " cells" +
+           (ring(p) ? " less one for radar.processing.cfar.shape = \"range_doppler\"" : "");
   };
   Key<RadarParams>& guard = keys.at("radar.processing.cfar.guard_cells");
   guard
-      .within([profile](const RadarParams& p) {
-        return p.cfar.guard_bound(p.samples_per_chirp, "radar.processing.cfar.", profile(p));
+      .within([profile, columns](const RadarParams& p) {
+        return p.cfar.guard_bound(columns(p), "radar.processing.cfar.", profile(p));
       })
-      .documented_as(guard.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
+      .documented_as(guard.allowed +
+                     ", with 2·(guard + training) + 1 ≤ samples_per_chirp (− 1 for the ring)");
   Key<RadarParams>& training = keys.at("radar.processing.cfar.training_cells");
   training
-      .within([profile](const RadarParams& p) {
-        return p.cfar.training_bound(p.samples_per_chirp, "radar.processing.cfar.", profile(p));
+      .within([profile, columns](const RadarParams& p) {
+        return p.cfar.training_bound(columns(p), "radar.processing.cfar.", profile(p));
       })
-      .documented_as(training.allowed + ", with 2·(guard + training) + 1 ≤ samples_per_chirp");
+      .documented_as(training.allowed +
+                     ", with 2·(guard + training) + 1 ≤ samples_per_chirp (− 1 for the ring)");
+  // The ring's Doppler rows are distinct around the circular Doppler axis of chirps_per_frame rows.
+  const auto map = [](const RadarParams& p) {
+    return "a map of radar.chirps_per_frame = " + std::to_string(p.chirps_per_frame) + " rows";
+  };
+  Key<RadarParams>& doppler_guard = keys.at("radar.processing.cfar.doppler_guard_cells");
+  doppler_guard
+      .within([map](const RadarParams& p) {
+        return p.cfar.doppler_guard_bound(p.chirps_per_frame, "radar.processing.cfar.", map(p));
+      })
+      .documented_as(doppler_guard.allowed +
+                     ", with 2·(doppler guard + doppler training) + 1 ≤ chirps_per_frame − 1");
+  Key<RadarParams>& doppler_training = keys.at("radar.processing.cfar.doppler_training_cells");
+  doppler_training
+      .within([map](const RadarParams& p) {
+        return p.cfar.doppler_training_bound(p.chirps_per_frame, "radar.processing.cfar.", map(p));
+      })
+      .documented_as(doppler_training.allowed +
+                     ", with 2·(doppler guard + doppler training) + 1 ≤ chirps_per_frame − 1");
   return keys;
 }
 

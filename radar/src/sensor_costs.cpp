@@ -52,9 +52,17 @@ SetupCost setup_cost(const SensorParams& params, const sensor::Context& context)
   return {
       .fog_seconds = fog_seconds,
       .chain_seconds = chain_seconds + cells * chain_seconds_per_cell,
-      .cfar_design_seconds = cfar_design_seconds(
-          r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
-                                           cfar_correlation_lags(r.cfar))),
+      .cfar_design_seconds =
+          r.cfar.shape == CfarShape::range
+              ? cfar_design_seconds(
+                    r.cfar, window_noise_correlation(make_window(r.window, r.samples_per_chirp),
+                                                     cfar_correlation_lags(r.cfar)))
+              : cfar_ring_design_seconds(
+                    r.cfar,
+                    window_noise_correlation(make_window(r.window, r.samples_per_chirp),
+                                             cfar_correlation_lags(r.cfar)),
+                    window_noise_correlation(make_window(r.window, r.chirps_per_frame),
+                                             cfar_doppler_correlation_lags(r.cfar))),
       .summary_seconds = steps * per_step *
                          (summary_seconds_per_measurement + per_step * summary_seconds_per_pair),
       .report_seconds = fog_seconds + steps * per_step * files_seconds_per_measurement};
@@ -74,8 +82,13 @@ MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measureme
   // thresholds, detections, pair sums and window sums, four profiles each, and the one-row
   // workspace OS uses for them.
   const std::size_t one_row_cfar = 6 * samples * double_bytes;
+  // The range-Doppler ring (CfarMapWorkspace): the map's power and thresholds, and its detections
+  // (index per cell at most).
+  const std::size_t ring = params.radar.cfar.shape == CfarShape::range_doppler
+                               ? cells * (2 * double_bytes + sizeof(std::size_t))
+                               : 0;
   const std::size_t cfar =
-      one_row_cfar + CfarFourWorkspace::profiles * 5 * samples * double_bytes + one_row_cfar;
+      one_row_cfar + CfarFourWorkspace::profiles * 5 * samples * double_bytes + one_row_cfar + ring;
   // Estimation: range kernels (re, im; two values per sample; a batch of objects), the batch's
   // Doppler columns, the rotated peak-search buffers (4 of the longer axis), and per axis a
   // Dirichlet table and an inverse DFT with 2n cosines and 2n sines each.

@@ -100,6 +100,12 @@ const std::map<std::string, Needed>& enabled_by() {
       {"radar.radome.relative_permittivity", {{"radar.radome.thickness_m", "0.003"}}},
       {"radar.radome.loss_tangent", {{"radar.radome.thickness_m", "0.003"}}},
       {"radar.processing.cfar.os_rank", {{"radar.processing.cfar.kind", "os"}}},
+      {"radar.processing.cfar.doppler_guard_cells",
+       {{"radar.processing.cfar.shape", "range_doppler"},
+        {"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.doppler_training_cells",
+       {{"radar.processing.cfar.shape", "range_doppler"},
+        {"radar.processing.cfar.false_alarm_probability", "0.01"}}},
       {"radar.target.swerling", {{"radar.target.model", "point"}}},
       {"radar.target.height_m", {{"radar.target.model", "point"}}},
       {"fog.droplets.diameter_m", {{"fog.droplets.distribution", "monodisperse"}}},
@@ -133,6 +139,15 @@ const std::map<std::string, Needed>& room_for() {
       {"radar.processing.cfar.guard_cells",
        {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
       {"radar.processing.cfar.threshold_design",
+       {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.shape", {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      // The range-Doppler ring's many cells hold its noise estimate steady: its size changes which
+      // cells detect only where some lie near the threshold.
+      {"radar.processing.cfar.training_cells",
+       {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.doppler_guard_cells",
+       {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      {"radar.processing.cfar.doppler_training_cells",
        {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
   };
   return table;

@@ -129,7 +129,7 @@ TEST(Instances, AnInstanceHasItsKindsKeysUnderItsSection) {
   }
   radar.insert("kind");  // the instance's own key, fixed where it is made
   EXPECT_EQ(radar_24, radar);
-  EXPECT_TRUE(radar_24.contains("processing.cfar.kind"));
+  EXPECT_TRUE(radar_24.contains("processing.cfar.shape"));
   EXPECT_TRUE(radar_24.contains("target.rcs_dbsm"));
   // The resolved file reads back to the same scenario.
   EXPECT_EQ(to_toml(parse_scenario(to_toml(s), "again.toml")), to_toml(s));

@@ -238,7 +238,8 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   t.set("radar", "chirp_interval_s", interval_s);
   t.set_integer("radar", "samples_per_chirp", samples);
   t.set("radar", "sample_rate_hz", sample_rate_hz);
-  t.set_integer("radar", "chirps_per_frame", d.integer(4, 16));
+  const std::int64_t chirps = d.integer(4, 16);
+  t.set_integer("radar", "chirps_per_frame", chirps);
   t.set("radar", "tx_power_dbm", d.uniform(-10.0, 30.0));
   t.set("radar", "noise_figure_db", d.uniform(5.0, 20.0));
   out.ideal_adc = d.chance(0.5);
@@ -408,6 +409,18 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   t.set("camera.roi.target", "log_sigma", d.uniform(0.0, 1.0));
   t.set("camera.roi.background", "median_reflectance", d.uniform(0.05, 1.0));
   t.set("camera.roi.background", "log_sigma", d.uniform(0.0, 1.0));
+
+  // The CFAR's shape is drawn last, so that every draw above is what it was before the shape
+  // existed.
+  if (d.chance(0.25)) {
+    t.set("radar.processing.cfar", "shape", quoted("range_doppler"));
+    const std::int64_t doppler_guard = d.integer(0, 1);
+    // 2 (g_d + n_d) + 1 <= rows - 1
+    const std::int64_t rows_left = (chirps - 2) / 2 - doppler_guard;
+    t.set_integer("radar.processing.cfar", "doppler_guard_cells", doppler_guard);
+    t.set_integer("radar.processing.cfar", "doppler_training_cells",
+                  d.integer(0, std::min<std::int64_t>(2, rows_left)));
+  }
 
   out.toml = "# property checker, seed " + std::to_string(seed) + "\n" + t.text() + layer_tables +
              background;

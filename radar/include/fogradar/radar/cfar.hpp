@@ -35,6 +35,12 @@
 // longer compare "leading vs lagging" side of the cell under test.
 // Requirement: profile length >= 2 (guard + training) + 1, the full window; shorter profiles
 // are rejected with InvalidParameter naming "cfar.training_cells" and its allowed range.
+//
+// SHAPE range_doppler (CfarDetector::detect_map, cfar_ring.cpp): the reference cells of cell (d, k)
+// of a range-Doppler map are a ring, the window's rectangle of 2 (guard + training) + 1 range cells
+// by 2 (doppler_guard + doppler_training) + 1 Doppler rows less the guard rectangle around the
+// cell. Along range the window follows the edge policy above; along Doppler it wraps (the Doppler
+// axis is circular). With doppler_guard = doppler_training = 0 it is the range CFAR of every row.
 #pragma once
 
 #include <array>
@@ -54,6 +60,9 @@ namespace fogradar::radar {
 
 enum class CfarKind { ca, go, so, os };
 
+// The reference cells: along range in each Doppler row, or a ring over the range-Doppler map.
+enum class CfarShape { range, range_doppler };
+
 // How the threshold factor is designed: for the correlated noise cells the detector is given
 // (cfar_design.hpp), or with the independent-cell formulas below whatever the correlation.
 enum class CfarThresholdDesign { correlated, independent };
@@ -63,7 +72,12 @@ inline constexpr auto cfar_kind_names = enum_names<CfarKind>(
 inline constexpr auto cfar_threshold_design_names =
     enum_names<CfarThresholdDesign>({{CfarThresholdDesign::correlated, "correlated"},
                                      {CfarThresholdDesign::independent, "independent"}});
+inline constexpr auto cfar_shape_names = enum_names<CfarShape>(
+    {{CfarShape::range, "range"}, {CfarShape::range_doppler, "range_doppler"}});
 constexpr std::string_view to_string(CfarKind kind) noexcept { return cfar_kind_names.name(kind); }
+constexpr std::string_view to_string(CfarShape shape) noexcept {
+  return cfar_shape_names.name(shape);
+}
 constexpr std::string_view to_string(CfarThresholdDesign design) noexcept {
   return cfar_threshold_design_names.name(design);
 }
@@ -75,6 +89,9 @@ struct CfarConfig {
   double false_alarm_probability = 1e-6;  // design Pfa in (0, 1)
   unsigned os_rank = 0;  // OS: k in [1, N]; 0 selects the default k = round(3N/4) (Rohling 1983)
   CfarThresholdDesign threshold_design = CfarThresholdDesign::correlated;
+  CfarShape shape = CfarShape::range;
+  unsigned doppler_guard_cells = 1;     // range_doppler: Doppler rows per side inside the guard
+  unsigned doppler_training_cells = 2;  // range_doppler: Doppler rows per side of training, >= 0
 
   // Throws InvalidParameter naming the key of cfar_keys("cfar.") it breaks: "cfar.training_cells"
   // (in [1, 32767]), "cfar.false_alarm_probability" (in (0, 1)), "cfar.os_rank" (0 or in [1, N]).
@@ -87,13 +104,32 @@ struct CfarConfig {
                             std::string_view profile) const;
   CrossBound guard_bound(std::size_t profile_length, std::string_view prefix,
                          std::string_view profile) const;
-  // The OS rank's bound the training cells set: 0 (the default rank) or at most N = 2 n.
+  // The OS rank's bound the training cells set: 0 (the default rank) or at most N (2 n, or the
+  // ring's cells for range_doppler).
   CrossBound os_rank_bound(std::string_view prefix) const;
+  // range_doppler: the Doppler rows' bound a map of `rows` rows sets, 2 (doppler_guard +
+  // doppler_training) + 1 <= rows - 1 (distinct rows around the circular Doppler axis, and fewer
+  // than all: a tapered window's zero end sample makes the noise of all rows linearly dependent, so
+  // that the design's correlation matrix would be singular), blaming the training rows (guard rows:
+  // as guard_bound); the range cells' bounds are training_bound's and guard_bound's for a profile
+  // one cell shorter, for the same reason; and the ring's size bound, at most
+  // kCfarRingMaxCells reference cells (its threshold design's cost grows as N^2 to N^3).
+  CrossBound doppler_training_bound(std::size_t rows, std::string_view prefix,
+                                    std::string_view map) const;
+  CrossBound doppler_guard_bound(std::size_t rows, std::string_view prefix,
+                                 std::string_view map) const;
+  CrossBound ring_size_bound(std::string_view prefix) const;
   // Throws InvalidParameter naming "<prefix>guard_cells" or "<prefix>training_cells" with the bound
   // above that a profile of `profile_length` cells breaks.
   void validate_profile_length(std::size_t profile_length, std::string_view prefix = "cfar.") const;
+  // range_doppler: throws InvalidParameter naming "<prefix>doppler_guard_cells" or
+  // "<prefix>doppler_training_cells" with the bound a map of `rows` Doppler rows breaks.
+  void validate_map_rows(std::size_t rows, std::string_view prefix = "cfar.") const;
 
   std::size_t reference_cells() const noexcept { return 2 * std::size_t{training_cells}; }
+  // The reference cells of an interior cell: 2 n for range, the ring's for range_doppler,
+  // 2 n (2 (g_d + n_d) + 1) + 2 n_d (2 g + 1).
+  std::size_t shape_reference_cells() const noexcept;
   std::size_t window_length() const noexcept {
     return 2 * (std::size_t{guard_cells} + training_cells) + 1;
   }
@@ -101,8 +137,12 @@ struct CfarConfig {
   unsigned effective_os_rank() const noexcept;
 };
 
+// The most reference cells a range_doppler ring may have.
+inline constexpr std::size_t kCfarRingMaxCells = 512;
+
 // The scenario keys of a CFAR under `prefix` ("radar.processing.cfar."): kind, guard and training
-// cells per side, design P_fa, OS rank and threshold design.
+// cells per side, design P_fa, OS rank, threshold design, shape and the Doppler guard and training
+// rows.
 KeyTable<CfarConfig> cfar_keys(std::string prefix);
 
 // Threshold factor alpha for the config's kind, N and design Pfa for independent cells (see the
@@ -138,6 +178,13 @@ struct CfarFourWorkspace {
   CfarWorkspace one;                // OS: one profile at a time
 };
 
+// Reusable per-thread buffers for CfarDetector::detect_map.
+struct CfarMapWorkspace {
+  std::vector<double> threshold;        // threshold per cell of the map (its layout)
+  std::vector<std::size_t> detections;  // map indices d * columns + k above it, ascending
+  std::vector<double> cells;            // one cell's reference cells
+};
+
 // A validated configuration with its threshold factors solved once: the hot-path object.
 // Immutable after construction, so one detector may be shared by many threads, each with its
 // own CfarWorkspace.
@@ -147,10 +194,16 @@ class CfarDetector {
   explicit CfarDetector(const CfarConfig& config);
   // For profiles whose noise cells are correlated as `noise` says (window_noise_correlation of the
   // range window for a range profile): the factors of design_cfar_threshold_factors, one for the
-  // interior cells and one per edge position. Validates both. Throws Stopped when `stop` is asked
-  // for during the design.
+  // interior cells and one per edge position (range_doppler: the constructor below with white
+  // Doppler rows). Validates both. Throws Stopped when `stop` is asked for during the design.
   CfarDetector(const CfarConfig& config, const NoiseCorrelation& noise,
                const StopToken& stop = StopToken());
+  // For either shape: range the constructor above (doppler_noise unread); range_doppler the ring's
+  // factors for cells correlated along range by `range_noise` (the range window's) and along
+  // Doppler by `doppler_noise` (the Doppler window's, window_noise_correlation of it to lag
+  // cfar_doppler_correlation_lags) (design_cfar_ring_threshold_factors).
+  CfarDetector(const CfarConfig& config, const NoiseCorrelation& range_noise,
+               const NoiseCorrelation& doppler_noise, const StopToken& stop = StopToken());
 
   const CfarConfig& config() const noexcept { return config_; }
   // The interior cells' factor.
@@ -173,6 +226,12 @@ class CfarDetector {
   // in the same order). The edge cells, summed cell by cell, cost a quarter per profile, and |X|^2
   // forms the window sums' first pass while it is in registers. Throws as detect.
   void detect_four(std::span<const std::complex<double>> rows, CfarFourWorkspace& workspace) const;
+  // range_doppler: thresholds and detections of a map of |Y|^2 (`rows` Doppler rows of
+  // power.size() / rows range cells, row-major) into `workspace`. Each cell's ring is added cell by
+  // cell (O(N) per cell; OS: a selection, std::nth_element), every sum of non-negative values.
+  // Throws InvalidParameter via validate_profile_length and validate_map_rows.
+  void detect_map(std::span<const double> power, std::size_t rows,
+                  CfarMapWorkspace& workspace) const;
 
  private:
   CfarConfig config_;

@@ -82,6 +82,56 @@ enum class CorrelatedPfaMethod { automatic, sampled };
 // The seed of the design's samples.
 inline constexpr std::uint64_t kCfarDesignSeed = 0xCFA2D351C0FFEEULL;
 
+// A cell of a range-Doppler map relative to the cell under test: range cells, Doppler rows.
+struct CfarCellOffset {
+  std::ptrdiff_t range = 0;
+  std::ptrdiff_t doppler = 0;
+  bool operator==(const CfarCellOffset&) const = default;
+};
+
+// The range_doppler ring's reference cells of a cell `cells_from_end` range cells from a profile
+// end (>= guard + training: an interior cell), in the order whose first and second halves are GO's
+// and SO's: by range cell, then by Doppler row. Along range the window follows the range shape's
+// edge policy (its 2 n reference columns carry every row of the window, its guard columns, clipped,
+// the Doppler training rows); the rows wrap. In the interior the halves are the cells before and
+// after the cell under test, the cell's own column split between them by Doppler sign.
+std::vector<CfarCellOffset> cfar_ring_offsets(const CfarConfig& config, std::size_t cells_from_end);
+
+// The config whose independent-cell formulas are the ring's of `reference_cells` cells (even): the
+// range shape with reference_cells / 2 training cells per side and the OS rank kept at its place
+// k / N of the interior ring (0 stays the default round(3N/4)).
+CfarConfig cfar_ring_equivalent(const CfarConfig& config, std::size_t reference_cells);
+
+// The range_doppler shape's factors (interior; edge[i] for the cells i and L-1-i along range) for
+// noise correlated along range by `range_noise` (the range window's) and along Doppler by
+// `doppler_noise` (the Doppler window's), the cells' correlation their product: per distinct
+// geometry CA's exact factor, the others' from the sampled P_fa, as for range. Geometries share a
+// factor as for range where the range correlation's reach K allows it: the ring's cells at L and L'
+// range columns left of the guard, both at least K from every block end and from the column where
+// the halves split, differ only in far columns. No anchor: the ring is at most kCfarRingMaxCells.
+// `independent` or white noise in both dimensions: the independent-cell factor of each geometry's
+// N.
+CfarThresholdFactors design_cfar_ring_threshold_factors(const CfarConfig& config,
+                                                        const NoiseCorrelation& range_noise,
+                                                        const NoiseCorrelation& doppler_noise,
+                                                        const StopToken& stop = StopToken());
+
+// P_fa of one geometry of cells anywhere on the map (cfar_ring_offsets; `config` the equivalent
+// config of their count) at factor alpha, as correlated_false_alarm_probability.
+double correlated_cell_false_alarm_probability(
+    const CfarConfig& config, const NoiseCorrelation& range_noise,
+    const NoiseCorrelation& doppler_noise, std::span<const CfarCellOffset> offsets, double alpha,
+    CorrelatedPfaMethod method = CorrelatedPfaMethod::automatic,
+    std::uint64_t seed = kCfarDesignSeed);
+
+// The CPU seconds design_cfar_ring_threshold_factors takes (a cost model for the run-time
+// estimate, as cfar_design_seconds): 0 where the independent-cell factors serve.
+double cfar_ring_design_seconds(const CfarConfig& config, const NoiseCorrelation& range_noise,
+                                const NoiseCorrelation& doppler_noise);
+
+// The Doppler correlation lags a ring design reads: 2 (doppler guard + doppler training).
+std::size_t cfar_doppler_correlation_lags(const CfarConfig& config);
+
 // P_fa of the config's detector at factor alpha >= 0 for a cell with the reference cells at
 // `offsets` (from cfar_reference_offsets) in noise correlated by `noise` (method in the header
 // comment; the sampling mixture is tilted for this alpha, its samples drawn from `seed`'s stream).

@@ -66,6 +66,8 @@ struct InverseDft {
 struct EstimationWorkspace {
   CfarFourWorkspace cfar_four;  // |X|^2 of four Doppler rows under CFAR, and its results
   CfarWorkspace cfar;
+  std::vector<double> map_power;  // range_doppler: |X|^2 of the whole map
+  CfarMapWorkspace cfar_map;
   std::vector<double> row_power;            // |X|^2 of a Doppler row under CFAR (the last rows % 4)
   std::vector<std::uint8_t> detected;       // chirps x samples mask, all zero between frames
   std::vector<std::size_t> detected_cells;  // the cells set in the mask, ascending
