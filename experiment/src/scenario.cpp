@@ -16,12 +16,58 @@ std::string_view paper_scenario_text();
 
 using detail::parse_over;
 
+namespace {
+
+// Another instance of a kind: the kind's sensor, whose memory and time estimates name the
+// instance's keys (a limit's refusal points at "radar_24.measurements_per_step").
+class RenamedSensor : public sensor::ConfiguredSensor {
+ public:
+  RenamedSensor(std::shared_ptr<const sensor::ConfiguredSensor> kinds, std::string from,
+                std::string to)
+      : kinds_(std::move(kinds)), from_(std::move(from)), to_(std::move(to)) {}
+
+  std::size_t items_per_step() const override { return kinds_->items_per_step(); }
+  sensor::Cost cost() const override {
+    sensor::Cost c = kinds_->cost();
+    for (std::string* text :
+         {&c.item.detail, &c.item.key, &c.item.items_key, &c.setup.detail, &c.setup.key}) {
+      *text = renamed(*text);
+    }
+    return c;
+  }
+  sensor::MemoryPart memory(unsigned threads) const override {
+    sensor::MemoryPart part = kinds_->memory(threads);
+    part.detail = renamed(part.detail);
+    part.key = renamed(part.key);
+    return part;
+  }
+  std::vector<sensor::RawKind> raw_kinds() const override { return kinds_->raw_kinds(); }
+  sensor::FogReport fog_report(const propagation::FogSpec& fog, double layer_length_m,
+                               const propagation::SegelsteinTable& water) const override {
+    return kinds_->fog_report(fog, layer_length_m, water);
+  }
+  std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
+                                             const StopToken& stop) const override {
+    return kinds_->make(water, stop);
+  }
+
+ private:
+  std::string renamed(const std::string& text) const {
+    return with_section_renamed(text, from_, to_);
+  }
+
+  std::shared_ptr<const sensor::ConfiguredSensor> kinds_;
+  std::string from_, to_;
+};
+
+}  // namespace
+
 std::shared_ptr<const sensor::ConfiguredSensor> configure_instance(const SensorSetting& s,
                                                                    const sensor::Context& context) {
   if (s.is_kinds_own()) return s.kind->configure(*s.params, context);
   const std::string from = std::string(s.kind->name()) + ".", to = s.name + ".";
   try {
-    return s.kind->configure(*s.params, context);
+    return std::make_shared<RenamedSensor>(s.kind->configure(*s.params, context), from, to);
   } catch (const InvalidParameter& e) {
     throw with_section_renamed(e, from, to);
   }

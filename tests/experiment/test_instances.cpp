@@ -171,6 +171,19 @@ TEST(Instances, MessagesNameTheInstancesKeys) {
             0u);
 }
 
+// The memory and time estimates of an instance, which a limit's refusal quotes, name its keys.
+TEST(Instances, EstimatesNameTheInstancesKeys) {
+  const Scenario s = parse_scenario(instances_toml, "s.toml");
+  const sensor::MemoryPart memory = s.configure("radar_24")->memory(1);
+  EXPECT_NE(memory.detail.find("radar_24.measurements_per_step = 4"), std::string::npos)
+      << memory.detail;
+  EXPECT_EQ(memory.detail.find("radar."), std::string::npos) << memory.detail;
+  const sensor::Cost cost = s.configure("radar_24")->cost();
+  EXPECT_EQ(cost.item.items_key, "radar_24.measurements_per_step");
+  EXPECT_EQ(s.configure("lidar_1550")->cost().item.items_key, "lidar_1550.scans_per_step");
+  EXPECT_EQ(s.configure("radar")->cost().item.items_key, "radar.measurements_per_step");
+}
+
 // Every key the radar moved under [radar] is refused where it was, naming its new place.
 TEST(Instances, MovedKeysNameTheirNewPlace) {
   const std::vector<std::pair<std::string, std::string>> moved = {
