@@ -3,7 +3,7 @@
 # 1024 samples, 5 layer steps) at two numbers of measurements per step (default 200 and 2000), to
 # check the performance contract (docs/architecture.md): memory must not grow with the number of measurements beyond the stored per-
 # measurement records (frames are streamed, one per worker thread). Each run uses a temporary copy of
-# bench.toml in which only [experiment] measurements_per_step is changed, writes its result files
+# bench.toml in which only [radar] measurements_per_step is changed, writes its result files
 # into a temporary directory (removed afterwards), and is measured with GNU time's
 # `/usr/bin/time -v` ("Maximum resident set size", KiB).
 #

@@ -39,13 +39,23 @@ for seed in 2 3; do
 done
 
 # One baseline variant: `decompose NAME TARGET-KEYS...` runs 200 measurements at 0 layers with the
-# given [target] keys over the paper scenario and prints the median and IQR of the RCS.
+# given target keys over the paper scenario and prints the median and IQR of the RCS: the radar's
+# own view of the target (model, height_m) in [radar.target], the world's (floor, micro-motion) in
+# [target].
 decompose() {
-  local name=$1
+  local name=$1 own=() world=() key
   shift
+  for key in "$@"; do
+    case $key in
+      model\ * | height_m\ *) own+=("$key") ;;
+      *) world+=("$key") ;;
+    esac
+  done
   {
     echo "[target]"
-    printf '%s\n' "$@"
+    printf '%s\n' "${world[@]}"
+    echo "[radar.target]"
+    printf '%s\n' "${own[@]}"
     echo "[experiment]"
     echo "max_active_layers = 0"
     echo 'sensors = ["radar"]'
