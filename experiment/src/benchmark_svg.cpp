@@ -11,13 +11,19 @@
 namespace fogradar::experiment {
 namespace {
 
-// "Radar: median target RCS as a power ratio; lidar: ...; camera: target contrast." over every
-// registered kind's own instance and every other instance that runs.
+// "Radar, radar_24: median target RCS as a power ratio; lidar: ...; camera: target contrast." over
+// every registered kind's own instance and every other instance that runs, each kind's once.
 std::string metrics_caption(const Scenario& scenario) {
   std::string text;
-  for (const SensorSetting& setting : scenario.sensors) {
-    if (!setting.is_kinds_own() && !scenario.runs(setting.name)) continue;
-    text += (text.empty() ? "" : "; ") + setting.name + ": " + setting.kind->info().curve_caption;
+  for (const SensorSetting& own : scenario.sensors) {
+    if (!own.is_kinds_own()) continue;
+    std::string names = own.name;
+    for (const SensorSetting& other : scenario.sensors) {
+      if (other.kind == own.kind && !other.is_kinds_own() && scenario.runs(other.name)) {
+        names += ", " + other.name;
+      }
+    }
+    text += (text.empty() ? "" : "; ") + names + ": " + own.kind->info().curve_caption;
   }
   if (!text.empty()) text.front() = static_cast<char>(std::toupper(text.front()));
   return text + ".";

@@ -81,17 +81,6 @@ SensorSetting::SensorSetting(std::string instance_name,
 SensorSetting::SensorSetting(const SensorSetting& other)
     : name(other.name), kind(other.kind), params(other.params ? other.params->clone() : nullptr) {}
 
-// FNV-1a of the name with the top bit set: the kinds' own keys are small integers.
-std::uint64_t SensorSetting::stream_key() const {
-  if (is_kinds_own()) return kind->stream_key();
-  std::uint64_t hash = 14695981039346656037ULL;
-  for (const char c : name) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ULL;
-  }
-  return hash | (std::uint64_t{1} << 63);
-}
-
 SensorSetting& SensorSetting::operator=(const SensorSetting& other) {
   if (this != &other) *this = SensorSetting(other);
   return *this;

@@ -76,9 +76,11 @@ struct SensorSetting {
   SensorSetting& operator=(SensorSetting&&) noexcept = default;
   ~SensorSetting() = default;
 
-  // Its random streams' key: the kind's for the kind's own instance, so that its numbers do not
-  // depend on which other instances exist; for another, one made from its name.
-  std::uint64_t stream_key() const;
+  // Its random streams' key: its kind's. Every instance of a kind draws the same numbers for item
+  // (k, i), so two instances with the same keys give the same results and two that differ in a key
+  // differ by that key alone (common random numbers); no instance's numbers depend on which others
+  // exist.
+  std::uint64_t stream_key() const { return kind->stream_key(); }
   bool is_kinds_own() const { return name == kind->name(); }
 
   std::string name;
