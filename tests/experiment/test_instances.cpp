@@ -116,8 +116,8 @@ TEST(Instances, TwoInstancesWithTheSameKeysGiveTheSameResults) {
     }
   }
   EXPECT_EQ(compared, 5u + 5u);
-  const ExperimentSummary summary =
-      summarize(run_experiment(parse_scenario(twins, "twins.toml"), {.threads = 1}));
+  const ExperimentSummary summary = summarize(
+      run_experiment(parse_scenario(twins, "twins.toml"), {.threads = 1, .progress = {}}));
   EXPECT_EQ(summary.of<radar::RadarReport>("radar_2").summary().steps[1].rcs.median,
             summary.of<radar::RadarReport>("radar").summary().steps[1].rcs.median);
 }
