@@ -175,7 +175,7 @@ void add_kind_key(KeyTable<Scenario>& keys, const SensorSetting& setting, std::s
   keys.choice(
       setting.name + ".kind",
       [i](const Scenario& s) { return std::string(s.sensors[i].kind->name()); },
-      [i, kind, key = setting.name + ".kind"](const Scenario&, std::string_view name) {
+      [kind, key = setting.name + ".kind"](const Scenario&, std::string_view name) {
         if (name != kind) {
           throw_invalid(key, name, "'" + kind + "', the kind the instance was made with");
         }

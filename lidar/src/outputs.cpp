@@ -84,7 +84,7 @@ sensor::StepTable lidar_step_table(const LidarSummary& summary) {
       {"whisker_low", &BoxPlot::whisker_low},
       {"whisker_high", &BoxPlot::whisker_high}};
   for (const auto& [statistic, field] : statistics) {
-    t.number(std::string("intensity_") + statistic, "", steps, [field](const S& s) {
+    t.number(std::string("intensity_") + statistic, "", steps, [field = field](const S& s) {
        return s.target_intensity.*field;
      }).in_json(std::string("/target_intensity/") + statistic);
   }
