@@ -104,7 +104,7 @@ void run(const RunOptions& options) {
   }
   // Before the output directory: the directory is released with the signals still held off.
   const SignalWatch signals;
-  experiment::OutputDirectory out(dir, experiment::result_file_names(scenario));
+  experiment::OutputDirectory out(dir);
   std::optional<experiment::RawFile> raw;
   if (raw_plan) raw.emplace(*raw_plan, scenario);
   // Once nothing is left to refuse, so that a refused run prints its message alone. Flushed: a

@@ -39,26 +39,9 @@ double fog_seconds(const CameraParams& p, const propagation::ChamberSpec& chambe
   return seconds;
 }
 
-const char* const file_names[] = {"camera_histograms.csv", "camera_summary.csv",
-                                  "camera_summary.json", "camera_histograms.svg"};
-
 // camera_roi_<step>.pgm: the first frame of each step, when camera.write_roi_images.
 std::string roi_file_name(std::size_t step) {
   return "camera_roi_" + std::to_string(step) + ".pgm";
-}
-
-bool is_roi_file_name(std::string_view name) {
-  const std::string_view prefix = "camera_roi_", suffix = ".pgm";
-  if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) ||
-      !name.ends_with(suffix)) {
-    return false;
-  }
-  const std::string_view digits =
-      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  // The step as roi_file_name writes it: no leading zero, so a camera_roi_01.pgm is never taken
-  // for a set's file.
-  return digits.size() <= 7 && (digits.size() == 1 || digits.front() != '0') &&
-         std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 std::string counted_layers(std::size_t count) {
@@ -315,12 +298,6 @@ class Kind : public sensor::Kind<CameraParams> {
                                     .item_noun = "camera frames",
                                     .curve_caption = "target contrast"},
                                    camera_keys()) {}
-
-  bool owns_file_name(std::string_view file_name) const override {
-    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
-               std::end(file_names) ||
-           is_roi_file_name(file_name);
-  }
 
  protected:
   std::shared_ptr<const sensor::ConfiguredSensor> configured(

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -32,7 +33,40 @@ using detail::errno_text;
 using detail::sync_path;
 
 // The files of a result set that belong to no one sensor.
-const char* const common_file_names[] = {"summary.json", "scenario.toml", "benchmark.svg"};
+constexpr std::string_view common_file_names[] = {"summary.json", "scenario.toml", "benchmark.svg"};
+
+// The files fogradar wrote before result sets recorded theirs: then every sensor ran under its
+// kind's name, and the radar's files of fogradar 0.1 had no prefix. These names never change.
+constexpr std::string_view pre_record_file_names[] = {
+    "radar_samples.csv",   "radar_detections.csv",  "radar_summary.csv",
+    "radar_summary.json",  "radar_rcs_boxplot.svg", "samples.csv",
+    "summary.csv",         "rcs_boxplot.svg",       "lidar_echoes.csv",
+    "lidar_summary.csv",   "lidar_summary.json",    "lidar_intensity_boxplot.svg",
+    "lidar_scans.svg",     "camera_histograms.csv", "camera_summary.csv",
+    "camera_summary.json", "camera_histograms.svg"};
+
+bool is_listed(std::span<const std::string_view> names, std::string_view name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// camera_roi_<step>.pgm, the step as the camera writes it (no leading zero, so that a
+// camera_roi_01.pgm is never taken for a set's file).
+bool is_pre_record_roi_file_name(std::string_view name) {
+  const std::string_view prefix = "camera_roi_", suffix = ".pgm";
+  if (name.size() <= prefix.size() + suffix.size() || !name.starts_with(prefix) ||
+      !name.ends_with(suffix)) {
+    return false;
+  }
+  const std::string_view digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return digits.size() <= 7 && (digits.size() == 1 || digits.front() != '0') &&
+         std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool is_pre_record_file_name(std::string_view name) {
+  return is_listed(common_file_names, name) || is_listed(pre_record_file_names, name) ||
+         is_pre_record_roi_file_name(name);
+}
 
 [[noreturn]] void refuse(const fs::path& path, const std::string& constraint) {
   throw_invalid("--out", path.string(), constraint);
@@ -69,13 +103,12 @@ std::set<std::string> recorded_names(const fs::directory_entry& record, const fs
   return names;
 }
 
-// The entries of an existing `dir` that are its result set's: those the set's record lists (and a
-// registered sensor names, regular files), and the record. A set written before sets were
-// recorded is known by its summary.json, which every run writes: its files are those of the
-// result names. Any other entry is the user's: the directory is replaced whole, and no file of the
-// user's may go with it, so it is refused, naming the file.
-std::vector<fs::path> previous_set(const fs::path& dir, const fs::path& given,
-                                   const ResultFileNames& names) {
+// The entries of an existing `dir` that are its result set's: those the set's record lists (result
+// file names, regular files), and the record. A set written before sets were recorded is known by
+// its summary.json, which every run writes: its files are those of the names fogradar wrote then.
+// Any other entry is the user's: the directory is replaced whole, and no file of the user's may go
+// with it, so it is refused, naming the file.
+std::vector<fs::path> previous_set(const fs::path& dir, const fs::path& given) {
   std::error_code error;
   std::vector<fs::path> set;
   if (!fs::is_directory(fs::symlink_status(dir, error))) return set;
@@ -86,9 +119,10 @@ std::vector<fs::path> previous_set(const fs::path& dir, const fs::path& given,
   const bool earlier_set = recorded || is_regular(summary);
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    const bool ours = recorded ? (name == record_file_name ||
-                                  (recorded->contains(name) && names(name) && is_regular(entry)))
-                               : earlier_set && names(name) && is_regular(entry);
+    const bool ours =
+        recorded ? (name == record_file_name ||
+                    (recorded->contains(name) && is_result_file_name(name) && is_regular(entry)))
+                 : earlier_set && is_pre_record_file_name(name) && is_regular(entry);
     if (!ours) {
       refuse(given,
              "a directory holding only the result files of an earlier run, as it is "
@@ -102,27 +136,15 @@ std::vector<fs::path> previous_set(const fs::path& dir, const fs::path& given,
 
 }  // namespace
 
-ResultFileNames result_file_names(const Scenario& scenario) {
-  std::vector<std::shared_ptr<const sensor::SensorKind>> kinds;
-  for (const SensorSetting& setting : scenario.sensors) kinds.push_back(setting.kind);
-  return [kinds](std::string_view name) {
-    if (std::find(std::begin(common_file_names), std::end(common_file_names), name) !=
-        std::end(common_file_names)) {
-      return true;
-    }
-    // "<instance>_<rest>", where the kind's own instance would write "<kind>_<rest>": an instance
-    // name may hold '_', so every split is tried.
-    for (std::size_t split = name.find('_'); split != std::string_view::npos;
-         split = name.find('_', split + 1)) {
-      const std::string_view rest = name.substr(split);
-      const bool owned = std::any_of(kinds.begin(), kinds.end(), [rest](const auto& kind) {
-        return kind->owns_file_name(std::string(kind->name()) + std::string(rest));
-      });
-      if (owned) return true;
-    }
-    return std::any_of(kinds.begin(), kinds.end(),
-                       [name](const auto& kind) { return kind->owns_file_name(name); });
-  };
+bool is_result_file_name(std::string_view name) {
+  if (is_listed(common_file_names, name)) return true;
+  // The instance's name up to its first '_' is enough: the rest of the name may hold '_' too.
+  const std::size_t split = name.find('_');
+  if (split == std::string_view::npos || split + 1 == name.size()) return false;
+  const std::string_view first = name.substr(0, split);
+  return first.front() >= 'a' && first.front() <= 'z' &&
+         std::all_of(first.begin(), first.end(),
+                     [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'); });
 }
 
 namespace {
@@ -130,9 +152,12 @@ namespace {
 // A file of instance `outcome` under its own name: the kind names its files for its own instance
 // ("radar_summary.csv"), another instance's take its name ("radar_24_summary.csv").
 std::string instance_file_name(const SensorOutcome& outcome, const std::string& file) {
-  const std::string kind(outcome.kind->name());
-  if (outcome.name == kind || !file.starts_with(kind + "_")) return file;
-  return outcome.name + file.substr(kind.size());
+  const std::string prefix = std::string(outcome.kind->name()) + '_';
+  if (!file.starts_with(prefix) || file.size() == prefix.size()) {
+    throw InternalError("sensor kind '" + std::string(outcome.kind->name()) + "' wrote '" + file +
+                        "': a sensor's file names begin with its kind's name and '_'");
+  }
+  return outcome.name + file.substr(prefix.size() - 1);
 }
 
 }  // namespace
@@ -245,7 +270,7 @@ std::vector<sensor::ResultFile> result_files(const Scenario& scenario,
   return files;
 }
 
-OutputDirectory::OutputDirectory(fs::path dir, ResultFileNames names) : names_(std::move(names)) {
+OutputDirectory::OutputDirectory(fs::path dir) {
   const fs::path given = dir;
   std::error_code error;
   dir_ = fs::absolute(dir, error).lexically_normal();
@@ -276,7 +301,7 @@ OutputDirectory::OutputDirectory(fs::path dir, ResultFileNames names) : names_(s
     if (error) refuse(given, "a directory that can be created (" + error.message() + ")");
 
     lock_ = std::make_unique<PathLock>(dir_, "--out", given.string(), "a directory");
-    previous_set(dir_, given, names_);
+    previous_set(dir_, given);
     std::string staging =
         (parent_ / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX")).string();
     if (::mkdtemp(staging.data()) == nullptr) {
@@ -319,7 +344,7 @@ bool OutputDirectory::replace(const std::vector<sensor::ResultFile>& files,
   std::vector<fs::path> previous;
   if (fs::exists(fs::symlink_status(dir_))) {
     // Checked again: a file put into `dir` while the run measured must not go with the old set.
-    previous = previous_set(dir_, dir_, names_);
+    previous = previous_set(dir_, dir_);
     // Readers see the old set or the new one, never a mixture and never no directory at all.
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) != 0) {
       refuse(dir_, "a directory that can be replaced (renameat2: " + errno_text() + ")");

@@ -38,9 +38,6 @@ double fog_seconds(const LidarParams& p, const propagation::ChamberSpec& chamber
   return seconds;
 }
 
-const char* const file_names[] = {"lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
-                                  "lidar_intensity_boxplot.svg", "lidar_scans.svg"};
-
 std::string counted_layers(std::size_t count) {
   return std::to_string(count) + (count == 1 ? " layer" : " layers");
 }
@@ -310,11 +307,6 @@ class Kind : public sensor::Kind<LidarParams> {
              .item_noun = "lidar scans",
              .curve_caption = "median target intensity (a missing target counted as 0)"},
             lidar_keys()) {}
-
-  bool owns_file_name(std::string_view file_name) const override {
-    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
-           std::end(file_names);
-  }
 
  protected:
   std::shared_ptr<const sensor::ConfiguredSensor> configured(

@@ -409,7 +409,7 @@ PYBIND11_MODULE(_core, m) {
         const std::vector<sensor::ResultFile> files =
             experiment::result_files(r.scenario, r.summary);
         const py::gil_scoped_release release;
-        experiment::OutputDirectory out(dir, experiment::result_file_names(r.scenario));
+        experiment::OutputDirectory out(dir);
         out.replace(files);
       });
 

@@ -73,11 +73,6 @@ double mib(std::size_t bytes) {
   return static_cast<double>(bytes) / static_cast<double>(std::size_t{1} << 20);
 }
 
-const char* const file_names[] = {"radar_samples.csv", "radar_detections.csv", "radar_summary.csv",
-                                  "radar_summary.json", "radar_rcs_boxplot.svg"};
-// The radar's files as fogradar 0.1 named them: an earlier result set is still replaced whole.
-const char* const earlier_file_names[] = {"samples.csv", "summary.csv", "rcs_boxplot.svg"};
-
 // The radar for one scenario: its parameters, checked against the chamber, and the context.
 class Configured : public sensor::ConfiguredSensor {
  public:
@@ -208,13 +203,6 @@ class Kind : public sensor::Kind<SensorParams> {
                                     .item_noun = "radar measurements",
                                     .curve_caption = "median target RCS as a power ratio"},
                                    sensor_keys()) {}
-
-  bool owns_file_name(std::string_view file_name) const override {
-    return std::find(std::begin(file_names), std::end(file_names), file_name) !=
-               std::end(file_names) ||
-           std::find(std::begin(earlier_file_names), std::end(earlier_file_names), file_name) !=
-               std::end(earlier_file_names);
-  }
 
  protected:
   std::shared_ptr<const sensor::ConfiguredSensor> configured(

@@ -154,12 +154,10 @@ void SweepDirectory::write_table(std::string_view name, std::string_view content
   }
 }
 
-void SweepDirectory::keep(std::size_t index, const experiment::Scenario& scenario,
-                          const std::vector<sensor::ResultFile>& files) const {
+void SweepDirectory::keep(std::size_t index, const std::vector<sensor::ResultFile>& files) const {
   std::error_code error;
   fs::create_directories(dir_ / points_dir, error);
-  experiment::OutputDirectory out(dir_ / points_dir / std::to_string(index),
-                                  experiment::result_file_names(scenario));
+  experiment::OutputDirectory out(dir_ / points_dir / std::to_string(index));
   out.replace(files);
 }
 

@@ -41,8 +41,7 @@ class SweepDirectory {
   void commit(const nlohmann::json& piece) const;
   void write_table(std::string_view name, std::string_view content) const;
   // Point `index`'s result set into points/<index>/, as `fogradar run --out` writes it.
-  void keep(std::size_t index, const experiment::Scenario& scenario,
-            const std::vector<sensor::ResultFile>& files) const;
+  void keep(std::size_t index, const std::vector<sensor::ResultFile>& files) const;
   // Whether points/<index>/ holds the result set of `point` (its scenario.toml is the point's).
   bool holds_kept(const Point& point) const;
   // Removes points/<index>/ of each of `indices` that holds another point's result set (one that

@@ -242,7 +242,7 @@ SweepOutcome run_sweep(MpiJob& job, const SweepSpec& spec, const std::vector<Poi
     return index;
   };
   const auto store = [&](std::size_t index, detail::Computed computed) {
-    if (options.keep_points) out->keep(index, points[index].scenario, computed.kept);
+    if (options.keep_points) out->keep(index, computed.kept);
     out->commit(computed.piece);
     const std::lock_guard<std::mutex> lock(mutex);
     pieces[index] = std::move(computed.piece);

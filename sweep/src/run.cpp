@@ -247,7 +247,7 @@ SweepOutcome run_sweep(const SweepSpec& spec, const std::vector<Point>& points, 
     } else {
       detail::Computed computed =
           detail::compute_point(spec, point, definition, water, cache, options);
-      if (options.keep_points) out.keep(index, point.scenario, computed.kept);
+      if (options.keep_points) out.keep(index, computed.kept);
       out.commit(computed.piece);
       piece = std::move(computed.piece);
       ++outcome.computed;

@@ -65,7 +65,7 @@ TEST(MultiSensor, EveryFileIsTheSameBytesForAnyThreadCount) {
   for (const auto& [name, content] : one) {
     ASSERT_TRUE(three.contains(name)) << name;
     EXPECT_EQ(content, three.at(name)) << name;
-    EXPECT_TRUE(result_file_names(s)(name)) << name;
+    EXPECT_TRUE(is_result_file_name(name)) << name;
   }
 }
 

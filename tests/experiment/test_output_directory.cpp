@@ -31,9 +31,7 @@ Files result_set(const std::string& tag) {
 }
 
 // The result set of the paper scenario's sensors.
-OutputDirectory output_directory(const fs::path& dir) {
-  return OutputDirectory(dir, result_file_names(paper_scenario()));
-}
+OutputDirectory output_directory(const fs::path& dir) { return OutputDirectory(dir); }
 
 // Every entry of `dir` with its content ("<dir>" for a directory).
 std::map<std::string, std::string> listing(const fs::path& dir) {
@@ -59,7 +57,7 @@ std::map<std::string, std::string> as_listing(const Files& files) {
 // The refusal of `dir` as an output directory names --out and, as the reason, `file`.
 void expect_refused_for(const fs::path& dir, const std::string& file) {
   try {
-    OutputDirectory refused(dir, result_file_names(paper_scenario()));
+    OutputDirectory refused(dir);
     ADD_FAILURE() << "accepted a directory holding the user's " << file;
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.field(), "--out") << file;
@@ -124,7 +122,7 @@ TEST_F(OutputDirectoryTest, RefusesADirectoryHoldingOtherFiles) {
   fs::create_directories(dir / "samples.csv");  // a result file's name, but a directory
   std::ofstream(dir / "notes.txt") << "mine";
   try {
-    OutputDirectory refused(dir, result_file_names(paper_scenario()));
+    OutputDirectory refused(dir);
     FAIL() << "a directory with a user's files was accepted";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.field(), "--out");
@@ -139,7 +137,7 @@ TEST_F(OutputDirectoryTest, RefusesADirectoryHoldingOtherFiles) {
 TEST_F(OutputDirectoryTest, AFileAddedDuringTheRunKeepsThePreviousSet) {
   const fs::path dir = parent_ / "out";
   output_directory(dir).replace(result_set("first"));
-  OutputDirectory second(dir, result_file_names(paper_scenario()));
+  OutputDirectory second(dir);
   std::ofstream(dir / "notes.txt") << "mine";
   EXPECT_THROW(second.replace(result_set("second")), InvalidParameter);
   std::map<std::string, std::string> expected = as_listing(result_set("first"));
@@ -150,9 +148,9 @@ TEST_F(OutputDirectoryTest, AFileAddedDuringTheRunKeepsThePreviousSet) {
 TEST_F(OutputDirectoryTest, OneHolderAtATime) {
   const fs::path dir = parent_ / "out";
   {
-    OutputDirectory first(dir, result_file_names(paper_scenario()));
+    OutputDirectory first(dir);
     try {
-      OutputDirectory second(dir, result_file_names(paper_scenario()));
+      OutputDirectory second(dir);
       FAIL() << "two holders of one directory";
     } catch (const InvalidParameter& e) {
       EXPECT_EQ(e.field(), "--out");
@@ -166,18 +164,18 @@ TEST_F(OutputDirectoryTest, OneHolderAtATime) {
 }
 
 // A set written by a run of other sensors (every sensor's file names as docs/scenario.md lists
-// them, and the radar's names of fogradar 0.1) is an earlier result set: a radar-only run replaces
-// it whole, leaving none of its files; a file of another name is still refused.
+// them) is an earlier result set: a radar-only run replaces it whole, leaving none of its files; a
+// file its record does not list is still refused.
 TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
   const fs::path dir = parent_ / "out";
   Files every = {{"camera_roi_0.pgm", "P5"},
                  {"camera_roi_12.pgm", "P5"}};  // camera.write_roi_images
   for (const char* name :
        {"radar_samples.csv", "radar_summary.csv", "radar_summary.json", "radar_rcs_boxplot.svg",
-        "samples.csv", "summary.csv", "rcs_boxplot.svg", "lidar_echoes.csv", "lidar_summary.csv",
-        "lidar_summary.json", "lidar_intensity_boxplot.svg", "lidar_scans.svg",
-        "camera_histograms.csv", "camera_summary.csv", "camera_summary.json",
-        "camera_histograms.svg", "summary.json", "scenario.toml", "benchmark.svg"}) {
+        "lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
+        "lidar_intensity_boxplot.svg", "lidar_scans.svg", "camera_histograms.csv",
+        "camera_summary.csv", "camera_summary.json", "camera_histograms.svg", "summary.json",
+        "scenario.toml", "benchmark.svg"}) {
     every.push_back({name, "earlier " + std::string(name)});
   }
   ASSERT_TRUE(output_directory(dir).replace(every));
@@ -185,9 +183,7 @@ TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
   EXPECT_EQ(listing(dir), as_listing(result_set("radar only")));
   for (const char* foreign : {"lidar_notes.csv", "camera_roi_x.pgm", "camera_roi_.pgm"}) {
     std::ofstream(dir / foreign) << "mine";
-    EXPECT_THROW(OutputDirectory refused(dir, result_file_names(paper_scenario())),
-                 InvalidParameter)
-        << foreign;
+    EXPECT_THROW(OutputDirectory refused(dir), InvalidParameter) << foreign;
     fs::remove(dir / foreign);
   }
   expect_only_result_directory();
@@ -205,7 +201,7 @@ TEST_F(OutputDirectoryTest, AUsersFileUnderAResultNameIsNeverDeleted) {
     expect_refused_for(dir, mine);
     // Put in while the run measured: the swap is refused.
     fs::remove(dir / mine);
-    OutputDirectory second(dir, result_file_names(paper_scenario()));
+    OutputDirectory second(dir);
     std::ofstream(dir / mine) << "mine";
     EXPECT_THROW(second.replace(result_set("second")), InvalidParameter) << mine;
     std::map<std::string, std::string> expected = as_listing(result_set("first"));
@@ -238,8 +234,9 @@ TEST_F(OutputDirectoryTest, APreviousRunsRoiImagesAreReplaced) {
 }
 
 // A set written before sets were recorded (no record, but the summary.json every run writes) is
-// known by its names, as then: replaced whole. A ROI image's name the camera never writes is still
-// the user's, and so is any file in a directory without a summary.json.
+// known by the names fogradar wrote then: replaced whole. A ROI image's name the camera never
+// writes is still the user's, and so is a file under a sensor's prefix that no sensor wrote then
+// (sensor instances came after the record), and any file in a directory without a summary.json.
 TEST_F(OutputDirectoryTest, ASetWrittenBeforeTheRecordIsKnownByItsNames) {
   const fs::path dir = parent_ / "out";
   fs::create_directories(dir);
@@ -247,9 +244,11 @@ TEST_F(OutputDirectoryTest, ASetWrittenBeforeTheRecordIsKnownByItsNames) {
        {"summary.json", "samples.csv", "radar_summary.csv", "camera_roi_3.pgm"}) {
     std::ofstream(dir / name) << "earlier";
   }
-  std::ofstream(dir / "camera_roi_01.pgm") << "mine";
-  expect_refused_for(dir, "camera_roi_01.pgm");
-  fs::remove(dir / "camera_roi_01.pgm");
+  for (const char* mine : {"camera_roi_01.pgm", "radar_notes.txt", "radar_24_summary.csv"}) {
+    std::ofstream(dir / mine) << "mine";
+    expect_refused_for(dir, mine);
+    fs::remove(dir / mine);
+  }
   EXPECT_TRUE(output_directory(dir).replace(result_set("new")));
   EXPECT_EQ(listing(dir), as_listing(result_set("new")));
 
@@ -282,6 +281,44 @@ TEST_F(OutputDirectoryTest, MissingParentsStayOnlyWithASet) {
   EXPECT_TRUE(output_directory(dir).replace(result_set("first")));
   EXPECT_EQ(listing(dir), as_listing(result_set("first")));
   EXPECT_EQ(listing(dir.parent_path()), (std::map<std::string, std::string>{{"out", "<dir>"}}));
+}
+
+// A result file's name is the run's own or an instance's: its name (lower-case letters and digits
+// up to the first '_', as instance_name_rule allows) as its prefix, then something.
+TEST(ResultFileNames, AreTheRunsOwnOrCarryAnInstancesNameAsTheirPrefix) {
+  for (const char* name : {"summary.json", "scenario.toml", "benchmark.svg", "radar_summary.csv",
+                           "radar_24_summary.csv", "lidar_1550_scans.svg", "camera_roi_3.pgm",
+                           "rangefinder_shots.csv", "x_y"}) {
+    EXPECT_TRUE(is_result_file_name(name)) << name;
+  }
+  for (const char* name :
+       {"notes.txt", "summary.csv", "Radar_summary.csv", "1radar_summary.csv", "_summary.csv",
+        "radar_", "radar-24_summary.csv", "radar.summary.csv", "", ".fogradar-files"}) {
+    EXPECT_FALSE(is_result_file_name(name)) << name;
+  }
+}
+
+// A set its record lists is replaced whole whatever instances wrote it: no scenario's list of
+// sensors or file names decides, the record and the names' form do. A file the record does not
+// list is the user's even under an instance's prefix, and a record cannot make a file of another
+// form the set's.
+TEST_F(OutputDirectoryTest, ASetOfOtherInstancesIsReplacedByItsRecord) {
+  const fs::path dir = parent_ / "out";
+  const Files instances = {{"radar_24_summary.csv", "24"},
+                           {"lidar_1550_echoes.csv", "1550"},
+                           {"rangefinder_shots.csv", "shots"},
+                           {"summary.json", "{}"}};
+  ASSERT_TRUE(output_directory(dir).replace(instances));
+  std::ofstream(dir / "radar_24_notes.txt") << "mine";
+  expect_refused_for(dir, "radar_24_notes.txt");
+  fs::remove(dir / "radar_24_notes.txt");
+  EXPECT_TRUE(output_directory(dir).replace(result_set("radar only")));
+  EXPECT_EQ(listing(dir), as_listing(result_set("radar only")));
+
+  std::ofstream(dir / "notes.txt") << "mine";
+  std::ofstream(dir / record_file_name, std::ios::app) << "notes.txt\n";
+  expect_refused_for(dir, "notes.txt");
+  EXPECT_EQ(listing(dir).at("notes.txt"), "mine");
 }
 
 TEST_F(OutputDirectoryTest, RefusesAFile) {

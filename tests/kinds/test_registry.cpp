@@ -49,7 +49,6 @@ class Relabelled : public sensor::SensorKind {
       const sensor::Params& params, const sensor::Context& context) const override {
     return kind_->configure(params, context);
   }
-  bool owns_file_name(std::string_view name) const override { return kind_->owns_file_name(name); }
 
  private:
   std::shared_ptr<const sensor::SensorKind> kind_;
@@ -119,7 +118,7 @@ TEST(Registry, AKindOfTheTestTreesListRunsBesideTheStudysThree) {
             nlohmann::json::parse(files.at("rangefinder_summary.json")));
   EXPECT_NE(files.at("benchmark.svg").find("rangefinder echo rate"), std::string::npos);
   EXPECT_NE(files.at("benchmark.svg").find("rangefinder limit 2"), std::string::npos);
-  for (const auto& [name, content] : files) EXPECT_TRUE(result_file_names(s)(name)) << name;
+  for (const auto& [name, content] : files) EXPECT_TRUE(is_result_file_name(name)) << name;
 
   // Its keys: written into scenario.toml in its own section, read back, refused when bad.
   const std::string toml = files.at("scenario.toml");
@@ -143,8 +142,9 @@ TEST(Registry, AKindOfTheTestTreesListRunsBesideTheStudysThree) {
 }
 
 // The result set as `fogradar run` writes it: the run's files, the range finder's among them, go
-// into the output directory in one step; a second run replaces them, its files being known as the
-// range finder's (owns_file_name), where a file no kind owns is refused and left in place.
+// into the output directory in one step; a second run replaces them, its files being those the
+// set's record lists, where a file it does not list, even under the range finder's prefix, is
+// refused and left in place.
 TEST(Registry, ItsResultFilesAreWrittenAndReplacedInTheOutputDirectory) {
   namespace fs = std::filesystem;
   const SensorRegistry registry = four_sensors();
@@ -153,7 +153,7 @@ TEST(Registry, ItsResultFilesAreWrittenAndReplacedInTheOutputDirectory) {
   const fs::path dir = fs::path(::testing::TempDir()) / "fogradar_kinds_result_set";
   fs::remove_all(dir);
   const auto write = [&] {
-    OutputDirectory out(dir, result_file_names(s));
+    OutputDirectory out(dir);
     return out.replace(
         result_files(s, summarize(run_experiment(s, {.threads = 2, .progress = {}}))));
   };
@@ -201,6 +201,27 @@ TEST(Registry, AScenarioCopiesItsSensorsParametersAndKnowsTheirStruct) {
   EXPECT_EQ(copy.configure("rangefinder")->items_per_step(), 11u);
   EXPECT_EQ(original.configure("rangefinder")->items_per_step(), 9u);
   EXPECT_THROW((void)copy.params<RangeFinderParams>("lidar"), std::bad_cast);
+}
+
+// A sensor's files begin with its kind's name and '_', which the result set turns into its
+// instance's: a kind that writes another's names is a bug, refused before any file is written.
+TEST(Registry, AKindsFilesMustCarryItsName) {
+  sensor::KindInfo twin = rangefinder::sensor_kind()->info();
+  twin.name = "twin";
+  twin.stream_key = 4;
+  SensorRegistry registry = four_sensors();
+  registry.add(std::make_shared<Relabelled>(twin, false));
+  Scenario s = parse_scenario(four_toml, "four.toml", registry);
+  s.experiment.sensors = {"twin"};
+  const ExperimentSummary summary = summarize(run_experiment(s, {.threads = 1, .progress = {}}));
+  try {
+    (void)result_files(s, summary);
+    ADD_FAILURE() << "accepted a twin's file named rangefinder_*";
+  } catch (const InternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("sensor kind 'twin' wrote 'rangefinder_"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // A registry holds each name, stream key and scenario key once: a second sensor that would share

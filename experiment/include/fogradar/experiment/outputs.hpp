@@ -20,15 +20,14 @@ namespace fogradar::experiment {
 
 class PathLock;
 
-// Whether a file name is one a result set can hold: summary.json, scenario.toml, benchmark.svg, or
-// one of a registered sensor's (sensor::SensorKind::owns_file_name). A set's files have such names;
-// a set written before sets were recorded (record_file_name) is known by them alone.
-using ResultFileNames = std::function<bool(std::string_view)>;
-ResultFileNames result_file_names(const Scenario& scenario);
+// Whether a result set can hold a file of this name: summary.json, scenario.toml, benchmark.svg,
+// or a sensor instance's file, which carries the instance's name as its prefix
+// ("radar_24_summary.csv": a name of instance_name_rule's letters, then '_' and the rest).
+bool is_result_file_name(std::string_view name);
 
 // The record a result set holds of its files (their names, sorted, one a line): only the files it
-// lists are the set's, replaced with it; any other file in the directory is the user's, even one
-// whose name a sensor could have written (camera_roi_<step>.pgm).
+// lists (and is_result_file_name allows) are the set's, replaced with it; any other file in the
+// directory is the user's, even one whose name a sensor could have written (camera_roi_<step>.pgm).
 inline constexpr std::string_view record_file_name = ".fogradar-files";
 
 // Every sensor's per-step table under its name, in the order the sensors ran (what `fogradar run`
@@ -44,22 +43,24 @@ std::string summary_json(const Scenario& scenario, const ExperimentSummary& summ
 // each sensor's limit marked by a dashed line.
 std::string benchmark_svg(const Scenario& scenario, const ExperimentSummary& summary);
 
-// The result files of the sensors that ran and the run's own.
+// The result files of the sensors that ran, each under its instance's name, and the run's own.
+// Throws InternalError for a sensor's file whose name does not begin with its kind's name and '_'.
 std::vector<sensor::ResultFile> result_files(const Scenario& scenario,
                                              const ExperimentSummary& summary);
 
 // The output directory of one run, held from before the run until its result set is in place.
 // Construction refuses (InvalidParameter naming "--out") a `dir` that is not a directory, that
-// holds anything but an earlier set's files (those its record_file_name lists and `names` allows,
-// or in a set written before sets were recorded, one holding summary.json, those `names` allows;
-// so no file of the user's is ever deleted), or that another run holds; it then creates missing
+// holds anything but an earlier set's files (those its record_file_name lists and
+// is_result_file_name allows, or in a set written before sets were recorded, one holding
+// summary.json, the names fogradar wrote then; so no file of the user's is ever deleted), or that
+// another run holds; it then creates missing
 // parents, takes the lock (`.NAME.lock` beside `dir`, flock) and creates the staging directory
 // `.NAME.tmp-<pid>-<random>` beside `dir`. Destruction removes the staging directory, the lock
 // file and, unless a set was put in place, the parents it created, whatever happened: a failed or
 // interrupted run leaves the previous set untouched and no directory of its own.
 class OutputDirectory {
  public:
-  OutputDirectory(std::filesystem::path dir, ResultFileNames names);
+  explicit OutputDirectory(std::filesystem::path dir);
   ~OutputDirectory();
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;
@@ -76,7 +77,6 @@ class OutputDirectory {
  private:
   void release() noexcept;
 
-  ResultFileNames names_;
   std::filesystem::path dir_, parent_, staging_;
   std::unique_ptr<PathLock> lock_;
   std::vector<std::filesystem::path> created_;  // missing parents of `dir`, deepest first

@@ -88,7 +88,9 @@ struct Curve {
 };
 
 struct ResultFile {
-  std::string name;  // in the result set, prefixed with the sensor's name
+  // "<kind>_<rest>", the kind's name its prefix: the result set holds it under its instance's
+  // name ("radar_24_summary.csv" for the kind's "radar_summary.csv").
+  std::string name;
   std::string content;
 };
 
@@ -322,15 +324,12 @@ class SensorKind {
   // scenario key (its own or the chamber's).
   virtual std::shared_ptr<const ConfiguredSensor> configure(const Params& params,
                                                             const Context& context) const = 0;
-  // Whether a file of this name in a result directory is one of the sensor's result files.
-  virtual bool owns_file_name(std::string_view file_name) const = 0;
-
   std::string_view name() const { return info().name; }
   std::uint64_t stream_key() const { return info().stream_key; }
 };
 
 // A kind over its own parameter struct P: it gives its info and keys to the constructor and
-// implements configured() (its keys already checked) and owns_file_name().
+// implements configured() (its keys already checked).
 template <class P>
 class Kind : public SensorKind {
  public:

@@ -221,10 +221,6 @@ sensor::KindInfo range_finder_info() {
 class RangeFinderKind : public sensor::Kind<RangeFinderParams> {
  public:
   RangeFinderKind() : sensor::Kind<RangeFinderParams>(range_finder_info(), range_finder_keys()) {}
-  bool owns_file_name(std::string_view name) const override {
-    return name == "rangefinder_shots.csv" || name == "rangefinder_summary.csv" ||
-           name == "rangefinder_summary.json";
-  }
 
  protected:
   std::shared_ptr<const sensor::ConfiguredSensor> configured(
