@@ -19,26 +19,6 @@ namespace {
 
 constexpr double degree_rad = pi / 180.0;
 
-double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
-
-struct SegmentHit {
-  double range_m = std::numeric_limits<double>::infinity();
-  double cos_incidence = 0.0;
-};
-
-// Ray (cos, sin) from the origin against the segment p0 -> p1: t u = p0 + lambda d with t > 0,
-// lambda in [0, 1]; cos(incidence) = |u x d| / |d| (the segment's normal is perpendicular to d).
-SegmentHit intersect(double ux, double uy, double x0, double y0, double x1, double y1) {
-  const double dx = x1 - x0;
-  const double dy = y1 - y0;
-  const double denom = cross(ux, uy, dx, dy);
-  if (denom == 0.0) return {};
-  const double t = cross(x0, y0, dx, dy) / denom;
-  const double lambda = cross(x0, y0, ux, uy) / denom;
-  if (!(t > 0.0) || lambda < 0.0 || lambda > 1.0) return {};
-  return {.range_m = t, .cos_incidence = std::abs(denom) / std::hypot(dx, dy)};
-}
-
 }  // namespace
 
 Origin dominant_origin(double target, double fog, double background, double noise_std) noexcept {
@@ -54,10 +34,12 @@ std::span<const double> FogFluctuationSeries::scan(std::size_t scan_index) const
 }
 
 Lidar::Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
-             const propagation::SegelsteinTable& table)
+             const propagation::SegelsteinTable& table, std::span<const Shape> room)
     : params_(params) {
   params_.validate();
   chamber.validate();
+  shapes_ = background_shapes(params_.background);
+  shapes_.insert(shapes_.end(), room.begin(), room.end());
   target_range_m_ = chamber.target_range_m();
   double start_m = chamber.sensor_gap_m;
   for (std::size_t i = 0; i < chamber.layers.size(); ++i) {
@@ -173,24 +155,23 @@ Lidar::Hit Lidar::trace(std::size_t beam, const propagation::ActiveLayers& activ
   const double angle = beam_angle_deg(beam) * degree_rad;
   const double ux = std::cos(angle);
   const double uy = std::sin(angle);
-  SegmentHit nearest;
+  ShapeHit nearest;
   bool is_target = false;
   double reflectivity = 0.0;
-  const auto consider = [&](const SegmentHit& hit, bool target, double rho) {
-    if (hit.range_m < nearest.range_m) {
-      nearest = hit;
-      is_target = target;
-      reflectivity = rho;
-    }
-  };
   if (params_.target_width_m > 0.0) {
     const double half = 0.5 * params_.target_width_m;
-    consider(intersect(ux, uy, target_range_m_, params_.target_offset_m - half, target_range_m_,
-                       params_.target_offset_m + half),
-             true, params_.target_reflectivity);
+    nearest = intersect(SegmentShape{target_range_m_, params_.target_offset_m - half,
+                                     target_range_m_, params_.target_offset_m + half},
+                        ux, uy);
+    is_target = nearest.range_m < std::numeric_limits<double>::infinity();
+    reflectivity = params_.target_reflectivity;
   }
-  for (const BackgroundSegment& s : params_.background) {
-    consider(intersect(ux, uy, s.x0_m, s.y0_m, s.x1_m, s.y1_m), false, s.reflectivity);
+  // The target wins a tie with the background, which keeps its first shape on a tie.
+  const FirstHit background = first_hit(shapes_, ux, uy);
+  if (background.hit.range_m < nearest.range_m) {
+    nearest = background.hit;
+    is_target = false;
+    reflectivity = shapes_[*background.shape].reflectivity;
   }
   const double end_m = std::min(nearest.range_m, params_.max_range_m);
   // Every echo, the target's, the fog's and the background's, crosses the window twice.

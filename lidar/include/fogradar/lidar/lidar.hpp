@@ -23,6 +23,7 @@
 #include "fogradar/core/stop.hpp"
 #include "fogradar/lidar/fog_return.hpp"
 #include "fogradar/lidar/params.hpp"
+#include "fogradar/lidar/shapes.hpp"
 #include "fogradar/lidar/waveform.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
@@ -36,7 +37,7 @@ inline constexpr std::uint64_t stream_key = 1;
 // What produced an echo (the sensors' one code table, sensor/origin.hpp): the noise-free
 // contribution largest at the echo's attribution sample (attribution_sample, waveform.hpp: the
 // peak of the return whose leading edge made the echo; target: the EVT; fog: the active layers'
-// volume backscatter; background: a static segment), or noise when the largest is below the
+// volume backscatter; background: a static shape), or noise when the largest is below the
 // receiver noise's standard deviation (a false alarm). A fog echo also names the chamber layer
 // whose fog contributes most there.
 using sensor::Origin;
@@ -114,9 +115,10 @@ class Lidar {
  public:
   // Validates both; resolves each layer's FogSpec at params.wavelength_m
   // (propagation::Fog::at_optical_wavelength): alpha = extinction, beta_pi = volume backscatter /
-  // (4 pi).
+  // (4 pi). The static scene is the background segments followed by `room` (room_shapes(): the
+  // hall's walls and objects in the scan plane), every one a background origin.
   Lidar(const LidarParams& params, const propagation::ChamberSpec& chamber,
-        const propagation::SegelsteinTable& table);
+        const propagation::SegelsteinTable& table, std::span<const Shape> room = {});
 
   const LidarParams& params() const { return params_; }
   std::size_t beam_count() const { return beam_count_; }
@@ -133,6 +135,8 @@ class Lidar {
   // The window's water film out and back (lidar.window_water_film_m): every echo's factor.
   double window_two_way_transmittance() const { return window_two_way_transmittance_; }
   std::size_t samples_per_beam() const { return samples_; }
+  // The static scene: the background segments, then the room's shapes.
+  const std::vector<Shape>& shapes() const { return shapes_; }
 
   // The stream index of the step's fog series: scans_per_step (scans use 0 .. scans_per_step - 1).
   std::size_t fog_series_index() const { return params_.scans_per_step; }
@@ -180,6 +184,7 @@ class Lidar {
                     std::span<const double> optical_depth_factors) const;
 
   LidarParams params_;
+  std::vector<Shape> shapes_;
   std::vector<Layer> layers_;
   double target_range_m_ = 0.0;
   std::size_t beam_count_ = 0;
