@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string_view>
 #include <utility>
+#include <variant>
 
 #include "fogradar/core/constants.hpp"
 #include "fogradar/stats/format.hpp"
@@ -211,9 +212,18 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
   double half_width_m =
       std::max(0.5 * p.fog_width_m, std::abs(p.target_offset_m) + 0.5 * p.target_width_m);
   const double depth_m = lidar.target_range_m() + 2.0;
-  for (const BackgroundSegment& s : p.background) {
-    if (std::min(s.x0_m, s.x1_m) < depth_m) {
-      half_width_m = std::max({half_width_m, std::abs(s.y0_m), std::abs(s.y1_m)});
+  for (const Shape& shape : lidar.shapes()) {
+    if (const auto* s = std::get_if<SegmentShape>(&shape.geometry)) {
+      if (std::min(s->x0_m, s->x1_m) < depth_m) {
+        half_width_m = std::max({half_width_m, std::abs(s->y0_m), std::abs(s->y1_m)});
+      }
+    } else if (const auto* c = std::get_if<CircleShape>(&shape.geometry)) {
+      if (c->centre_x_m - c->radius_m < depth_m) {
+        half_width_m = std::max(half_width_m, std::abs(c->centre_y_m) + c->radius_m);
+      }
+    } else if (const auto* l = std::get_if<LineShape>(&shape.geometry)) {
+      // A side wall (a line along x) in view.
+      if (l->direction_y == 0.0) half_width_m = std::max(half_width_m, std::abs(l->y_m));
     }
   }
   half_width_m = std::min(half_width_m + 1.0, depth_m);
@@ -268,10 +278,41 @@ std::string lidar_scans_svg(const Lidar& lidar, const std::vector<LidarStepResul
     svg += "<rect x=\"" + px(sx(p.target_offset_m - half_target)) + "\" y=\"" +
            px(sy(lidar.target_range_m()) - 10.0) + "\" width=\"" + px(p.target_width_m * scale) +
            "\" height=\"8\" fill=\"#999\"><title>target region</title></rect>\n";
-    for (const BackgroundSegment& s : p.background) {
-      svg += "<line x1=\"" + px(sx(s.y0_m)) + "\" y1=\"" + px(sy(s.x0_m)) + "\" x2=\"" +
-             px(sx(s.y1_m)) + "\" y2=\"" + px(sy(s.x1_m)) +
-             "\" stroke=\"#ccc\" stroke-width=\"3\"><title>background segment</title></line>\n";
+    const auto line = [&](double xa, double ya, double xb, double yb, const char* title) {
+      svg += "<line x1=\"" + px(sx(ya)) + "\" y1=\"" + px(sy(xa)) + "\" x2=\"" + px(sx(yb)) +
+             "\" y2=\"" + px(sy(xb)) + "\" stroke=\"#ccc\" stroke-width=\"3\"><title>" + title +
+             "</title></line>\n";
+    };
+    for (const Shape& shape : lidar.shapes()) {
+      if (const auto* s = std::get_if<SegmentShape>(&shape.geometry)) {
+        line(s->x0_m, s->y0_m, s->x1_m, s->y1_m, "background segment");
+      } else if (const auto* c = std::get_if<CircleShape>(&shape.geometry)) {
+        svg += "<circle cx=\"" + px(sx(c->centre_y_m)) + "\" cy=\"" + px(sy(c->centre_x_m)) +
+               "\" r=\"" + px(c->radius_m * scale) +
+               "\" fill=\"none\" stroke=\"#ccc\" "
+               "stroke-width=\"3\"><title>cylinder</title></circle>\n";
+      } else if (const auto* l = std::get_if<LineShape>(&shape.geometry)) {
+        // The line clipped to the panel, x in [0, depth], y in [-half width, half width]: the range
+        // of its parameter t (point = p + t d) inside each slab.
+        double t0 = -std::numeric_limits<double>::infinity();
+        double t1 = std::numeric_limits<double>::infinity();
+        const auto slab = [&t0, &t1](double start, double direction, double low, double high) {
+          if (direction == 0.0) {
+            if (start < low || start > high) t1 = t0 - 1.0;
+            return;
+          }
+          const double a = (low - start) / direction;
+          const double b = (high - start) / direction;
+          t0 = std::max(t0, std::min(a, b));
+          t1 = std::min(t1, std::max(a, b));
+        };
+        slab(l->x_m, l->direction_x, 0.0, depth_m);
+        slab(l->y_m, l->direction_y, -half_width_m, half_width_m);
+        if (t1 > t0) {
+          line(l->x_m + t0 * l->direction_x, l->y_m + t0 * l->direction_y,
+               l->x_m + t1 * l->direction_x, l->y_m + t1 * l->direction_y, "wall");
+        }
+      }
     }
     if (!step.scans.empty()) {
       for (const LidarEcho& e : step.scans.front().echoes) {

@@ -17,10 +17,12 @@
 #include "fogradar/core/constants.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/lidar/lidar.hpp"
+#include "fogradar/lidar/outputs.hpp"
 #include "fogradar/lidar/shapes.hpp"
 #include "fogradar/propagation/chamber.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "rejected_field.hpp"
+#include "svg_check.hpp"
 #include "validation.hpp"
 
 namespace fogradar::lidar {
@@ -372,6 +374,28 @@ TEST(LidarRoom, BackgroundSegmentsAreSegmentShapes) {
       EXPECT_GT(background, 0u);
     }
   }
+}
+
+// Fig. 5's top view draws the room: its walls clipped to the panel, its barrels as circles, each
+// with its title; a scene of segments only draws segments.
+TEST(LidarRoom, ScanViewDrawsTheRoomsShapes) {
+  const LidarParams params;
+  const std::vector<Shape> room = room_shapes(hall(), 0.5);
+  const Lidar with_room(params, propagation::ChamberSpec{}, table(), room);
+  const Lidar without(params, propagation::ChamberSpec{}, table());
+  std::vector<LidarStepResult> steps(1);
+  steps[0].scans.resize(1);
+  const std::string svg = lidar_scans_svg(with_room, steps);
+  EXPECT_EQ(test_support::xml_error(svg), "");
+  // Left and right walls in the panel; the back wall at 15 m lies beyond its 12 m depth.
+  EXPECT_EQ(test_support::count(svg, "<title>wall</title>"), 2u);
+  EXPECT_EQ(test_support::count(svg, "<title>cylinder</title>"), 1u);
+  EXPECT_EQ(test_support::count(svg, "<title>background segment</title>"),
+            params.background.size() + 1);
+  const std::string plain = lidar_scans_svg(without, steps);
+  EXPECT_EQ(test_support::count(plain, "<title>wall</title>"), 0u);
+  EXPECT_EQ(test_support::count(plain, "<title>background segment</title>"),
+            params.background.size());
 }
 
 }  // namespace
