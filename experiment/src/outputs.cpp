@@ -140,7 +140,7 @@ bool is_result_file_name(std::string_view name) {
   if (is_listed(common_file_names, name)) return true;
   // The instance's name up to its first '_' is enough: the rest of the name may hold '_' too.
   const std::size_t split = name.find('_');
-  if (split == std::string_view::npos || split + 1 == name.size()) return false;
+  if (split == 0 || split == std::string_view::npos || split + 1 == name.size()) return false;
   const std::string_view first = name.substr(0, split);
   return first.front() >= 'a' && first.front() <= 'z' &&
          std::all_of(first.begin(), first.end(),
