@@ -32,7 +32,7 @@ using fogradar::test_support::rejected_field;
 using fogradar::testing::Tolerance;
 using fogradar::testing::validate;
 
-constexpr double deg = 3.14159265358979323846 / 180.0;
+constexpr double deg = pi / 180.0;
 
 const propagation::SegelsteinTable& table() {
   static const propagation::SegelsteinTable instance;
