@@ -40,18 +40,26 @@ done
 
 # One baseline variant: `decompose NAME TARGET-KEYS...` runs 200 measurements at 0 layers with the
 # given target keys over the paper scenario and prints the median and IQR of the RCS: the radar's
-# own view of the target (model, height_m) in [radar.target], the world's (floor, micro-motion) in
-# [target].
+# own view of the target (model, height_m) in [radar.target], the world's micro-motion in [target],
+# the hall's floor in [chamber.room] (`floor = false`) or [chamber.room.floor].
 decompose() {
-  local name=$1 own=() world=() key
+  local name=$1 own=() world=() room=() floor=() key
   shift
   for key in "$@"; do
     case $key in
       model\ * | height_m\ *) own+=("$key") ;;
+      floor\ *) room+=("$key") ;;
+      reflection_coefficient\ *) floor+=("$key") ;;
       *) world+=("$key") ;;
     esac
   done
   {
+    echo "[chamber.room]"
+    printf '%s\n' "${room[@]}"
+    if [ ${#floor[@]} -gt 0 ]; then
+      echo "[chamber.room.floor]"
+      printf '%s\n' "${floor[@]}"
+    fi
     echo "[target]"
     printf '%s\n' "${world[@]}"
     echo "[radar.target]"
@@ -67,11 +75,11 @@ decompose() {
 }
 echo "| model | median (dBsm) | IQR (dB) |"
 echo "|---|---|---|"
-decompose "point target 10 dBsm, no floor" 'model = "point"' 'floor_multipath = false' 'micro_motion_std_m = 0.0'
-decompose "EVT, no floor, no micro-motion" 'floor_multipath = false' 'micro_motion_std_m = 0.0'
-decompose "EVT, no floor, 0.2 mm micro-motion" 'floor_multipath = false'
+decompose "point target 10 dBsm, no floor" 'model = "point"' 'floor = false' 'micro_motion_std_m = 0.0'
+decompose "EVT, no floor, no micro-motion" 'floor = false' 'micro_motion_std_m = 0.0'
+decompose "EVT, no floor, 0.2 mm micro-motion" 'floor = false'
 decompose "EVT, floor -0.7, micro-motion (the paper scenario)"
-decompose "EVT, floor +0.7, micro-motion" 'floor_reflection_coefficient = 0.7'
+decompose "EVT, floor +0.7, micro-motion" 'reflection_coefficient = 0.7'
 for h in 0.50 0.55 0.60 0.70; do
   decompose "point target, floor -0.7, target at $h m" 'model = "point"' 'micro_motion_std_m = 0.0' "height_m = $h"
 done

@@ -183,6 +183,7 @@ sensor::Context Scenario::context() const {
   return {
       .chamber = chamber_spec(),
       .target = target,
+      .room = chamber.room,
       .steps = steps(),
       .seed = experiment.seed,
       .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use())};

@@ -84,6 +84,12 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
                                      .fog = s.fog});
   };
   keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
+  keys.include(propagation::room_keys("chamber.room."), FOGRADAR_KEY_FIELD(chamber.room));
+  keys.table_array("chamber.objects", FOGRADAR_KEY_FIELD(chamber.room.objects),
+                   &propagation::room_object_keys, propagation::max_room_objects,
+                   "tables of `shape`, position, size and `material`",
+                   "static objects standing in the hall (the study's rain barrels): vertical "
+                   "cylinders and plates; `objects = []` under [chamber]: none");
   keys.include(sensor::target_world_keys(), FOGRADAR_KEY_FIELD(target));
 
   std::vector<std::string> names_quoted;

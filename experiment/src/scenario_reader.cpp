@@ -104,6 +104,11 @@ class Reader {
     for (const ScenarioKey& key : keys.all.keys()) {
       if (!key.group.empty()) groups_[key.group].emplace_back(key.short_name());
     }
+    for (const Section& s : sections) {
+      for (const ScenarioKey& key : keys.all.keys()) {
+        if (key.type == KeyType::boolean && key.name == s.name) switches_.insert(s.name);
+      }
+    }
     std::vector<std::string> top, shown_top;
     for (const Section& s : sections) {
       declared_.insert(s.name);
@@ -129,7 +134,11 @@ class Reader {
       const toml::node* node = root_.at_path(section.name).node();
       if (node == nullptr) continue;
       const toml::table* table = node->as_table();
-      if (table == nullptr) fail_not_table(*node, section.name);
+      if (table == nullptr) {
+        // `floor = false`: the switch of the sub-table, read with its parent's keys.
+        if (switches_.contains(section.name)) continue;
+        fail_not_table(*node, section.name);
+      }
       read_table(*table, section.name, section.keys);
     }
     // Arrays of tables come after every plain key, so that an element can start from them (a layer
@@ -369,7 +378,17 @@ class Reader {
         return;
       }
       case KeyType::boolean:
-        if (!node.is_boolean()) fail(node, key.name, given + "true or false");
+        // A switch that names a sub-table (chamber.room.floor) is switched on by that table,
+        // whose keys its own section reads.
+        if (node.is_table() && switches_.contains(key.name)) {
+          key.set_boolean(scenario_, true);
+          return;
+        }
+        if (!node.is_boolean()) {
+          fail(node, key.name,
+               given + (switches_.contains(key.name) ? "false, or a table [" + key.name + "]"
+                                                     : "true or false"));
+        }
         key.set_boolean(scenario_, *node.value<bool>());
         return;
       case KeyType::choice:
@@ -531,6 +550,7 @@ class Reader {
   bool lines_shown_;
   KeyLines lines_;
   std::map<std::string, std::string> typed_numbers_;
+  std::set<std::string> switches_;  // boolean keys that switch a sub-table of their name
   std::set<std::string> declared_;                            // every section and its parents
   std::map<std::string, std::vector<std::string>> groups_;    // group -> its keys' short names
   std::map<std::string, std::string> given_in_group_;         // "section group" -> the key given

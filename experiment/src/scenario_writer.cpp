@@ -108,6 +108,16 @@ std::string to_toml(const Scenario& s) {
   std::vector<std::string> blocks;
   // Arrays of tables follow the last section of the part that declares them.
   std::vector<std::string> arrays;
+  // A boolean key that switches the sub-table of its name (chamber.room.floor): written `false`
+  // when off; when on, its table says so.
+  const auto switch_of = [&](const std::string& name) -> const ScenarioKey* {
+    for (const Section& other : sections) {
+      for (const ScenarioKey* key : other.keys) {
+        if (key->type == KeyType::boolean && key->name == name) return key;
+      }
+    }
+    return nullptr;
+  };
   const auto flush_arrays = [&] {
     blocks.insert(blocks.end(), arrays.begin(), arrays.end());
     arrays.clear();
@@ -119,9 +129,19 @@ std::string to_toml(const Scenario& s) {
       if (part_ends) flush_arrays();
       continue;
     }
+    const ScenarioKey* switched_by = switch_of(section.name);
+    if (switched_by != nullptr && !switched_by->get_boolean(s)) {
+      if (part_ends) flush_arrays();
+      continue;
+    }
     std::string block = "[" + section.name + "]\n";
     for (const ScenarioKey* key : section.keys) {
       if (key->type == KeyType::retired || !key->takes_effect(s)) continue;
+      if (key->type == KeyType::boolean && key->get_boolean(s) &&
+          std::any_of(sections.begin(), sections.end(),
+                      [&](const Section& other) { return other.name == key->name; })) {
+        continue;
+      }
       if (key->type == KeyType::table_array && key->array_size(s) > 0) {
         for (std::size_t e = 0; e < key->array_size(s); ++e) {
           KeyTable<Scenario> element;

@@ -30,7 +30,7 @@ KeyTable<TargetSpec> target_keys() {
 }
 
 Scene make_scene(const TargetSpec& target, const sensor::TargetWorld& world,
-                 unsigned clutter_scatterers_per_bin) {
+                 const propagation::RoomSpec& room, unsigned clutter_scatterers_per_bin) {
   Scene scene = target.model == TargetModel::evt ? evt_rear_scene(target.rcs_dbsm)
                                                  : point_target_scene(target.rcs_dbsm);
   if (target.model == TargetModel::point) {
@@ -38,8 +38,10 @@ Scene make_scene(const TargetSpec& target, const sensor::TargetWorld& world,
     scene.centres.front().swerling = target.swerling;
   }
   scene.sensor_height_m = target.sensor_height_m;
-  scene.floor.enabled = world.floor_multipath;
-  scene.floor.reflection_coefficient = world.floor_reflection_coefficient;
+  scene.floor.enabled = room.floor.present;
+  FOGRADAR_CHECK(std::holds_alternative<propagation::ReflectionCoefficient>(room.floor.reflection));
+  scene.floor.reflection_coefficient =
+      std::get<propagation::ReflectionCoefficient>(room.floor.reflection).value;
   scene.micro_motion_std_m = world.micro_motion_std_m;
   for (ScatteringCentre& centre : scene.centres) {
     centre.radial_velocity_m_per_s = world.radial_velocity_m_per_s;

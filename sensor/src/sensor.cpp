@@ -7,12 +7,11 @@ namespace fogradar::sensor {
 
 KeyTable<TargetWorld> target_world_keys() {
   KeyTable<TargetWorld> keys("target.");
-  keys.boolean("floor_multipath", FOGRADAR_KEY_FIELD(floor_multipath),
-               "the floor reflects between sensor and target (the radar's two-ray paths)");
-  keys.number("floor_reflection_coefficient", FOGRADAR_KEY_FIELD(floor_reflection_coefficient),
-              closed(-1.0, 1.0), "real amplitude reflection coefficient of the floor")
-      .when([](const TargetWorld& t) { return t.floor_multipath; },
-            "with target.floor_multipath = true");
+  keys.retired("floor_multipath",
+               "the floor is the room's: chamber.room.floor = false for none, or a table "
+               "[chamber.room.floor] for one");
+  keys.retired("floor_reflection_coefficient",
+               "the floor is the room's: chamber.room.floor.reflection_coefficient");
   keys.number("micro_motion_std_m", FOGRADAR_KEY_FIELD(micro_motion_std_m), closed(0.0, 0.1),
               "rms line-of-sight jitter of each scattering centre per measurement (the radar's)");
   keys.number(

@@ -68,7 +68,7 @@ TEST(Runner, PointTargetReadsBackItsRcsThroughTheExperiment) {
   Scenario s = small_scenario();
   radar::TargetSpec& target = radar_of(s).target;
   target.model = radar::TargetModel::point;
-  s.target.floor_multipath = false;
+  s.chamber.room.floor.present = false;
   s.target.micro_motion_std_m = 0.0;
   const radar::RadarSummary summary = radar_report(summarize(run_experiment(s))).summary();
   ASSERT_EQ(summary.steps.size(), 5u);
@@ -134,7 +134,7 @@ TEST(Runner, DenseLargeDropFogReachesTheSensorLimit) {
   radar_of(s).radar.tx_power_dbm = -19.0;
   radar::TargetSpec& target = radar_of(s).target;
   target.model = radar::TargetModel::point;
-  s.target.floor_multipath = false;
+  s.chamber.room.floor.present = false;
   target.rcs_dbsm = -8.0;  // a pedestrian
   s.chamber.layer_length_m = 3.0;
   s.fog.density = propagation::LiquidWaterContent{100.0};
@@ -194,7 +194,7 @@ TEST(Runner, LostTargetGateAssociationsAreNoiseAndCountAsMisses) {
   Scenario s = small_scenario();
   radar::TargetSpec& target = radar_of(s).target;
   target.model = radar::TargetModel::point;
-  s.target.floor_multipath = false;
+  s.chamber.room.floor.present = false;
   target.rcs_dbsm = -60.0;
   radar_of(s).radar.tx_power_dbm = -30.0;
   radar_of(s).radar.cfar.false_alarm_probability = 1e-2;

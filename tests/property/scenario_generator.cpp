@@ -289,8 +289,11 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   t.set("radar.target", "rcs_dbsm", d.uniform(-10.0, 20.0));
   t.set("radar", "height_m", sensor_height_m);
   const bool multipath = d.chance(0.5);
-  t.set_boolean("target", "floor_multipath", multipath);
-  if (multipath) t.set("target", "floor_reflection_coefficient", d.uniform(-1.0, 1.0));
+  if (multipath) {
+    t.set("chamber.room.floor", "reflection_coefficient", d.uniform(-1.0, 1.0));
+  } else {
+    t.set_boolean("chamber.room", "floor", false);
+  }
   t.set("target", "micro_motion_std_m", d.uniform(0.0, 1e-3));
   const double wavelength_m = speed_of_light_m_per_s / centre_hz;
   const double unambiguous_m_per_s = wavelength_m / (4.0 * interval_s);

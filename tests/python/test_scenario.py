@@ -14,7 +14,7 @@ BAD_SCENARIOS = [
     ({"radar": {"tx_power_dbm": "high"}}, "radar.tx_power_dbm"),               # number type
     ({"radar": {"samples_per_chirp": 2.5}}, "radar.samples_per_chirp"),        # integer type
     ({"radar": {"samples_per_chirp": 8}}, "radar.samples_per_chirp"),          # integer range
-    ({"target": {"floor_multipath": 1}}, "target.floor_multipath"),            # boolean
+    ({"camera": {"write_roi_images": 1}}, "camera.write_roi_images"),          # boolean
     ({"radar": {"sweep_direction": "sideways"}}, "radar.sweep_direction"),     # choice
     ({"radar": {"no_such_key": 1}}, "radar.no_such_key"),                      # unknown key
     ({"no_such_section": {"a": 1}}, "no_such_section"),                        # unknown section

@@ -1039,7 +1039,7 @@ TEST(WaterFilm, RcsDropsByTheFilmsPredictedTwoWayLoss) {
   dry.measurements_per_step = 20;
   dry.radar.chirps_per_frame = 16;
   dry.target.model = TargetModel::point;
-  context.target.floor_multipath = false;
+  context.room.floor.present = false;
   context.target.micro_motion_std_m = 0.0;
   dry.target.height_m = dry.target.sensor_height_m;
   struct Case {

@@ -253,7 +253,7 @@ setups = 50
 distribution = "normal"
 mean = 0.5
 std = 0.01
-[uncertain.keys."target.floor_reflection_coefficient"]
+[uncertain.keys."chamber.room.floor.reflection_coefficient"]
 distribution = "uniform"
 low = -0.9
 high = -0.5
@@ -278,7 +278,7 @@ values = [0.0002]
     normal_strata.push_back(
         static_cast<int>(std::floor(normal_cdf(*drawn("radar.height_m").second.number) * 50.0)));
     uniform_strata.push_back(static_cast<int>(std::floor(
-        (*drawn("target.floor_reflection_coefficient").second.number + 0.9) / 0.4 * 50.0)));
+        (*drawn("chamber.room.floor.reflection_coefficient").second.number + 0.9) / 0.4 * 50.0)));
     EXPECT_EQ(*drawn("target.micro_motion_std_m").second.number, 0.0002);
   }
   std::sort(normal_strata.begin(), normal_strata.end());
@@ -303,7 +303,7 @@ values = [0.0002]
             .group = kGroup,
             .quantity = "largest |k-th sorted stratum - k| of 50 Latin hypercube draws",
             .unit = "strata",
-            .conditions = "target.floor_reflection_coefficient uniform on [-0.9, -0.5], 50 setups",
+            .conditions = "chamber.room.floor.reflection_coefficient uniform on [-0.9, -0.5], 50 setups",
             .reference = 0.0,
             .source = "definition of Latin hypercube sampling; strata by the uniform CDF",
             .value = static_cast<double>(uniform_offset),
@@ -326,7 +326,7 @@ TEST(Uncertain, MonteCarloDrawsFollowTheirDistribution) {
 [uncertain]
 setups = 2000
 sampling = "monte_carlo"
-[uncertain.keys."target.floor_reflection_coefficient"]
+[uncertain.keys."chamber.room.floor.reflection_coefficient"]
 distribution = "truncated_normal"
 mean = -0.7
 std = 0.1

@@ -201,7 +201,7 @@ setups = 3
 [uncertain.keys."radar.height_m"]
 distribution = "discrete"
 values = [0.5]
-[uncertain.keys."target.floor_reflection_coefficient"]
+[uncertain.keys."chamber.room.floor.reflection_coefficient"]
 distribution = "discrete"
 values = [-0.7]
 """)

@@ -288,6 +288,13 @@ class KeyTable {
     key.set_boolean = [field](P& p, bool v) { field(p) = v; };
     return key;
   }
+  Key<P>& boolean(std::string_view name, std::function<bool(const P&)> get,
+                  std::function<void(P&, bool)> set, std::string meaning) {
+    Key<P>& key = add(name, KeyType::boolean, "boolean", std::move(meaning));
+    key.get_boolean = std::move(get);
+    key.set_boolean = std::move(set);
+    return key;
+  }
 
   // A choice among `names`: `parse(text, key name)` returns the value or throws InvalidParameter
   // naming the key with the allowed set (the module's own parse_* function); `name_of(value)` is

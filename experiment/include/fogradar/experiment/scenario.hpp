@@ -20,6 +20,7 @@
 #include "fogradar/core/keys.hpp"
 #include "fogradar/experiment/registry.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/room_spec.hpp"
 #include "fogradar/sensor/sensor.hpp"
 
 namespace fogradar::experiment {
@@ -34,6 +35,8 @@ struct ChamberLayout {
   // [[chamber.layers]], from the sensor: each layer's length and fog ([fog] with the keys of the
   // layer's own `fog` table replacing its values). Empty: layer_count layers of layer_length_m.
   std::vector<propagation::FogLayerSpec> layers;
+  // [chamber.room] and [[chamber.objects]]: the hall around the layers.
+  propagation::RoomSpec room;
 
   std::size_t layers_in_use() const { return layers.empty() ? layer_count : layers.size(); }
 };

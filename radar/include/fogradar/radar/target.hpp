@@ -36,6 +36,6 @@ KeyTable<TargetSpec> target_keys();
 // height with its fluctuation, in `world` (its floor, micro-motion and velocity), and the fog
 // clutter's scatterers per range bin.
 Scene make_scene(const TargetSpec& target, const sensor::TargetWorld& world,
-                 unsigned clutter_scatterers_per_bin);
+                 const propagation::RoomSpec& room, unsigned clutter_scatterers_per_bin);
 
 }  // namespace fogradar::radar

@@ -37,6 +37,7 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/core/stop.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/room_spec.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "fogradar/sensor/step_table.hpp"
 
@@ -45,22 +46,21 @@ namespace fogradar::sensor {
 // The target and the floor as the world has them ([target]), the same for every sensor: what each
 // sensor's own view of the target (its model, RCS or reflectivity) does not decide.
 struct TargetWorld {
-  bool floor_multipath = true;                 // the floor under sensor and target reflects
-  double floor_reflection_coefficient = -0.7;  // real amplitude coefficient, every angle
-  double micro_motion_std_m = 0.2e-3;          // rms line-of-sight jitter per measurement
-  double radial_velocity_m_per_s = 0.0;        // the whole target's, + receding
-  double water_film_m = 0.0;                   // water film on the target's metal surfaces
+  double micro_motion_std_m = 0.2e-3;    // rms line-of-sight jitter per measurement
+  double radial_velocity_m_per_s = 0.0;  // the whole target's, + receding
+  double water_film_m = 0.0;             // water film on the target's metal surfaces
 };
 
 // The keys of [target] over the world's target.
 KeyTable<TargetWorld> target_world_keys();
 
-// What a scenario gives every sensor besides its own keys: the chamber and the target in it, the
-// methodology's steps (k = 0 .. steps - 1 active layers, switched on in the switching order) and
+// What a scenario gives every sensor besides its own keys: the chamber, the target in it and the
+// room around it, the methodology's steps (k = 0 .. steps - 1 active layers, switched on in the switching order) and
 // the seed.
 struct Context {
   propagation::ChamberSpec chamber;
   TargetWorld target;
+  propagation::RoomSpec room;
   std::size_t steps = 5;
   std::uint64_t seed = 1;
   // The layer indices (0 at the sensor) in the order they are switched on; empty: from the sensor,
