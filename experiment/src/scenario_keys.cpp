@@ -83,13 +83,20 @@ KeyTable<Scenario> experiment_keys(const std::vector<std::string>& sensor_names)
         n, propagation::FogLayerSpec{.length_m = std::numeric_limits<double>::quiet_NaN(),
                                      .fog = s.fog});
   };
-  keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
   keys.include(propagation::room_keys("chamber.room."), FOGRADAR_KEY_FIELD(chamber.room));
+  keys.at("chamber.room.back_wall.distance_m").within([](const Scenario& s) {
+    const double target_m = s.chamber_spec().target_range_m();
+    return CrossBound{.range = open_closed(target_m, propagation::max_room_extent_m),
+                      .low_text = "the target's range = " + message_number(target_m),
+                      .high_text = message_number(propagation::max_room_extent_m),
+                      .note = ": the wall stands behind the target"};
+  });
   keys.table_array("chamber.objects", FOGRADAR_KEY_FIELD(chamber.room.objects),
                    &propagation::room_object_keys, propagation::max_room_objects,
                    "tables of `shape`, position, size and `material`",
                    "static objects standing in the hall (the study's rain barrels): vertical "
                    "cylinders and plates; `objects = []` under [chamber]: none");
+  keys.include(propagation::fog_keys("fog."), FOGRADAR_KEY_FIELD(fog));
   keys.include(sensor::target_world_keys(), FOGRADAR_KEY_FIELD(target));
 
   std::vector<std::string> names_quoted;

@@ -39,7 +39,8 @@ void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
           ? "`false`: no floor; a table [" + full + "]: the floor at z = 0 with its keys"
           : "`false`: none; a table [" + full + "]: present, with its keys (`true` alone: at " +
                 std::to_string(static_cast<int>(default_distance_m)) + " m, reflecting with " +
-                "-0.7)");
+                "-0.7)")
+      .documented_as("`false`, or a table");
   const auto present = [surface](const RoomSpec& r) { return surface_spec(r, surface).present; };
   const std::string when_present = "with " + full + " present";
   const auto holds_material = [surface](const RoomSpec& r) {
@@ -55,8 +56,11 @@ void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
       ".reflection_coefficient) given";
   keys.choice(
           s.name + ".material",
+          // Read only where the surface holds a material, but safe anywhere (the key tests read
+          // every key): the empty name otherwise.
           [surface](const RoomSpec& r) {
-            return std::string(to_string(std::get<Material>(surface_spec(r, surface).reflection)));
+            const auto* material = std::get_if<Material>(&surface_spec(r, surface).reflection);
+            return material != nullptr ? std::string(to_string(*material)) : std::string();
           },
           [surface, key = full + ".material"](RoomSpec& r, std::string_view text) {
             surface_of(r, surface).reflection = material_names.parse(text, key);

@@ -123,6 +123,18 @@ const std::map<std::string, Needed>& enabled_by() {
       {"camera.wavelength_nm", {{"camera.band", "monochromatic"}}},
       {"camera.gamma", {{"camera.transfer", "gamma"}}},
       {"camera.exposure.auto_target_grey", {{"camera.exposure.mode", "auto"}}},
+      {"chamber.room.left_wall.material", {{"chamber.room.left_wall", "true"}}},
+      {"chamber.room.left_wall.reflection_coefficient", {{"chamber.room.left_wall", "true"}}},
+      {"chamber.room.left_wall.distance_m", {{"chamber.room.left_wall", "true"}}},
+      {"chamber.room.right_wall.material", {{"chamber.room.right_wall", "true"}}},
+      {"chamber.room.right_wall.reflection_coefficient", {{"chamber.room.right_wall", "true"}}},
+      {"chamber.room.right_wall.distance_m", {{"chamber.room.right_wall", "true"}}},
+      {"chamber.room.ceiling.material", {{"chamber.room.ceiling", "true"}}},
+      {"chamber.room.ceiling.reflection_coefficient", {{"chamber.room.ceiling", "true"}}},
+      {"chamber.room.ceiling.height_m", {{"chamber.room.ceiling", "true"}}},
+      {"chamber.room.back_wall.material", {{"chamber.room.back_wall", "true"}}},
+      {"chamber.room.back_wall.reflection_coefficient", {{"chamber.room.back_wall", "true"}}},
+      {"chamber.room.back_wall.distance_m", {{"chamber.room.back_wall", "true"}}},
   };
   return table;
 }

@@ -138,3 +138,19 @@ def test_the_command_s_scenario_listing_names_the_same_keys(cli):
     listed = subprocess.run([cli, "scenario"], capture_output=True, text=True, check=True).stdout
     paper = fogradar.Scenario.from_toml(listed, "fogradar scenario")
     assert paper.to_toml() == fogradar.Scenario.paper().to_toml()
+
+
+def test_the_room_is_nested_tables_a_surface_false_for_none():
+    room = {"chamber": {"room": {"floor": False,
+                                 "left_wall": {"distance_m": 2.5, "material": "concrete"}},
+                        "objects": [{"shape": "cylinder", "x_m": 3.0, "y_m": -2.0}]}}
+    scenario = fogradar.Scenario.from_dict(room)
+    chamber = scenario.to_dict()["chamber"]
+    assert chamber["room"]["floor"] is False
+    assert chamber["room"]["left_wall"] == {"material": "concrete", "distance_m": 2.5}
+    assert "ceiling" not in chamber["room"] or chamber["room"]["ceiling"] is False
+    assert [o["shape"] for o in chamber["objects"]] == ["cylinder"]
+    assert fogradar.Scenario.from_dict(scenario.to_dict()).to_toml() == scenario.to_toml()
+    emptied = scenario.with_overrides({"chamber.objects": [], "chamber.room.left_wall": False})
+    assert emptied.to_dict()["chamber"]["objects"] == []
+    assert emptied.to_dict()["chamber"]["room"]["left_wall"] is False
