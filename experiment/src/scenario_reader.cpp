@@ -551,7 +551,7 @@ class Reader {
   KeyLines lines_;
   std::map<std::string, std::string> typed_numbers_;
   std::set<std::string> switches_;  // boolean keys that switch a sub-table of their name
-  std::set<std::string> declared_;                            // every section and its parents
+  std::set<std::string> declared_;  // every section and its parents
   std::map<std::string, std::vector<std::string>> groups_;    // group -> its keys' short names
   std::map<std::string, std::string> given_in_group_;         // "section group" -> the key given
   std::map<std::string, std::set<std::string>> nested_keys_;  // an element's table -> its keys

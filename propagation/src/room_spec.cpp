@@ -26,20 +26,19 @@ void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
   const Surface surface = s.surface;
   const double default_distance_m = s.default_distance_m;
   keys.boolean(
-      s.name,
-      [surface](const RoomSpec& r) { return surface_spec(r, surface).present; },
-      [surface, default_distance_m](RoomSpec& r, bool present) {
-        SurfaceSpec& spec = surface_of(r, surface);
-        if (present && !spec.present && spec.distance_m == 0.0) {
-          spec.distance_m = default_distance_m;
-        }
-        spec.present = present;
-      },
-      s.distance_name.empty()
-          ? "`false`: no floor; a table [" + full + "]: the floor at z = 0 with its keys"
-          : "`false`: none; a table [" + full + "]: present, with its keys (`true` alone: at " +
-                std::to_string(static_cast<int>(default_distance_m)) + " m, reflecting with " +
-                "-0.7)")
+          s.name, [surface](const RoomSpec& r) { return surface_spec(r, surface).present; },
+          [surface, default_distance_m](RoomSpec& r, bool present) {
+            SurfaceSpec& spec = surface_of(r, surface);
+            if (present && !spec.present && spec.distance_m == 0.0) {
+              spec.distance_m = default_distance_m;
+            }
+            spec.present = present;
+          },
+          s.distance_name.empty()
+              ? "`false`: no floor; a table [" + full + "]: the floor at z = 0 with its keys"
+              : "`false`: none; a table [" + full + "]: present, with its keys (`true` alone: at " +
+                    std::to_string(static_cast<int>(default_distance_m)) + " m, reflecting with " +
+                    "-0.7)")
       .documented_as("`false`, or a table");
   const auto present = [surface](const RoomSpec& r) { return surface_spec(r, surface).present; };
   const std::string when_present = "with " + full + " present";
@@ -51,9 +50,8 @@ void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
     const SurfaceSpec& spec = surface_spec(r, surface);
     return spec.present && std::holds_alternative<ReflectionCoefficient>(spec.reflection);
   };
-  const std::string one_reflection =
-      when_present + " and not its other reflection (" + full + ".material or " + full +
-      ".reflection_coefficient) given";
+  const std::string one_reflection = when_present + " and not its other reflection (" + full +
+                                     ".material or " + full + ".reflection_coefficient) given";
   keys.choice(
           s.name + ".material",
           // Read only where the surface holds a material, but safe anywhere (the key tests read
@@ -130,8 +128,8 @@ KeyTable<RoomSpec> room_keys(std::string prefix) {
                           "the wall's lateral distance from the sensor's boresight line, left"});
   add_surface_keys(keys, {"right_wall", Surface::right_wall, "distance_m", 3.0,
                           "the wall's lateral distance from the sensor's boresight line, right"});
-  add_surface_keys(keys, {"ceiling", Surface::ceiling, "height_m", 5.0,
-                          "the ceiling's height above the floor"});
+  add_surface_keys(
+      keys, {"ceiling", Surface::ceiling, "height_m", 5.0, "the ceiling's height above the floor"});
   add_surface_keys(keys, {"back_wall", Surface::back_wall, "distance_m", 30.0,
                           "the wall's distance from the sensor along the boresight, behind the "
                           "target"});

@@ -209,7 +209,8 @@ class Kind : public sensor::Kind<SensorParams> {
       const SensorParams& p, const sensor::Context& context) const override {
     // The CFAR's window against the range profile is one of the keys' checks
     // (radar_param_keys).
-    const Scene scene = make_scene(p.target, context.target, context.room, p.clutter_scatterers_per_bin);
+    const Scene scene =
+        make_scene(p.target, context.target, context.room, p.clutter_scatterers_per_bin);
     scene.validate();
     // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
     // (docs/radar.md).

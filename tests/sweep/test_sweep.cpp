@@ -299,21 +299,22 @@ values = [0.0002]
             .value = static_cast<double>(normal_offset),
             .tolerance = 0.0,
             .kind = Tolerance::absolute});
-  validate({.id = "sweep.uncertain.latin_hypercube.uniform.strata",
-            .group = kGroup,
-            .quantity = "largest |k-th sorted stratum - k| of 50 Latin hypercube draws",
-            .unit = "strata",
-            .conditions = "chamber.room.floor.reflection_coefficient uniform on [-0.9, -0.5], 50 setups",
-            .reference = 0.0,
-            .source = "definition of Latin hypercube sampling; strata by the uniform CDF",
-            .value = static_cast<double>(uniform_offset),
-            .tolerance = 0.0,
-            .kind = Tolerance::absolute});
+  validate(
+      {.id = "sweep.uncertain.latin_hypercube.uniform.strata",
+       .group = kGroup,
+       .quantity = "largest |k-th sorted stratum - k| of 50 Latin hypercube draws",
+       .unit = "strata",
+       .conditions = "chamber.room.floor.reflection_coefficient uniform on [-0.9, -0.5], 50 setups",
+       .reference = 0.0,
+       .source = "definition of Latin hypercube sampling; strata by the uniform CDF",
+       .value = static_cast<double>(uniform_offset),
+       .tolerance = 0.0,
+       .kind = Tolerance::absolute});
   // Each setup is the point's scenario with its draws, and its seed.
   EXPECT_EQ(points[0].setups[7].experiment.seed, points[0].seed);
   for (const auto& [key, value] : points[0].setup_values[7]) {
     EXPECT_NE(experiment::to_toml(points[0].setups[7])
-                  .find(key.substr(key.find('.') + 1) + " = " + value.toml),
+                  .find(key.substr(key.rfind('.') + 1) + " = " + value.toml),
               std::string::npos)
         << key;
   }

@@ -1,8 +1,8 @@
 // The room a chamber stands in ([chamber.room] and [[chamber.objects]]), as every sensor sees it:
 // the floor, two side walls, a ceiling and a back wall, each present or not, each reflecting with
 // a material's Fresnel coefficients or a real amplitude coefficient; and static objects standing in
-// the hall (cylinders such as the study's rain barrels, flat plates). Frame as room.hpp's: origin on
-// the floor below the sensor, x along its boresight, y to the right, z up, metres.
+// the hall (cylinders such as the study's rain barrels, flat plates). Frame as room.hpp's: origin
+// on the floor below the sensor, x along its boresight, y to the right, z up, metres.
 #pragma once
 
 #include <string_view>
@@ -29,14 +29,14 @@ struct SurfaceSpec {
   bool present = false;
   SurfaceReflection reflection = ReflectionCoefficient{};
   // Side walls: the lateral distance from the sensor's boresight line (left at y = -distance_m,
-  // right at y = +distance_m). Back wall: the distance from the sensor along the boresight. Ceiling:
-  // the height above the floor. The floor lies at z = 0 and reads none.
+  // right at y = +distance_m). Back wall: the distance from the sensor along the boresight.
+  // Ceiling: the height above the floor. The floor lies at z = 0 and reads none.
   double distance_m = 0.0;
 };
 
 enum class ObjectShape { cylinder, plate };
-inline constexpr auto object_shape_names = enum_names<ObjectShape>(
-    {{ObjectShape::cylinder, "cylinder"}, {ObjectShape::plate, "plate"}});
+inline constexpr auto object_shape_names =
+    enum_names<ObjectShape>({{ObjectShape::cylinder, "cylinder"}, {ObjectShape::plate, "plate"}});
 constexpr std::string_view to_string(ObjectShape shape) noexcept {
   return object_shape_names.name(shape);
 }
@@ -46,13 +46,13 @@ constexpr std::string_view to_string(ObjectShape shape) noexcept {
 // turned about the vertical by yaw_deg (+ toward +y).
 struct RoomObject {
   ObjectShape shape = ObjectShape::cylinder;
-  double x_m = 3.0;              // along the boresight from the sensor
-  double y_m = -2.0;             // lateral, + right
-  double base_height_m = 0.0;    // its bottom above the floor
-  double height_m = 0.9;         // its vertical extent (a cylinder's length)
-  double radius_m = 0.3;         // cylinder
-  double width_m = 1.0;          // plate
-  double yaw_deg = 0.0;          // plate
+  double x_m = 3.0;            // along the boresight from the sensor
+  double y_m = -2.0;           // lateral, + right
+  double base_height_m = 0.0;  // its bottom above the floor
+  double height_m = 0.9;       // its vertical extent (a cylinder's length)
+  double radius_m = 0.3;       // cylinder
+  double width_m = 1.0;        // plate
+  double yaw_deg = 0.0;        // plate
   Material material = Material::plastic;
 };
 

@@ -55,8 +55,8 @@ struct TargetWorld {
 KeyTable<TargetWorld> target_world_keys();
 
 // What a scenario gives every sensor besides its own keys: the chamber, the target in it and the
-// room around it, the methodology's steps (k = 0 .. steps - 1 active layers, switched on in the switching order) and
-// the seed.
+// room around it, the methodology's steps (k = 0 .. steps - 1 active layers, switched on in the
+// switching order) and the seed.
 struct Context {
   propagation::ChamberSpec chamber;
   TargetWorld target;
