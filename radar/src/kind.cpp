@@ -226,7 +226,7 @@ class Kind : public sensor::Kind<SensorParams> {
                  << (target ? "the target's farthest echo, chamber.sensor_gap_m + "
                               "chamber.layer_count x chamber.layer_length_m + "
                               "chamber.target_gap_m (+ the EVT's depth)"
-                            : "the farthest echo of the room (half its path)")
+                            : "the farthest echo of the room's own (a wall's or an object's)")
                  << " = " << farthest.range_m
                  << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
                     "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "

@@ -45,8 +45,8 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
     }
   }
   scene.check_room(chamber.target_range_m());
-  // Every path must have its beat frequency inside [0, fs): 1 m of margin beyond the farthest echo
-  // covers micro-motion.
+  // The target's and the room's own echoes must have their beat frequencies inside [0, fs): the
+  // 1 m margin covers micro-motion and, at chamber scales, the floor's detour.
   const FarthestEcho farthest = farthest_echo(scene, chamber.target_range_m());
   const double farthest_m = std::max(chamber.target_range_m(), farthest.range_m);
   const double limit_m = derived_.max_range_m - 1.0;

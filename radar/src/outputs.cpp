@@ -203,11 +203,14 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
         ", Swerling " + std::string(to_string(t.swerling)) + ", " + num(t.height_m) + " m high";
   }
   const propagation::SurfaceSpec& floor = context.room.floor;
-  const auto* floor_coefficient = std::get_if<propagation::ReflectionCoefficient>(&floor.reflection);
+  const auto* floor_coefficient =
+      std::get_if<propagation::ReflectionCoefficient>(&floor.reflection);
   target += !floor.present ? ", no floor multipath"
             : floor_coefficient != nullptr
                 ? ", floor multipath (reflection " + num(floor_coefficient->value) + ")"
-                : ", floor multipath (" + std::string(to_string(std::get<propagation::Material>(floor.reflection))) + ")";
+                : ", floor multipath (" +
+                      std::string(to_string(std::get<propagation::Material>(floor.reflection))) +
+                      ")";
   target += "; " + num(target_range_m) + " m from the radar behind " + layer_lengths(c);
   std::string cfar = "CFAR " + upper(to_string(r.cfar.kind)) + " (" +
                      std::to_string(r.cfar.guard_cells) + " guard + " +
@@ -437,7 +440,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          "Mann-Whitney U null distribution (Bauer 1972)"},
         {"shift_test", "Mann-Whitney U (two-sided) against the 0-layer series"},
         {"detections",
-         "target detections only: any other origin in the gate (fog, noise, a multipath ghost, the room) is a miss"}}},
+         "target detections only: any other origin in the gate (fog, noise, a multipath ghost, the "
+         "room) is a miss"}}},
   };
 }
 

@@ -76,8 +76,7 @@ Eigen::Vector3d polarisation_vector(const Eigen::Vector3d& direction, Polarisati
 
 std::complex<double> co_polar_reflection(const propagation::FresnelCoefficients& fresnel,
                                          const Eigen::Vector3d& incident,
-                                         const Eigen::Vector3d& normal,
-                                         Polarisation polarisation) {
+                                         const Eigen::Vector3d& normal, Polarisation polarisation) {
   const Eigen::Vector3d across = incident.cross(normal);
   // Normal incidence: no plane of incidence; either polarisation reflects as TE does (TM = -TE in
   // this convention because p_r = -p_i there).
@@ -88,7 +87,8 @@ std::complex<double> co_polar_reflection(const propagation::FresnelCoefficients&
   const Eigen::Vector3d p_out = s.cross(reflected);
   const Eigen::Vector3d e_in = polarisation_vector(incident, polarisation);
   const Eigen::Vector3d e_out = polarisation_vector(reflected, polarisation);
-  return fresnel.te * (e_in.dot(s) * e_out.dot(s)) + fresnel.tm * (e_in.dot(p_in) * e_out.dot(p_out));
+  return fresnel.te * (e_in.dot(s) * e_out.dot(s)) +
+         fresnel.tm * (e_in.dot(p_in) * e_out.dot(p_out));
 }
 
 std::size_t one_way_legs(const Scene& scene, const Eigen::Vector3d& radar,
@@ -124,7 +124,6 @@ std::size_t one_way_legs(const Scene& scene, const Eigen::Vector3d& radar,
     leg.length_m = geometry.length_m;
     leg.pattern_amplitude = geometry.pattern_amplitude;
     leg.order = order;
-    leg.surfaces = sequence;
     // The ray's direction on each segment: the departure direction with the component along each
     // plane's normal reversed at that plane.
     Eigen::Vector3d direction = delta / geometry.length_m;

@@ -34,9 +34,9 @@ double fluctuated_rcs_m2(const ScatteringCentre& centre, RandomStream& rng) {
   return centre.rcs_m2;
 }
 
-// A centre's two-way paths are the pairs (out, back) of its one-way legs of total order <= 2; a pair
-// and its reverse have one length, coefficient, pattern and Doppler, so each unordered pair is one
-// tone counted twice. Bistatic radar equation per pair: P = Pt Gt Gr lambda^2 sigma / ((4 pi)^3
+// A centre's two-way paths are the pairs (out, back) of its one-way legs of total order <= 2; a
+// pair and its reverse have one length, coefficient, pattern and Doppler, so each unordered pair is
+// one tone counted twice. Bistatic radar equation per pair: P = Pt Gt Gr lambda^2 sigma / ((4 pi)^3
 // r1^2 r2^2) (Skolnik, Radar Handbook 3rd ed., ch. 26, the two-ray model's leg pairs).
 void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double target_range_m,
                       const propagation::Chamber& chamber, const propagation::ActiveLayers& active,
@@ -56,8 +56,9 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
   std::array<double, max_one_way_legs> rate;
   rate[0] = v;
   for (std::size_t i = 1; i < count; ++i) {
-    rate[i] = v == 0.0 ? 0.0
-                       : v * (legs[i].length_rate_per_x_velocity / direct.length_rate_per_x_velocity);
+    rate[i] = v == 0.0
+                  ? 0.0
+                  : v * (legs[i].length_rate_per_x_velocity / direct.length_rate_per_x_velocity);
   }
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t j = i; j < count; ++j) {
@@ -81,13 +82,12 @@ void add_centre_paths(const Scene& scene, const ScatteringCentre& centre, double
       const double velocity = 0.5 * (rate[i] + rate[j]);
       // A path the radar cannot resolve from the direct one in range or velocity is the target's
       // echo; one it resolves is a ghost.
-      const bool resolved =
-          std::abs(0.5 * length_m - direct.length_m) >= d.range_resolution_m ||
-          std::abs(velocity - v) >= d.velocity_resolution_m_per_s;
-      tones.push_back({length_m, amplitude, velocity,
-                       i == 0 && j == 0 ? Origin::target
-                                        : (resolved ? Origin::multipath : Origin::target),
-                       -1});
+      const bool resolved = std::abs(0.5 * length_m - direct.length_m) >= d.range_resolution_m ||
+                            std::abs(velocity - v) >= d.velocity_resolution_m_per_s;
+      tones.push_back(
+          {length_m, amplitude, velocity,
+           i == 0 && j == 0 ? Origin::target : (resolved ? Origin::multipath : Origin::target),
+           -1});
     }
   }
 }
@@ -103,9 +103,8 @@ void add_room_echoes(const Scene& scene, const propagation::Chamber& chamber,
     if (surface.plane.surface != propagation::Surface::back_wall) continue;
     const double range_m = surface.plane.position_m;
     const std::complex<double> gamma =
-        surface.permittivity
-            ? propagation::fresnel_reflection(*surface.permittivity, 0.5 * pi).te
-            : std::complex<double>(surface.reflection_coefficient, 0.0);
+        surface.permittivity ? propagation::fresnel_reflection(*surface.permittivity, 0.5 * pi).te
+                             : std::complex<double>(surface.reflection_coefficient, 0.0);
     const double power_w =
         specular_plane_power_w(d.tx_power_w, d.tx_gain, d.rx_gain, d.wavelength_m, range_m) *
         chamber.two_way_transmittance(range_m, active) * scene.radome_two_way_transmittance;
@@ -179,9 +178,6 @@ void Scene::validate() const {
                        -1.0, 1.0);
     }
   }
-  for (const SceneObject& object : objects) {
-    require_in_range(object.key + ".material", object.reflectance, 0.0, 1.0);
-  }
   require_in_range("target.micro_motion_std_m", micro_motion_std_m, 0.0, 0.1);
   require_in_range("radar.clutter_scatterers_per_bin", clutter_scatterers_per_bin, 1.0, 64.0);
   require_in_range("radome_two_way_transmittance", radome_two_way_transmittance, 0.0, 1.0);
@@ -236,8 +232,8 @@ void Scene::check_room(double target_range_m) const {
     const propagation::RoomObject& o = object.object;
     const Eigen::Vector3d middle(o.x_m, o.y_m, o.base_height_m + 0.5 * o.height_m);
     if (const SceneSurface* s = outside(middle)) {
-      refuse(*s, object.key + " at (" + message_number(o.x_m) + ", " + message_number(o.y_m) +
-                     ") m");
+      refuse(*s,
+             object.key + " at (" + message_number(o.x_m) + ", " + message_number(o.y_m) + ") m");
     }
     // The radar equation needs the object in front of the radar, the radar outside a cylinder.
     const double near_m = std::hypot(o.x_m, o.y_m) -
@@ -251,37 +247,13 @@ void Scene::check_room(double target_range_m) const {
 }
 
 FarthestEcho farthest_echo(const Scene& scene, double target_range_m) {
-  FarthestEcho farthest{.range_m = 0.0, .key = "chamber.target_gap_m"};
-  RadarParams pattern_free;  // only the paths' lengths matter here
+  FarthestEcho farthest{.range_m = 0.0, .key = "chamber.target_gap_m", .value = 0.0};
+  RadarParams pattern_free;  // only the ranges matter here
   const Eigen::Vector3d radar(0.0, 0.0, scene.sensor_height_m);
-  OneWayLegs legs;
+  // The centres along the boresight: the 1 m margin covers their lateral and vertical offsets.
+  farthest.range_m = target_range_m;
   for (const ScatteringCentre& c : scene.centres) {
-    const Eigen::Vector3d point(target_range_m + c.range_offset_m, c.lateral_m, c.height_m);
-    const std::size_t count = one_way_legs(scene, radar, point, pattern_free, legs);
-    for (std::size_t i = 0; i < count; ++i) {
-      for (std::size_t j = i; j < count; ++j) {
-        if (legs[i].order + legs[j].order > 2) continue;
-        const double range_m = 0.5 * (legs[i].length_m + legs[j].length_m);
-        if (range_m <= farthest.range_m) continue;
-        farthest = {.range_m = range_m, .key = "chamber.target_gap_m", .value = 0.0};
-        // A path via the room: its farthest plane from the radar places it.
-        double reach_m = -1.0;
-        for (const OneWayLeg* leg : {&legs[i], &legs[j]}) {
-          for (std::size_t k = 0; k < leg->order; ++k) {
-            const SceneSurface& s = scene.surfaces[leg->surfaces[k]];
-            const bool floor = s.plane.surface == propagation::Surface::floor;
-            const double distance_m = std::abs(s.plane.position_m);
-            if (!floor && distance_m <= reach_m) continue;
-            if (floor && reach_m >= 0.0) continue;
-            reach_m = distance_m;
-            const bool ceiling = s.plane.surface == propagation::Surface::ceiling;
-            farthest.key = floor ? "radar.height_m"
-                                 : s.key + (ceiling ? ".height_m" : ".distance_m");
-            farthest.value = floor ? scene.sensor_height_m : distance_m;
-          }
-        }
-      }
-    }
+    farthest.range_m = std::max(farthest.range_m, target_range_m + c.range_offset_m);
   }
   for (const SceneSurface& surface : scene.surfaces) {
     if (surface.plane.surface != propagation::Surface::back_wall) continue;

@@ -103,9 +103,8 @@ Scene make_scene(const TargetSpec& target, const sensor::TargetWorld& world,
     // The material's normal-incidence power reflectance |r|^2, r = (1 - sqrt(eps)) / (1 +
     // sqrt(eps)) (fresnel_reflection at grazing pi / 2).
     const std::complex<double> r =
-        propagation::fresnel_reflection(permittivity_at(object.material, frequency_hz,
-                                                        key + ".material"),
-                                        0.5 * pi)
+        propagation::fresnel_reflection(
+            permittivity_at(object.material, frequency_hz, key + ".material"), 0.5 * pi)
             .te;
     scene.objects.push_back({.object = object, .reflectance = std::norm(r), .key = key});
   }

@@ -128,8 +128,7 @@ TEST(RoomPaths, OneWallInterferenceFollowsClosedForm) {
     const double r_d = x_m;
     const double r_w = std::hypot(x_m, 2.0 * w_m);
     const double ratio = g(std::atan(2.0 * w_m / x_m)) / g(0.0) * (r_d / r_w);
-    const double factor =
-        std::pow(std::abs(1.0 - ratio * std::polar(1.0, -k * (r_w - r_d))), 4);
+    const double factor = std::pow(std::abs(1.0 - ratio * std::polar(1.0, -k * (r_w - r_d))), 4);
     const Detection* det = detection_near(m.detections, x_m, 1.0);
     if (det == nullptr) {
       ++skipped;
@@ -259,10 +258,10 @@ TEST(RoomPaths, CoPolarCoefficientPicksTeOrTm) {
                                              Polarisation::horizontal) -
                          te(psi)),
                 1e-12);
-      EXPECT_LT(std::abs(co_polar_reflection(f, down, Eigen::Vector3d::UnitZ(),
-                                             Polarisation::vertical) -
-                         tm(psi)),
-                1e-12);
+      EXPECT_LT(
+          std::abs(co_polar_reflection(f, down, Eigen::Vector3d::UnitZ(), Polarisation::vertical) -
+                   tm(psi)),
+          1e-12);
     }
     // Horizontally onto the left wall (normal +y).
     const Eigen::Vector3d left(std::cos(psi), -std::sin(psi), 0.0);
@@ -272,26 +271,25 @@ TEST(RoomPaths, CoPolarCoefficientPicksTeOrTm) {
         co_polar_reflection(f, left, Eigen::Vector3d::UnitY(), Polarisation::vertical);
     EXPECT_LT(std::abs(h - tm(psi)), 1e-12);
     EXPECT_LT(std::abs(v - te(psi)), 1e-12);
-    fogradar::testing::validate({.id = "radar.room.fresnel.side_wall.horizontal.psi" +
-                                       number(psi_deg),
-                                 .group = "radar: room",
-                                 .quantity = "|co-polar coefficient|, horizontal, side wall",
-                                 .unit = "1",
-                                 .conditions = "concrete, 77 GHz, grazing " + number(psi_deg) +
-                                               " deg",
-                                 .reference = std::abs(tm(psi)),
-                                 .source = "Fresnel TM closed form, ITU-R P.2040-3 concrete",
-                                 .value = std::abs(h),
-                                 .tolerance = 1e-12,
-                                 .kind = Tolerance::absolute});
+    fogradar::testing::validate(
+        {.id = "radar.room.fresnel.side_wall.horizontal.psi" + number(psi_deg),
+         .group = "radar: room",
+         .quantity = "|co-polar coefficient|, horizontal, side wall",
+         .unit = "1",
+         .conditions = "concrete, 77 GHz, grazing " + number(psi_deg) + " deg",
+         .reference = std::abs(tm(psi)),
+         .source = "Fresnel TM closed form, ITU-R P.2040-3 concrete",
+         .value = std::abs(h),
+         .tolerance = 1e-12,
+         .kind = Tolerance::absolute});
   }
   const std::complex<double> normal = (1.0 - std::sqrt(eps)) / (1.0 + std::sqrt(eps));
   const propagation::FresnelCoefficients f = propagation::fresnel_reflection(eps, 0.5 * kPi);
   for (const Polarisation pol : {Polarisation::horizontal, Polarisation::vertical}) {
-    EXPECT_LT(std::abs(co_polar_reflection(f, Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitX(),
-                                           pol) -
-                       normal),
-              1e-12);
+    EXPECT_LT(
+        std::abs(co_polar_reflection(f, Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitX(), pol) -
+                 normal),
+        1e-12);
     // Off normal by 0.1 deg either way the coefficient stays near the normal value (no sign flip
     // from the TM convention).
     for (const Eigen::Vector3d& d :
@@ -380,15 +378,28 @@ TEST(RoomPaths, ObjectsReadBackClosedFormRcs) {
   const double n = 1.526;
   const Case cases[] = {
       {"metal_plate",
-       {.shape = propagation::ObjectShape::plate, .x_m = 7.0, .y_m = 0.0, .base_height_m = 0.4,
-        .height_m = 0.2, .width_m = 0.2, .yaw_deg = 0.0, .material = propagation::Material::metal},
-       0.5, 4.0 * kPi * 0.04 * 0.04 / (lambda_m * lambda_m) *
-                reflectance({1.0, 17.98e7 / 77.0}),
+       {.shape = propagation::ObjectShape::plate,
+        .x_m = 7.0,
+        .y_m = 0.0,
+        .base_height_m = 0.4,
+        .height_m = 0.2,
+        .width_m = 0.2,
+        .yaw_deg = 0.0,
+        .material = propagation::Material::metal},
+       0.5,
+       4.0 * kPi * 0.04 * 0.04 / (lambda_m * lambda_m) * reflectance({1.0, 17.98e7 / 77.0}),
        7.0},
       {"plastic_barrel",
-       {.shape = propagation::ObjectShape::cylinder, .x_m = 7.3, .y_m = 0.0, .base_height_m = 0.0,
-        .height_m = 0.9, .radius_m = 0.3, .material = propagation::Material::plastic},
-       0.45, k * 0.3 * 0.81 * reflectance({n * n, n * n * 3e-4}), 7.0}};
+       {.shape = propagation::ObjectShape::cylinder,
+        .x_m = 7.3,
+        .y_m = 0.0,
+        .base_height_m = 0.0,
+        .height_m = 0.9,
+        .radius_m = 0.3,
+        .material = propagation::Material::plastic},
+       0.45,
+       k * 0.3 * 0.81 * reflectance({n * n, n * n * 3e-4}),
+       7.0}};
   for (const Case& c : cases) {
     propagation::RoomSpec room;
     room.floor.present = false;
@@ -410,18 +421,18 @@ TEST(RoomPaths, ObjectsReadBackClosedFormRcs) {
     EXPECT_EQ(det->origin, Origin::room) << c.name;
     const double expected_dbsm =
         10.0 * std::log10(c.expected_m2 * std::pow(det->range_m / c.range_m, 4));
-    fogradar::testing::validate({.id = std::string("radar.room.object.") + c.name + ".rcs",
-                                 .group = "radar: room",
-                                 .quantity = "RCS of an object read back",
-                                 .unit = "dBsm",
-                                 .conditions = std::string(c.name) +
-                                               " on boresight at 7 m, no floor, noise off",
-                                 .reference = expected_dbsm,
-                                 .source = "PO closed form [Knott Table 5.1] x normal-incidence "
-                                           "Fresnel reflectance (this test)",
-                                 .value = det->rcs_dbsm,
-                                 .tolerance = 0.3,
-                                 .kind = Tolerance::absolute});
+    fogradar::testing::validate(
+        {.id = std::string("radar.room.object.") + c.name + ".rcs",
+         .group = "radar: room",
+         .quantity = "RCS of an object read back",
+         .unit = "dBsm",
+         .conditions = std::string(c.name) + " on boresight at 7 m, no floor, noise off",
+         .reference = expected_dbsm,
+         .source = "PO closed form [Knott Table 5.1] x normal-incidence "
+                   "Fresnel reflectance (this test)",
+         .value = det->rcs_dbsm,
+         .tolerance = 0.3,
+         .kind = Tolerance::absolute});
   }
 }
 

@@ -52,7 +52,6 @@ struct OneWayLeg {
   // way).
   double length_rate_per_x_velocity = 0.0;
   std::size_t order = 0;  // reflections
-  std::array<std::size_t, 2> surfaces{};  // the first `order` are the surfaces it meets, in order
 };
 
 // At most 5 planes: the direct path, 5 of first order, 20 of second.

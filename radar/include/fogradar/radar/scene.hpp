@@ -8,8 +8,8 @@
 #include <complex>
 #include <cstdint>
 #include <optional>
-#include <string>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -46,12 +46,12 @@ struct ScatteringCentre {
 // ray takes at its own grazing angle for the radar's polarisation (room_paths.hpp).
 struct SceneSurface {
   propagation::RoomPlane plane;
-  double reflection_coefficient = -0.7;               // in [-1, 1]; without a permittivity
-  std::optional<std::complex<double>> permittivity;   // a material's, eps' + i eps''
+  double reflection_coefficient = -0.7;              // in [-1, 1]; without a permittivity
+  std::optional<std::complex<double>> permittivity;  // a material's, eps' + i eps''
   std::string key;  // its scenario table, "chamber.room.floor", for messages
 };
 
-// The floor at z = 0 reflecting with a real coefficient: today's two-ray floor (Skolnik, Radar
+// The floor at z = 0 reflecting with a real coefficient: the two-ray floor (Skolnik, Radar
 // Handbook 3rd ed., ch. 26).
 SceneSurface coefficient_floor(double reflection_coefficient);
 
@@ -97,11 +97,11 @@ struct Scene {
   void check_room(double target_range_m) const;
 };
 
-// The farthest echo of a scene: half the longest two-way path of any tone it makes (fog clutter
-// aside), and the key that places it: "chamber.target_gap_m" for the target's direct paths (its
-// value left 0 for the caller), the farthest surface of a path via the room or the back wall's own
-// return ("chamber.room.back_wall.distance_m"; the floor's: "radar.height_m"), an object's
-// "chamber.objects[0].x_m".
+// The farthest echo of a scene that a scenario places: the target's direct paths (key
+// "chamber.target_gap_m", its value left 0 for the caller), the back wall's own return
+// ("chamber.room.back_wall.distance_m"), an object's ("chamber.objects[0].x_m"); its range and the
+// key with its value. The target's paths via the room are not bounded: one longer than the
+// unambiguous range folds into it, as an aliased ghost (docs/radar.md §3.3).
 struct FarthestEcho {
   double range_m = 0.0;
   std::string key;
@@ -134,13 +134,14 @@ struct Tone {
   std::int16_t layer = -1;  // fog only; -1 otherwise
 };
 
-// The paths of one measurement: every scattering centre's two-way paths through the room (room_paths
-// .hpp: the direct path, and every pair of one-way image paths of at most second order in all),
-// each weighted by the bistatic radar equation, its reflection coefficients, the antenna pattern
-// at its departure and arrival, the chamber's two-way transmittance at half its length and the
-// water films; the room's own echoes (the back wall's specular return, each object by its
-// closed-form RCS); plus the fog clutter of the active layers, through the radome. Random draws (RCS fluctuation, micro-motion, clutter)
-// come from `rng`. `tones` is cleared and refilled (no allocation once it has the capacity).
+// The paths of one measurement: every scattering centre's two-way paths through the room
+// (room_paths .hpp: the direct path, and every pair of one-way image paths of at most second order
+// in all), each weighted by the bistatic radar equation, its reflection coefficients, the antenna
+// pattern at its departure and arrival, the chamber's two-way transmittance at half its length and
+// the water films; the room's own echoes (the back wall's specular return, each object by its
+// closed-form RCS); plus the fog clutter of the active layers, through the radome. Random draws
+// (RCS fluctuation, micro-motion, clutter) come from `rng`. `tones` is cleared and refilled (no
+// allocation once it has the capacity).
 void scene_tones(const Scene& scene, const propagation::Chamber& chamber,
                  const propagation::ActiveLayers& active, const RadarParams& params,
                  const RadarDerived& derived, RandomStream& rng, std::vector<Tone>& tones);
