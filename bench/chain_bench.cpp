@@ -66,7 +66,7 @@ struct Setup {
   }
   static Scene make_scene() {
     Scene s = evt_rear_scene();
-    s.floor.enabled = true;
+    s.surfaces = {coefficient_floor(-0.7)};
     return s;
   }
   RadarChain chain;

@@ -78,7 +78,7 @@ void BM_RadarFrame(benchmark::State& state) {
   static const propagation::Chamber chamber(propagation::ChamberSpec{},
                                             chain.params().centre_frequency_hz, table());
   radar::Scene scene = radar::evt_rear_scene();
-  scene.floor.enabled = true;
+  scene.surfaces = {radar::coefficient_floor(-0.7)};
   const auto active = propagation::first_layers_active(4, 4);
   radar::MeasurementWorkspace workspace = chain.make_workspace();
   radar::Measurement m;

@@ -17,7 +17,8 @@ import numpy as np  # noqa: E402
 import fogradar  # noqa: E402
 
 COLOURS = {"target": "tab:red", "fog": "tab:blue", "noise": "tab:grey", "background": "tab:green",
-           "clipping": "tab:purple"}
+           "clipping": "tab:purple", "sidelobe": "tab:olive", "multipath": "tab:orange",
+           "room": "tab:brown"}
 
 
 def main():

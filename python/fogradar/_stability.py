@@ -19,14 +19,16 @@ class StabilityReport:
                 noise, sidelobe and clipping detections) with its fog_, noise_ and
                 sidelobe_false_alarms_per_item and clipping_detections_per_item parts,
                 background_detections_per_item (static surfaces such as the lidar's walls: real
-                echoes, not false alarms), the spread of
+                echoes, not false alarms), multipath_detections_per_item (the radar's ghosts of
+                the target via the room) and room_detections_per_item (the radar's walls and
+                objects: real echoes, neither false alarms nor the target), the spread of
                 the target detections' values (value_n, value_median, value_q1, value_q3,
                 value_std, value_min, value_max; fogradar's type-7 box-plot statistics) and, where
                 the measurements kept a detection table with an ``associated`` column,
                 chain_detection_rate (fogradar's own chain on the same items)
     detections  every detection the algorithm returned: active_layers, item, range_m, value,
                 origin (a Categorical over the sensors' one code table: noise, target, fog,
-                background, clipping, sidelobe) and layer (for a fog origin the chamber layer,
+                background, clipping, sidelobe, multipath, room) and layer (for a fog origin the chamber layer,
                 the index in chamber.layers, that dominates it; -1 otherwise and where the
                 sensor's ground truth has no layers)
     layers_to_failure   the first step whose detection rate is below `criterion_rate`, else None
@@ -250,6 +252,8 @@ def stability(scenario, sensor, algorithm, keep=None, gate_m=0.5, criterion_rate
                "sidelobe_false_alarms_per_item": counts["sidelobe"] / count,
                "clipping_detections_per_item": counts["clipping"] / count,
                "background_detections_per_item": counts["background"] / count,
+               "multipath_detections_per_item": counts["multipath"] / count,
+               "room_detections_per_item": counts["room"] / count,
                "value_n": len(values)}
         for stat in ("median", "q1", "q3", "std", "min", "max"):
             row[f"value_{stat}"] = box.get(stat, np.nan)

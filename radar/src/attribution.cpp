@@ -39,9 +39,8 @@ std::size_t layer_slots(std::span<const Tone> tones) {
   return slots;
 }
 
-Attribution attribution_of(double target_power, double fog_power, double sidelobe_power,
-                           double noise_power, std::int16_t fog_layer, bool clipped) {
-  Attribution a{dominant_origin(target_power, fog_power, sidelobe_power, noise_power), -1};
+Attribution attribution_of(const CellPowers& powers, std::int16_t fog_layer, bool clipped) {
+  Attribution a{dominant_origin(powers), -1};
   if (a.origin == Origin::fog) a.layer = fog_layer;
   if (clipped && a.origin == Origin::noise) a.origin = Origin::clipping;
   return a;
@@ -49,12 +48,13 @@ Attribution attribution_of(double target_power, double fog_power, double sidelob
 
 }  // namespace
 
-Origin dominant_origin(double target_power, double fog_power, double sidelobe_power,
-                       double noise_power) noexcept {
-  const double largest = std::max({target_power, fog_power, sidelobe_power, noise_power});
-  if (target_power == largest) return Origin::target;
-  if (fog_power == largest) return Origin::fog;
-  return sidelobe_power == largest ? Origin::sidelobe : Origin::noise;
+Origin dominant_origin(const CellPowers& p) noexcept {
+  const double largest = std::max({p.target, p.multipath, p.room, p.fog, p.sidelobe, p.noise});
+  if (p.target == largest) return Origin::target;
+  if (p.multipath == largest) return Origin::multipath;
+  if (p.room == largest) return Origin::room;
+  if (p.fog == largest) return Origin::fog;
+  return p.sidelobe == largest ? Origin::sidelobe : Origin::noise;
 }
 
 WindowSpectrum::WindowSpectrum(std::span<const double> window) : n_(window.size()) {
@@ -146,14 +146,23 @@ CellContributions OriginClassifier::contributions(std::span<const Tone> tones,
   for (const Tone& tone : tones) {
     bool main_lobe = false;
     const std::complex<double> value = tone_at(tone, d, k, main_lobe);
-    const bool target = tone.origin == Origin::target;
-    if (!main_lobe) {
-      (target ? out.target_leak : out.fog_leak) += value;
-    } else if (target) {
-      out.target += value;
-    } else {
-      out.fog += value;
-      last_layer = std::max(last_layer, tone.layer);
+    switch (tone.origin) {
+      case Origin::target:
+        (main_lobe ? out.target : out.target_leak) += value;
+        break;
+      case Origin::multipath:
+        (main_lobe ? out.multipath : out.target_leak) += value;
+        break;
+      case Origin::room:
+        (main_lobe ? out.room : out.room_leak) += value;
+        break;
+      default:
+        if (!main_lobe) {
+          out.fog_leak += value;
+        } else {
+          out.fog += value;
+          last_layer = std::max(last_layer, tone.layer);
+        }
     }
   }
   // The fog's main lobes summed per layer, one layer at a time (no allocation per cell).
@@ -177,8 +186,13 @@ CellContributions OriginClassifier::contributions(std::span<const Tone> tones,
 Attribution OriginClassifier::attribution(std::span<const Tone> tones, std::size_t doppler_cell,
                                           std::size_t range_cell, bool clipped) const {
   const CellContributions c = contributions(tones, doppler_cell, range_cell);
-  return attribution_of(std::norm(c.target), std::norm(c.fog), std::norm(c.sidelobe()),
-                        c.noise_power, c.fog_layer, clipped);
+  return attribution_of({.target = std::norm(c.target),
+                         .multipath = std::norm(c.multipath),
+                         .room = std::norm(c.room),
+                         .fog = std::norm(c.fog),
+                         .sidelobe = std::norm(c.sidelobe()),
+                         .noise = c.noise_power},
+                        c.fog_layer, clipped);
 }
 
 void OriginClassifier::attribute(std::span<const Tone> tones, std::span<Detection> detections,
@@ -233,11 +247,24 @@ void OriginClassifier::origin_map(std::span<const Tone> tones, bool clipped,
   }
   const double noise = noise_power(tones);
   const std::size_t slots = layer_slots(tones);
-  std::vector<std::complex<double>> target(samples_), fog(samples_), leak(samples_),
-      fog_by_layer(slots * samples_), cell_layers(slots);
+  std::vector<std::complex<double>> target(samples_), multipath(samples_), room(samples_),
+      fog(samples_), leak(samples_), fog_by_layer(slots * samples_), cell_layers(slots);
+  const auto main_sum = [&](Origin origin) -> std::vector<std::complex<double>>& {
+    switch (origin) {
+      case Origin::target:
+        return target;
+      case Origin::multipath:
+        return multipath;
+      case Origin::room:
+        return room;
+      default:
+        return fog;
+    }
+  };
   for (std::size_t d = 0; d < chirps_; ++d) {
-    std::fill(target.begin(), target.end(), std::complex<double>{});
-    std::fill(fog.begin(), fog.end(), std::complex<double>{});
+    for (auto* sum : {&target, &multipath, &room, &fog}) {
+      std::fill(sum->begin(), sum->end(), std::complex<double>{});
+    }
     std::fill(leak.begin(), leak.end(), std::complex<double>{});
     std::fill(fog_by_layer.begin(), fog_by_layer.end(), std::complex<double>{});
     for (const Group& g : groups) {
@@ -249,7 +276,7 @@ void OriginClassifier::origin_map(std::span<const Tone> tones, bool clipped,
         for (std::size_t k = 0; k < samples_; ++k) leak[k] += w * (g.main[k] + g.leak[k]);
         continue;
       }
-      std::vector<std::complex<double>>& sum = g.origin == Origin::target ? target : fog;
+      std::vector<std::complex<double>>& sum = main_sum(g.origin);
       for (std::size_t k = 0; k < samples_; ++k) {
         sum[k] += w * g.main[k];
         leak[k] += w * g.leak[k];
@@ -262,9 +289,13 @@ void OriginClassifier::origin_map(std::span<const Tone> tones, bool clipped,
     }
     for (std::size_t k = 0; k < samples_; ++k) {
       for (std::size_t i = 0; i < slots; ++i) cell_layers[i] = fog_by_layer[i * samples_ + k];
-      const Attribution a =
-          attribution_of(std::norm(target[k]), std::norm(fog[k]), std::norm(leak[k]), noise,
-                         strongest_layer(cell_layers), clipped);
+      const Attribution a = attribution_of({.target = std::norm(target[k]),
+                                            .multipath = std::norm(multipath[k]),
+                                            .room = std::norm(room[k]),
+                                            .fog = std::norm(fog[k]),
+                                            .sidelobe = std::norm(leak[k]),
+                                            .noise = noise},
+                                           strongest_layer(cell_layers), clipped);
       map[d * samples_ + k] = static_cast<std::uint8_t>(a.origin);
       if (!layers.empty()) layers[d * samples_ + k] = a.layer;
     }

@@ -209,28 +209,30 @@ class Kind : public sensor::Kind<SensorParams> {
       const SensorParams& p, const sensor::Context& context) const override {
     // The CFAR's window against the range profile is one of the keys' checks
     // (radar_param_keys).
-    const Scene scene =
-        make_scene(p.target, context.target, context.room, p.clutter_scatterers_per_bin);
+    const Scene scene = make_scene(p.target, context.target, context.room,
+                                   p.clutter_scatterers_per_bin, p.radar.centre_frequency_hz);
     scene.validate();
+    const double target_range_m = context.chamber.target_range_m();
+    scene.check_room(target_range_m);
     // Every echo's beat must lie inside [0, fs) with the 1 m margin RadarChain keeps
     // (docs/radar.md).
-    const double target_range_m = context.chamber.target_range_m();
-    double farthest_m = target_range_m;
-    for (const ScatteringCentre& centre : scene.centres) {
-      farthest_m = std::max(farthest_m, target_range_m + centre.range_offset_m);
-    }
+    const FarthestEcho farthest = farthest_echo(scene, target_range_m);
     const double limit_m = derive(p.radar).max_range_m - 1.0;
-    if (farthest_m > limit_m) {
+    if (farthest.range_m > limit_m) {
       std::ostringstream constraint;
       constraint.precision(10);
-      constraint
-          << "such that the target's farthest echo, chamber.sensor_gap_m + chamber.layer_count x "
-             "chamber.layer_length_m + chamber.target_gap_m (+ the EVT's depth) = "
-          << farthest_m
-          << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
-             "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
-          << limit_m << " m";
-      throw_invalid("chamber.target_gap_m", context.chamber.target_gap_m, constraint.str());
+      const bool target = farthest.key == "chamber.target_gap_m";
+      constraint << "such that "
+                 << (target ? "the target's farthest echo, chamber.sensor_gap_m + "
+                              "chamber.layer_count x chamber.layer_length_m + "
+                              "chamber.target_gap_m (+ the EVT's depth)"
+                            : "the farthest echo of the room's own (a wall's or an object's)")
+                 << " = " << farthest.range_m
+                 << " m, lies within the unambiguous range minus 1 m, c x radar.sample_rate_hz x "
+                    "radar.chirp_duration_s / (2 x radar.sweep_bandwidth_hz) - 1 = "
+                 << limit_m << " m";
+      throw_invalid(farthest.key, target ? context.chamber.target_gap_m : farthest.value,
+                    constraint.str());
     }
     return std::make_shared<Configured>(p, context);
   }

@@ -33,9 +33,6 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
         "chamber.frequency_hz", chamber.frequency_hz(),
         "equal to radar.centre_frequency_hz = " + std::to_string(params_.centre_frequency_hz));
   }
-  // Every path must have its beat frequency inside [0, fs): the farthest is the floor-floor path of
-  // the farthest centre; 1 m of margin covers micro-motion and the floor detour at chamber scales.
-  double farthest_m = chamber.target_range_m();
   for (std::size_t i = 0; i < scene.centres.size(); ++i) {
     const double along_m = chamber.target_range_m() + scene.centres[i].range_offset_m;
     // A centre at or behind the radar has no meaningful radar equation (R^-4 diverges at 0).
@@ -46,11 +43,16 @@ void RadarChain::check_compatible(const Scene& scene, const propagation::Chamber
           "> -" + std::to_string(chamber.target_range_m()) +
               " (minus the chamber's target range): the centre must lie in front of the radar");
     }
-    farthest_m = std::max(farthest_m, along_m);
   }
+  scene.check_room(chamber.target_range_m());
+  // The target's and the room's own echoes must have their beat frequencies inside [0, fs): the
+  // 1 m margin covers micro-motion and, at chamber scales, the floor's detour.
+  const FarthestEcho farthest = farthest_echo(scene, chamber.target_range_m());
+  const double farthest_m = std::max(chamber.target_range_m(), farthest.range_m);
   const double limit_m = derived_.max_range_m - 1.0;
   if (farthest_m > limit_m) {
-    throw_invalid("chamber.target_range_m", farthest_m,
+    throw_invalid(farthest.key == "chamber.target_gap_m" ? "chamber.target_range_m" : farthest.key,
+                  farthest.key == "chamber.target_gap_m" ? farthest_m : farthest.value,
                   "< the radar's unambiguous range minus 1 m = " + std::to_string(limit_m) +
                       " m (c fs / (2 S)); raise radar.sample_rate_hz or lower the range");
   }

@@ -440,7 +440,8 @@ nlohmann::json summary_json(const RadarSummary& summary) {
          "Mann-Whitney U null distribution (Bauer 1972)"},
         {"shift_test", "Mann-Whitney U (two-sided) against the 0-layer series"},
         {"detections",
-         "target detections only: a fog- or noise-origin detection in the gate is a miss"}}},
+         "target detections only: any other origin in the gate (fog, noise, a multipath ghost, the "
+         "room) is a miss"}}},
   };
 }
 
@@ -496,11 +497,11 @@ std::string summary_table(const RadarSummary& summary) {
   out << step_table(summary).printed();
   out << "target det. %: a target-origin detection in the gate; confused %: no target detection\n"
          "or a fog detection at least as strong (the limit: the first step above 50 %); false\n"
-         "assoc. %: a fog or noise detection in the gate instead of the target (a miss); fog\n"
-         "det./f: fog-origin detections per frame; false alarms/f: noise-origin detections per\n"
-         "frame; design /frame: P_fa x the cells the CFAR tests per frame; shift: Hodges-Lehmann\n"
-         "shift against 0 layers with its distribution-free 95 % interval; p: Mann-Whitney U;\n"
-         "\u2013: no such value\n";
+         "assoc. %: another origin in the gate instead of the target (fog, noise, a multipath\n"
+         "ghost, the room: a miss); fog det./f: fog-origin detections per frame; false alarms/f:\n"
+         "noise-origin detections per frame; design /frame: P_fa x the cells the CFAR tests per\n"
+         "frame; shift: Hodges-Lehmann shift against 0 layers with its distribution-free 95 %\n"
+         "interval; p: Mann-Whitney U; \u2013: no such value\n";
   if (!summary.steps.empty() && (summary.steps.front().radome_two_way_loss_db != 0.0 ||
                                  summary.steps.front().target_film_loss_db != 0.0)) {
     std::snprintf(line, sizeof line,

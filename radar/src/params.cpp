@@ -82,6 +82,9 @@ KeyTable<RadarParams> radar_param_keys() {
               closed(0.1, 180.0), "one-way 3 dB azimuth beamwidth (Gaussian beam)");
   keys.number("radar.elevation_beamwidth_deg", FOGRADAR_KEY_FIELD(elevation_beamwidth_deg),
               closed(0.1, 180.0), "one-way 3 dB elevation beamwidth (Gaussian beam)");
+  keys.choice("radar.polarisation", FOGRADAR_KEY_FIELD(polarisation), polarisation_names,
+              "linear polarisation of both antennas; picks each room reflection's Fresnel "
+              "coefficient (an assumption: the study names none)");
   keys.number("radar.noise_figure_db", FOGRADAR_KEY_FIELD(noise_figure_db), closed(0.0, 40.0),
               "F; noise power k·T0·F·fs");
   keys.number("radar.reference_temperature_k", FOGRADAR_KEY_FIELD(reference_temperature_k),

@@ -144,7 +144,7 @@ RadarSensor::RadarSensor(const SensorParams& params, const sensor::Context& cont
     : params_(params),
       context_(context),
       scene_(make_scene(params.target, context.target, context.room,
-                        params.clutter_scatterers_per_bin)),
+                        params.clutter_scatterers_per_bin, params.radar.centre_frequency_hz)),
       chamber_(context.chamber, params.radar.centre_frequency_hz, water),
       chain_(params.radar, FftPlanner::shipped_wisdom, stop) {
   chain_.check_compatible(scene_, chamber_);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fogradar/propagation/fog.hpp"
+#include "fogradar/propagation/room_spec.hpp"
 #include "fogradar/radar/cfar_design.hpp"
 #include "fogradar/radar/costs.hpp"
 #include "fogradar/radar/window.hpp"
@@ -98,9 +99,13 @@ MemoryEstimate memory_estimate(const SensorParams& params, std::size_t measureme
                                  2 * 4 * (samples + chirps) * double_bytes;
   // The Doppler transform's packed block buffer.
   const std::size_t doppler_block = doppler_block_columns * chirps * complex_bytes;
-  // Tones: every centre's paths plus the fog clutter, at most clutter_scatterers_per_bin per range
-  // bin of the unambiguous range; twice for the vector's growth.
-  const std::size_t tones = 2 * sizeof(Tone) * (params.clutter_scatterers_per_bin * samples + 64);
+  // Tones: every centre's paths (the EVT's five, each at most 41 in a room of five planes: direct,
+  // 25 with one direct leg, 15 pairs of first-order legs), the room's own echoes (its objects and
+  // back wall) plus the fog clutter, at most clutter_scatterers_per_bin per range bin of the
+  // unambiguous range; twice for the vector's growth.
+  const std::size_t tones =
+      2 * sizeof(Tone) *
+      (params.clutter_scatterers_per_bin * samples + 5 * 41 + propagation::max_room_objects + 1);
   e.per_thread_bytes = frame + cfar + estimation + doppler_block + tones;
   // Shared: the windows (range, Doppler, range pairs), both window spectra (16 x oversampled
   // complex tables, OriginClassifier) and the FFT plans (about two complex twiddles per point and

@@ -153,6 +153,9 @@ const std::map<std::string, Needed>& room_for() {
       {"radar.processing.cfar.threshold_design",
        {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
       {"radar.processing.cfar.shape", {{"radar.processing.cfar.false_alarm_probability", "0.01"}}},
+      // The polarisation picks the Fresnel coefficients of a material surface; the base's floor
+      // reflects by a real coefficient, the same for either.
+      {"radar.polarisation", {{"chamber.room.floor.material", "concrete"}}},
       // The range-Doppler ring's many cells hold its noise estimate steady: its size changes which
       // cells detect only where some lie near the threshold.
       {"radar.processing.cfar.training_cells",

@@ -38,8 +38,9 @@ TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
   // frame 64*16*16 = 16384, mask 1024, chirp 64*16 = 1024; CFAR one row 6*64*8 = 3072, four rows
   // 4*5*64*8 = 10240 and their one-row workspace 3072; kernels 2*4*2*64*8 = 8192, Doppler columns
   // 4*16*16 = 1024, peak search 4*64*8 = 2048, tables 8*80*8 = 5120; Doppler block 32*16*16 = 8192;
-  // tones 2*40*(4*64 + 64) = 25600. Sum 84992.
-  EXPECT_EQ(e.per_thread_bytes, 84992u);
+  // tones 2*40*(4*64 + 5*41 + 64 + 1) = 42080 (clutter, the EVT's paths in a room of five planes,
+  // the objects and the back wall). Sum 101472.
+  EXPECT_EQ(e.per_thread_bytes, 101472u);
   // windows (3*64 + 16)*8 = 1664; spectra 16*82*16 = 20992; plans 2*80*16 = 2560.
   EXPECT_EQ(e.shared_bytes, 1664u + 20992u + 2560u);
   // Records: per measurement the record and a 128-byte CSV row, and 4 + ceil(2 x 1e-6 x 1024) = 5
@@ -51,7 +52,8 @@ TEST(MemoryEstimate, MatchesAHandCountForASmallFrame) {
   const MemoryEstimate run = estimate_peak_memory(s, 2);
   EXPECT_EQ(run.threads, 2u);
   ASSERT_EQ(run.sensors.size(), 1u);
-  EXPECT_EQ(run.total_bytes(), 2 * 84992u + 1664u + 20992u + 2560u + 16777216u + 15 * record_bytes);
+  EXPECT_EQ(run.total_bytes(),
+            2 * 101472u + 1664u + 20992u + 2560u + 16777216u + 15 * record_bytes);
 }
 
 TEST(MemoryEstimate, UsesTheThreadsTheRunStarts) {

@@ -11,7 +11,7 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
 - /lidar/echoes holds lidar_echoes.csv's echoes (ranges to the CSV's 4 decimals, origins and
   layers);
 - every origin, the radar's and the lidar's, is one HDF5 enumeration with names: noise 0, target 1,
-  fog 2, background 3, clipping 4, sidelobe 5 (sensor/origin.hpp);
+  fog 2, background 3, clipping 4, sidelobe 5, multipath 6, room 7 (sensor/origin.hpp);
 - the ground truth on request: /radar/origins, an enumerated map whose cell at each detection's
   peak (its range_cell, doppler_cell) holds that detection's origin, and /radar/origin_layers,
   int16, whose cell there holds its layer (-1 where not fog); /lidar/origins, whose stretch holding
@@ -159,7 +159,7 @@ with tempfile.TemporaryDirectory() as work:
                       if int(r["active_layers"]) in (0, 4) and int(r["item"]) < 4]
         check(len(listed) == len(echoes), f"{len(echoes)} echoes against the CSV's {len(listed)}")
         table = {"noise": 0, "target": 1, "fog": 2, "background": 3, "clipping": 4,
-                 "sidelobe": 5}
+                 "sidelobe": 5, "multipath": 6, "room": 7}
         check(h5py.check_enum_dtype(echoes.dtype["origin"]) == table, "the lidar's origin codes")
         check(h5py.check_enum_dtype(f["/radar/detections"].dtype["origin"]) == table,
               "the radar's origin codes")

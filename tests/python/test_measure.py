@@ -70,7 +70,8 @@ def test_arrays_and_table_columns_are_read_only_views_without_copies(paper_sim):
     assert np.shares_memory(m.detections["origin"].cat.codes.to_numpy(), columns["origin"])
     assert isinstance(m.detections["origin"].dtype, pd.CategoricalDtype)
     assert list(m.detections["origin"].cat.categories) == ["noise", "target", "fog", "background",
-                                                           "clipping", "sidelobe"]
+                                                           "clipping", "sidelobe", "multipath",
+                                                           "room"]
 
 
 def test_items_are_the_measurements_of_a_step_in_order(paper_sim):

@@ -54,7 +54,7 @@ TEST(Allocation, SteadyStateMeasurementDoesNotAllocate) {
   const auto all_on =
       propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
   Scene scene = evt_rear_scene();
-  scene.floor.enabled = true;
+  scene.surfaces = {coefficient_floor(-0.7)};
   MeasurementWorkspace ws = chain.make_workspace();
   Measurement m;
   RandomStream warm_up(1);

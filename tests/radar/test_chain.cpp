@@ -1945,7 +1945,7 @@ TEST(FloorMultipath, TwoRayFactorFromGeometry) {
           scene.sensor_height_m = sensor_h;
           scene.centres[0].height_m = target_h;
           scene.centres[0].range_offset_m = horizontal_m - chamber.target_range_m();
-          scene.floor = {.enabled = true, .reflection_coefficient = gamma};
+          scene.surfaces = {coefficient_floor(gamma)};
           RandomStream rng(count);
           chain.measure(scene, chamber, no_fog, rng, ws, m);
           const Detection* det = strongest(m.detections);
@@ -2216,7 +2216,7 @@ TEST(Determinism, SameSeedGivesIdenticalMeasurement) {
   const auto all_on =
       propagation::first_layers_active(chamber.layer_count(), chamber.layer_count());
   Scene scene = evt_rear_scene();
-  scene.floor.enabled = true;
+  scene.surfaces = {coefficient_floor(-0.7)};
   chain.check_compatible(scene, chamber);
   MeasurementWorkspace ws1 = chain.make_workspace(), ws2 = chain.make_workspace();
   Measurement m1, m2, m3;

@@ -110,29 +110,46 @@ std::vector<Tone> fog_tones(const RadarParams& p, int first_bin, int last_bin, d
 }
 
 // The sensors' one code table (sensor/origin.hpp): the radar's codes as they always were, the
-// lidar's background, the ADC's clipping and the sidelobes after them.
+// lidar's background, the ADC's clipping, the sidelobes, the radar's ghosts and room after them.
 TEST(Origin, NamesAndDominance) {
   EXPECT_EQ(to_string(Origin::target), "target");
   EXPECT_EQ(to_string(Origin::fog), "fog");
   EXPECT_EQ(to_string(Origin::noise), "noise");
   EXPECT_EQ(to_string(Origin::clipping), "clipping");
   EXPECT_EQ(to_string(Origin::sidelobe), "sidelobe");
-  EXPECT_EQ(
-      sensor::origin_labels(),
-      (std::vector<std::string>{"noise", "target", "fog", "background", "clipping", "sidelobe"}));
+  EXPECT_EQ(to_string(Origin::multipath), "multipath");
+  EXPECT_EQ(to_string(Origin::room), "room");
+  EXPECT_EQ(sensor::origin_labels(),
+            (std::vector<std::string>{"noise", "target", "fog", "background", "clipping",
+                                      "sidelobe", "multipath", "room"}));
   EXPECT_EQ(static_cast<int>(Origin::noise), 0);
   EXPECT_EQ(static_cast<int>(Origin::target), 1);
   EXPECT_EQ(static_cast<int>(Origin::fog), 2);
   EXPECT_EQ(static_cast<int>(Origin::sidelobe), 5);
-  EXPECT_EQ(dominant_origin(2.0, 1.0, 0.5, 1.5), Origin::target);
-  EXPECT_EQ(dominant_origin(1.0, 2.0, 0.5, 1.5), Origin::fog);
-  EXPECT_EQ(dominant_origin(1.0, 1.2, 0.5, 1.5), Origin::noise);
-  EXPECT_EQ(dominant_origin(1.0, 1.2, 1.6, 1.5), Origin::sidelobe);
-  // Ties: target, then fog, then sidelobe.
-  EXPECT_EQ(dominant_origin(1.0, 1.0, 1.0, 1.0), Origin::target);
-  EXPECT_EQ(dominant_origin(0.0, 1.0, 1.0, 1.0), Origin::fog);
-  EXPECT_EQ(dominant_origin(0.0, 0.0, 1.0, 1.0), Origin::sidelobe);
-  EXPECT_EQ(dominant_origin(0.0, 0.0, 0.0, 0.0), Origin::target);
+  EXPECT_EQ(static_cast<int>(Origin::multipath), 6);
+  EXPECT_EQ(static_cast<int>(Origin::room), 7);
+  const auto dominant = [](double target, double multipath, double room, double fog,
+                           double sidelobe, double noise) {
+    return dominant_origin({.target = target,
+                            .multipath = multipath,
+                            .room = room,
+                            .fog = fog,
+                            .sidelobe = sidelobe,
+                            .noise = noise});
+  };
+  EXPECT_EQ(dominant(2.0, 0.0, 0.0, 1.0, 0.5, 1.5), Origin::target);
+  EXPECT_EQ(dominant(1.0, 0.0, 0.0, 2.0, 0.5, 1.5), Origin::fog);
+  EXPECT_EQ(dominant(1.0, 0.0, 0.0, 1.2, 0.5, 1.5), Origin::noise);
+  EXPECT_EQ(dominant(1.0, 0.0, 0.0, 1.2, 1.6, 1.5), Origin::sidelobe);
+  EXPECT_EQ(dominant(1.0, 3.0, 2.0, 1.2, 1.6, 1.5), Origin::multipath);
+  EXPECT_EQ(dominant(1.0, 2.0, 3.0, 1.2, 1.6, 1.5), Origin::room);
+  // Ties: target, then multipath, room, fog, sidelobe.
+  EXPECT_EQ(dominant(1.0, 1.0, 1.0, 1.0, 1.0, 1.0), Origin::target);
+  EXPECT_EQ(dominant(0.0, 1.0, 1.0, 1.0, 1.0, 1.0), Origin::multipath);
+  EXPECT_EQ(dominant(0.0, 0.0, 1.0, 1.0, 1.0, 1.0), Origin::room);
+  EXPECT_EQ(dominant(0.0, 0.0, 0.0, 1.0, 1.0, 1.0), Origin::fog);
+  EXPECT_EQ(dominant(0.0, 0.0, 0.0, 0.0, 1.0, 1.0), Origin::sidelobe);
+  EXPECT_EQ(dominant(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), Origin::target);
 }
 
 class Spectrum : public ::testing::TestWithParam<WindowType> {};

@@ -364,8 +364,8 @@ TEST(Scene, RejectsEveryInvalidField) {
       },
       "target.centres[3].rcs_m2");
   for (const double bad : {-1.5, 1.5, kNaN}) {
-    expect_scene_rejected([&](Scene& s) { s.floor.reflection_coefficient = bad; },
-                          "target.floor_reflection_coefficient");
+    expect_scene_rejected([&](Scene& s) { s.surfaces = {coefficient_floor(bad)}; },
+                          "chamber.room.floor.reflection_coefficient");
   }
   for (const double bad : {-1e-3, 0.2, kNaN}) {
     expect_scene_rejected([&](Scene& s) { s.micro_motion_std_m = bad; },

@@ -70,7 +70,7 @@ TEST(SceneFactories, PointTargetAndEvt) {
   EXPECT_EQ(point.centres[0].height_m, point.sensor_height_m);
   EXPECT_EQ(point.centres[0].swerling, Swerling::zero);
   EXPECT_EQ(point.micro_motion_std_m, 0.0);
-  EXPECT_FALSE(point.floor.enabled);
+  EXPECT_TRUE(point.surfaces.empty());
 
   // EVT rear: five centres whose mean RCS adds up to the set 10 dBsm, shares 40/15/15/15/15 %,
   // within the 1.8 m x 1.4 m rear; default micro-motion 0.2 mm.
@@ -198,7 +198,7 @@ TEST(SceneTones, FloorPathsAreTheTwoRayExpansion) {
   Scene scene = point_target_scene(10.0);
   scene.sensor_height_m = 0.5;
   scene.centres[0].height_m = 0.8;
-  scene.floor = {.enabled = true, .reflection_coefficient = -0.6};
+  scene.surfaces = {coefficient_floor(-0.6)};
   const double beam = 10.0 * std::numbers::pi / 180.0;
   const auto amp = [&](double angle) {
     return std::exp(-2.0 * std::log(2.0) * (angle / beam) * (angle / beam));
@@ -453,7 +453,7 @@ TEST(SceneTones, WaterFilmsScaleTargetPathsAndClutterThroughTheRadome) {
       make_chamber(paper_chamber_spec(fog), f.params.centre_frequency_hz);
   const auto all_on = propagation::first_layers_active(4, 4);
   Scene dry = evt_rear_scene();
-  dry.floor.enabled = true;
+  dry.surfaces = {coefficient_floor(-0.7)};
   Scene wet = dry;
   wet.radome_two_way_transmittance = 0.03;
   wet.target_film_reflectance = 0.7;
@@ -480,7 +480,7 @@ TEST(SceneTones, WaterFilmsScaleTargetPathsAndClutterThroughTheRadome) {
 TEST(SceneTones, RefillsTheList) {
   Fixture f;
   Scene scene = evt_rear_scene();
-  scene.floor.enabled = true;
+  scene.surfaces = {coefficient_floor(-0.7)};
   RandomStream rng(1);
   scene_tones(scene, f.chamber, f.no_fog, f.params, f.derived, rng, f.tones);
   EXPECT_EQ(f.tones.size(), 15u);

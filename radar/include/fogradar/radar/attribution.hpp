@@ -1,6 +1,6 @@
-// Ground truth per detection: which of the frame's ingredients (target paths, fog clutter, their
-// sidelobes, noise) dominates the detection's peak cell of the range-Doppler map (docs/radar.md
-// sec. 5.1).
+// Ground truth per detection: which of the frame's ingredients (target paths, ghosts, the room's
+// echoes, fog clutter, their sidelobes, noise) dominates the detection's peak cell of the
+// range-Doppler map (docs/radar.md sec. 5.1).
 #pragma once
 
 #include <complex>
@@ -50,9 +50,12 @@ class WindowSpectrum {
 // (map units: |Y|^2). A tone's main lobe covers the cells within the main-lobe half width of its
 // peak in range and in Doppler (both, offsets circular); everywhere else it leaks (sidelobes).
 struct CellContributions {
-  std::complex<double> target;       // the target paths whose main lobe covers the cell
-  std::complex<double> fog;          // the fog clutter tones whose main lobe covers the cell
-  std::complex<double> target_leak;  // the other target paths (their sidelobes)
+  std::complex<double> target;       // the target paths (Origin::target) whose main lobe covers it
+  std::complex<double> multipath;    // the ghosts (Origin::multipath) whose main lobe covers it
+  std::complex<double> room;         // the room's own echoes whose main lobe covers it
+  std::complex<double> fog;          // the fog clutter tones whose main lobe covers it
+  std::complex<double> target_leak;  // the other target paths and ghosts (their sidelobes)
+  std::complex<double> room_leak;    // the room's other echoes
   std::complex<double> fog_leak;     // the other fog tones
   double noise_power = 0.0;          // thermal, ADC quantisation and phase noise (noise_power)
   // The chamber layer (Tone::layer) whose main-lobe fog tones sum to the most power here; -1
@@ -60,7 +63,7 @@ struct CellContributions {
   std::int16_t fog_layer = -1;
 
   // All tones' leakage, summed coherently: what a sidelobe false alarm is made of.
-  std::complex<double> sidelobe() const { return target_leak + fog_leak; }
+  std::complex<double> sidelobe() const { return target_leak + room_leak + fog_leak; }
 };
 
 // A cell's ground truth: its origin and, for fog, the layer that dominates the fog there (the
@@ -75,13 +78,14 @@ struct Attribution {
 //   Y_p[d][k] = a g W_r(k - f N / fs) W_d(d - f_D T_i N_c)
 // (the windowed 2-D DFT of the tone synthesize_frame makes; W_r, W_d the range and Doppler windows'
 // DTFTs; g = exp(-sigma^2 / 2) the coherent part left by white phase noise of rms sigma). The cell
-// goes to the largest of |T|^2 (target main lobes), |F|^2 (fog main lobes), |S|^2 (every tone's
-// leakage outside its main lobe, summed coherently: a sidelobe false alarm) and the noise power;
-// ties go to target, then fog, then sidelobe. In a frame whose ADC clipped, a cell that none of
-// the tones explains (noise would dominate) is the clipping's: a rail clipped at +-A is an odd
-// nonlinearity of the sum of tones, whose harmonics and intermodulation products (f = sum of n_i
-// f_i, Blachman, IEEE Trans. Inf. Theory 17 (1971) 398) land in cells no tone reaches, strong as
-// the clipped tones and far above the noise. Immutable: one classifier serves every thread.
+// goes to the largest of |T|^2 (target main lobes), |M|^2 (ghosts' main lobes), |R|^2 (the room's
+// echoes' main lobes), |F|^2 (fog main lobes), |S|^2 (every tone's leakage outside its main lobe,
+// summed coherently: a sidelobe false alarm) and the noise power (dominant_origin's ties). In a
+// frame whose ADC clipped, a cell that none of the tones explains (noise would dominate) is the
+// clipping's: a rail clipped at +-A is an odd nonlinearity of the sum of tones, whose harmonics and
+// intermodulation products (f = sum of n_i f_i, Blachman, IEEE Trans. Inf. Theory 17 (1971) 398)
+// land in cells no tone reaches, strong as the clipped tones and far above the noise. Immutable:
+// one classifier serves every thread.
 class OriginClassifier {
  public:
   OriginClassifier(const RangeDopplerProcessor& processor, const RadarParams& params,

@@ -22,6 +22,16 @@ constexpr std::string_view to_string(SweepDirection direction) noexcept {
   return sweep_direction_names.name(direction);
 }
 
+// The linear polarisation of the radar's transmit and receive antennas (the same for both): the
+// electric field horizontal (along y for a ray on boresight) or vertical (along z). It picks the
+// Fresnel coefficient of each reflection off a material surface (docs/radar.md, the room).
+enum class Polarisation { horizontal, vertical };
+inline constexpr auto polarisation_names = enum_names<Polarisation>(
+    {{Polarisation::horizontal, "horizontal"}, {Polarisation::vertical, "vertical"}});
+constexpr std::string_view to_string(Polarisation polarisation) noexcept {
+  return polarisation_names.name(polarisation);
+}
+
 // The radar's radome and the water film on its outer face (the study's water-covered sensor): flat
 // slabs at normal incidence in the transfer-matrix model (propagation/water_film.hpp). Thickness 0:
 // no radome. The permittivity defaults are an assumption of the order of polycarbonate's at W band,
@@ -51,6 +61,8 @@ struct RadarParams {
   double rx_gain_dbi = 25.0;
   double azimuth_beamwidth_deg = 10.0;    // 3 dB, one way
   double elevation_beamwidth_deg = 10.0;  // 3 dB, one way
+  // An assumption: the study names none (docs/radar.md).
+  Polarisation polarisation = Polarisation::horizontal;
   double noise_figure_db = 12.0;
   double reference_temperature_k = 290.0;  // T0 of k T0 F fs
   bool thermal_noise = true;               // off only to check calibration without noise

@@ -37,8 +37,9 @@ struct MeasurementRecord {
   // A detection inside the association gate (the strongest there): what a tracker associates.
   bool associated = false;
   Origin associated_origin = Origin::noise;  // only meaningful when associated
-  // A target detection: associated, and the associated detection's origin is target. A fog or
-  // noise detection in the gate is a false association and counts as a miss.
+  // A target detection: associated, and the associated detection's origin is target. Any other
+  // detection the gate takes (fog, noise, a ghost of the target via the room, the room's own echo,
+  // a sidelobe or clipping product) is a false association and counts as a miss.
   bool detected = false;
   double range_m = 0.0;  // of the associated detection; only meaningful when associated
   double velocity_m_per_s = 0.0;
@@ -75,7 +76,8 @@ struct StepSummary {
   std::size_t n = 0;           // measurements
   std::size_t detections = 0;  // with a target detection (target origin, in the gate)
   double detection_rate = 0.0;
-  // Measurements whose gate association is a fog or a noise detection (counted as misses).
+  // Measurements whose gate association is not a target detection: fog, noise, a ghost, the room
+  // (counted as misses).
   double false_association_rate = 0.0;
   double false_alarms_per_frame = 0.0;    // mean noise-origin detections per measurement
   double fog_detections_per_frame = 0.0;  // mean fog-origin detections per measurement
@@ -119,8 +121,9 @@ std::optional<VelocityFold> velocity_fold(double radial_velocity_m_per_s,
 
 struct RadarSummary {
   std::vector<StepSummary> steps;
-  // First layer count at which fewer than half the measurements detect the target (target origin)
-  // with no fog-origin detection at least as strong (docs/scenario.md); empty if never reached.
+  // First layer count at which fewer than half the measurements detect the target (target origin:
+  // a ghost never counts) with no fog-origin detection at least as strong (docs/scenario.md); empty
+  // if never reached.
   std::optional<std::size_t> sensor_limit_layers;
   // At the last step: median target SNR minus the CFAR threshold factor (dB), i.e. roughly how
   // much more two-way attenuation the median echo could take before it drops below the threshold.

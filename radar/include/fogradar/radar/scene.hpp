@@ -1,17 +1,22 @@
-// What the radar looks at: scattering centres placed around the chamber's target position, an
-// optional floor (two-ray) multipath, and the fog volume clutter of the active layers. A scene is
-// turned, per measurement, into the list of propagation paths ("tones") the receiver sums.
+// What the radar looks at: scattering centres placed around the chamber's target position, the
+// room around them (its planes, whose image paths carry every centre's echo to second order, the
+// back wall's own return, and the objects standing in the hall), and the fog volume clutter of the
+// active layers. A scene is turned, per measurement, into the list of propagation paths ("tones")
+// the receiver sums.
 #pragma once
 
 #include <complex>
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "fogradar/core/enum_names.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/room_spec.hpp"
 #include "fogradar/radar/origin.hpp"
 #include "fogradar/radar/params.hpp"
 
@@ -36,19 +41,36 @@ struct ScatteringCentre {
   double radial_velocity_m_per_s = 0.0;  // + receding
 };
 
-// Two-ray floor reflection (Skolnik, Radar Handbook 3rd ed., ch. 26): each path to a centre also
-// exists via its image below a flat floor, with a real amplitude reflection coefficient.
-struct FloorMultipath {
-  bool enabled = false;
-  // In [-1, 1]; -0.7: smooth concrete near grazing incidence (docs/scenario.md), negative for the
-  // phase reversal of both polarisations there.
-  double reflection_coefficient = -0.7;
+// A plane of the room as the radar's paths meet it: a real amplitude reflection coefficient for
+// every ray, or a material's permittivity at the radar's carrier, whose Fresnel coefficients each
+// ray takes at its own grazing angle for the radar's polarisation (room_paths.hpp).
+struct SceneSurface {
+  propagation::RoomPlane plane;
+  double reflection_coefficient = -0.7;              // in [-1, 1]; without a permittivity
+  std::optional<std::complex<double>> permittivity;  // a material's, eps' + i eps''
+  std::string key;  // its scenario table, "chamber.room.floor", for messages
+};
+
+// The floor at z = 0 reflecting with a real coefficient: the two-ray floor (Skolnik, Radar
+// Handbook 3rd ed., ch. 26).
+SceneSurface coefficient_floor(double reflection_coefficient);
+
+// A static object of the room with what its closed-form RCS needs besides its shape: the normal-
+// incidence Fresnel power reflectance of its material at the carrier (1 for a perfect conductor).
+struct SceneObject {
+  propagation::RoomObject object;
+  double reflectance = 1.0;
+  std::string key;  // "chamber.objects[2]"
 };
 
 struct Scene {
   std::vector<ScatteringCentre> centres{ScatteringCentre{}};
   double sensor_height_m = 0.5;  // radar above the floor; boresight horizontal
-  FloorMultipath floor;
+  // The room's present planes (none: free space), in room_planes' order, and its objects. The radar
+  // stands at (0, 0, sensor_height_m) in the room's frame (room_spec.hpp), a centre at (target
+  // range + range_offset_m, lateral_m, height_m).
+  std::vector<SceneSurface> surfaces;
+  std::vector<SceneObject> objects;
   // Standard deviation of each centre's independent sub-wavelength displacement along the line of
   // sight per measurement: the mechanical jitter of a real target and mount. 0.2 mm (lambda/19 at
   // 77 GHz) moves the two-way phase by 0.65 rad rms; docs/radar.md justifies the default.
@@ -67,9 +89,27 @@ struct Scene {
   // Names the key of a field a scenario sets ("radar.height_m", "target.micro_motion_std_m"), or
   // "target.centres[i].<field>" for a centre.
   void validate() const;
+  // The room's planes (surfaces' planes, in order).
+  std::vector<propagation::RoomPlane> planes() const;
+  // Throws InvalidParameter unless the radar and every centre (at a target range of
+  // `target_range_m`) stand inside the room, off its planes, and every object inside it, naming the
+  // surface's or object's key.
+  void check_room(double target_range_m) const;
 };
 
-// One non-fluctuating centre on boresight at the sensor height, no micro-motion, no floor.
+// The farthest echo of a scene that a scenario places: the target's direct paths (key
+// "chamber.target_gap_m", its value left 0 for the caller), the back wall's own return
+// ("chamber.room.back_wall.distance_m"), an object's ("chamber.objects[0].x_m"); its range and the
+// key with its value. The target's paths via the room are not bounded: one longer than the
+// unambiguous range folds into it, as an aliased ghost (docs/radar.md §3.3).
+struct FarthestEcho {
+  double range_m = 0.0;
+  std::string key;
+  double value = 0.0;  // the key's value
+};
+FarthestEcho farthest_echo(const Scene& scene, double target_range_m);
+
+// One non-fluctuating centre on boresight at the sensor height, no micro-motion, no room.
 Scene point_target_scene(double rcs_dbsm);
 
 // Rear of the Euro NCAP Vehicle Target as a cluster of scattering centres whose mean RCS adds up to
@@ -80,21 +120,28 @@ Scene point_target_scene(double rcs_dbsm);
 Scene evt_rear_scene(double rcs_dbsm = 10.0);
 
 // A propagation path as the receiver sees it: two-way path length, complex amplitude (sqrt(W)) at
-// the start of the frame, radial velocity, what it comes from (target or fog, never noise) and,
-// for fog, the chamber layer it lies in (the index in chamber.layers, 0-based from the sensor).
+// the start of the frame, radial velocity (half the rate of change of the path's length), what it
+// comes from (never noise: target, multipath, room or fog) and, for fog, the chamber layer it lies
+// in (the index in chamber.layers, 0-based from the sensor). A target path via the room is
+// `target` when the radar cannot resolve it from its centre's direct path (its range within the
+// range resolution c / (2 B) and its velocity within the velocity resolution of the direct
+// path's), `multipath` (a ghost) otherwise.
 struct Tone {
   double path_length_m;
   std::complex<double> amplitude;
   double radial_velocity_m_per_s;
   Origin origin;
-  std::int16_t layer = -1;  // fog only; -1 for a target path
+  std::int16_t layer = -1;  // fog only; -1 otherwise
 };
 
-// The paths of one measurement: every scattering centre (direct, and with the floor the
-// direct-floor, floor-direct and floor-floor paths), each weighted by the radar equation, the
-// antenna pattern, the chamber's two-way transmittance and the water films; plus the fog clutter
-// of the active layers, through the radome. Random draws (RCS fluctuation, micro-motion, clutter)
-// come from `rng`. `tones` is cleared and refilled (no allocation once it has the capacity).
+// The paths of one measurement: every scattering centre's two-way paths through the room
+// (room_paths .hpp: the direct path, and every pair of one-way image paths of at most second order
+// in all), each weighted by the bistatic radar equation, its reflection coefficients, the antenna
+// pattern at its departure and arrival, the chamber's two-way transmittance at half its length and
+// the water films; the room's own echoes (the back wall's specular return, each object by its
+// closed-form RCS); plus the fog clutter of the active layers, through the radome. Random draws
+// (RCS fluctuation, micro-motion, clutter) come from `rng`. `tones` is cleared and refilled (no
+// allocation once it has the capacity).
 void scene_tones(const Scene& scene, const propagation::Chamber& chamber,
                  const propagation::ActiveLayers& active, const RadarParams& params,
                  const RadarDerived& derived, RandomStream& rng, std::vector<Tone>& tones);

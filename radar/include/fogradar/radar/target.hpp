@@ -33,9 +33,12 @@ struct TargetSpec {
 KeyTable<TargetSpec> target_keys();
 
 // The scene of `target`: the EVT rear (evt_rear_scene) or one point (point_target_scene) at its
-// height with its fluctuation, in `world` (its floor, micro-motion and velocity), and the fog
-// clutter's scatterers per range bin.
+// height with its fluctuation, in `world` (its micro-motion and velocity) and `room` (its present
+// surfaces and objects, a material's permittivity taken at the radar's carrier `frequency_hz`: a
+// material without radio data there is refused naming its key), and the fog clutter's scatterers
+// per range bin.
 Scene make_scene(const TargetSpec& target, const sensor::TargetWorld& world,
-                 const propagation::RoomSpec& room, unsigned clutter_scatterers_per_bin);
+                 const propagation::RoomSpec& room, unsigned clutter_scatterers_per_bin,
+                 double frequency_hz);
 
 }  // namespace fogradar::radar
