@@ -537,6 +537,37 @@ void check_refused_without(const std::string& name, Base& base, const Needed& en
   }
 }
 
+// A key of a table that a boolean of the table's name switches (chamber.room.left_wall): a file
+// that gives the key gives the table, which switches it on.
+bool is_switched_by_its_table(const ScenarioKey& key, const Scenario& s) {
+  const auto keys = all_keys(s);
+  const ScenarioKey* sw = find_key(*keys, std::string(key.section()));
+  return sw != nullptr && sw->type == KeyType::boolean;
+}
+
+void check_switched_on_by_its_table(const std::string& name, Base& base,
+                                    std::vector<std::string>& log) {
+  SCOPED_TRACE("key " + name + " over " + base.name() + " in its own table alone");
+  const auto keys = all_keys(base.scenario());
+  const ScenarioKey* key = find_key(*keys, name);
+  ASSERT_NE(key, nullptr);
+  // The first value the scenario accepts (a wall must leave the target inside the room).
+  std::optional<Scenario> accepted;
+  for (const Candidate& c : candidates(*key, base.scenario(), false)) {
+    try {
+      accepted = parse_scenario_over(base.scenario(), snippet(*key, c.toml), "its_table.toml");
+      break;
+    } catch (const InvalidParameter&) {
+    }
+  }
+  ASSERT_TRUE(accepted.has_value()) << name << ": no value was accepted in its own table";
+  const Scenario& read = *accepted;
+  const auto read_keys = all_keys(read);
+  EXPECT_TRUE(find_key(*read_keys, std::string(key->section()))->get_boolean(read));
+  EXPECT_TRUE(find_key(*read_keys, name)->takes_effect(read));
+  log.push_back(name + ": its table switches " + std::string(key->section()) + " on");
+}
+
 void check_any_key(const ScenarioKey& key, Base& base, std::vector<std::string>& log) {
   const std::string generic = generic_name(key.name);
   if (key.type == KeyType::retired) {
@@ -556,6 +587,8 @@ void check_any_key(const ScenarioKey& key, Base& base, std::vector<std::string>&
     check_key(key.name, base, enabling, nullptr, log);
     if (key.takes_effect(base.scenario())) {
       check_key(key.name, base, nullptr, listed, log);
+    } else if (is_switched_by_its_table(key, base.scenario())) {
+      check_switched_on_by_its_table(key.name, base, log);
     } else {
       check_refused_without(key.name, base, *enabling, log);
     }
@@ -639,7 +672,12 @@ TEST_P(EveryKey, AfterEachSwitchOfItsSection) {
             key->name == sw->name) {
           continue;
         }
-        if (key->type == KeyType::retired || key->name.find('[') != std::string::npos) continue;
+        // Arrays of tables are checked element by element above; a switch's own table cannot be
+        // written beside `switch = false` (TOML has one value per name).
+        if (key->type == KeyType::retired || key->type == KeyType::table_array ||
+            key->name.find('[') != std::string::npos || key->section() == sw->name) {
+          continue;
+        }
         if (!key->takes_effect(turned)) {
           const ScenarioKey* before = find_key(*keys, key->name);
           if (before == nullptr || !before->takes_effect(base.scenario())) continue;
