@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "fogradar/core/error.hpp"
 #include "fogradar/lidar/outputs.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/stats/format.hpp"
@@ -213,7 +214,8 @@ class Configured : public sensor::ConfiguredSensor {
   Configured(const LidarParams& params, const sensor::Context& context)
       : p_(params),
         context_(context),
-        room_(room_shapes(scan_plane_room(context.room, params), params.height_m)) {}
+        room_(context.runs ? room_shapes(scan_plane_room(context.room, params), params.height_m)
+                           : std::vector<Shape>{}) {}
 
   std::size_t items_per_step() const override { return p_.scans_per_step; }
 
@@ -261,6 +263,7 @@ class Configured : public sensor::ConfiguredSensor {
 
   std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
                                              const StopToken& stop) const override {
+    FOGRADAR_CHECK(context_.runs);  // configured with its room
     stop.check();
     return std::make_shared<Made>(p_, context_, room_, water);
   }
