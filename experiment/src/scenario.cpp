@@ -149,11 +149,14 @@ std::size_t Scenario::steps() const {
 const KeyTable<Scenario>& Scenario::keys() const { return detail::keys_of(*this).all; }
 
 // The keys in file order first, then what each sensor checks beyond its keys (a sensor's keys are
-// checked twice: checks are cheap, the tables are made once).
+// checked twice: checks are cheap, the tables are made once), told whether it runs.
 void Scenario::validate() const {
   keys().check(*this);
-  const sensor::Context shared = context();
-  for (const SensorSetting& s : sensors) configure_instance(s, shared);
+  sensor::Context shared = context();
+  for (const SensorSetting& s : sensors) {
+    shared.runs = runs(s.name);
+    configure_instance(s, shared);
+  }
 }
 
 propagation::ChamberSpec Scenario::chamber_spec() const {
@@ -186,7 +189,8 @@ sensor::Context Scenario::context() const {
       .room = chamber.room,
       .steps = steps(),
       .seed = experiment.seed,
-      .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use())};
+      .switching_order = switching_sequence(experiment.switching_order, chamber.layers_in_use()),
+      .runs = true};
 }
 
 std::shared_ptr<const sensor::ConfiguredSensor> Scenario::configure(std::string_view name) const {

@@ -168,6 +168,11 @@ KeyTable<LidarParams> lidar_keys() {
   keys.number("fog_width_m", FOGRADAR_KEY_FIELD(fog_width_m), closed(0.0, max_coordinate_m),
               "lateral width of the fog bank, centred on boresight; assumption: the fog bank "
               "between the barrels of Fig. 2; the study gives no width");
+  keys.number("height_m", FOGRADAR_KEY_FIELD(height_m), closed(0.0, 100.0),
+              "the scan plane's height above the floor, where it cuts the room's objects "
+              "([[chamber.objects]]); assumption: the study gives none: 0.5 m, radar.height_m's "
+              "default, the two sensors side by side; below a rain barrel's top, as Fig. 5's "
+              "barrel points need");
   keys.number(
       "window_water_film_m", FOGRADAR_KEY_FIELD(window_water_film_m), "0, or [1e-6, 0.01]",
       [](const LidarParams& p) {
@@ -177,7 +182,9 @@ KeyTable<LidarParams> lidar_keys() {
       "absorption, out and back, against the dry window; droplets' scattering not modelled");
   keys.table_array("background", FOGRADAR_KEY_FIELD(background), &background_segment_keys, 1000,
                    "≤ 1000 segments",
-                   "static reflecting segments `[[lidar.background]]`, each with every key below "
+                   "static reflecting segments `[[lidar.background]]` besides the room "
+                   "([chamber.room] walls, [[chamber.objects]]), for what it does not describe; "
+                   "each with every key below "
                    "(none has a default; a segment that lacks one is refused); "
                    "assumption (`default_background()`): a wall 3 m left from x = 0.5 to 12 m "
                    "(ρ 0.5), a 0.6 m barrel chord 2 m left of each layer centre (ρ 0.3); the "

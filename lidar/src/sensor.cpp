@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "fogradar/core/error.hpp"
 #include "fogradar/lidar/outputs.hpp"
 #include "fogradar/propagation/fog.hpp"
 #include "fogradar/stats/format.hpp"
@@ -104,12 +105,14 @@ class Report : public LidarReport {
   sensor::StepTable table_;
 };
 
-// The lidar made for one scenario: its beams, fog and detector on the chamber (Lidar), made once.
+// The lidar made for one scenario: its beams, fog and detector on the chamber and its room's
+// shapes in the scan plane (Lidar), made once.
 class Made : public sensor::Sensor, public std::enable_shared_from_this<Made> {
  public:
-  Made(const LidarParams& params, const sensor::Context& context,
+  Made(const LidarParams& params, const sensor::Context& context, std::span<const Shape> room,
        const propagation::SegelsteinTable& water)
-      : context_(context), lidar_(std::make_shared<const Lidar>(params, context.chamber, water)) {
+      : context_(context),
+        lidar_(std::make_shared<const Lidar>(params, context.chamber, water, room)) {
     for (std::size_t k = 0; k < context.steps; ++k) active_.push_back(context.active(k));
   }
 
@@ -209,7 +212,10 @@ std::unique_ptr<sensor::SensorRun> Made::begin_run() const {
 class Configured : public sensor::ConfiguredSensor {
  public:
   Configured(const LidarParams& params, const sensor::Context& context)
-      : p_(params), context_(context) {}
+      : p_(params),
+        context_(context),
+        room_(context.runs ? room_shapes(scan_plane_room(context.room, params), params.height_m)
+                           : std::vector<Shape>{}) {}
 
   std::size_t items_per_step() const override { return p_.scans_per_step; }
 
@@ -257,8 +263,9 @@ class Configured : public sensor::ConfiguredSensor {
 
   std::shared_ptr<const sensor::Sensor> make(const propagation::SegelsteinTable& water,
                                              const StopToken& stop) const override {
+    FOGRADAR_CHECK(context_.runs);  // configured with its room
     stop.check();
-    return std::make_shared<Made>(p_, context_, water);
+    return std::make_shared<Made>(p_, context_, room_, water);
   }
 
  private:
@@ -295,6 +302,7 @@ class Configured : public sensor::ConfiguredSensor {
 
   LidarParams p_;
   sensor::Context context_;
+  std::vector<Shape> room_;
 };
 
 class Kind : public sensor::Kind<LidarParams> {

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <string>
 
+#include "fogradar/core/constants.hpp"
 #include "fogradar/core/error.hpp"
+#include "fogradar/propagation/diffuse_reflectance.hpp"
 
 namespace fogradar::lidar {
 namespace {
@@ -38,6 +40,28 @@ void require_heights(const std::string& prefix, double z_min_m, double z_max_m) 
     throw_invalid(prefix + "z_max_m", z_max_m,
                   ">= " + prefix + "z_min_m = " + message_number(z_min_m));
   }
+}
+
+// The scenario's keys of the room (experiment/'s scenario keys name them so).
+constexpr std::string_view room_prefix = "chamber.room.";
+constexpr std::string_view objects_prefix = "chamber.objects[";
+
+// A wall's diffuse reflectance at the lidar's wavelength, from its material; a real amplitude
+// coefficient describes a specular reflection only and is refused.
+double wall_reflectivity(const propagation::SurfaceSpec& wall, std::string_view name,
+                         double wavelength_m) {
+  const std::string key = std::string(room_prefix) + std::string(name);
+  if (const auto* coefficient = std::get_if<propagation::ReflectionCoefficient>(&wall.reflection)) {
+    throw_invalid(key + ".reflection_coefficient", coefficient->value,
+                  "replaced by " + key +
+                      ".material for the lidar, which needs the wall's diffuse reflectance at its "
+                      "wavelength and a real amplitude coefficient gives none (a wall switched on "
+                      "with `true` alone takes one): a material with a published diffuse "
+                      "reflectance, " +
+                      propagation::diffuse_material_names());
+  }
+  return propagation::diffuse_reflectance(std::get<propagation::Material>(wall.reflection),
+                                          wavelength_m, key + ".material", "lidar.wavelength_m");
 }
 
 }  // namespace
@@ -155,6 +179,66 @@ std::vector<Shape> room_shapes(const ScanPlaneRoom& room, double scan_height_m) 
         {.geometry = SegmentShape{s.x0_m, s.y0_m, s.x1_m, s.y1_m}, .reflectivity = s.reflectivity});
   }
   return shapes;
+}
+
+ScanPlaneRoom scan_plane_room(const propagation::RoomSpec& room, const LidarParams& params) {
+  const double height_m = params.height_m;
+  if (room.ceiling.present && !(height_m < room.ceiling.distance_m)) {
+    throw_invalid("lidar.height_m", height_m,
+                  "< chamber.room.ceiling.height_m = " + message_number(room.ceiling.distance_m) +
+                      " (the lidar inside the hall)");
+  }
+  ScanPlaneRoom plane;
+  const auto wall = [&params](const propagation::SurfaceSpec& spec,
+                              std::string_view name) -> std::optional<RoomWall> {
+    if (!spec.present) return std::nullopt;
+    return RoomWall{.distance_m = spec.distance_m,
+                    .reflectivity = wall_reflectivity(spec, name, params.wavelength_m)};
+  };
+  plane.left_wall = wall(room.left_wall, "left_wall");
+  plane.right_wall = wall(room.right_wall, "right_wall");
+  plane.back_wall = wall(room.back_wall, "back_wall");
+  for (std::size_t i = 0; i < room.objects.size(); ++i) {
+    const propagation::RoomObject& o = room.objects[i];
+    const std::string key = std::string(objects_prefix) + std::to_string(i) + "].";
+    const double reflectivity = propagation::diffuse_reflectance(
+        o.material, params.wavelength_m, key + "material", "lidar.wavelength_m");
+    const double z_min_m = o.base_height_m, z_max_m = o.base_height_m + o.height_m;
+    if (!(height_m >= z_min_m && height_m <= z_max_m)) continue;
+    switch (o.shape) {
+      case propagation::ObjectShape::cylinder: {
+        const double axis_m = std::hypot(o.x_m, o.y_m);
+        if (!(o.radius_m < axis_m)) {
+          throw_invalid(key + "radius_m", o.radius_m,
+                        "< the lidar's distance from the cylinder's axis, " +
+                            message_number(axis_m) + " m, where the scan at lidar.height_m = " +
+                            message_number(height_m) + " m crosses it (the lidar outside it)");
+        }
+        plane.cylinders.push_back({.centre_x_m = o.x_m,
+                                   .centre_y_m = o.y_m,
+                                   .radius_m = o.radius_m,
+                                   .z_min_m = z_min_m,
+                                   .z_max_m = z_max_m,
+                                   .reflectivity = reflectivity});
+        break;
+      }
+      case propagation::ObjectShape::plate: {
+        // Its normal n = (-cos yaw, sin yaw); its width runs along (sin yaw, cos yaw), across n.
+        const double yaw_rad = o.yaw_deg * pi / 180.0;
+        const double half_x = 0.5 * o.width_m * std::sin(yaw_rad);
+        const double half_y = 0.5 * o.width_m * std::cos(yaw_rad);
+        plane.plates.push_back({.x0_m = o.x_m - half_x,
+                                .y0_m = o.y_m - half_y,
+                                .x1_m = o.x_m + half_x,
+                                .y1_m = o.y_m + half_y,
+                                .z_min_m = z_min_m,
+                                .z_max_m = z_max_m,
+                                .reflectivity = reflectivity});
+        break;
+      }
+    }
+  }
+  return plane;
 }
 
 }  // namespace fogradar::lidar

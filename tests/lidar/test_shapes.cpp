@@ -3,8 +3,9 @@
 // D / sin|a| at incidence cos = sin|a|; a circle of radius r whose centre lies at distance L and
 // angle delta from the beam is met at L cos(delta) - sqrt(r^2 - L^2 sin^2(delta)), where the
 // radial normal makes cos(incidence) = sqrt(r^2 - L^2 sin^2(delta)) / r), shadowing, the room's
-// shapes at a scan height, and the same ranges through the whole lidar chain (waveform, noise,
-// leading-edge detection, calibration).
+// shapes at a scan height, the same ranges through the whole lidar chain (waveform, noise,
+// leading-edge detection, calibration), and a scenario's room turned into the scan plane's hall
+// with its materials' published reflectances, or refused by key.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,11 +16,14 @@
 #include <vector>
 
 #include "fogradar/core/constants.hpp"
+#include "fogradar/core/error.hpp"
 #include "fogradar/core/random.hpp"
 #include "fogradar/lidar/lidar.hpp"
 #include "fogradar/lidar/outputs.hpp"
 #include "fogradar/lidar/shapes.hpp"
 #include "fogradar/propagation/chamber.hpp"
+#include "fogradar/propagation/diffuse_reflectance.hpp"
+#include "fogradar/propagation/room_spec.hpp"
 #include "fogradar/propagation/water.hpp"
 #include "rejected_field.hpp"
 #include "svg_check.hpp"
@@ -396,6 +400,154 @@ TEST(LidarRoom, ScanViewDrawsTheRoomsShapes) {
   EXPECT_EQ(test_support::count(plain, "<title>wall</title>"), 0u);
   EXPECT_EQ(test_support::count(plain, "<title>background segment</title>"),
             params.background.size());
+}
+
+// The scenario's room as the lidar meets it. The materials' 905 and 1550 nm values are the USGS
+// splib07a records' (Kokaly et al. 2017; tests/propagation/test_diffuse_reflectance.cpp copies them
+// from the records): concrete 0.31044638 and 0.33177111 (18568), brick 0.23423219 (18359), wood
+// 0.65911061 (20779), white HDPE 0.73082012 (19604), galvanized sheet metal 0.058301263 (18773);
+// fogradar keeps four figures, hence 5e-5.
+propagation::RoomSpec material_hall() {
+  propagation::RoomSpec room;  // the default floor, a real coefficient: never met, never refused
+  room.left_wall = {
+      .present = true, .reflection = propagation::Material::concrete, .distance_m = 3.0};
+  room.right_wall = {
+      .present = true, .reflection = propagation::Material::brick, .distance_m = 4.0};
+  room.ceiling = {
+      .present = true, .reflection = propagation::ReflectionCoefficient{-0.5}, .distance_m = 4.5};
+  room.back_wall = {.present = true, .reflection = propagation::Material::wood, .distance_m = 20.0};
+  room.objects = {
+      {.shape = propagation::ObjectShape::cylinder, .x_m = 3.5, .y_m = -2.0, .height_m = 0.9},
+      {.shape = propagation::ObjectShape::plate,
+       .x_m = 8.0,
+       .y_m = 1.0,
+       .base_height_m = 0.2,
+       .height_m = 1.0,
+       .width_m = 2.0,
+       .yaw_deg = 30.0,
+       .material = propagation::Material::metal},
+      // Above the scan at 0.5 m: not in its plane.
+      {.shape = propagation::ObjectShape::cylinder, .x_m = 6.0, .y_m = 2.0, .base_height_m = 1.0},
+  };
+  return room;
+}
+
+TEST(LidarRoomSpec, WallsAndObjectsTakeTheirMaterialsDiffuseReflectance) {
+  const LidarParams params;  // 905 nm, 0.5 m high
+  const ScanPlaneRoom plane = scan_plane_room(material_hall(), params);
+  ASSERT_TRUE(plane.left_wall && plane.right_wall && plane.back_wall);
+  EXPECT_EQ(plane.left_wall->distance_m, 3.0);
+  EXPECT_NEAR(plane.left_wall->reflectivity, 0.31044638, 5e-5);
+  EXPECT_EQ(plane.right_wall->distance_m, 4.0);
+  EXPECT_NEAR(plane.right_wall->reflectivity, 0.23423219, 5e-5);
+  EXPECT_EQ(plane.back_wall->distance_m, 20.0);
+  EXPECT_NEAR(plane.back_wall->reflectivity, 0.65911061, 5e-5);
+  ASSERT_EQ(plane.cylinders.size(), 1u);  // the one above the scan left out
+  const RoomCylinder& barrel = plane.cylinders[0];
+  EXPECT_EQ(barrel.centre_x_m, 3.5);
+  EXPECT_EQ(barrel.centre_y_m, -2.0);
+  EXPECT_EQ(barrel.radius_m, 0.3);
+  EXPECT_EQ(barrel.z_min_m, 0.0);
+  EXPECT_EQ(barrel.z_max_m, 0.9);
+  EXPECT_NEAR(barrel.reflectivity, 0.73082012, 5e-5);
+  // The plate's normal turned 30 deg from -x toward +y, (-cos 30, sin 30): its 2 m width runs along
+  // (sin 30, cos 30) = (0.5, 0.866) about its centre (8, 1).
+  ASSERT_EQ(plane.plates.size(), 1u);
+  const RoomPlate& plate = plane.plates[0];
+  EXPECT_NEAR(plate.x0_m, 7.5, 1e-12);
+  EXPECT_NEAR(plate.y0_m, 1.0 - std::sqrt(3.0) / 2.0, 1e-12);
+  EXPECT_NEAR(plate.x1_m, 8.5, 1e-12);
+  EXPECT_NEAR(plate.y1_m, 1.0 + std::sqrt(3.0) / 2.0, 1e-12);
+  const double normal_x = -std::cos(30.0 * deg), normal_y = std::sin(30.0 * deg);
+  EXPECT_NEAR((plate.x1_m - plate.x0_m) * normal_x + (plate.y1_m - plate.y0_m) * normal_y, 0.0,
+              1e-12);
+  EXPECT_EQ(plate.z_min_m, 0.2);
+  EXPECT_EQ(plate.z_max_m, 1.2);
+  EXPECT_NEAR(plate.reflectivity, 0.058301263, 5e-5);
+  // At 1550 nm the same wall reads its 1550 nm value; scanning at 0.95 m, between the barrel's top
+  // and the other cylinder's base, only the plate is cut.
+  LidarParams other = params;
+  other.wavelength_m = 1550e-9;
+  other.height_m = 0.95;
+  const ScanPlaneRoom high = scan_plane_room(material_hall(), other);
+  EXPECT_NEAR(high.left_wall->reflectivity, 0.33177111, 5e-5);
+  EXPECT_TRUE(high.cylinders.empty());
+  EXPECT_EQ(high.plates.size(), 1u);
+  // The empty hall: nothing.
+  const ScanPlaneRoom none = scan_plane_room(propagation::RoomSpec{}, params);
+  EXPECT_FALSE(none.left_wall || none.right_wall || none.back_wall);
+  EXPECT_TRUE(none.cylinders.empty() && none.plates.empty());
+}
+
+// One refusal per message, each naming the scenario's key; the floor and the ceiling given by a
+// real coefficient are never refused (material_hall's are).
+TEST(LidarRoomSpec, WhatTheLidarCannotSeeIsRefusedByKey) {
+  const auto refused = [](auto change) {
+    propagation::RoomSpec room = material_hall();
+    LidarParams params;
+    change(room, params);
+    return rejected_field([&] { scan_plane_room(room, params); });
+  };
+  EXPECT_EQ(refused([](propagation::RoomSpec&, LidarParams&) {}), "accepted");
+  EXPECT_EQ(refused([](propagation::RoomSpec& r, LidarParams&) {
+              r.left_wall.reflection = propagation::ReflectionCoefficient{-0.6};
+            }),
+            "chamber.room.left_wall.reflection_coefficient");
+  EXPECT_EQ(refused([](propagation::RoomSpec& r, LidarParams&) {
+              r.back_wall.reflection = propagation::Material::plasterboard;
+            }),
+            "chamber.room.back_wall.material");
+  EXPECT_EQ(refused([](propagation::RoomSpec& r, LidarParams&) {
+              r.objects[2].material = propagation::Material::glass;  // above the scan: refused too
+            }),
+            "chamber.objects[2].material");
+  EXPECT_EQ(refused([](propagation::RoomSpec&, LidarParams& p) { p.wavelength_m = 940e-9; }),
+            "lidar.wavelength_m");
+  EXPECT_EQ(refused([](propagation::RoomSpec&, LidarParams& p) { p.height_m = 4.5; }),
+            "lidar.height_m");
+  EXPECT_EQ(refused([](propagation::RoomSpec& r, LidarParams&) {
+              r.objects[0].x_m = 0.2;
+              r.objects[0].y_m = 0.1;
+            }),
+            "chamber.objects[0].radius_m");
+  // A barrel below the scan may stand under the lidar.
+  EXPECT_EQ(refused([](propagation::RoomSpec& r, LidarParams& p) {
+              r.objects[0].x_m = 0.2;
+              r.objects[0].y_m = 0.1;
+              p.height_m = 1.0;
+            }),
+            "accepted");
+  // Without walls or objects no wavelength is refused.
+  LidarParams far;
+  far.wavelength_m = 1064e-9;
+  EXPECT_EQ(rejected_field([&far] { scan_plane_room(propagation::RoomSpec{}, far); }), "accepted");
+}
+
+TEST(LidarRoomSpec, TheRefusalsSayWhatToGive) {
+  propagation::RoomSpec room;
+  room.right_wall = {
+      .present = true, .reflection = propagation::ReflectionCoefficient{-0.6}, .distance_m = 3.0};
+  try {
+    scan_plane_room(room, LidarParams{});
+    FAIL() << "accepted";
+  } catch (const InvalidParameter& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("chamber.room.right_wall.reflection_coefficient = -0.6"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("chamber.room.right_wall.material"), std::string::npos) << message;
+    EXPECT_NE(message.find(propagation::diffuse_material_names()), std::string::npos) << message;
+  }
+  room.right_wall.reflection = propagation::Material::glass;
+  try {
+    scan_plane_room(room, LidarParams{});
+    FAIL() << "accepted";
+  } catch (const InvalidParameter& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("chamber.room.right_wall.material = 'glass'"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find(propagation::diffuse_material_names()), std::string::npos) << message;
+  }
 }
 
 }  // namespace

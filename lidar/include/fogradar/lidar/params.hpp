@@ -17,8 +17,10 @@
 
 namespace fogradar::lidar {
 
-// A static reflecting segment from (x0_m, y0_m) to (x1_m, y1_m): a Lambertian surface of 905 nm
-// reflectivity `reflectivity` (the study's wall and rain barrels, Fig. 5). Every key of a
+// A static reflecting segment from (x0_m, y0_m) to (x1_m, y1_m): a Lambertian surface of
+// reflectivity `reflectivity` at the lidar's wavelength, in the scan plane besides the scenario's
+// room (shapes.hpp, scan_plane_room), for what the room does not describe (today's default: the
+// study's wall and rain barrels, Fig. 5). Every key of a
 // `[[lidar.background]]` segment is required: no position or reflectivity is a sensible default
 // for a wall the user describes. A field starts as NaN, "not given", so that the scenario reader,
 // which starts each segment from these defaults, leaves a missing key for validate() to refuse.
@@ -74,6 +76,9 @@ struct LidarParams {
   double target_offset_m = 0.0;      // lateral (y) position of the EVT's centre
   double target_reflectivity = 0.3;  // 905 nm, Lambertian (assumption)
   double fog_width_m = 3.0;          // lateral width of the fog bank, centred on boresight
+  // The scan plane's height above the floor (the mounting height; the scan is horizontal): where
+  // it cuts the room's objects (assumption, docs/lidar.md).
+  double height_m = 0.5;
   // Water film on the window (the study's water-covered sensor): the pulse and its echoes cross
   // it, propagation::window_film_transmittance at the wavelength, out and back.
   double window_water_film_m = 0.0;

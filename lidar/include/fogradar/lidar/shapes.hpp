@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "fogradar/lidar/params.hpp"
+#include "fogradar/propagation/room_spec.hpp"
 
 namespace fogradar::lidar {
 
@@ -124,6 +125,20 @@ struct ScanPlaneRoom {
   // non-zero length.
   void validate(std::string_view prefix = "room.") const;
 };
+
+// The scenario's room (sensor::Context::room: [chamber.room], [[chamber.objects]]) as the lidar at
+// params.height_m meets it: the left, right and back walls, and the objects whose height range
+// holds the scan height, each with its material's diffuse reflectance at params.wavelength_m
+// (propagation::diffuse_reflectance). A cylinder spans base_height_m to base_height_m + height_m;
+// a plate's bottom edge runs from its centre +-width_m/2 along (sin yaw, cos yaw) (yaw turns its
+// normal from -x toward +y). The floor and the ceiling, parallel to the horizontal scan, are never
+// met and need no reflectance. Throws InvalidParameter naming the scenario's key: a wall given by
+// chamber.room.<wall>.reflection_coefficient (no diffuse reflectance), a wall's or an object's
+// material without a published sample (chamber.room.left_wall.material,
+// chamber.objects[2].material), lidar.wavelength_m farther than 10 nm from every tabulated
+// wavelength, lidar.height_m not below chamber.room.ceiling.height_m, and a cylinder the scan
+// crosses that holds the lidar (chamber.objects[2].radius_m).
+ScanPlaneRoom scan_plane_room(const propagation::RoomSpec& room, const LidarParams& params);
 
 // The room's shapes in the plane of a scan at `scan_height_m`: each wall as a line (left, right,
 // back), each cylinder whose [z_min_m, z_max_m] holds the scan height as a circle, each plate

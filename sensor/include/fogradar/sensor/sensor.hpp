@@ -66,6 +66,10 @@ struct Context {
   // The layer indices (0 at the sensor) in the order they are switched on; empty: from the sensor,
   // the study's order.
   std::vector<std::size_t> switching_order;
+  // Whether the sensor is to run (it is in experiment.sensors): a scenario configures the others
+  // too, to check their keys against the chamber, but what only a sensor that runs needs of the
+  // room (the lidar's optical data of its walls and objects) is not asked of them.
+  bool runs = true;
 
   // The layers switched on at `step`: the first `step` of the switching order.
   propagation::ActiveLayers active(std::size_t step) const;
