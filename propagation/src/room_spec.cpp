@@ -37,8 +37,7 @@ void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
           s.distance_name.empty()
               ? "`false`: no floor; a table [" + full + "]: the floor at z = 0 with its keys"
               : "`false`: none; a table [" + full + "]: present, with its keys (`true` alone: at " +
-                    std::to_string(static_cast<int>(default_distance_m)) + " m, reflecting with " +
-                    "-0.7)")
+                    std::to_string(static_cast<int>(default_distance_m)) + " m, of concrete)")
       .documented_as("`false`, or a table");
   const auto present = [surface](const RoomSpec& r) { return surface_spec(r, surface).present; };
   const std::string when_present = "with " + full + " present";

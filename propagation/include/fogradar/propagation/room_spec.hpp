@@ -63,10 +63,10 @@ inline constexpr double max_room_extent_m = 1000.0;
 // grazing incidence as a real coefficient), and no walls, ceiling or objects.
 struct RoomSpec {
   SurfaceSpec floor{.present = true, .reflection = ReflectionCoefficient{-0.7}, .distance_m = 0.0};
-  SurfaceSpec left_wall;
-  SurfaceSpec right_wall;
-  SurfaceSpec ceiling;
-  SurfaceSpec back_wall;
+  SurfaceSpec left_wall{.reflection = Material::concrete};
+  SurfaceSpec right_wall{.reflection = Material::concrete};
+  SurfaceSpec ceiling{.reflection = Material::concrete};
+  SurfaceSpec back_wall{.reflection = Material::concrete};
   std::vector<RoomObject> objects;
 
   bool empty() const;  // no surface and no object
