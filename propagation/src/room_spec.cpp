@@ -63,8 +63,9 @@ void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
             surface_of(r, surface).reflection = material_names.parse(text, key);
           },
           material_names.names(),
-          "the surface's material: its Fresnel coefficients at each ray's grazing angle, in the "
-          "sensor's band and polarisation (ITU-R P.2040-3 at radio frequencies)")
+          "the surface's material: for the radar its Fresnel coefficients at each ray's grazing "
+          "angle and the radar's polarisation (ITU-R P.2040-3), for the lidar its diffuse "
+          "reflectance at the lidar's wavelength (USGS splib07a)")
       .when(holds_material, one_reflection)
       .in_group(s.name + " reflection");
   keys.number(
@@ -160,7 +161,8 @@ KeyTable<RoomObject> room_object_keys(std::string prefix) {
               "the plate's turn about the vertical from facing the sensor, + toward +y")
       .when(is(ObjectShape::plate), "with shape = \"plate\"");
   keys.choice("material", FOGRADAR_KEY_FIELD(material), material_names,
-              "its material (the rain barrels': `plastic`, white HDPE)");
+              "its material (the rain barrels': `plastic`, white HDPE): for the radar its "
+              "normal-incidence reflectance, for the lidar its diffuse reflectance");
   return keys;
 }
 
