@@ -8,7 +8,8 @@
 namespace fogradar::propagation {
 namespace {
 
-// The distance a surface takes by itself when it is switched on with `true` and no table.
+// One surface's keys: its name, its plane, the name of its distance key and the distance `true`
+// alone gives it.
 struct SurfaceKey {
   std::string name;
   Surface surface;
@@ -17,9 +18,25 @@ struct SurfaceKey {
   std::string distance_meaning;
 };
 
-SurfaceSpec& surface_of(RoomSpec& room, Surface surface) {
-  return const_cast<SurfaceSpec&>(surface_spec(room, surface));
+// The room's spec of `surface`, const or not as the room is.
+template <class Room>
+auto& surface_in(Room& room, Surface surface) {
+  switch (surface) {
+    case Surface::floor:
+      return room.floor;
+    case Surface::left_wall:
+      return room.left_wall;
+    case Surface::right_wall:
+      return room.right_wall;
+    case Surface::ceiling:
+      return room.ceiling;
+    case Surface::back_wall:
+      return room.back_wall;
+  }
+  return room.floor;
 }
+
+SurfaceSpec& surface_of(RoomSpec& room, Surface surface) { return surface_in(room, surface); }
 
 void add_surface_keys(KeyTable<RoomSpec>& keys, const SurfaceKey& s) {
   const std::string full = keys.prefix() + s.name;
@@ -96,19 +113,7 @@ bool RoomSpec::empty() const {
 }
 
 const SurfaceSpec& surface_spec(const RoomSpec& room, Surface surface) {
-  switch (surface) {
-    case Surface::floor:
-      return room.floor;
-    case Surface::left_wall:
-      return room.left_wall;
-    case Surface::right_wall:
-      return room.right_wall;
-    case Surface::ceiling:
-      return room.ceiling;
-    case Surface::back_wall:
-      return room.back_wall;
-  }
-  return room.floor;
+  return surface_in(room, surface);
 }
 
 std::vector<RoomPlane> room_planes(const RoomSpec& room) {
