@@ -14,16 +14,30 @@ dir="$root/build/release"
 fogradar_configure "$dir" "${release_options[@]}"
 cmake --build "$dir"
 mkdir -p "$out"
-status=0
+# The suites run side by side, one per core; each leaves its exit status beside its report, and
+# the suites' own failures are counted by the report; their output is kept out of the way.
 reports=()
 for binary in "$dir"/tests/test_*; do
   [ -x "$binary" ] && [ -f "$binary" ] || continue
   name=$(basename "$binary")
   report="$out/gtest_$name.json"
-  rm -f "$report"
-  # The suites' own failures are counted by the report; their output is kept out of the way.
-  "$binary" --gtest_output="json:$report" --gtest_brief=1 >"$out/$name.log" 2>&1 || status=1
+  rm -f "$report" "$out/$name.status"
+  while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do
+    wait -n || true
+  done
+  {
+    code=0
+    "$binary" --gtest_output="json:$report" --gtest_brief=1 >"$out/$name.log" 2>&1 || code=$?
+    echo "$code" >"$out/$name.status"
+  } &
   reports+=("$report")
+done
+wait
+status=0
+for report in "${reports[@]}"; do
+  name=${report#"$out/gtest_"}
+  name=${name%.json}
+  [ "$(cat "$out/$name.status")" = 0 ] || status=1
 done
 /usr/bin/python3 "$root/scripts/validation_report.py" "$out" "${reports[@]}" || status=1
 exit $status
