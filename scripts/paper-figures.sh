@@ -38,48 +38,36 @@ for seed in 2 3; do
     $1 > 0 { printf " %+.3f", $col["median_shift_db"] } END { print "" }' "$work/seed$seed/radar_summary.csv"
 done
 
-# One baseline variant: `decompose NAME TARGET-KEYS...` runs 200 measurements at 0 layers with the
-# given target keys over the paper scenario and prints the median and IQR of the RCS: the radar's
-# own view of the target (model, height_m) in [radar.target], the world's micro-motion in [target],
-# the hall's floor in [chamber.room] (`floor = false`) or [chamber.room.floor].
+# One baseline variant: `decompose NAME TOML` runs 200 measurements at 0 layers with the TOML text
+# (sections of its own, never [experiment]) over the paper scenario and prints the median and IQR of
+# the radar's RCS.
 decompose() {
-  local name=$1 own=() world=() room=() floor=() key
-  shift
-  for key in "$@"; do
-    case $key in
-      model\ * | height_m\ *) own+=("$key") ;;
-      floor\ *) room+=("$key") ;;
-      reflection_coefficient\ *) floor+=("$key") ;;
-      *) world+=("$key") ;;
-    esac
-  done
-  {
-    echo "[chamber.room]"
-    printf '%s\n' "${room[@]}"
-    if [ ${#floor[@]} -gt 0 ]; then
-      echo "[chamber.room.floor]"
-      printf '%s\n' "${floor[@]}"
-    fi
-    echo "[target]"
-    printf '%s\n' "${world[@]}"
-    echo "[radar.target]"
-    printf '%s\n' "${own[@]}"
-    echo "[experiment]"
-    echo "max_active_layers = 0"
-    echo 'sensors = ["radar"]'
-  } >"$work/variant.toml"
+  printf '%s\n[experiment]\nmax_active_layers = 0\nsensors = ["radar"]\n' "$2" >"$work/variant.toml"
   "$fogradar" run --scenario "$work/variant.toml" --out "$work/variant" >/dev/null
-  awk -F, -v name="$name" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  awk -F, -v name="$1" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
     { printf "| %s | %.3f | %.3f |\n", name, $col["median_dbsm"], $col["q3_dbsm"] - $col["q1_dbsm"] }' \
     "$work/variant/radar_summary.csv"
 }
+empty=$'[chamber]\nobjects = []\n[chamber.room]\nfloor = false\nleft_wall = false'
+bare=$'[chamber]\nobjects = []\n[chamber.room]\nleft_wall = false'
+still=$'[target]\nmicro_motion_std_m = 0.0'
+point=$'[radar.target]\nmodel = "point"'
 echo "| model | median (dBsm) | IQR (dB) |"
 echo "|---|---|---|"
-decompose "point target 10 dBsm, no floor" 'model = "point"' 'floor = false' 'micro_motion_std_m = 0.0'
-decompose "EVT, no floor, no micro-motion" 'floor = false' 'micro_motion_std_m = 0.0'
-decompose "EVT, no floor, 0.2 mm micro-motion" 'floor = false'
-decompose "EVT, floor -0.7, micro-motion (the paper scenario)"
-decompose "EVT, floor +0.7, micro-motion" 'reflection_coefficient = 0.7'
+decompose "point target 10 dBsm, empty hall, no micro-motion" "$empty"$'\n'"$still"$'\n'"$point"
+decompose "EVT, empty hall, no micro-motion" "$empty"$'\n'"$still"
+decompose "EVT, empty hall, 0.2 mm micro-motion" "$empty"
+decompose "EVT, floor of coefficient -0.7 alone" "$bare"$'\n[chamber.room.floor]\nreflection_coefficient = -0.7'
+decompose "EVT, concrete floor alone, horizontal" "$bare"
+decompose "EVT, concrete floor alone, vertical" "$bare"$'\n[radar]\npolarisation = "vertical"'
+decompose "EVT, concrete floor, wall and barrels (the paper scenario)" ""
+decompose "the paper scenario, vertical" $'[radar]\npolarisation = "vertical"'
+decompose "the paper scenario, metal wall" $'[chamber.room.left_wall]\nmaterial = "metal"'
+for resolution in 0.2 0.6 1.8; do
+  bandwidth=$(awk -v r="$resolution" 'BEGIN { printf "%.6g", 299792458 / (2 * r) }')
+  decompose "the paper scenario, range resolution $resolution m" $'[radar]\nsweep_bandwidth_hz = '"$bandwidth"
+done
 for h in 0.50 0.55 0.60 0.70; do
-  decompose "point target, floor -0.7, target at $h m" 'model = "point"' 'micro_motion_std_m = 0.0' "height_m = $h"
+  decompose "point target, concrete floor, no micro-motion, target at $h m" \
+    "$bare"$'\n'"$still"$'\n'"$point"$'\nheight_m = '"$h"
 done

@@ -20,15 +20,6 @@ constexpr double max_coordinate_m = 1e4;
 
 }  // namespace
 
-std::vector<BackgroundSegment> default_background() {
-  std::vector<BackgroundSegment> segments{
-      {.x0_m = 0.5, .y0_m = -3.0, .x1_m = 12.0, .y1_m = -3.0, .reflectivity = 0.5}};
-  for (const double x_m : {2.5, 3.5, 4.5, 5.5}) {
-    segments.push_back({.x0_m = x_m, .y0_m = -2.3, .x1_m = x_m, .y1_m = -1.7, .reflectivity = 0.3});
-  }
-  return segments;
-}
-
 KeyTable<BackgroundSegment> background_segment_keys(std::string prefix) {
   KeyTable<BackgroundSegment> keys(prefix);
   struct Required {
@@ -185,10 +176,8 @@ KeyTable<LidarParams> lidar_keys() {
                    "static reflecting segments `[[lidar.background]]` besides the room "
                    "([chamber.room] walls, [[chamber.objects]]), for what it does not describe; "
                    "each with every key below "
-                   "(none has a default; a segment that lacks one is refused); "
-                   "assumption (`default_background()`): a wall 3 m left from x = 0.5 to 12 m "
-                   "(ρ 0.5), a 0.6 m barrel chord 2 m left of each layer centre (ρ 0.3); the "
-                   "study shows them in Fig. 2 and 5 without dimensions");
+                   "(none has a default; a segment that lacks one is refused); none by default: "
+                   "the study's wall and rain barrels are the paper scenario's room");
   keys.number("fog_fluctuation.log_std", FOGRADAR_KEY_FIELD(fog_fluctuation.log_std),
               closed(0.0, 2.0),
               "scan-to-scan fluctuation of each layer's optical depth (lognormal, unit mean); "

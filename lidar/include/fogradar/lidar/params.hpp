@@ -19,8 +19,8 @@ namespace fogradar::lidar {
 
 // A static reflecting segment from (x0_m, y0_m) to (x1_m, y1_m): a Lambertian surface of
 // reflectivity `reflectivity` at the lidar's wavelength, in the scan plane besides the scenario's
-// room (shapes.hpp, scan_plane_room), for what the room does not describe (today's default: the
-// study's wall and rain barrels, Fig. 5). Every key of a
+// room (shapes.hpp, scan_plane_room), for what the room does not describe (none by default: the
+// study's wall and rain barrels of Fig. 5 are the paper scenario's room). Every key of a
 // `[[lidar.background]]` segment is required: no position or reflectivity is a sensible default
 // for a wall the user describes. A field starts as NaN, "not given", so that the scenario reader,
 // which starts each segment from these defaults, leaves a missing key for validate() to refuse.
@@ -31,11 +31,6 @@ struct BackgroundSegment {
   double y1_m = std::numeric_limits<double>::quiet_NaN();
   double reflectivity = std::numeric_limits<double>::quiet_NaN();
 };
-
-// The paper scenario's background (an assumption: the study's Fig. 2 and Fig. 5 show a wall and
-// the rain barrels on the sensor's left, without dimensions): a wall 3 m to the left from 0.5 m to
-// 12 m, and one rain barrel (a 0.6 m chord facing the sensor) 2 m to the left of each layer centre.
-std::vector<BackgroundSegment> default_background();
 
 // Scan-to-scan fluctuation of each layer's optical depth (the study's "due to the dynamic of fog
 // bank, some regions are denser than others"): the layer's extinction and backscatter are scaled
@@ -82,7 +77,7 @@ struct LidarParams {
   // Water film on the window (the study's water-covered sensor): the pulse and its echoes cross
   // it, propagation::window_film_transmittance at the wavelength, out and back.
   double window_water_film_m = 0.0;
-  std::vector<BackgroundSegment> background = default_background();
+  std::vector<BackgroundSegment> background;
   FogFluctuation fog_fluctuation;
 
   // Throws InvalidParameter naming "lidar.<key>" (e.g. "lidar.pulse_width_ns",
