@@ -46,8 +46,8 @@ std::uint64_t bounded(RandomStream& stream, std::uint64_t n) {
 
 // The [uncertain] draws, setup by setup, key by key: Latin hypercube (each key's N strata in a
 // random order, a uniform point in each) or plain Monte Carlo, through each key's inverse CDF.
-std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
-  std::vector<std::vector<double>> values(u.setups, std::vector<double>(u.keys.size()));
+std::vector<std::vector<Value>> draws(const Uncertain& u, std::uint64_t seed) {
+  std::vector<std::vector<Value>> values(u.setups, std::vector<Value>(u.keys.size()));
   for (std::size_t k = 0; k < u.keys.size(); ++k) {
     RandomStream stream(seed, draws_stream, k);
     std::vector<std::size_t> strata(u.setups);
@@ -63,7 +63,7 @@ std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
           u.sampling == Sampling::latin_hypercube
               ? (static_cast<double>(strata[s]) + jitter) / static_cast<double>(u.setups)
               : jitter;
-      values[s][k] = u.keys[k].distribution.quantile(p);
+      values[s][k] = u.keys[k].distribution.drawn_at(p);
     }
   }
   return values;
@@ -71,16 +71,17 @@ std::vector<std::vector<double>> draws(const Uncertain& u, std::uint64_t seed) {
 
 }  // namespace
 
-double Distribution::quantile(double u) const {
+Value Distribution::drawn_at(double u) const {
   switch (kind) {
     case Kind::uniform:
-      return low + u * (high - low);
+      return number_value(low + u * (high - low));
     case Kind::normal:
-      return boost::math::quantile(boost::math::normal_distribution<double>(mean, std), u);
+      return number_value(
+          boost::math::quantile(boost::math::normal_distribution<double>(mean, std), u));
     case Kind::truncated_normal: {
       const boost::math::normal_distribution<double> n(mean, std);
       const double a = boost::math::cdf(n, low), b = boost::math::cdf(n, high);
-      return std::clamp(boost::math::quantile(n, a + u * (b - a)), low, high);
+      return number_value(std::clamp(boost::math::quantile(n, a + u * (b - a)), low, high));
     }
     case Kind::discrete: {
       double cumulative = 0.0;
@@ -91,7 +92,7 @@ double Distribution::quantile(double u) const {
       return values.back();
     }
   }
-  return std::numeric_limits<double>::quiet_NaN();
+  return number_value(std::numeric_limits<double>::quiet_NaN());
 }
 
 std::string Point::label() const {
@@ -123,7 +124,7 @@ std::vector<Point> expand(const SweepSpec& spec) {
     }
   }
   const std::uint64_t base_seed = spec.base.experiment.seed;
-  std::vector<std::vector<double>> drawn;
+  std::vector<std::vector<Value>> drawn;
   if (spec.uncertain) drawn = draws(*spec.uncertain, base_seed);
   std::vector<Point> points;
   std::vector<std::size_t> at(spec.axes.size(), 0);
@@ -183,7 +184,7 @@ std::vector<Point> expand(const SweepSpec& spec) {
     for (std::size_t s = 0; s < drawn.size(); ++s) {
       std::vector<std::pair<std::string, Value>> setup;
       for (std::size_t k = 0; k < spec.uncertain->keys.size(); ++k) {
-        setup.emplace_back(spec.uncertain->keys[k].key, number_value(drawn[s][k]));
+        setup.emplace_back(spec.uncertain->keys[k].key, drawn[s][k]);
       }
       std::vector<std::pair<std::string, Value>> all = with_seed;
       all.insert(all.end(), setup.begin(), setup.end());

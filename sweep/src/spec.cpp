@@ -47,6 +47,16 @@ std::string toml_string(std::string_view text) {
   return out + "\"";
 }
 
+// What a TOML value is, in a message's words.
+std::string type_of(const toml::node& node) {
+  if (node.is_number()) return "a number";
+  if (node.is_string()) return "a string";
+  if (node.is_boolean()) return "a boolean";
+  if (node.is_array()) return "an array";
+  if (node.is_table()) return "a table";
+  return "a date or time";
+}
+
 // Reads the tables of a sweep file, each key at its line, refusing what it does not know.
 class Reader {
  public:
@@ -326,10 +336,23 @@ Distribution read_distribution(const Reader& r, const toml::table& t, const std:
     d.kind = Distribution::Kind::discrete;
     const toml::node* values = t.get("values");
     const toml::array* list = values ? values->as_array() : nullptr;
+    const std::string allowed =
+        "a non-empty array of numbers, strings or booleans, all of one type";
     if (list == nullptr || list->empty())
       r.fail_at(values ? *values : static_cast<const toml::node&>(t), name + ".values",
-                name + ".values: must be a non-empty array of numbers");
-    for (const toml::node& v : *list) d.values.push_back(r.number(v, name + ".values"));
+                name + ".values: must be " + allowed);
+    const toml::node& first = (*list)[0];
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::node& v = (*list)[i];
+      const bool drawable = v.is_number() || v.is_string() || v.is_boolean();
+      if (!drawable || type_of(v) != type_of(first)) {
+        const std::string which = "values[" + std::to_string(i) + "] is " + type_of(v);
+        r.fail_at(v, name + ".values",
+                  name + ".values: must be " + allowed + "; " + which +
+                      (i == 0 ? "" : ", values[0] " + type_of(first)));
+      }
+      d.values.push_back(r.value(v, name + ".values"));
+    }
     if (const toml::node* weights = t.get("weights")) {
       const toml::array* w = weights->as_array();
       if (w == nullptr || w->size() != d.values.size())

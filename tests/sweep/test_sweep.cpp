@@ -11,8 +11,10 @@
 #include <string>
 #include <tuple>
 #include <utility>
+#include <variant>
 
 #include "fogradar/core/error.hpp"
+#include "fogradar/radar/sensor.hpp"
 #include "fogradar/sweep/spec.hpp"
 #include "validation.hpp"
 
@@ -318,6 +320,183 @@ values = [0.0002]
               std::string::npos)
         << key;
   }
+}
+
+// Discrete numbers draw the values they drew before discrete keys took strings and booleans: the
+// draws of this file pinned from the build before that change (same seed, same uniforms).
+TEST(Uncertain, DiscreteNumberDrawsAreUnchanged) {
+  const auto drawn = [](const std::string& sampling, const std::string& key) {
+    const std::vector<Point> points = expand(parse(R"(
+[uncertain]
+setups = 12
+sampling = ")" + sampling + R"("
+[uncertain.keys."target.micro_motion_std_m"]
+distribution = "discrete"
+values = [0.0001, 0.0002, 0.0004]
+weights = [1, 2, 1]
+[uncertain.keys."radar.height_m"]
+distribution = "discrete"
+values = [0.45, 0.5, 0.55, 0.6]
+)"));
+    std::vector<std::string> texts;
+    for (const auto& setup : points[0].setup_values) {
+      for (const auto& [k, value] : setup) {
+        if (k == key) texts.push_back(value.toml);
+      }
+    }
+    return texts;
+  };
+  using Texts = std::vector<std::string>;
+  EXPECT_EQ(drawn("latin_hypercube", "radar.height_m"),
+            (Texts{"0.6", "0.55", "0.45", "0.55", "0.55", "0.5", "0.6", "0.5", "0.45", "0.6", "0.5",
+                   "0.45"}));
+  EXPECT_EQ(drawn("latin_hypercube", "target.micro_motion_std_m"),
+            (Texts{"4e-04", "4e-04", "2e-04", "2e-04", "2e-04", "2e-04", "2e-04", "2e-04", "4e-04",
+                   "1e-04", "1e-04", "1e-04"}));
+  EXPECT_EQ(drawn("monte_carlo", "radar.height_m"),
+            (Texts{"0.45", "0.45", "0.55", "0.45", "0.6", "0.5", "0.45", "0.5", "0.6", "0.45",
+                   "0.5", "0.45"}));
+  EXPECT_EQ(drawn("monte_carlo", "target.micro_motion_std_m"),
+            (Texts{"1e-04", "4e-04", "2e-04", "2e-04", "2e-04", "4e-04", "2e-04", "2e-04", "2e-04",
+                   "1e-04", "2e-04", "2e-04"}));
+}
+
+// Strings drawn by weight: 400 Monte Carlo draws of "vertical" at weight 3 of 4. The count of
+// "vertical" is binomial(400, 0.75), sd sqrt(400 * 0.75 * 0.25) = 8.66: its share within 5 sd,
+// 0.75 +- 0.108; and each setup's scenario holds the polarisation its setup drew.
+TEST(Uncertain, DiscreteStringsDrawByWeightIntoTheScenario) {
+  const std::vector<Point> points = expand(parse(R"(
+[uncertain]
+setups = 400
+sampling = "monte_carlo"
+[uncertain.keys."radar.polarisation"]
+distribution = "discrete"
+values = ["horizontal", "vertical"]
+weights = [1, 3]
+)"));
+  ASSERT_EQ(points[0].setups.size(), 400u);
+  int vertical = 0;
+  for (std::size_t s = 0; s < 400; ++s) {
+    const Value& value = points[0].setup_values[s][0].second;
+    ASSERT_TRUE(value.text == "horizontal" || value.text == "vertical") << value.text;
+    EXPECT_EQ(value.toml, "\"" + value.text + "\"");
+    EXPECT_FALSE(value.number.has_value());
+    EXPECT_EQ(radar::to_string(
+                  points[0].setups[s].params<radar::SensorParams>("radar").radar.polarisation),
+              value.text)
+        << "setup " << s;
+    vertical += value.text == "vertical" ? 1 : 0;
+  }
+  const double half_width = 5.0 * std::sqrt(0.75 * 0.25 / 400.0);
+  validate({.id = "sweep.uncertain.monte_carlo.discrete_strings.share",
+            .group = kGroup,
+            .quantity = "share of \"vertical\" among 400 Monte Carlo draws",
+            .unit = "1",
+            .conditions = "radar.polarisation discrete, [\"horizontal\", \"vertical\"], weights "
+                          "[1, 3], 400 setups",
+            .reference = 0.75,
+            .source = "binomial(400, 0.75): 5 standard deviations sqrt(p (1 - p) / n)",
+            .value = vertical / 400.0,
+            .tolerance = 0.0,
+            .kind = Tolerance::statistical,
+            .samples = 400,
+            .interval_low = 0.75 - half_width,
+            .interval_high = 0.75 + half_width,
+            .confidence = "5 binomial standard deviations"});
+}
+
+// Latin hypercube strata of two equal weights: the first half of the strata lie below 0.5, so an
+// even number of setups draws each value exactly half the time; booleans drawn as booleans.
+TEST(Uncertain, DiscreteStringsAndBooleansFillTheirStrata) {
+  const std::vector<Point> points = expand(parse(R"(
+[uncertain]
+setups = 64
+[uncertain.keys."radar.polarisation"]
+distribution = "discrete"
+values = ["horizontal", "vertical"]
+[uncertain.keys."chamber.room.left_wall"]
+distribution = "discrete"
+values = [false, true]
+)"));
+  int vertical = 0, walls = 0;
+  for (std::size_t s = 0; s < 64; ++s) {
+    const auto& setup = points[0].setup_values[s];
+    ASSERT_EQ(setup.size(), 2u);
+    ASSERT_EQ(setup[0].first, "chamber.room.left_wall");
+    EXPECT_EQ(points[0].setups[s].chamber.room.left_wall.present, setup[0].second.toml == "true");
+    walls += setup[0].second.toml == "true" ? 1 : 0;
+    vertical += setup[1].second.text == "vertical" ? 1 : 0;
+  }
+  EXPECT_EQ(vertical, 32);
+  EXPECT_EQ(walls, 32);
+}
+
+// A discrete key's values are numbers, strings or booleans of one type; a drawn value the key
+// does not take is refused by the scenario's own check, naming the key, the value and the setup.
+TEST(Uncertain, DiscreteValuesRefused) {
+  const auto discrete = [](const std::string& key, const std::string& values) {
+    return refusal("[uncertain]\nsetups = 8\n[uncertain.keys.\"" + key +
+                   "\"]\ndistribution = \"discrete\"\nvalues = " + values + "\n");
+  };
+  auto [field, message] = discrete("radar.polarisation", R"(["horizontal", 1.0])");
+  EXPECT_EQ(field, "uncertain.keys.radar.polarisation.values");
+  EXPECT_NE(message.find("s.toml:5: uncertain.keys.radar.polarisation.values: must be a non-empty "
+                         "array of numbers, strings or booleans, all of one type; values[1] is a "
+                         "number, values[0] a string"),
+            std::string::npos)
+      << message;
+  std::tie(field, message) = discrete("radar.polarisation", "[[1.0], [2.0]]");
+  EXPECT_NE(message.find("values[0] is an array"), std::string::npos) << message;
+  std::tie(field, message) = discrete("radar.polarisation", "[]");
+  EXPECT_EQ(field, "uncertain.keys.radar.polarisation.values");
+  EXPECT_NE(message.find("uncertain.keys.radar.polarisation.values: must be a non-empty array of "
+                         "numbers, strings or booleans"),
+            std::string::npos)
+      << message;
+  std::tie(field, message) = discrete("radar.polarisation", R"(["horizontal", "diagonal"])");
+  EXPECT_EQ(field, "uncertain.keys.radar.polarisation");
+  EXPECT_NE(message.find("uncertain.keys.radar.polarisation drew diagonal (setup "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("of [uncertain])"), std::string::npos) << message;
+  EXPECT_NE(message.find("horizontal"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertical"), std::string::npos) << message;
+  // A base with a left wall: a drawn material reaches it, an unknown one is refused.
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "fogradar_sweep_drawn_material";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir / "walled.toml")
+        << "[chamber.room.left_wall]\ndistance_m = 3.0\nmaterial = \"concrete\"\n";
+  }
+  const auto walled = [&](const std::string& values) {
+    return parse_sweep(
+        "[sweep]\nbase = \"walled.toml\"\n[uncertain]\nsetups = 8\n"
+        "[uncertain.keys.\"chamber.room.left_wall.material\"]\n"
+        "distribution = \"discrete\"\nvalues = " +
+            values + "\n",
+        "s.toml", dir);
+  };
+  const std::vector<Point> points = expand(walled(R"(["concrete", "wood", "metal"])"));
+  for (std::size_t s = 0; s < 8; ++s) {
+    const auto& wall = points[0].setups[s].chamber.room.left_wall;
+    ASSERT_TRUE(std::holds_alternative<propagation::Material>(wall.reflection));
+    EXPECT_EQ(propagation::to_string(std::get<propagation::Material>(wall.reflection)),
+              points[0].setup_values[s][0].second.text);
+  }
+  try {
+    expand(walled(R"(["concrete", "unobtainium"])"));
+    field = "none";
+  } catch (const InvalidParameter& e) {
+    field = e.field();
+    message = e.what();
+  }
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(field, "uncertain.keys.chamber.room.left_wall.material");
+  EXPECT_NE(message.find("uncertain.keys.chamber.room.left_wall.material drew unobtainium (setup "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("concrete"), std::string::npos) << message;
 }
 
 // Plain Monte Carlo: 2000 uniform draws; their empirical CDF within the Kolmogorov-Smirnov 99 %

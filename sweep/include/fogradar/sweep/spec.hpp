@@ -48,11 +48,12 @@ struct Distribution {
   enum class Kind { uniform, normal, truncated_normal, discrete } kind = Kind::uniform;
   double low = 0.0, high = 0.0;  // uniform, truncated_normal
   double mean = 0.0, std = 0.0;  // normal, truncated_normal
-  std::vector<double> values;    // discrete
+  std::vector<Value> values;     // discrete: numbers, strings or booleans, all of one type
   std::vector<double> weights;   // discrete, summing to 1
 
-  // The value at cumulative probability u in [0, 1) (the inverse CDF).
-  double quantile(double u) const;
+  // The value drawn at cumulative probability u in (0, 1): the inverse CDF; of a discrete
+  // distribution the first value whose cumulative weight exceeds u.
+  Value drawn_at(double u) const;
 };
 
 struct UncertainKey {
