@@ -123,6 +123,20 @@ void require_key(const Scenario& base, const std::string& key) {
                ")");
 }
 
+namespace {
+
+// A switch given together with keys of its table: `true` becomes the table they fill; `false`
+// contradicts them and is refused, naming the switch.
+toml::table switched_on(const toml::node& given_switch, std::string_view switch_key) {
+  if (given_switch.value_or(false)) return {};
+  throw InvalidParameter(std::string(switch_key),
+                         std::string(switch_key) + " = false leaves out [" +
+                             std::string(switch_key) +
+                             "], but keys of that table are given too: give one or the other");
+}
+
+}  // namespace
+
 Scenario set_values_over(const Scenario& base, const std::vector<KeyValue>& values,
                          std::string_view source) {
   // The keys of sections as a file's tables; an element's keys after the arrays, over the element.
@@ -136,9 +150,22 @@ Scenario set_values_over(const Scenario& base, const std::vector<KeyValue>& valu
     toml::table* table = &root;
     std::string_view rest = value.key;
     for (std::size_t dot = rest.find('.'); dot != std::string_view::npos; dot = rest.find('.')) {
-      table = table->emplace<toml::table>(rest.substr(0, dot)).first->second.as_table();
-      FOGRADAR_CHECK(table != nullptr);  // a section's name is no key's (require_key)
+      const std::string_view name = rest.substr(0, dot);
+      // A section's name is no key's (require_key), but for a switch: a boolean key whose name is
+      // a table's (chamber.room.left_wall), which a file switches on by giving the table.
+      if (toml::node* given = table->get(name); given != nullptr && given->is_boolean()) {
+        const std::size_t switch_length =
+            static_cast<std::size_t>(rest.data() - value.key.data()) + dot;
+        table->insert_or_assign(name, switched_on(*given, value.key.substr(0, switch_length)));
+      }
+      table = table->emplace<toml::table>(name).first->second.as_table();
+      FOGRADAR_CHECK(table != nullptr);
       rest.remove_prefix(dot + 1);
+    }
+    if (const toml::node* given = table->get(rest);
+        given != nullptr && given->is_table() && value.value->is_boolean()) {
+      switched_on(*value.value, value.key);  // its table's keys switch it on already
+      continue;
     }
     value.value->visit([&](const auto& node) { table->insert_or_assign(rest, node); });
   }

@@ -431,6 +431,33 @@ values = [false, true]
   EXPECT_EQ(walls, 32);
 }
 
+// A switch and a key of its table in one setup (chamber.room.ceiling and its height_m): `true` is
+// the table the key fills, whichever comes first; `false` contradicts the key and is refused,
+// naming the switch.
+TEST(Uncertain, ASwitchAndAKeyOfItsTableDrawnTogether) {
+  const auto ceiling = [](const std::string& switch_values) {
+    return "[uncertain]\nsetups = 4\n[uncertain.keys.\"chamber.room.ceiling\"]\n"
+           "distribution = \"discrete\"\nvalues = " +
+           switch_values +
+           "\n[uncertain.keys.\"chamber.room.ceiling.height_m\"]\n"
+           "distribution = \"uniform\"\nlow = 4.0\nhigh = 8.0\n";
+  };
+  const std::vector<Point> points = expand(parse(ceiling("[true]")));
+  for (std::size_t s = 0; s < 4; ++s) {
+    const auto& drawn = points[0].setup_values[s];
+    ASSERT_EQ(drawn.size(), 2u);
+    const auto& room = points[0].setups[s].chamber.room;
+    EXPECT_TRUE(room.ceiling.present);
+    EXPECT_EQ(room.ceiling.distance_m, *drawn[1].second.number);
+  }
+  const auto [field, message] = refusal(ceiling("[false]"));
+  EXPECT_EQ(field, "uncertain.keys.chamber.room.ceiling");
+  EXPECT_NE(message.find("chamber.room.ceiling = false leaves out [chamber.room.ceiling], but keys "
+                         "of that table are given too"),
+            std::string::npos)
+      << message;
+}
+
 // A discrete key's values are numbers, strings or booleans of one type; a drawn value the key
 // does not take is refused by the scenario's own check, naming the key, the value and the setup.
 TEST(Uncertain, DiscreteValuesRefused) {
