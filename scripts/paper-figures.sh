@@ -45,15 +45,17 @@ decompose() {
   printf '%s\n[experiment]\nmax_active_layers = 0\nsensors = ["radar"]\n' "$2" >"$work/variant.toml"
   "$fogradar" run --scenario "$work/variant.toml" --out "$work/variant" >/dev/null
   awk -F, -v name="$1" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
-    { printf "| %s | %.3f | %.3f |\n", name, $col["median_dbsm"], $col["q3_dbsm"] - $col["q1_dbsm"] }' \
+    $col["detections"] == 0 { printf "| %s | – | – | 0 %% |\n", name; next }
+    { printf "| %s | %.3f | %.3f | %.1f %% |\n", name, $col["median_dbsm"],
+        $col["q3_dbsm"] - $col["q1_dbsm"], 100 * $col["detection_rate"] }' \
     "$work/variant/radar_summary.csv"
 }
 empty=$'[chamber]\nobjects = []\n[chamber.room]\nfloor = false\nleft_wall = false'
 bare=$'[chamber]\nobjects = []\n[chamber.room]\nleft_wall = false'
 still=$'[target]\nmicro_motion_std_m = 0.0'
 point=$'[radar.target]\nmodel = "point"'
-echo "| model | median (dBsm) | IQR (dB) |"
-echo "|---|---|---|"
+echo "| model | median (dBsm) | IQR (dB) | target detected |"
+echo "|---|---|---|---|"
 decompose "point target 10 dBsm, empty hall, no micro-motion" "$empty"$'\n'"$still"$'\n'"$point"
 decompose "EVT, empty hall, no micro-motion" "$empty"$'\n'"$still"
 decompose "EVT, empty hall, 0.2 mm micro-motion" "$empty"
@@ -67,6 +69,14 @@ for resolution in 0.2 0.6 1.8; do
   bandwidth=$(awk -v r="$resolution" 'BEGIN { printf "%.6g", 299792458 / (2 * r) }')
   decompose "the paper scenario, range resolution $resolution m" $'[radar]\nsweep_bandwidth_hz = '"$bandwidth"
 done
+# What the study's unnamed radar's beam would do (not among the envelope's keys: its own row each).
+for width in 30 60; do
+  decompose "the paper scenario, azimuth beam $width deg" $'[radar]\nazimuth_beamwidth_deg = '"$width"
+done
+decompose "EVT, concrete floor alone, azimuth beam 60 deg" "$bare"$'\n[radar]\nazimuth_beamwidth_deg = 60'
+decompose "EVT, empty hall, azimuth beam 60 deg" "$empty"$'\n[radar]\nazimuth_beamwidth_deg = 60'
+decompose "the paper scenario, azimuth beam 60 deg, metal wall" \
+  $'[radar]\nazimuth_beamwidth_deg = 60\n[chamber.room.left_wall]\nmaterial = "metal"'
 for h in 0.50 0.55 0.60 0.70; do
   decompose "point target, concrete floor, no micro-motion, target at $h m" \
     "$bare"$'\n'"$still"$'\n'"$point"$'\nheight_m = '"$h"

@@ -88,13 +88,14 @@ BeamEchoes beam_echoes(const Scenario& scenario, double angle_deg) {
   return out;
 }
 
-// The check: a concrete left wall at D = 3 m given by keys, seen at azimuth a, reads
-// D / sin|a|, +-2 cm, one background echo per scan.
+// The check: a concrete left wall at D = 3 m given by keys (the paper's barrels taken out
+// of the way), seen at azimuth a, reads D / sin|a|, +-2 cm, one background echo per scan.
 TEST(LidarRoomKeys, WallEchoReadsDistanceOverSine) {
   const double d = 3.0;
   for (const double a : {-20.0, -30.0, -45.0, -60.0}) {
     const double range_m = d / std::sin(std::abs(a) * deg);
     const std::string toml = lidar_alone(concrete_905, range_m, std::sin(std::abs(a) * deg)) +
+                             "[chamber]\nobjects = []\n"
                              "[chamber.room.left_wall]\ndistance_m = 3\nmaterial = \"concrete\"\n";
     const BeamEchoes echoes = beam_echoes(parse_scenario(toml, "wall.toml"), a);
     const std::string tag = std::to_string(static_cast<int>(a));

@@ -363,9 +363,11 @@ TEST(LidarSensor, ScansAreDeterministicForAnyThreadCount) {
 // (Harbecke 1986, Appl. Phys. B 39, 165): T = (1 - R_af)(1 - R_fg) tau / (1 - R_af R_fg tau^2) /
 // (1 - R_ag), tau = exp(-4 pi k t / lambda), with Segelstein's water at 905 nm; to rounding.
 TEST(LidarSensor, WindowFilmScalesEveryEchoByItsTwoWayTransmittance) {
-  LidarParams wet;
+  LidarParams dry;
+  dry.background = {{.x0_m = 0.5, .y0_m = -3.0, .x1_m = 12.0, .y1_m = -3.0, .reflectivity = 0.5}};
+  LidarParams wet = dry;
   wet.window_water_film_m = 0.2e-3;
-  const Lidar dry_lidar(LidarParams{}, propagation::ChamberSpec{}, table());
+  const Lidar dry_lidar(dry, propagation::ChamberSpec{}, table());
   const Lidar wet_lidar(wet, propagation::ChamberSpec{}, table());
   const std::complex<double> m = table().refractive_index(wet.wavelength_m);
   const auto reflectance = [](std::complex<double> a, std::complex<double> b) {
@@ -410,8 +412,12 @@ TEST(LidarSensor, WindowFilmScalesEveryEchoByItsTwoWayTransmittance) {
 
 TEST(LidarSensor, EveryInvalidKeyIsRefusedByName) {
   using test_support::rejected_field;
+  // Three background segments (there are none by default), so that one element's key is named.
   const auto rejects = [](auto change) {
     LidarParams p;
+    p.background.assign(3,
+                        {.x0_m = 3.0, .y0_m = 2.0, .x1_m = 6.0, .y1_m = 2.0, .reflectivity = 0.4});
+    EXPECT_EQ(rejected_field([&] { p.validate(); }), "accepted");
     change(p);
     return rejected_field([&] { p.validate(); });
   };

@@ -349,10 +349,14 @@ TEST(LidarRoom, ReturnScalesWithReflectivityAndIncidence) {
   }
 }
 
-// Today's [[lidar.background]] segments are segment shapes: the same segments given as the room's
-// shapes instead give the same scan, echo for echo.
+// [[lidar.background]] segments are segment shapes: the same segments given as the room's shapes
+// instead give the same scan, echo for echo. The segments: a wall 3 m to the left and one 0.6 m
+// chord at 2.5 m, the paper scenario's background before it had a room.
 TEST(LidarRoom, BackgroundSegmentsAreSegmentShapes) {
   LidarParams with_background;
+  with_background.background = {
+      {.x0_m = 0.5, .y0_m = -3.0, .x1_m = 12.0, .y1_m = -3.0, .reflectivity = 0.5},
+      {.x0_m = 2.5, .y0_m = -2.3, .x1_m = 2.5, .y1_m = -1.7, .reflectivity = 0.3}};
   LidarParams without = with_background;
   without.background.clear();
   const Lidar a(with_background, propagation::ChamberSpec{}, table());
