@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Quick start (2): installs missing packages, builds everything (Release), runs the test suite.
 # `scripts/test.sh --sanitize` builds and runs the same suite under ASan + UBSan instead, with
-# assertions and debug information (Debug) at -O1, which AddressSanitizer's documentation advises
-# for speed (at -O0 the suite's Eigen and Monte Carlo tests take most of CI's time), with the vector
-# loops built for the x86-64 baseline only (no other clone, -DFOGRADAR_SIMD_CLONES=):
+# assertions and line tables (Debug, -g1: a report's stack has its lines) at -O1, which
+# AddressSanitizer's documentation advises for speed (at -O0 the suite's Eigen and Monte Carlo tests
+# take most of CI's time), with the vector loops built for the x86-64 baseline only (no other
+# clone, -DFOGRADAR_SIMD_CLONES=):
 # the same tests, pinned noise samples included, then check that the version the loader picks on
 # machines without AVX2 gives the same bits as the clone the release suite ran.
 # `scripts/test.sh --baseline` builds the same baseline-only vector loops optimised (Release), for a
@@ -31,6 +32,7 @@ case "$mode" in
   --sanitize)
     dir="$root/build/sanitize"
     fogradar_configure "$dir" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS=-DFOGRADAR_SIMD_CLONES= -O1" \
+      -DCMAKE_CXX_FLAGS_DEBUG=-g1 \
       -DFOGRADAR_BUILD_TESTS=ON -DFOGRADAR_BUILD_EXAMPLES=ON -DFOGRADAR_SANITIZE=ON \
       -DFOGRADAR_WARNINGS_AS_ERRORS=$werror -DFOGRADAR_BUILD_BENCHMARKS=OFF \
       -DFOGRADAR_BUILD_PYTHON=OFF

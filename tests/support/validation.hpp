@@ -99,6 +99,13 @@ inline bool passes(const Check& c) {
 // Expects the check to pass and records it (NaN numbers are recorded as null).
 inline void validate(const Check& c) {
   const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; };
+  // What scripts/validation_report.py refuses in a record, checked where it is made, so that the
+  // suite run alone (scripts/test.sh, CI) holds it too.
+  EXPECT_FALSE(c.source.empty() || c.quantity.empty() || c.group.empty())
+      << c.id << ": a check states its source, quantity and group";
+  EXPECT_FALSE(std::fpclassify(c.reference) == FP_SUBNORMAL ||
+               std::fpclassify(c.tolerance) == FP_SUBNORMAL)
+      << c.id << ": a subnormal reference or tolerance stands in for a kind (`above`)";
   const bool pass = passes(c);
   EXPECT_TRUE(pass) << c.id << ": " << c.quantity << " (" << c.conditions << ") = " << c.value
                     << " " << c.unit << " against " << c.reference << " from " << c.source
