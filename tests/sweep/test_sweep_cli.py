@@ -201,9 +201,12 @@ setups = 3
 [uncertain.keys."radar.height_m"]
 distribution = "discrete"
 values = [0.5]
-[uncertain.keys."chamber.room.floor.reflection_coefficient"]
+[uncertain.keys."chamber.room.floor.material"]
 distribution = "discrete"
-values = [-0.7]
+values = ["concrete"]
+[uncertain.keys."radar.polarisation"]
+distribution = "discrete"
+values = ["horizontal"]
 """)
     envelope_out = os.path.join(work, "envelope")
     sweep(collapsed, envelope_out)
