@@ -23,8 +23,8 @@
 // Monte Carlo tests use fixed seeds and 5-sigma (normal approximation) or alpha = 0.001 bounds, so
 // a correct generator fails none of them; tests/CMakeLists.txt compiles this file with
 // -ffp-contract=off so the scalar reference is not FMA-contracted (the library is not either).
-// The generator tests run whichever version the loader picks (AVX2 on CI's machines); CI's
-// sanitizer suite runs them built with -DFOGRADAR_SIMD_CLONES= (only the x86-64 baseline
+// The generator tests run whichever version the loader picks (AVX2 on this project's machines);
+// CI's sanitizer suite runs them built with -DFOGRADAR_SIMD_CLONES= (only the x86-64 baseline
 // version), against the same pinned samples (docs/architecture.md).
 #include <gtest/gtest.h>
 
