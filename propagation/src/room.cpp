@@ -9,8 +9,19 @@
 namespace fogradar::propagation {
 namespace {
 
-// The coordinate axis a plane is normal to: x 0, y 1, z 2.
-int axis_of(Surface surface) {
+// The room's side of the plane: +1 where the room has larger coordinates (floor, left wall).
+double inward_sign(Surface surface) {
+  return surface == Surface::floor || surface == Surface::left_wall ? 1.0 : -1.0;
+}
+
+// The grazing angle of a ray along `direction` (unit) at `plane`: asin |d · n|.
+double grazing_angle_rad(const RoomPlane& plane, const Eigen::Vector3d& direction) {
+  return std::asin(std::min(1.0, std::abs(direction[normal_axis(plane.surface)])));
+}
+
+}  // namespace
+
+int normal_axis(Surface surface) {
   switch (surface) {
     case Surface::floor:
     case Surface::ceiling:
@@ -24,36 +35,23 @@ int axis_of(Surface surface) {
   return 0;
 }
 
-// The room's side of the plane: +1 where the room has larger coordinates (floor, left wall).
-double inward_sign(Surface surface) {
-  return surface == Surface::floor || surface == Surface::left_wall ? 1.0 : -1.0;
-}
-
-// Where the segment a → b crosses `plane` strictly between its ends, as the fraction t of the way.
-std::optional<double> crossing(const RoomPlane& plane, const Eigen::Vector3d& a,
-                               const Eigen::Vector3d& b) {
-  const int axis = axis_of(plane.surface);
+std::optional<double> crossing_fraction(const RoomPlane& plane, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b) {
+  const int axis = normal_axis(plane.surface);
   const double da = a[axis] - plane.position_m, db = b[axis] - plane.position_m;
   if (!(da * db < 0.0)) return std::nullopt;  // both on one side, or an end on the plane
   return da / (da - db);
 }
 
-// The grazing angle of a ray along `direction` (unit) at `plane`: asin |d · n|.
-double grazing_angle_rad(const RoomPlane& plane, const Eigen::Vector3d& direction) {
-  return std::asin(std::min(1.0, std::abs(direction[axis_of(plane.surface)])));
-}
-
-}  // namespace
-
 Eigen::Vector3d inward_normal(const RoomPlane& plane) {
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  n[axis_of(plane.surface)] = inward_sign(plane.surface);
+  n[normal_axis(plane.surface)] = inward_sign(plane.surface);
   return n;
 }
 
 bool inside_room(std::span<const RoomPlane> planes, const Eigen::Vector3d& point) {
   for (const RoomPlane& plane : planes) {
-    const double d = point[axis_of(plane.surface)] - plane.position_m;
+    const double d = point[normal_axis(plane.surface)] - plane.position_m;
     if (inward_sign(plane.surface) * d < 0.0) return false;
   }
   return true;
@@ -61,7 +59,7 @@ bool inside_room(std::span<const RoomPlane> planes, const Eigen::Vector3d& point
 
 Eigen::Vector3d mirrored(const RoomPlane& plane, const Eigen::Vector3d& point) {
   Eigen::Vector3d image = point;
-  const int axis = axis_of(plane.surface);
+  const int axis = normal_axis(plane.surface);
   image[axis] = 2.0 * plane.position_m - point[axis];
   return image;
 }
@@ -85,10 +83,10 @@ std::vector<SpecularPath> specular_paths(std::span<const RoomPlane> planes,
     for (std::size_t k = 0; k < sequence.size(); ++k) {
       const RoomPlane& plane = planes[sequence[k]];
       const Eigen::Vector3d& ahead = images[sequence.size() - k];
-      const std::optional<double> t = crossing(plane, before, ahead);
+      const std::optional<double> t = crossing_fraction(plane, before, ahead);
       if (!t) return;
       Eigen::Vector3d point = before + *t * (ahead - before);
-      point[axis_of(plane.surface)] = plane.position_m;  // exactly on the plane
+      point[normal_axis(plane.surface)] = plane.position_m;  // exactly on the plane
       if (!inside_room(planes, point)) return;
       points.push_back(point);
       before = point;

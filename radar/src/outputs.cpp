@@ -359,6 +359,10 @@ sensor::StepTable step_table(const RadarSummary& summary) {
            [](const StepSummary& s) { return s.clipping_detections_per_frame; });
   t.number("sidelobe_detections_per_frame", "", steps,
            [](const StepSummary& s) { return s.sidelobe_detections_per_frame; });
+  t.number("multipath_detections_per_frame", "", steps,
+           [](const StepSummary& s) { return s.multipath_detections_per_frame; });
+  t.number("room_detections_per_frame", "", steps,
+           [](const StepSummary& s) { return s.room_detections_per_frame; });
 
   // The printed table's own figures: the layer count starred where only the surviving detections
   // make the RCS statistics, the CFAR's design false alarms, the IQR and the total two-way loss.
@@ -542,6 +546,21 @@ std::string summary_table(const RadarSummary& summary) {
                [](const StepSummary& s) { return s.sidelobe_detections_per_frame; })
         << '\n';
   }
+  // "room echoes (...): 4.000 per frame at 0 active layers, ...", and the same for the ghosts.
+  const auto origin_line = [&](const char* what, double StepSummary::* rate) {
+    if (std::none_of(summary.steps.begin(), summary.steps.end(),
+                     [rate](const StepSummary& s) { return s.*rate > 0.0; }))
+      return;
+    out << what
+        << per_frame_at(
+               summary.steps, [](const StepSummary&) { return true; },
+               [rate](const StepSummary& s) { return s.*rate; })
+        << '\n';
+  };
+  origin_line("room detections (its objects' and back wall's own echoes):",
+              &StepSummary::room_detections_per_frame);
+  origin_line("multipath detections (ghosts of the target via the room, misses in the gate):",
+              &StepSummary::multipath_detections_per_frame);
   if (summary.velocity_fold)
     out << "velocity folded: " << velocity_fold_text(*summary.velocity_fold) << '\n';
   out << "sensor limit: ";

@@ -51,6 +51,8 @@ MeasurementRecord record_of(const Measurement& m, double target_range_m, double 
     if (d.origin == Origin::noise) ++record.false_alarms;
     if (d.origin == Origin::clipping) ++record.clipping_detections;
     if (d.origin == Origin::sidelobe) ++record.sidelobe_detections;
+    if (d.origin == Origin::multipath) ++record.multipath_detections;
+    if (d.origin == Origin::room) ++record.room_detections;
     if (d.origin != Origin::fog) continue;
     ++record.fog_detections;
     strongest_fog_w = std::max(strongest_fog_w, d.received_power_w);
@@ -101,7 +103,8 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.target_film_loss_db = step.target_film_loss_db;
     std::vector<double> snr;
     std::size_t confused = 0, false_associations = 0, false_alarms = 0, fog_detections = 0,
-                clipping_detections = 0, sidelobe_detections = 0;
+                clipping_detections = 0, sidelobe_detections = 0, multipath_detections = 0,
+                room_detections = 0;
     std::size_t samples = 0, clipped_samples = 0;
     for (const MeasurementRecord& r : step.records) {
       if (r.detected) snr.push_back(r.snr_db);
@@ -111,6 +114,8 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
       fog_detections += r.fog_detections;
       clipping_detections += r.clipping_detections;
       sidelobe_detections += r.sidelobe_detections;
+      multipath_detections += r.multipath_detections;
+      room_detections += r.room_detections;
       samples += r.samples;
       clipped_samples += r.clipped_samples;
     }
@@ -120,6 +125,8 @@ RadarSummary summarize(const std::vector<StepResult>& steps, double cfar_thresho
     s.fog_detections_per_frame = fraction(fog_detections, s.n);
     s.clipping_detections_per_frame = fraction(clipping_detections, s.n);
     s.sidelobe_detections_per_frame = fraction(sidelobe_detections, s.n);
+    s.multipath_detections_per_frame = fraction(multipath_detections, s.n);
+    s.room_detections_per_frame = fraction(room_detections, s.n);
     s.median_snr_db = median_of(snr);
     s.confusion_rate = fraction(confused, s.n);
     s.adc_clipped_fraction = fraction(clipped_samples, samples);

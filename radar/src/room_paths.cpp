@@ -19,31 +19,6 @@ using propagation::Surface;
 constexpr double degree_rad = pi / 180.0;
 constexpr std::size_t max_surfaces = 5;
 
-// The coordinate axis a plane is normal to: x 0, y 1, z 2.
-int axis_of(Surface surface) {
-  switch (surface) {
-    case Surface::floor:
-    case Surface::ceiling:
-      return 2;
-    case Surface::left_wall:
-    case Surface::right_wall:
-      return 1;
-    case Surface::back_wall:
-      return 0;
-  }
-  return 0;
-}
-
-// Where the segment a -> b crosses `plane` strictly between its ends, as the fraction of the way
-// (room.cpp's test: an end on the plane is no crossing).
-std::optional<double> crossing(const RoomPlane& plane, const Eigen::Vector3d& a,
-                               const Eigen::Vector3d& b) {
-  const int axis = axis_of(plane.surface);
-  const double da = a[axis] - plane.position_m, db = b[axis] - plane.position_m;
-  if (!(da * db < 0.0)) return std::nullopt;
-  return da / (da - db);
-}
-
 struct LegGeometry {
   double length_m;
   double pattern_amplitude;
@@ -111,10 +86,10 @@ std::size_t one_way_legs(const Scene& scene, const Eigen::Vector3d& radar,
     for (std::size_t k = 0; k < order; ++k) {
       const RoomPlane& plane = planes[sequence[k]];
       const Eigen::Vector3d& ahead = images[order - k];
-      const std::optional<double> t = crossing(plane, before, ahead);
+      const std::optional<double> t = propagation::crossing_fraction(plane, before, ahead);
       if (!t) return;
       Eigen::Vector3d hit = before + *t * (ahead - before);
-      hit[axis_of(plane.surface)] = plane.position_m;
+      hit[propagation::normal_axis(plane.surface)] = plane.position_m;
       if (!propagation::inside_room(planes, hit)) return;
       before = hit;
     }
@@ -133,7 +108,7 @@ std::size_t one_way_legs(const Scene& scene, const Eigen::Vector3d& radar,
     double x_sign = 1.0;
     for (std::size_t k = 0; k < order; ++k) {
       const SceneSurface& surface = scene.surfaces[sequence[k]];
-      const int axis = axis_of(surface.plane.surface);
+      const int axis = propagation::normal_axis(surface.plane.surface);
       if (surface.permittivity) {
         const double grazing_rad = std::asin(std::min(1.0, std::abs(direction[axis])));
         material *= co_polar_reflection(

@@ -1777,11 +1777,14 @@ TEST(Adc, ClippedFractionReachesTheSummaryExactly) {
   const std::string csv = step_table(summary).csv();
   const std::string header = csv.substr(0, csv.find('\n'));
   const std::string last =
-      ",adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame";
+      ",adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame,"
+      "multipath_detections_per_frame,room_detections_per_frame";
   ASSERT_GE(header.size(), last.size());
   EXPECT_EQ(header.substr(header.size() - last.size()), last) << header;
   EXPECT_EQ(csv.find("adc_clipped_fraction"), header.size() - last.size() + 1);
   std::string row = csv.substr(header.size() + 1, csv.size() - header.size() - 2);
+  row.erase(row.rfind(','));  // the room detections
+  row.erase(row.rfind(','));  // the multipath detections
   row.erase(row.rfind(','));  // the sidelobe detections
   row.erase(row.rfind(','));  // the clipping detections
   EXPECT_EQ(std::stod(row.substr(row.rfind(',') + 1)), fraction) << row;

@@ -17,6 +17,7 @@
 #include "fogradar/core/random.hpp"
 #include "fogradar/radar/attribution.hpp"
 #include "fogradar/radar/measurement.hpp"
+#include "fogradar/radar/outputs.hpp"
 #include "fogradar/radar/results.hpp"
 #include "fogradar/radar/synthesis.hpp"
 #include "validation.hpp"
@@ -708,12 +709,14 @@ TEST(NoisePower, QuantisationErrorOfGaussianSamples) {
 }
 
 // The record and the summary count each origin apart: sidelobe detections are neither noise false
-// alarms nor fog; a fog detection keeps its layer and its peak cell.
+// alarms nor fog, the room's ghosts and own echoes are counted as themselves; a fog detection keeps
+// its layer and its peak cell.
 TEST(OriginRecords, SidelobesAreCountedApart) {
   Measurement m;
-  const Origin origins[] = {Origin::target, Origin::sidelobe, Origin::sidelobe, Origin::noise,
-                            Origin::fog};
-  for (std::size_t i = 0; i < 5; ++i) {
+  const Origin origins[] = {Origin::target,    Origin::sidelobe, Origin::sidelobe,
+                            Origin::noise,     Origin::fog,      Origin::multipath,
+                            Origin::room,      Origin::room,     Origin::room};
+  for (std::size_t i = 0; i < std::size(origins); ++i) {
     Detection d;
     d.range_m = 3.0 + static_cast<double>(i);
     d.range_cell = 10 + i;
@@ -726,6 +729,8 @@ TEST(OriginRecords, SidelobesAreCountedApart) {
   EXPECT_EQ(r.sidelobe_detections, 2u);
   EXPECT_EQ(r.false_alarms, 1u);
   EXPECT_EQ(r.fog_detections, 1u);
+  EXPECT_EQ(r.multipath_detections, 1u);
+  EXPECT_EQ(r.room_detections, 3u);
   EXPECT_EQ(r.detections[4].layer, 1);
   EXPECT_EQ(r.detections[4].range_cell, 14u);
   EXPECT_EQ(r.detections[4].doppler_cell, 4u);
@@ -733,9 +738,28 @@ TEST(OriginRecords, SidelobesAreCountedApart) {
   StepResult step;
   step.records = {r, r};
   step.records[1].sidelobe_detections = 1;
+  step.records[1].room_detections = 0;
   const RadarSummary summary = summarize({step}, 0.0, 0.0);
   EXPECT_EQ(summary.steps[0].sidelobe_detections_per_frame, 1.5);
   EXPECT_EQ(summary.steps[0].false_alarms_per_frame, 1.0);
+  EXPECT_EQ(summary.steps[0].multipath_detections_per_frame, 1.0);
+  EXPECT_EQ(summary.steps[0].room_detections_per_frame, 1.5);
+  const std::string csv = step_table(summary).csv();
+  EXPECT_NE(csv.find(",multipath_detections_per_frame,room_detections_per_frame\n"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find(",1,1.5\n"), std::string::npos) << csv;
+  const nlohmann::json steps = summary_json(summary)["steps"];
+  EXPECT_EQ(steps[0]["room_detections_per_frame"].get<double>(), 1.5);
+  const std::string printed = summary_table(summary);
+  EXPECT_NE(printed.find("room detections (its objects' and back wall's own echoes): 1.500 per "
+                         "frame at 0 active layers"),
+            std::string::npos)
+      << printed;
+  EXPECT_NE(printed.find("multipath detections (ghosts of the target via the room, misses in the "
+                         "gate): 1.000 per frame"),
+            std::string::npos)
+      << printed;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -42,6 +43,12 @@ struct SpecularPath {
   std::vector<double> grazing_rad;
 };
 
+// The coordinate axis the surface's plane is normal to: x 0, y 1, z 2.
+int normal_axis(Surface surface);
+// Where the segment a -> b crosses `plane` strictly between its ends, as the fraction t of the way
+// (a + t (b - a) lies on it); none when both ends lie on one side or an end lies on the plane.
+std::optional<double> crossing_fraction(const RoomPlane& plane, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b);
 // The unit normal of `plane` pointing into the room.
 Eigen::Vector3d inward_normal(const RoomPlane& plane);
 // Whether `point` lies inside (or on) every plane's side of the room.

@@ -52,6 +52,8 @@ struct MeasurementRecord {
   std::size_t false_alarms = 0;             // noise-origin detections anywhere in the map
   std::size_t clipping_detections = 0;      // clipping-origin detections anywhere in the map
   std::size_t sidelobe_detections = 0;      // sidelobe-origin detections anywhere in the map
+  std::size_t multipath_detections = 0;     // ghosts of the target via the room, anywhere
+  std::size_t room_detections = 0;          // the room's own echoes (objects, back wall), anywhere
   std::vector<DetectionRecord> detections;  // every detection of the map, in the chain's order
   // The frame's samples and those with an I or Q rail clipped by the ADC (SynthesisReport); not
   // written per measurement, summed per step (StepSummary::adc_clipped_fraction).
@@ -87,6 +89,10 @@ struct StepSummary {
   // Mean sidelobe-origin detections per measurement: sidelobe false alarms, echoes' leakage outside
   // their window main lobes (attribution.hpp), not counted with the noise's false alarms.
   double sidelobe_detections_per_frame = 0.0;
+  // Mean multipath-origin (ghosts of the target via the room) and room-origin (the room's own
+  // echoes: its objects, the back wall) detections per measurement, anywhere in the map.
+  double multipath_detections_per_frame = 0.0;
+  double room_detections_per_frame = 0.0;
   stats::BoxPlot rcs;  // of the target detections' rcs_dbsm values
   // Against the 0-layer series: the Hodges-Lehmann shift (median of all pairwise differences
   // x_i - y_j), its distribution-free 95 % interval (the inverted Mann-Whitney test) and the
