@@ -33,7 +33,7 @@ for shape in range range_doppler; do
           printf "%.0f %% | %s | %s", 100 * $col["detection_rate"], median, $col["n"] }' \
         "$work/out/radar_summary.csv")
       frames=${summary##* | }
-      awk -F, -v frames="$frames" -v row="| $shape | $kind | $bins ($velocity) | ${summary% | *} |" \
+      awk -F, -v frames="$frames" -v row="| $shape | $kind | $bins ($(printf '%.3f' "$velocity")) | ${summary% | *} |" \
         'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
         { ++count[$col["origin"]] }
         END { printf "%s %.2f | %.2f | %.2f | %.2f |\n", row, count["room"] / frames,
