@@ -319,14 +319,15 @@ std::vector<double> clutter_map(const RangeDopplerProcessor& processor,
   return power;
 }
 
-// Zero-Doppler clutter (emulated: the room does not reach the radar's scene): a wall of static
-// scatterers in range cells 200-259 at +25 dB per cell and two barrels at cells 300 and 310 at
-// +40 dB, Hann in both dimensions, 512 x 64, design P_fa 1e-6, g = 2, n = 8 (ring: g_d = 1, n_d =
-// 2). What happens, over 4 noise draws each: a slow target of +20 dB at (230, Doppler 3), inside
-// the wall's range extent, is kept by the range CA-CFAR (its row holds no clutter: static tones
-// leak only into Doppler bins 0 and +-1 through Hann) and masked by the ring's CA (its Doppler
-// training rows reach the wall's rows); a target at zero Doppler between the barrels (305, 0) is
-// masked by the range OS-CFAR (6 of its 16 cells are barrel) and kept by the ring's OS (18 of 132).
+// Zero-Doppler clutter in a synthetic frame (bench/cfar_clutter's; the room's own table is
+// scripts/cfar-room.sh's, docs/radar.md §7.1): a band of static scatterers in range cells 200-259
+// at +25 dB per cell and two barrels at cells 300 and 310 at +40 dB, Hann in both dimensions, 512 x
+// 64, design P_fa 1e-6, g = 2, n = 8 (ring: g_d = 1, n_d = 2). What happens, over 4 noise draws
+// each: a slow target of +20 dB at (230, Doppler 3), inside the wall's range extent, is kept by the
+// range CA-CFAR (its row holds no clutter: static tones leak only into Doppler bins 0 and +-1
+// through Hann) and masked by the ring's CA (its Doppler training rows reach the wall's rows); a
+// target at zero Doppler between the barrels (305, 0) is masked by the range OS-CFAR (6 of its 16
+// cells are barrel) and kept by the ring's OS (18 of 132).
 TEST(CfarRing, ZeroDopplerClutterBesideASlowTarget) {
   RadarParams p;
   const RangeDopplerProcessor processor(p);
