@@ -224,8 +224,8 @@ double longest_image_path_m(const RoomGeometry& room, const Point3& p, double ra
     for (const Image& y : ys) {
       for (const Image& z : zs) {
         if (x.order + y.order + z.order > 2) continue;
-        longest_m = std::max(longest_m, std::sqrt(x.value * x.value + y.value * y.value +
-                                                  z.value * z.value));
+        longest_m = std::max(longest_m,
+                             std::sqrt(x.value * x.value + y.value * y.value + z.value * z.value));
       }
     }
   }
@@ -280,8 +280,8 @@ double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient,
     }
     return true;
   };
-  for (double* surface : {&room.back_wall_m, &room.ceiling_m, &room.right_wall_m,
-                          &room.left_wall_m}) {
+  for (double* surface :
+       {&room.back_wall_m, &room.ceiling_m, &room.right_wall_m, &room.left_wall_m}) {
     if (!fits()) *surface = 0.0;
   }
   if (!fits()) room.floor = false;
@@ -350,17 +350,17 @@ double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient,
     const double far_m =
         std::hypot(std::hypot(o.x_m, o.y_m) + extent_m, middle_m - out.radar_height_m);
     const bool inside = far_x_m > near_x_m && o.y_m >= -left_m && o.y_m <= right_m &&
-                        o.height_m >= 0.05 && (room.ceiling_m == 0.0 || o.base_height_m +
-                                                  o.height_m < room.ceiling_m);
+                        o.height_m >= 0.05 &&
+                        (room.ceiling_m == 0.0 || o.base_height_m + o.height_m < room.ceiling_m);
     const bool away = std::hypot(o.x_m, o.y_m) - extent_m > tol_m + 0.3 && far_m < limit_m;
     if (!inside || !away) continue;
     std::string body = "shape = " + quoted(o.cylinder ? "cylinder" : "plate") +
                        "\nx_m = " + number(o.x_m) + "\ny_m = " + number(o.y_m) +
                        "\nbase_height_m = " + number(o.base_height_m) +
                        "\nheight_m = " + number(o.height_m) + "\n";
-    body += o.cylinder ? "radius_m = " + number(o.radius_m) + "\n"
-                       : "width_m = " + number(o.width_m) + "\nyaw_deg = " + number(o.yaw_deg) +
-                             "\n";
+    body += o.cylinder
+                ? "radius_m = " + number(o.radius_m) + "\n"
+                : "width_m = " + number(o.width_m) + "\nyaw_deg = " + number(o.yaw_deg) + "\n";
     body += "material = " + quoted(d.pick(materials(centre_hz, lidar))) + "\n";
     t.append_table("chamber.objects", body);
     room.objects.push_back(o);
@@ -495,9 +495,9 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
     out.target_centres = {{out.target_range_m, 0.0, centre_height_m}};
   } else {
     // docs/radar.md: (+0, 0, 0.55), (+0.05, +-0.75, 0.45), (+0.30, +-0.65, 0.85) m.
-    for (const Point3& c : {Point3{0.0, 0.0, 0.55}, Point3{0.05, -0.75, 0.45},
-                            Point3{0.05, 0.75, 0.45}, Point3{0.30, -0.65, 0.85},
-                            Point3{0.30, 0.65, 0.85}})
+    for (const Point3& c :
+         {Point3{0.0, 0.0, 0.55}, Point3{0.05, -0.75, 0.45}, Point3{0.05, 0.75, 0.45},
+          Point3{0.30, -0.65, 0.85}, Point3{0.30, 0.65, 0.85}})
       out.target_centres.push_back({out.target_range_m + c.x_m, c.y_m, c.z_m});
   }
   t.set("radar.target", "rcs_dbsm", d.uniform(-10.0, 20.0));
@@ -644,8 +644,8 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   const double lidar_wavelength_m =
       draw_room(d, t, out, floor_coefficient, centre_hz,
                 speed_of_light_m_per_s * sample_rate_hz * chirp_s / (2.0 * bandwidth_hz));
-  t.set("lidar", "wavelength_m", lidar_wavelength_m > 0.0 ? lidar_wavelength_m
-                                                          : drawn_lidar_wavelength_m);
+  t.set("lidar", "wavelength_m",
+        lidar_wavelength_m > 0.0 ? lidar_wavelength_m : drawn_lidar_wavelength_m);
 
   out.toml = "# property checker, seed " + std::to_string(seed) + "\n" + t.text() + layer_tables +
              background;

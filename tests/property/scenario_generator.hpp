@@ -44,11 +44,11 @@ struct Point3 {
 
 // The room as the generator laid it out: each plane present or not, at its distance.
 struct RoomGeometry {
-  bool floor = false;          // the plane z = 0
-  double left_wall_m = 0.0;    // the plane y = -left_wall_m; 0: none
-  double right_wall_m = 0.0;   // the plane y = +right_wall_m; 0: none
-  double ceiling_m = 0.0;      // the plane z = ceiling_m; 0: none
-  double back_wall_m = 0.0;    // the plane x = back_wall_m; 0: none
+  bool floor = false;         // the plane z = 0
+  double left_wall_m = 0.0;   // the plane y = -left_wall_m; 0: none
+  double right_wall_m = 0.0;  // the plane y = +right_wall_m; 0: none
+  double ceiling_m = 0.0;     // the plane z = ceiling_m; 0: none
+  double back_wall_m = 0.0;   // the plane x = back_wall_m; 0: none
   struct Object {
     bool cylinder = true;  // a vertical cylinder, else a vertical plate
     double x_m = 0.0, y_m = 0.0, base_height_m = 0.0, height_m = 0.0;

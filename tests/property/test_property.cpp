@@ -206,7 +206,8 @@ std::vector<RoomPath> room_paths(const DrawnScenario& d, const Point3& centre) {
     return Leg{length(0.0), (length(1e-4) - length(-1e-4)) / 2e-4, order};
   };
   std::vector<Leg> legs{leg([](const Point3& p) { return p; }, 0)};
-  for (const Plane& a : planes) legs.push_back(leg([&](const Point3& p) { return mirror(p, a); }, 1));
+  for (const Plane& a : planes)
+    legs.push_back(leg([&](const Point3& p) { return mirror(p, a); }, 1));
   for (const Plane& a : planes) {
     for (const Plane& b : planes) {
       if (&a == &b) continue;
@@ -222,8 +223,8 @@ std::vector<RoomPath> room_paths(const DrawnScenario& d, const Point3& centre) {
       if ((i == 0 && j == 0) || legs[i].order + legs[j].order > 2) continue;
       const double velocity = 0.5 * speed * (legs[i].rate + legs[j].rate);
       const double misread = period * std::round(velocity / period);
-      paths.push_back({0.5 * (legs[i].length_m + legs[j].length_m),
-                       std::abs(misread) * d.coupling_s});
+      paths.push_back(
+          {0.5 * (legs[i].length_m + legs[j].length_m), std::abs(misread) * d.coupling_s});
     }
   }
   return paths;
@@ -406,9 +407,12 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
       for (const auto& s : segments) nearest_m = std::min(nearest_m, distance_to_segment(x, y, s));
       for (const Circle& c : circles)
         nearest_m = std::min(nearest_m, std::abs(std::hypot(x - c.x_m, y - c.y_m) - c.radius_m));
-      if (d.room.left_wall_m > 0.0) nearest_m = std::min(nearest_m, std::abs(y + d.room.left_wall_m));
-      if (d.room.right_wall_m > 0.0) nearest_m = std::min(nearest_m, std::abs(y - d.room.right_wall_m));
-      if (d.room.back_wall_m > 0.0) nearest_m = std::min(nearest_m, std::abs(x - d.room.back_wall_m));
+      if (d.room.left_wall_m > 0.0)
+        nearest_m = std::min(nearest_m, std::abs(y + d.room.left_wall_m));
+      if (d.room.right_wall_m > 0.0)
+        nearest_m = std::min(nearest_m, std::abs(y - d.room.right_wall_m));
+      if (d.room.back_wall_m > 0.0)
+        nearest_m = std::min(nearest_m, std::abs(x - d.room.back_wall_m));
       return nearest_m;
     };
     for (const auto& row : read_csv(*csv)) {
