@@ -166,6 +166,211 @@ double mainlobe_half_width_bins(std::string_view window) {
   return 4.0;
 }
 
+bool runs(const DrawnScenario& out, std::string_view sensor) {
+  return std::find(out.sensors.begin(), out.sensors.end(), sensor) != out.sensors.end();
+}
+
+// The materials with radio data at the radar's carrier (the ranges of ITU-R P.2040-3's fits, of
+// water's and plastic's models: propagation/materials.cpp) and, with `optical`, a USGS sample for
+// the lidar too (docs/lidar.md).
+std::vector<std::string> materials(double centre_hz, bool optical) {
+  struct Material {
+    const char* name;
+    double min_ghz, max_ghz;
+    bool optical;
+  };
+  static constexpr Material all[] = {
+      {"concrete", 1.0, 100.0, true},      {"brick", 1.0, 40.0, true},
+      {"plasterboard", 1.0, 100.0, false}, {"wood", 0.001, 100.0, true},
+      {"glass", 0.1, 100.0, false},        {"ceiling_board", 1.0, 100.0, false},
+      {"chipboard", 1.0, 100.0, true},     {"plywood", 1.0, 40.0, true},
+      {"marble", 1.0, 60.0, false},        {"floorboard", 50.0, 100.0, false},
+      {"metal", 1.0, 100.0, true},         {"water", 0.001, 1000.0, true},
+      {"plastic", 10.0, 300.0, true}};
+  std::vector<std::string> names;
+  const double ghz = centre_hz / 1e9;
+  for (const Material& m : all) {
+    if (ghz >= m.min_ghz && ghz <= m.max_ghz && (m.optical || !optical)) names.emplace_back(m.name);
+  }
+  return names;
+}
+
+// The longest one-way path from the radar at height `radar_height_m` to any image of order <= 2
+// of `p` in the room's planes. The room is a box, so an image mirrors each coordinate
+// independently: x in the back wall (x' = 2 X - x), y in the side walls (-2 L - y, 2 R - y and,
+// off both, y +- 2 (L + R)), z in the floor and ceiling (-z, 2 H - z, z +- 2 H), orders adding up.
+double longest_image_path_m(const RoomGeometry& room, const Point3& p, double radar_height_m) {
+  struct Image {
+    double value;
+    int order;
+  };
+  std::vector<Image> xs{{p.x_m, 0}}, ys{{p.y_m, 0}}, zs{{p.z_m - radar_height_m, 0}};
+  const double l = room.left_wall_m, r = room.right_wall_m, h = room.ceiling_m;
+  if (room.back_wall_m > 0.0) xs.push_back({2.0 * room.back_wall_m - p.x_m, 1});
+  if (l > 0.0) ys.push_back({-2.0 * l - p.y_m, 1});
+  if (r > 0.0) ys.push_back({2.0 * r - p.y_m, 1});
+  if (l > 0.0 && r > 0.0) {
+    ys.push_back({p.y_m + 2.0 * (l + r), 2});
+    ys.push_back({p.y_m - 2.0 * (l + r), 2});
+  }
+  if (room.floor) zs.push_back({-p.z_m - radar_height_m, 1});
+  if (h > 0.0) zs.push_back({2.0 * h - p.z_m - radar_height_m, 1});
+  if (room.floor && h > 0.0) {
+    zs.push_back({p.z_m + 2.0 * h - radar_height_m, 2});
+    zs.push_back({p.z_m - 2.0 * h - radar_height_m, 2});
+  }
+  double longest_m = 0.0;
+  for (const Image& x : xs) {
+    for (const Image& y : ys) {
+      for (const Image& z : zs) {
+        if (x.order + y.order + z.order > 2) continue;
+        longest_m = std::max(longest_m,
+                             std::sqrt(x.value * x.value + y.value * y.value + z.value * z.value));
+      }
+    }
+  }
+  return longest_m;
+}
+
+// The room: the floor as drawn before (a real coefficient, or now and then a material), each other
+// surface with probability 0.35, then 0-4 objects; written to `t` and recorded in out.room. Returns
+// the lidar wavelength the room needs (905 or 1550 nm: the lidar runs and sees walls or objects),
+// 0 when it needs none.
+double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient, double centre_hz,
+                 double radar_max_range_m) {
+  RoomGeometry& room = out.room;
+  const bool lidar = runs(out, "lidar");
+  out.lidar_height_m = d.uniform(0.2, 1.5);
+  t.set("lidar", "height_m", out.lidar_height_m);
+  const bool point = out.target_centres.size() == 1;
+  double lateral_m = 0.0, top_m = 0.0;
+  for (const Point3& c : out.target_centres) {
+    lateral_m = std::max(lateral_m, std::abs(c.y_m));
+    top_m = std::max(top_m, c.z_m);
+  }
+  const double r = out.target_range_m;
+  const double tol_m = (out.window_mainlobe_half_width_bins + 1.0) * out.range_bin_m;
+  // No echo of the room may fold: the radar refuses a back wall or an object past its unambiguous
+  // range less 1 m, and the check's reference needs the ghosts' main lobes inside it too.
+  const double limit_m = radar_max_range_m - 1.0 - tol_m;
+
+  // A wall's reflection: what the lidar sees must be a material with optical data.
+  const auto reflection = [&](const std::string& section, bool seen_by_lidar) {
+    if (!seen_by_lidar && d.chance(0.5)) {
+      t.set(section, "reflection_coefficient", d.uniform(-1.0, 1.0));
+    } else {
+      t.set(section, "material", quoted(d.pick(materials(centre_hz, seen_by_lidar))));
+    }
+  };
+  const bool floor_material = room.floor && d.chance(0.3);
+  if (d.chance(0.35)) room.left_wall_m = d.uniform(point ? 0.3 : 1.0, 6.0);
+  if (d.chance(0.35)) room.right_wall_m = d.uniform(point ? 0.3 : 1.0, 6.0);
+  if (d.chance(0.35)) {
+    room.ceiling_m =
+        d.uniform(std::max({out.radar_height_m, out.lidar_height_m, top_m}) + 0.3, 6.0);
+  }
+  if (d.chance(0.35)) {
+    room.back_wall_m = d.uniform(r + out.target_depth_m + 0.3, r + out.target_depth_m + 6.0);
+  }
+  // Surfaces whose ghosts would fold are left out, the farthest reaching first.
+  const auto fits = [&] {
+    if (room.back_wall_m > limit_m) return false;
+    for (const Point3& c : out.target_centres) {
+      if (longest_image_path_m(room, c, out.radar_height_m) > limit_m) return false;
+    }
+    return true;
+  };
+  for (double* surface :
+       {&room.back_wall_m, &room.ceiling_m, &room.right_wall_m, &room.left_wall_m}) {
+    if (!fits()) *surface = 0.0;
+  }
+  if (!fits()) room.floor = false;
+
+  if (room.floor) {
+    if (floor_material) {
+      t.set("chamber.room.floor", "material", quoted(d.pick(materials(centre_hz, false))));
+    } else {
+      t.set("chamber.room.floor", "reflection_coefficient", floor_coefficient);
+    }
+  } else {
+    t.set_boolean("chamber.room", "floor", false);
+  }
+  const struct {
+    const char* name;
+    const char* distance_key;
+    double distance_m;
+    bool seen_by_lidar;
+  } surfaces[] = {{"left_wall", "distance_m", room.left_wall_m, lidar},
+                  {"right_wall", "distance_m", room.right_wall_m, lidar},
+                  {"ceiling", "height_m", room.ceiling_m, false},
+                  {"back_wall", "distance_m", room.back_wall_m, lidar}};
+  for (const auto& s : surfaces) {
+    const std::string section = std::string("chamber.room.") + s.name;
+    if (s.distance_m > 0.0) {
+      t.set(section, s.distance_key, s.distance_m);
+      reflection(section, s.seen_by_lidar);
+    } else {
+      t.set_boolean("chamber.room", s.name, false);
+    }
+  }
+
+  // Objects: most clear of the target and the boresight where the room leaves a band beside them,
+  // the others anywhere inside the room in front of the sensors.
+  const double clear_m =
+      std::max(lateral_m + 0.3,
+               lidar ? std::abs(out.lidar_target_offset_m) + 0.5 * out.lidar_target_width_m : 0.0);
+  for (std::int64_t i = d.integer(0, 4); i > 0; --i) {
+    RoomGeometry::Object o;
+    o.cylinder = d.chance(0.5);
+    o.height_m = d.uniform(0.2, 1.5);
+    o.base_height_m = d.chance(0.7) ? 0.0 : d.uniform(0.0, 0.5);
+    if (o.cylinder) {
+      o.radius_m = d.uniform(0.05, 0.4);
+    } else {
+      o.width_m = d.uniform(0.2, 1.5);
+      o.yaw_deg = d.uniform(-90.0, 90.0);
+    }
+    const double extent_m = o.cylinder ? o.radius_m : 0.5 * o.width_m;
+    const double left_m = (room.left_wall_m > 0.0 ? room.left_wall_m : 6.0) - extent_m - 0.05;
+    const double right_m = (room.right_wall_m > 0.0 ? room.right_wall_m : 6.0) - extent_m - 0.05;
+    const double near_x_m = extent_m + 0.3;
+    const double far_x_m =
+        std::min(room.back_wall_m > 0.0 ? room.back_wall_m - extent_m - 0.05 : r + 4.0, r + 4.0);
+    const bool clear = d.chance(0.7);
+    const double side = d.chance(0.5) ? 1.0 : -1.0;
+    const double inner_m = clear ? clear_m + extent_m : -(side > 0.0 ? left_m : right_m);
+    const double outer_m = side > 0.0 ? right_m : left_m;
+    o.x_m = d.uniform(near_x_m, std::max(near_x_m, far_x_m));
+    o.y_m = side * d.uniform(inner_m, std::max(inner_m, outer_m));
+    if (room.ceiling_m > 0.0) {
+      o.height_m = std::min(o.height_m, room.ceiling_m - 0.05 - o.base_height_m);
+    }
+    // An object the room cannot hold as drawn, or whose echo would fold, is not placed.
+    const double middle_m = o.base_height_m + 0.5 * o.height_m;
+    const double far_m =
+        std::hypot(std::hypot(o.x_m, o.y_m) + extent_m, middle_m - out.radar_height_m);
+    const bool inside = far_x_m > near_x_m && o.y_m >= -left_m && o.y_m <= right_m &&
+                        o.height_m >= 0.05 &&
+                        (room.ceiling_m == 0.0 || o.base_height_m + o.height_m < room.ceiling_m);
+    const bool away = std::hypot(o.x_m, o.y_m) - extent_m > tol_m + 0.3 && far_m < limit_m;
+    if (!inside || !away) continue;
+    std::string body = "shape = " + quoted(o.cylinder ? "cylinder" : "plate") +
+                       "\nx_m = " + number(o.x_m) + "\ny_m = " + number(o.y_m) +
+                       "\nbase_height_m = " + number(o.base_height_m) +
+                       "\nheight_m = " + number(o.height_m) + "\n";
+    body += o.cylinder
+                ? "radius_m = " + number(o.radius_m) + "\n"
+                : "width_m = " + number(o.width_m) + "\nyaw_deg = " + number(o.yaw_deg) + "\n";
+    body += "material = " + quoted(d.pick(materials(centre_hz, lidar))) + "\n";
+    t.append_table("chamber.objects", body);
+    room.objects.push_back(o);
+  }
+  if (room.objects.empty()) t.set("chamber", "objects", "[]");
+  const bool lidar_sees_room = lidar && (room.left_wall_m > 0.0 || room.right_wall_m > 0.0 ||
+                                         room.back_wall_m > 0.0 || !room.objects.empty());
+  return lidar_sees_room ? d.pick(std::vector<double>{905e-9, 1550e-9}) : 0.0;
+}
+
 }  // namespace
 
 DrawnScenario draw_scenario(std::uint64_t seed) {
@@ -285,23 +490,30 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
     t.set("radar.target", "height_m", centre_height_m);
   }
   out.target_depth_m = point ? 0.0 : 0.30;  // the EVT's rear light centres, 30 cm behind
-  out.target_height_span_m = sensor_height_m + centre_height_m;
+  out.radar_height_m = sensor_height_m;
+  if (point) {
+    out.target_centres = {{out.target_range_m, 0.0, centre_height_m}};
+  } else {
+    // docs/radar.md: (+0, 0, 0.55), (+0.05, +-0.75, 0.45), (+0.30, +-0.65, 0.85) m.
+    for (const Point3& c :
+         {Point3{0.0, 0.0, 0.55}, Point3{0.05, -0.75, 0.45}, Point3{0.05, 0.75, 0.45},
+          Point3{0.30, -0.65, 0.85}, Point3{0.30, 0.65, 0.85}})
+      out.target_centres.push_back({out.target_range_m + c.x_m, c.y_m, c.z_m});
+  }
   t.set("radar.target", "rcs_dbsm", d.uniform(-10.0, 20.0));
   t.set("radar", "height_m", sensor_height_m);
-  // The paper scenario's wall and barrels are left out: the checks below know the floor alone.
-  t.set_boolean("chamber.room", "left_wall", false);
-  t.set("chamber", "objects", "[]");
-  const bool multipath = d.chance(0.5);
-  if (multipath) {
-    t.set("chamber.room.floor", "reflection_coefficient", d.uniform(-1.0, 1.0));
-  } else {
-    t.set_boolean("chamber.room", "floor", false);
-  }
+  // The floor's draw; it is written with the rest of the room, drawn last.
+  out.room.floor = d.chance(0.5);
+  const double floor_coefficient = out.room.floor ? d.uniform(-1.0, 1.0) : 0.0;
   t.set("target", "micro_motion_std_m", d.uniform(0.0, 1e-3));
   const double wavelength_m = speed_of_light_m_per_s / centre_hz;
   const double unambiguous_m_per_s = wavelength_m / (4.0 * interval_s);
-  t.set("target", "radial_velocity_m_per_s",
-        d.chance(0.3) ? 0.0 : d.uniform(-0.9 * unambiguous_m_per_s, 0.9 * unambiguous_m_per_s));
+  out.target_velocity_m_per_s =
+      d.chance(0.3) ? 0.0 : d.uniform(-0.9 * unambiguous_m_per_s, 0.9 * unambiguous_m_per_s);
+  t.set("target", "radial_velocity_m_per_s", out.target_velocity_m_per_s);
+  out.range_resolution_m = speed_of_light_m_per_s / (2.0 * bandwidth_hz);
+  out.max_unambiguous_m_per_s = unambiguous_m_per_s;
+  out.coupling_s = centre_hz * chirp_s / bandwidth_hz;
   if (d.chance(0.3)) t.set("target", "water_film_m", d.uniform(0.0, 1e-4));
 
   // Experiment.
@@ -338,7 +550,8 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
   t.set_integer("experiment", "seed", d.integer(0, std::int64_t{1} << 40));
 
   // Lidar: a few beams around boresight, a few scans.
-  t.set("lidar", "wavelength_m", d.uniform(0.8e-6, 1.6e-6));
+  // Written with the room, which may ask for one of the lidar's tabulated wavelengths.
+  const double drawn_lidar_wavelength_m = d.uniform(0.8e-6, 1.6e-6);
   t.set("lidar", "field_of_view_deg", d.uniform(0.0, 20.0));
   t.set("lidar", "angular_step_deg", d.uniform(0.25, 2.0));
   t.set("lidar", "scan_rate_hz", d.uniform(10.0, 100.0));
@@ -427,6 +640,12 @@ DrawnScenario draw_scenario(std::uint64_t seed) {
     t.set_integer("radar.processing.cfar", "doppler_training_cells",
                   d.integer(0, std::min<std::int64_t>(2, rows_left)));
   }
+
+  const double lidar_wavelength_m =
+      draw_room(d, t, out, floor_coefficient, centre_hz,
+                speed_of_light_m_per_s * sample_rate_hz * chirp_s / (2.0 * bandwidth_hz));
+  t.set("lidar", "wavelength_m",
+        lidar_wavelength_m > 0.0 ? lidar_wavelength_m : drawn_lidar_wavelength_m);
 
   out.toml = "# property checker, seed " + std::to_string(seed) + "\n" + t.text() + layer_tables +
              background;

@@ -4,18 +4,25 @@
 // - the result files are the same bytes at 1 and 2 threads;
 // - every radar detection and lidar echo whose origin is fog lies inside a layer that is active at
 //   its step (a radar fog detection inside the layer it names), every target-origin one at the
-//   target, every background echo on a background segment (the chamber as the generator laid it
-//   out, not as the run reports it);
+//   target, every radar ghost (multipath) at the range of one of the target's paths via the room's
+//   planes (mirror images of at most second order, computed here), every radar room echo at the
+//   back wall or an object, every lidar background echo on a background segment, a wall or an
+//   object in its scan plane (the chamber and room as the generator laid them out, not as the run
+//   reports them);
 // - each sensor's fog loss does not decrease as layers come on (any order, any fogs: each layer's
 //   extinction is >= 0), and every sensor reports the steps 0 .. max_active_layers;
 // - the written scenario.toml reads back to the same text, and run from that text gives the same
 //   result files.
+// At its end the binary prints how many seeds drew a room and how many detections of each origin
+// the origin check examined.
 // Seeds: FOGRADAR_PROPERTY_SEEDS="first-last" (inclusive; default 0-24), so that ctest runs ranges
 // of seeds in parallel and one seed reruns alone. A failure prints the seed and the scenario file,
 // which `fogradar run --scenario` reads as it is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -130,6 +137,111 @@ std::vector<LayerGeometry> active_layers(const DrawnScenario& d, std::size_t k) 
   return active;
 }
 
+// What the origin check examined over the seeds this process ran, printed at its end (the
+// property checker's coverage: docs/validation.md).
+struct Examined {
+  std::size_t seeds = 0, rooms = 0, refused = 0;
+  std::map<std::string, std::size_t> radar, lidar;
+};
+Examined& examined() {
+  static Examined e;
+  return e;
+}
+class PrintExamined : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    const Examined& e = examined();
+    std::string line = "property checker: " + std::to_string(e.seeds) + " seeds checked, " +
+                       std::to_string(e.rooms) + " with a room (walls, ceiling or objects), " +
+                       std::to_string(e.refused) + " refused; radar detections";
+    for (const auto& [origin, n] : e.radar) line += " " + origin + " " + std::to_string(n);
+    line += "; lidar echoes";
+    for (const auto& [origin, n] : e.lidar) line += " " + origin + " " + std::to_string(n);
+    std::printf("%s\n", line.c_str());
+  }
+};
+const auto* const print_examined = ::testing::AddGlobalTestEnvironment(new PrintExamined);
+
+// Mirror-image geometry for the radar's paths via the room, written here apart from the radar's
+// room_paths.cpp: a plane is its unit normal n and offset c (the points with n.p = c), and the
+// image of p in it is p - 2 (n.p - c) n (Born & Wolf, Principles of Optics, the plane mirror).
+struct Plane {
+  double nx, ny, nz, c;
+};
+Point3 mirror(const Point3& p, const Plane& s) {
+  const double twice = 2.0 * (s.nx * p.x_m + s.ny * p.y_m + s.nz * p.z_m - s.c);
+  return {p.x_m - twice * s.nx, p.y_m - twice * s.ny, p.z_m - twice * s.nz};
+}
+std::vector<Plane> room_planes(const RoomGeometry& room) {
+  std::vector<Plane> planes;
+  if (room.floor) planes.push_back({0.0, 0.0, 1.0, 0.0});
+  if (room.left_wall_m > 0.0) planes.push_back({0.0, 1.0, 0.0, -room.left_wall_m});
+  if (room.right_wall_m > 0.0) planes.push_back({0.0, 1.0, 0.0, room.right_wall_m});
+  if (room.ceiling_m > 0.0) planes.push_back({0.0, 0.0, 1.0, room.ceiling_m});
+  if (room.back_wall_m > 0.0) planes.push_back({1.0, 0.0, 0.0, room.back_wall_m});
+  return planes;
+}
+
+// A two-way path of a target centre via the room: out along one one-way path and back along
+// another, each from the radar to an image of the centre in at most two planes, two reflections in
+// all, the direct path both ways excluded: its range (L_out + L_back) / 2, and the range the
+// range-Doppler coupling correction may move it by when its velocity folds.
+struct RoomPath {
+  double range_m = 0.0;
+  double fold_m = 0.0;
+};
+std::vector<RoomPath> room_paths(const DrawnScenario& d, const Point3& centre) {
+  const std::vector<Plane> planes = room_planes(d.room);
+  struct Leg {
+    double length_m, rate;  // rate: d length / d x of the centre
+    int order;
+  };
+  const auto leg = [&](const auto& image_of, int order) {
+    // The length's rate by a central difference over +-0.1 mm of the centre along x.
+    const auto length = [&](double dx) {
+      const Point3 i = image_of(Point3{centre.x_m + dx, centre.y_m, centre.z_m});
+      return std::sqrt(i.x_m * i.x_m + i.y_m * i.y_m +
+                       (i.z_m - d.radar_height_m) * (i.z_m - d.radar_height_m));
+    };
+    return Leg{length(0.0), (length(1e-4) - length(-1e-4)) / 2e-4, order};
+  };
+  std::vector<Leg> legs{leg([](const Point3& p) { return p; }, 0)};
+  for (const Plane& a : planes)
+    legs.push_back(leg([&](const Point3& p) { return mirror(p, a); }, 1));
+  for (const Plane& a : planes) {
+    for (const Plane& b : planes) {
+      if (&a == &b) continue;
+      legs.push_back(leg([&](const Point3& p) { return mirror(mirror(p, a), b); }, 2));
+    }
+  }
+  // The centre moves along x at the speed that gives its direct path the radial velocity v.
+  const double speed = d.target_velocity_m_per_s / legs[0].rate;
+  const double period = 2.0 * d.max_unambiguous_m_per_s;
+  std::vector<RoomPath> paths;
+  for (std::size_t i = 0; i < legs.size(); ++i) {
+    for (std::size_t j = i; j < legs.size(); ++j) {
+      if ((i == 0 && j == 0) || legs[i].order + legs[j].order > 2) continue;
+      const double velocity = 0.5 * speed * (legs[i].rate + legs[j].rate);
+      const double misread = period * std::round(velocity / period);
+      paths.push_back(
+          {0.5 * (legs[i].length_m + legs[j].length_m), std::abs(misread) * d.coupling_s});
+    }
+  }
+  return paths;
+}
+
+double direct_range_m(const DrawnScenario& d, const Point3& c) {
+  return std::sqrt(c.x_m * c.x_m + c.y_m * c.y_m +
+                   (c.z_m - d.radar_height_m) * (c.z_m - d.radar_height_m));
+}
+
+// A plate's bottom edge in the scan plane: its width about its centre along (sin yaw, cos yaw).
+DrawnScenario::Segment plate_segment(const RoomGeometry::Object& o) {
+  const double yaw = o.yaw_deg * pi / 180.0;
+  const double ux = 0.5 * o.width_m * std::sin(yaw), uy = 0.5 * o.width_m * std::cos(yaw);
+  return {o.x_m - ux, o.y_m - uy, o.x_m + ux, o.y_m + uy};
+}
+
 double distance_to_segment(double x, double y, const DrawnScenario::Segment& s) {
   const double dx = s.x1_m - s.x0_m;
   const double dy = s.y1_m - s.y0_m;
@@ -161,25 +273,50 @@ TEST_P(ScenarioProperty, SameBytesAtOneAndTwoThreads) {
   }
 }
 
-// A radar detection's range is its peak cell's, interpolated: a fog tone reaches the cells of its
-// window's main lobe, so a fog-dominated peak lies within the main lobe's half width (plus one cell
-// for the interpolation) of a scatterer; fog scatterers lie only in active layers. The target's
-// centres lie from its rear face to its depth behind it, and a floor-reflected path is at most
-// sqrt(R^2 + (h_s + h_t)^2) - R longer. A lidar echo's range is its leading edge, which precedes
+// A radar detection's range is its peak cell's, interpolated: a tone reaches the cells of its
+// window's main lobe, so a peak dominated by fog, ghosts or the room lies within the main lobe's
+// half width (plus one cell for the interpolation) of one of its tones; fog scatterers lie only in
+// active layers, ghosts at the half round trips of the room's paths, room echoes at the back wall
+// and the objects. A lidar echo's range is its leading edge, which precedes
 // the surface or layer that makes it by at most the pulse's rise, less than its full length c tau
 // (two FWHM range lengths), plus a sample.
 TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
   const Outcome& o = ran();
   SCOPED_TRACE(describe(o.drawn));
+  ++examined().seeds;
+  examined().rooms += o.drawn.room.drawn() ? 1 : 0;
+  examined().refused += o.refused.empty() ? 0 : 1;
   if (!o.refused.empty()) return;
   const DrawnScenario& d = o.drawn;
   // Every radar scenario, whatever its ADC, phase noise and window: sidelobe, clipping and noise
   // detections are not checked against the geometry (they lie anywhere by nature).
   if (const std::string* csv = o.file("radar_detections.csv")) {
     const double tol_m = (d.window_mainlobe_half_width_bins + 1.0) * d.range_bin_m;
-    const double r = d.target_range_m;
-    const double multipath_m = std::hypot(r, d.target_height_span_m) - r;
+    double nearest_direct_m = INFINITY, farthest_direct_m = 0.0;
+    std::vector<RoomPath> paths;
+    for (const Point3& c : d.target_centres) {
+      nearest_direct_m = std::min(nearest_direct_m, direct_range_m(d, c));
+      farthest_direct_m = std::max(farthest_direct_m, direct_range_m(d, c));
+      for (const RoomPath& p : room_paths(d, c)) paths.push_back(p);
+    }
+    double longest_path_m = 0.0, largest_fold_m = 0.0;
+    for (const RoomPath& p : paths) {
+      longest_path_m = std::max(longest_path_m, p.range_m);
+      largest_fold_m = std::max(largest_fold_m, p.fold_m);
+    }
+    // The room's own echoes: a cylinder's from its lit line at mid-height (its surface's normal
+    // points at the radar there: the specular point of a convex body), a plate's from its centre
+    // (the middle of its physical-optics integral, symmetric about it); the back wall's from its
+    // foot of the perpendicular, at its distance.
+    std::vector<double> room_echoes_m;
+    if (d.room.back_wall_m > 0.0) room_echoes_m.push_back(d.room.back_wall_m);
+    for (const RoomGeometry::Object& ob : d.room.objects) {
+      const double dz = ob.base_height_m + 0.5 * ob.height_m - d.radar_height_m;
+      const double across_m = std::hypot(ob.x_m, ob.y_m) - (ob.cylinder ? ob.radius_m : 0.0);
+      room_echoes_m.push_back(std::hypot(across_m, dz));
+    }
     for (const auto& row : read_csv(*csv)) {
+      ++examined().radar[row.at("origin")];
       const auto k = static_cast<std::size_t>(std::stoul(row.at("active_layers")));
       const double range_m = std::stod(row.at("range_m"));
       const std::string& origin = row.at("origin");
@@ -211,9 +348,30 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
         EXPECT_EQ(row.at("layer"), "-1") << where << ": a layer on a detection not of fog";
       }
       if (origin == "target") {
-        EXPECT_GE(range_m, r - tol_m) << where << ": before the target at " << r << " m";
-        EXPECT_LE(range_m, r + d.target_depth_m + multipath_m + tol_m)
-            << where << ": behind the target at " << r << " m";
+        // Its direct paths, and the paths via the room it cannot resolve from them (scene.hpp: a
+        // half length within the range resolution of the direct path's).
+        EXPECT_GE(range_m, nearest_direct_m - tol_m)
+            << where << ": before the target's nearest centre at " << nearest_direct_m << " m";
+        EXPECT_LE(range_m, farthest_direct_m + d.range_resolution_m + tol_m)
+            << where << ": behind the target's farthest centre at " << farthest_direct_m
+            << " m and its unresolved room paths";
+      } else if (origin == "multipath") {
+        ASSERT_FALSE(paths.empty()) << where << ": a ghost in a room without planes";
+        EXPECT_GE(range_m, nearest_direct_m - tol_m)
+            << where << ": before the target's nearest direct path, " << nearest_direct_m << " m";
+        EXPECT_LE(range_m, longest_path_m + largest_fold_m + tol_m)
+            << where << ": behind the longest second-order path, " << longest_path_m << " m";
+        double miss_m = INFINITY;
+        for (const RoomPath& p : paths)
+          miss_m = std::min(miss_m, std::abs(range_m - p.range_m) - p.fold_m);
+        EXPECT_LE(miss_m, tol_m) << where << ": at no path's range (the nearest " << miss_m
+                                 << " m beyond its fold, +-" << tol_m << " m)";
+      } else if (origin == "room") {
+        ASSERT_FALSE(room_echoes_m.empty()) << where << ": a room echo without back wall or object";
+        double miss_m = INFINITY;
+        for (const double e : room_echoes_m) miss_m = std::min(miss_m, std::abs(range_m - e));
+        EXPECT_LE(miss_m, tol_m) << where << ": at no object's or back wall's range (nearest "
+                                 << miss_m << " m off, +-" << tol_m << " m)";
       }
     }
   }
@@ -228,7 +386,37 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
   if (const std::string* csv = o.file("lidar_echoes.csv")) {
     const double tol_m =
         speed_of_light_m_per_s * (d.lidar_pulse_width_s + 0.5 * d.lidar_sample_interval_s);
+    // The static scene in the scan plane: the background segments, the walls (lines), the
+    // objects whose height range holds the scan height (a cylinder's circle, a plate's segment).
+    std::vector<DrawnScenario::Segment> segments = d.lidar_background;
+    struct Circle {
+      double x_m, y_m, radius_m;
+    };
+    std::vector<Circle> circles;
+    for (const RoomGeometry::Object& ob : d.room.objects) {
+      if (d.lidar_height_m < ob.base_height_m || d.lidar_height_m > ob.base_height_m + ob.height_m)
+        continue;
+      if (ob.cylinder) {
+        circles.push_back({ob.x_m, ob.y_m, ob.radius_m});
+      } else {
+        segments.push_back(plate_segment(ob));
+      }
+    }
+    const auto off_static_scene_m = [&](double x, double y) {
+      double nearest_m = INFINITY;
+      for (const auto& s : segments) nearest_m = std::min(nearest_m, distance_to_segment(x, y, s));
+      for (const Circle& c : circles)
+        nearest_m = std::min(nearest_m, std::abs(std::hypot(x - c.x_m, y - c.y_m) - c.radius_m));
+      if (d.room.left_wall_m > 0.0)
+        nearest_m = std::min(nearest_m, std::abs(y + d.room.left_wall_m));
+      if (d.room.right_wall_m > 0.0)
+        nearest_m = std::min(nearest_m, std::abs(y - d.room.right_wall_m));
+      if (d.room.back_wall_m > 0.0)
+        nearest_m = std::min(nearest_m, std::abs(x - d.room.back_wall_m));
+      return nearest_m;
+    };
     for (const auto& row : read_csv(*csv)) {
+      ++examined().lidar[row.at("origin")];
       const auto k = static_cast<std::size_t>(std::stoul(row.at("active_layers")));
       const double range_m = std::stod(row.at("range_m"));
       const double angle = std::stod(row.at("angle_deg")) * pi / 180.0;
@@ -268,10 +456,8 @@ TEST_P(ScenarioProperty, DetectionOriginsMatchTheChamberAtTheirStep) {
         EXPECT_LE(std::abs(y - d.lidar_target_offset_m), 0.5 * d.lidar_target_width_m + tol_m)
             << where << ": beside the target";
       } else if (origin == "background") {
-        double nearest_m = INFINITY;
-        for (const auto& s : d.lidar_background)
-          nearest_m = std::min(nearest_m, distance_to_segment(x, y, s));
-        EXPECT_LE(nearest_m, tol_m) << where << ": on no background segment";
+        EXPECT_LE(off_static_scene_m(x, y), tol_m)
+            << where << ": on no background segment, wall or object in the scan plane";
       }
     }
   }

@@ -1,10 +1,10 @@
 """The property checker's stability property (docs/validation.md, "Property checker"): on the
 random valid scenarios of tests/property/scenario_generator.cpp (printed as TOML by
 `property_scenario SEED`, FOGRADAR_PROPERTY_SCENARIO), stability() with a detector that returns
-the chain's own detections counts, per step, as many target, fog, background, clipping and noise
-detections as the chain's own origins give. It compares stability() with the chain, not with
-geometry, so every seed is used, the parts of the space where the chain's attribution disagrees
-with the chamber's geometry included."""
+the chain's own detections counts, per step, as many target, multipath, room, fog, background,
+clipping, sidelobe and noise detections as the chain's own origins give. It compares stability()
+with the chain, not with geometry, so every seed is used, the parts of the space where the chain's
+attribution disagrees with the chamber's geometry included."""
 import collections
 import os
 import subprocess
@@ -17,7 +17,7 @@ SEEDS = range(0, 40)
 ITEMS = 2  # per step: keeps the file to a few seconds on two cores
 COLUMNS = {"radar": ("detections", ["range_m", "velocity_m_per_s", "range_cell", "doppler_cell"]),
            "lidar": ("echoes", ["range_m", "beam", "attributed_range_m"])}
-COUNTED = ("target", "fog", "background", "clipping", "sidelobe", "noise")
+COUNTED = ("target", "multipath", "room", "fog", "background", "clipping", "sidelobe", "noise")
 # The chain attributes a radar detection at the cell its object peaks in, which the estimate's
 # interpolation may leave by up to 0.75 bin (seed 14: Doppler row 1 with velocities at 1.51 and
 # 1.75 bins, whose nearest row 2 is clipping); the detector here returns the peak cell
