@@ -232,8 +232,8 @@ double longest_image_path_m(const RoomGeometry& room, const Point3& p, double ra
   return longest_m;
 }
 
-// The room: the floor as drawn before (a real coefficient, or now and then a material), each other
-// surface with probability 0.35, then 0-4 objects; written to `t` and recorded in out.room. Returns
+// The room: the floor as drawn before (a real coefficient, or now and then a material), then in
+// three cases of four each other surface with probability 0.35 and 0-4 objects; written to `t` and recorded in out.room. Returns
 // the lidar wavelength the room needs (905 or 1550 nm: the lidar runs and sees walls or objects),
 // 0 when it needs none.
 double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient, double centre_hz,
@@ -263,13 +263,16 @@ double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient,
     }
   };
   const bool floor_material = room.floor && d.chance(0.3);
-  if (d.chance(0.35)) room.left_wall_m = d.uniform(point ? 0.3 : 1.0, 6.0);
-  if (d.chance(0.35)) room.right_wall_m = d.uniform(point ? 0.3 : 1.0, 6.0);
-  if (d.chance(0.35)) {
+  // A quarter of the seeds keep the bare hall (the floor as drawn, nothing else), the space the
+  // checker walked before it drew rooms.
+  const bool furnished = d.chance(0.75);
+  if (furnished && d.chance(0.35)) room.left_wall_m = d.uniform(point ? 0.3 : 1.0, 6.0);
+  if (furnished && d.chance(0.35)) room.right_wall_m = d.uniform(point ? 0.3 : 1.0, 6.0);
+  if (furnished && d.chance(0.35)) {
     room.ceiling_m =
         d.uniform(std::max({out.radar_height_m, out.lidar_height_m, top_m}) + 0.3, 6.0);
   }
-  if (d.chance(0.35)) {
+  if (furnished && d.chance(0.35)) {
     room.back_wall_m = d.uniform(r + out.target_depth_m + 0.3, r + out.target_depth_m + 6.0);
   }
   // Surfaces whose ghosts would fold are left out, the farthest reaching first.
@@ -319,7 +322,7 @@ double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient,
   const double clear_m =
       std::max(lateral_m + 0.3,
                lidar ? std::abs(out.lidar_target_offset_m) + 0.5 * out.lidar_target_width_m : 0.0);
-  for (std::int64_t i = d.integer(0, 4); i > 0; --i) {
+  for (std::int64_t i = furnished ? d.integer(0, 4) : 0; i > 0; --i) {
     RoomGeometry::Object o;
     o.cylinder = d.chance(0.5);
     o.height_m = d.uniform(0.2, 1.5);
