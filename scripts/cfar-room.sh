@@ -4,7 +4,8 @@
 # 1.2 m in front of it in the beam, no fog) for each CFAR shape x kind and the target at 0, 1, 2, 3
 # and 5 Doppler bins (one bin lambda / (2 N_c T) = 0.594 m/s), and prints one row per case: the
 # target's detection rate and median RCS (radar_summary.csv, target-origin detections in the gate)
-# and, per frame, the detections of each other origin counted from radar_detections.csv.
+# and, per frame, the detections of each other origin counted from radar_detections.csv. First
+# writes docs/figures/room_clutter_origins.svg (below).
 # Usage: scripts/cfar-room.sh [FOGRADAR_BINARY]   (default build/release/cli/fogradar)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -15,6 +16,14 @@ trap 'rm -rf "$work"' EXIT
 
 # lambda / (2 N_c T_i) of the paper radar (77 GHz, 64 chirps of 51.2 us)
 bin=$(awk 'BEGIN { printf "%.9g", 299792458 / 77e9 / (2 * 64 * 51.2e-6) }')
+
+# docs/figures/room_clutter_origins.svg: the scenario with the target at 2 bins and the paper's four
+# fog layers switched on one by one, the default CFAR (range CA): its origins plot.
+sed 's/^max_active_layers = 0 .*/max_active_layers = 4/' "$root/examples/room_clutter.toml" >"$work/origins.toml"
+printf '\n[target]\nradial_velocity_m_per_s = %s\n' \
+  "$(awk -v b="$bin" 'BEGIN { printf "%.9g", 2 * b }')" >>"$work/origins.toml"
+"$fogradar" run --scenario "$work/origins.toml" --out "$work/origins" >/dev/null
+cp "$work/origins/radar_origins.svg" "$root/docs/figures/room_clutter_origins.svg"
 echo "| shape | kind | Doppler bin (m/s) | target detected | median RCS (dBsm) | room /frame | multipath /frame | sidelobe /frame | noise /frame |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for shape in range range_doppler; do

@@ -12,6 +12,7 @@
 
 #include "fogradar/core/units.hpp"
 #include "fogradar/stats/format.hpp"
+#include "fogradar/stats/line_plot.hpp"
 #include "fogradar/stats/svg_plot.hpp"
 
 namespace fogradar::radar {
@@ -189,8 +190,49 @@ std::string per_frame_at(const std::vector<StepSummary>& steps, Shown shown, Rat
 // statistics describe the surviving detections only, a sample biased towards strong echoes.
 bool survivors_only(const StepSummary& s) { return s.detections > 0 && s.detection_rate < 0.5; }
 
+// The room besides its floor, for a caption: "Room: left wall 3 m (concrete); 4 objects
+// (4 cylinders)."; empty for a floor-only hall.
+std::string room_words(const propagation::RoomSpec& room) {
+  std::vector<std::string> parts;
+  const auto reflection = [](const propagation::SurfaceSpec& surface) {
+    const auto* coefficient = std::get_if<propagation::ReflectionCoefficient>(&surface.reflection);
+    return coefficient != nullptr
+               ? "reflection " + num(coefficient->value)
+               : std::string(to_string(std::get<propagation::Material>(surface.reflection)));
+  };
+  const struct {
+    const char* name;
+    const propagation::SurfaceSpec& surface;
+    const char* how_far;
+  } surfaces[] = {{"left wall", room.left_wall, " m to the left"},
+                  {"right wall", room.right_wall, " m to the right"},
+                  {"ceiling", room.ceiling, " m high"},
+                  {"back wall", room.back_wall, " m ahead"}};
+  for (const auto& s : surfaces) {
+    if (s.surface.present)
+      parts.push_back(std::string(s.name) + " " + num(s.surface.distance_m) + s.how_far + " (" +
+                      reflection(s.surface) + ")");
+  }
+  if (!room.objects.empty()) {
+    const auto cylinders = static_cast<std::size_t>(
+        std::count_if(room.objects.begin(), room.objects.end(),
+                      [](const auto& o) { return o.shape == propagation::ObjectShape::cylinder; }));
+    std::string shapes;
+    if (cylinders > 0) shapes = counted(cylinders, "cylinder");
+    if (cylinders < room.objects.size())
+      shapes += (shapes.empty() ? "" : ", ") + counted(room.objects.size() - cylinders, "plate");
+    parts.push_back(counted(room.objects.size(), "object") + " (" + shapes + ")");
+  }
+  if (parts.empty()) return "";
+  std::string words = "Room: ";
+  for (std::size_t i = 0; i < parts.size(); ++i) words += (i == 0 ? "" : "; ") + parts[i];
+  return words + ".";
+}
+
+// The caption of the radar's plots: `what` (what the plot draws), then the scenario (target, room,
+// chamber, fog, radar, n, seed, limit).
 std::vector<std::string> plot_caption(const SensorParams& params, const sensor::Context& context,
-                                      const RadarSummary& summary) {
+                                      const RadarSummary& summary, std::string what) {
   const TargetSpec& t = params.target;
   const propagation::ChamberSpec& c = context.chamber;
   const RadarParams& r = params.radar;
@@ -229,19 +271,16 @@ std::vector<std::string> plot_caption(const SensorParams& params, const sensor::
       summary.sensor_limit_layers
           ? counted(*summary.sensor_limit_layers, "active layer")
           : "not reached within " + counted(context.steps - 1, "active layer");
-  std::vector<std::string> paragraphs = {
-      "Boxes: RCS of each measurement's associated target detection; "
-      "detection rate = detections / n.",
-      target + ".",
-      layer_fogs(c) + switching_words(context),
-      "Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
-          std::string(to_string(r.sweep_direction)) + "-sweep centred on " +
-          num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) + " window; " +
-          cfar + ".",
-      "n = " + std::to_string(params.measurements_per_step) + " measurements per step, seed " +
-          std::to_string(context.seed) + ".",
-      "Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".",
-  };
+  std::vector<std::string> paragraphs = {std::move(what), target + "."};
+  if (const std::string room = room_words(context.room); !room.empty()) paragraphs.push_back(room);
+  paragraphs.push_back(layer_fogs(c) + switching_words(context));
+  paragraphs.push_back("Radar: " + num(r.sweep_bandwidth_hz * 1e-9) + " GHz " +
+                       std::string(to_string(r.sweep_direction)) + "-sweep centred on " +
+                       num(r.centre_frequency_hz * 1e-9) + " GHz, " + window_name(r.window) +
+                       " window; " + cfar + ".");
+  paragraphs.push_back("n = " + std::to_string(params.measurements_per_step) +
+                       " measurements per step, seed " + std::to_string(context.seed) + ".");
+  paragraphs.push_back("Sensor limit: " + limit + "; criterion: " + sensor_limit_criterion + ".");
   std::string survivors;
   for (const StepSummary& s : summary.steps) {
     if (!survivors_only(s)) continue;
@@ -465,7 +504,9 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
   options.title = "Target RCS against active fog layers: " + target_name(params.target) + ", fog " +
                   (one_fog(context.chamber) ? fog_density(context.chamber.layers[0].fog.density)
                                             : "per layer (caption)");
-  options.caption = plot_caption(params, context, summary);
+  options.caption = plot_caption(params, context, summary,
+                                 "Boxes: RCS of each measurement's associated target detection; "
+                                 "detection rate = detections / n.");
   options.x_label = "active fog layers";
   options.y_label = "RCS of the associated target detection (dBsm)";
   // The plot area keeps its 406 px however many caption lines there are.
@@ -476,6 +517,58 @@ std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& c
     options.mark_label = "sensor limit: " + counted(*summary.sensor_limit_layers, "layer");
   }
   return stats::box_plot_svg(series, options);
+}
+
+std::string origins_svg(const SensorParams& params, const sensor::Context& context,
+                        const RadarSummary& summary) {
+  const struct {
+    const char* label;
+    double StepSummary::*per_frame;
+  } origins[] = {
+      {"target (associated, in the gate)", &StepSummary::detection_rate},
+      {"multipath (ghosts of the target via the room)",
+       &StepSummary::multipath_detections_per_frame},
+      {"room (its objects, the back wall)", &StepSummary::room_detections_per_frame},
+      {"fog", &StepSummary::fog_detections_per_frame},
+      {"noise (false alarms)", &StepSummary::false_alarms_per_frame},
+      {"sidelobe", &StepSummary::sidelobe_detections_per_frame},
+      {"clipping (ADC)", &StepSummary::clipping_detections_per_frame},
+  };
+  std::vector<stats::LineSeries> series;
+  std::string absent;
+  for (const auto& origin : origins) {
+    stats::LineSeries line;
+    line.label = origin.label;
+    bool any = false;
+    for (const StepSummary& s : summary.steps) {
+      line.x.push_back(static_cast<double>(s.active_layers));
+      line.y.push_back(s.*origin.per_frame);
+      any = any || s.*origin.per_frame > 0.0;
+    }
+    // The target is drawn even where it is never detected: its line at 0 is the finding.
+    if (any || series.empty()) {
+      series.push_back(std::move(line));
+    } else {
+      absent += (absent.empty() ? "" : ", ") + std::string(origin.label);
+    }
+  }
+  std::string what =
+      "Lines: detections per measurement of each origin (the target: the share of measurements "
+      "whose associated detection in the gate is the target's; the others: detections anywhere in "
+      "the map, counted by the simulation's ground truth).";
+  if (!absent.empty()) what += " No detection at any step: " + absent + ".";
+  stats::LinePlotOptions options;
+  options.title =
+      "Radar detections by origin against active fog layers: " + target_name(params.target);
+  options.caption = plot_caption(params, context, summary, std::move(what));
+  options.x_label = "active fog layers";
+  options.y_label = "detections per measurement";
+  options.x_integer_ticks = true;
+  options.point_markers = true;
+  options.y_reach = 1.0;
+  options.legend_title = {"origin"};
+  options.height_px = 604.0 + 16.0 * static_cast<double>(options.caption.size());
+  return stats::line_plot_svg(series, options);
 }
 
 std::string velocity_fold_text(const VelocityFold& fold) {
@@ -547,7 +640,7 @@ std::string summary_table(const RadarSummary& summary) {
         << '\n';
   }
   // "room echoes (...): 4.000 per frame at 0 active layers, ...", and the same for the ghosts.
-  const auto origin_line = [&](const char* what, double StepSummary::* rate) {
+  const auto origin_line = [&](const char* what, double StepSummary::*rate) {
     if (std::none_of(summary.steps.begin(), summary.steps.end(),
                      [rate](const StepSummary& s) { return s.*rate > 0.0; }))
       return;

@@ -65,12 +65,13 @@ class Report : public RadarReport {
   nlohmann::json json() const override { return summary_json(summary_); }
 
   std::vector<sensor::ResultFile> files() const override {
-    return {{"radar_samples.csv", samples_csv(*steps_)},
-            {"radar_detections.csv", detections_csv(*steps_)},
-            {"radar_summary.csv", table_.csv()},
-            {"radar_summary.json", json().dump(2) + '\n'},
-            {"radar_rcs_boxplot.svg",
-             rcs_boxplot_svg(sensor_->params(), sensor_->context(), summary_)}};
+    return {
+        {"radar_samples.csv", samples_csv(*steps_)},
+        {"radar_detections.csv", detections_csv(*steps_)},
+        {"radar_summary.csv", table_.csv()},
+        {"radar_summary.json", json().dump(2) + '\n'},
+        {"radar_rcs_boxplot.svg", rcs_boxplot_svg(sensor_->params(), sensor_->context(), summary_)},
+        {"radar_origins.svg", origins_svg(sensor_->params(), sensor_->context(), summary_)}};
   }
 
   // The median target RCS as a linear power ratio to clear weather: 10^((m_k - m_0) / 10); 0 at a

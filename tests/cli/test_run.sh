@@ -13,12 +13,12 @@
 "$fogradar" run --scenario "$src/tests/cli/small.toml" --out "$work/t2" --threads 2 >/dev/null 2>&1 \
   || fail "small run (2 threads) failed"
 # small.toml runs the paper scenario's three sensors: every sensor's files.
-for f in radar_samples.csv radar_detections.csv radar_summary.csv radar_summary.json radar_rcs_boxplot.svg summary.json scenario.toml \
+for f in radar_samples.csv radar_detections.csv radar_summary.csv radar_summary.json radar_rcs_boxplot.svg radar_origins.svg summary.json scenario.toml \
   lidar_echoes.csv lidar_summary.csv lidar_summary.json lidar_intensity_boxplot.svg lidar_scans.svg \
   camera_histograms.csv camera_summary.csv camera_summary.json camera_histograms.svg benchmark.svg; do
   if [ -s "$work/t1/$f" ] && cmp -s "$work/t1/$f" "$work/t2/$f"; then pass; else fail "$f missing or differs between 1 and 2 threads"; fi
 done
-[ "$(ls -A "$work/t1" | wc -l)" -eq 18 ] && pass || fail "result set is not the 17 files and their record: $(ls -A "$work/t1")"
+[ "$(ls -A "$work/t1" | wc -l)" -eq 19 ] && pass || fail "result set is not the 18 files and their record: $(ls -A "$work/t1")"
 # The set's record of its files (.fogradar-files): their names, sorted bytewise, one a line.
 [ "$(cat "$work/t1/.fogradar-files")" = "$(LC_ALL=C ls "$work/t1")" ] && pass \
   || fail "the set's record is not its files: $(cat "$work/t1/.fogradar-files")"
@@ -46,14 +46,14 @@ head -1 "$work/t1/radar_samples.csv" | grep -qx 'active_layers,item,detected,ran
   || fail "radar_samples.csv header"
 head -1 "$work/t1/radar_detections.csv" | grep -qx 'active_layers,item,range_m,velocity_m_per_s,power_dbm,snr_db,rcs_dbsm,origin,in_gate,associated,layer' && pass \
   || fail "radar_detections.csv header"
-head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,radome_two_way_loss_db,target_film_loss_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame' \
+head -1 "$work/t1/radar_summary.csv" | grep -qx 'active_layers,n,detections,detection_rate,mean_dbsm,std_db,min_dbsm,q1_dbsm,median_dbsm,q3_dbsm,max_dbsm,whisker_low_dbsm,whisker_high_dbsm,outliers,median_shift_db,p_value,median_shift_ci95_low_db,median_shift_ci95_high_db,median_snr_db,two_way_attenuation_db,radome_two_way_loss_db,target_film_loss_db,confusion_rate,false_association_rate,false_alarms_per_frame,fog_detections_per_frame,adc_clipped_fraction,clipping_detections_per_frame,sidelobe_detections_per_frame,multipath_detections_per_frame,room_detections_per_frame' \
   && pass || fail "radar_summary.csv header"
 [ "$(wc -l <"$work/t1/radar_samples.csv")" -eq 31 ] && pass || fail "radar_samples.csv should have 5 x 6 rows"
 grep -q '"sensor_limit_layers"' "$work/t1/summary.json" && pass || fail "summary.json lacks sensor_limit_layers"
 grep -q '<svg' "$work/t1/radar_rcs_boxplot.svg" && pass || fail "no svg element"
 # An XML parser independent of the C++ tests' checker, where Python is installed.
 if [ -x /usr/bin/python3 ]; then
-  for svg in radar_rcs_boxplot.svg lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.svg benchmark.svg; do
+  for svg in radar_rcs_boxplot.svg radar_origins.svg lidar_intensity_boxplot.svg lidar_scans.svg camera_histograms.svg benchmark.svg; do
     /usr/bin/python3 -c 'import sys, xml.etree.ElementTree as ET; ET.parse(sys.argv[1])' "$work/t1/$svg" && pass \
       || fail "$svg is not well-formed XML"
   done

@@ -112,7 +112,7 @@ TEST(Instances, TwoInstancesWithTheSameKeysGiveTheSameResults) {
       ++compared;
     }
   }
-  EXPECT_EQ(compared, 5u + 5u);
+  EXPECT_EQ(compared, 6u + 5u);
   const ExperimentSummary summary = summarize(
       run_experiment(parse_scenario(twins, "twins.toml"), {.threads = 1, .progress = {}}));
   EXPECT_EQ(summary.of<radar::RadarReport>("radar_2").summary().steps[1].rcs.median,

@@ -50,8 +50,9 @@ Files files_of(const Scenario& s, unsigned threads) {
 }
 
 // The files of the three sensors (docs/scenario.md, Results).
-const char* const radar_files[] = {"radar_samples.csv", "radar_detections.csv", "radar_summary.csv",
-                                   "radar_summary.json", "radar_rcs_boxplot.svg"};
+const char* const radar_files[] = {"radar_samples.csv",     "radar_detections.csv",
+                                   "radar_summary.csv",     "radar_summary.json",
+                                   "radar_rcs_boxplot.svg", "radar_origins.svg"};
 const char* const lidar_files[] = {"lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
                                    "lidar_intensity_boxplot.svg", "lidar_scans.svg"};
 const char* const camera_files[] = {"camera_histograms.csv", "camera_summary.csv",
@@ -61,7 +62,7 @@ TEST(MultiSensor, EveryFileIsTheSameBytesForAnyThreadCount) {
   const Scenario s = small_three_sensors();
   const Files one = files_of(s, 1), three = files_of(s, 3);
   // Every sensor's files and summary.json, scenario.toml, benchmark.svg (no ROI images asked for).
-  EXPECT_EQ(one.size(), 5u + 5u + 4u + 3u);
+  EXPECT_EQ(one.size(), 6u + 5u + 4u + 3u);
   for (const auto& [name, content] : one) {
     ASSERT_TRUE(three.contains(name)) << name;
     EXPECT_EQ(content, three.at(name)) << name;
@@ -84,7 +85,7 @@ TEST(MultiSensor, AddingASensorLeavesTheOthersFilesUnchanged) {
   const Files all = files_of(small_three_sensors(), 2), r = files_of(radar_only, 2),
               rl = files_of(radar_lidar, 2), l = files_of(lidar_only, 2),
               cr = files_of(camera_first, 2);
-  EXPECT_EQ(r.size(), 8u);  // its 5 files, summary.json, scenario.toml, benchmark.svg
+  EXPECT_EQ(r.size(), 9u);  // its 6 files, summary.json, scenario.toml, benchmark.svg
   EXPECT_FALSE(l.contains("radar_samples.csv"));
   for (const char* radar_file : radar_files) {
     EXPECT_EQ(r.at(radar_file), rl.at(radar_file)) << radar_file;

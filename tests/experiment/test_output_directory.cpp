@@ -172,7 +172,7 @@ TEST_F(OutputDirectoryTest, ReplacesAnEarlierSetOfAnySensors) {
                  {"camera_roi_12.pgm", "P5"}};  // camera.write_roi_images
   for (const char* name :
        {"radar_samples.csv", "radar_summary.csv", "radar_summary.json", "radar_rcs_boxplot.svg",
-        "lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
+        "radar_origins.svg", "lidar_echoes.csv", "lidar_summary.csv", "lidar_summary.json",
         "lidar_intensity_boxplot.svg", "lidar_scans.svg", "camera_histograms.csv",
         "camera_summary.csv", "camera_summary.json", "camera_histograms.svg", "summary.json",
         "scenario.toml", "benchmark.svg"}) {

@@ -233,9 +233,9 @@ double longest_image_path_m(const RoomGeometry& room, const Point3& p, double ra
 }
 
 // The room: the floor as drawn before (a real coefficient, or now and then a material), then in
-// three cases of four each other surface with probability 0.35 and 0-4 objects; written to `t` and recorded in out.room. Returns
-// the lidar wavelength the room needs (905 or 1550 nm: the lidar runs and sees walls or objects),
-// 0 when it needs none.
+// three cases of four each other surface with probability 0.35 and 0-4 objects; written to `t` and
+// recorded in out.room. Returns the lidar wavelength the room needs (905 or 1550 nm: the lidar runs
+// and sees walls or objects), 0 when it needs none.
 double draw_room(Draw& d, Toml& t, DrawnScenario& out, double floor_coefficient, double centre_hz,
                  double radar_max_range_m) {
   RoomGeometry& room = out.room;

@@ -713,9 +713,9 @@ TEST(NoisePower, QuantisationErrorOfGaussianSamples) {
 // its layer and its peak cell.
 TEST(OriginRecords, SidelobesAreCountedApart) {
   Measurement m;
-  const Origin origins[] = {Origin::target,    Origin::sidelobe, Origin::sidelobe,
-                            Origin::noise,     Origin::fog,      Origin::multipath,
-                            Origin::room,      Origin::room,     Origin::room};
+  const Origin origins[] = {Origin::target, Origin::sidelobe, Origin::sidelobe,
+                            Origin::noise,  Origin::fog,      Origin::multipath,
+                            Origin::room,   Origin::room,     Origin::room};
   for (std::size_t i = 0; i < std::size(origins); ++i) {
     Detection d;
     d.range_m = 3.0 + static_cast<double>(i);

@@ -274,5 +274,52 @@ TEST(RcsBoxplot, LongChambersKeepLabelsApart) {
   }
 }
 
+// The origins plot (radar_origins.svg): one line per origin detected at some step, drawn at its
+// per-measurement rate at each step, the target's always; an origin never detected named in the
+// caption; the room beside the floor in both plots' captions, the floor-only hall's caption as
+// before.
+TEST(OriginsPlot, LinesForDetectedOriginsAndTheRoomInTheCaption) {
+  RadarSummary summary = losing_summary();
+  summary.steps[1].room_detections_per_frame = 2.0;
+  summary.steps[4].multipath_detections_per_frame = 0.5;
+  summary.steps[2].false_alarms_per_frame = 0.25;
+  Scenario s = paper_scenario();
+  const std::string svg = radar::origins_svg(radar_of(s), s.context(), summary);
+  EXPECT_EQ(test_support::xml_error(svg), "");
+  std::vector<std::string> legend;
+  for (const auto& text : texts_of_class(svg, "legend-text")) legend.push_back(text.content);
+  EXPECT_EQ(legend,
+            (std::vector<std::string>{
+                "target (associated, in the gate)", "multipath (ghosts of the target via the room)",
+                "room (its objects, the back wall)", "noise (false alarms)"}));
+  EXPECT_EQ(count(svg, "class=\"series\""), 4u);
+  std::string caption;
+  for (const auto& line : texts_of_class(svg, "caption")) caption += line.content + " ";
+  for (const char* part : {"No detection at any step: fog, sidelobe, clipping (ADC).",
+                           "Room: left wall 3 m to the left (concrete); 4 objects (4 cylinders).",
+                           "floor multipath (concrete)", "CFAR CA", "seed 1"}) {
+    EXPECT_NE(caption.find(part), std::string::npos) << part << " not in\n" << caption;
+  }
+
+  // A floor-only hall: no room line in either caption; a back wall and a plate are named.
+  Scenario bare = paper_scenario();
+  bare.chamber.room.left_wall.present = false;
+  bare.chamber.room.objects.clear();
+  for (const std::string& plot : {radar::origins_svg(radar_of(bare), bare.context(), summary),
+                                  rcs_boxplot_svg(bare, summary)}) {
+    EXPECT_EQ(plot.find("Room:"), std::string::npos);
+  }
+  Scenario walled = bare;
+  walled.chamber.room.back_wall = {
+      .present = true, .reflection = propagation::ReflectionCoefficient{-1.0}, .distance_m = 14.0};
+  walled.chamber.room.objects.push_back({.shape = propagation::ObjectShape::plate});
+  std::string walled_caption;
+  for (const auto& line : texts_of_class(rcs_boxplot_svg(walled, summary), "caption"))
+    walled_caption += line.content + " ";
+  EXPECT_NE(walled_caption.find("Room: back wall 14 m ahead (reflection -1); 1 object (1 plate)."),
+            std::string::npos)
+      << walled_caption;
+}
+
 }  // namespace
 }  // namespace fogradar::experiment

@@ -31,6 +31,12 @@ nlohmann::json summary_json(const RadarSummary& summary);
 // CFAR, n, seed).
 std::string rcs_boxplot_svg(const SensorParams& params, const sensor::Context& context,
                             const RadarSummary& summary);
+// radar_origins.svg: the detections per measurement of each origin against active layers (the
+// target's associated share, and multipath, room, fog, noise, sidelobe and clipping detections
+// anywhere in the map; an origin never detected is named in the caption, not drawn), with the
+// box plot's caption.
+std::string origins_svg(const SensorParams& params, const sensor::Context& context,
+                        const RadarSummary& summary);
 // A fraction in [0, 1] as a percentage of 3 significant digits ("12.3", "0.05"): "100" only when
 // it is 1, ">99.9" when it is less but would round to 100.
 std::string percent_of_samples(double fraction);
