@@ -15,7 +15,9 @@ independent HDF5 reader, against NumPy and against the run's own CSV files:
 - the ground truth on request: /radar/origins, an enumerated map whose cell at each detection's
   peak (its range_cell, doppler_cell) holds that detection's origin, and /radar/origin_layers,
   int16, whose cell there holds its layer (-1 where not fog); /lidar/origins, whose stretch holding
-  each echo's attributed_range_m holds that echo's origin and layer;
+  each echo's attributed_range_m holds that echo's origin and layer; the room's origins among them
+  (examples/room_clutter.toml: the target's ghost, multipath, and the back wall's and barrels' own
+  echoes, room, in every frame);
 - the layout: shapes [active_layers, item, ...], one item per chunk, dimension scales attached,
   units, the resolved scenario as the root attribute (scenario.toml's text);
 - one name for the step and one for the item everywhere: every CSV file of the result set and
@@ -189,6 +191,33 @@ with tempfile.TemporaryDirectory() as work:
         beat, signal, noise = (f[f"/radar/{k}"][0, 0] for k in ("beat", "signal", "noise"))
         check(np.array_equal(signal + noise, beat), "signal + noise == beat")
 
+def radar_truth_seen(f):
+    """Checks every radar detection of the open raw file against /radar/origins and
+    /radar/origin_layers at its peak cell; returns the count of detections of each origin code."""
+    truth = f["/radar/origins"]
+    check(h5py.check_enum_dtype(truth.dtype) == table, "the radar map's origin codes")
+    rows, columns = truth.shape[2:]
+    bin_m, velocity_bin = truth.attrs["range_bin_m"], truth.attrs["velocity_bin_m_per_s"]
+    coupling = truth.attrs["range_coupling_s"]
+    radar_seen = Counter()
+    layers = f["/radar/origin_layers"]
+    check(layers.dtype == np.int16 and layers.shape == truth.shape, "the radar's layer map")
+    for d in f["/radar/detections"][:]:
+        s, i = list(f["/radar/active_layers"][:]).index(d["active_layers"]), d["item"]
+        row, column = d["doppler_cell"], d["range_cell"]
+        check(truth[s, i, row, column] == d["origin"], f"radar truth at {d}")
+        check(layers[s, i, row, column] == d["layer"], f"radar layer at {d}")
+        check((d["layer"] >= 0) == (d["origin"] == table["fog"]), f"radar layer of {d}")
+        # From range and velocity alone: the peak cell to within one (the estimate's offset).
+        near_column = (d["range_m"] + coupling * d["velocity_m_per_s"]) / bin_m
+        near_row = d["velocity_m_per_s"] / velocity_bin
+        check(abs(near_column - column) <= 1.0, f"radar range cell of {d}")
+        check(abs((near_row - row + rows / 2) % rows - rows / 2) <= 1.0,
+              f"radar Doppler cell of {d}")
+        radar_seen[int(d["origin"])] += 1
+    return radar_seen
+
+
 # The ground truth, asked for by name: each detection's and each echo's origin (and an echo's
 # layer) is the one the truth holds where it is attributed: a detection's peak cell, an echo's
 # attributed_range_m.
@@ -201,28 +230,8 @@ with tempfile.TemporaryDirectory() as work:
                     "0,4", "--raw-items", "0-1"], check=True, stdout=subprocess.DEVNULL)
     with h5py.File(raw) as f:
         f.visititems(names_of)
-        truth = f["/radar/origins"]
-        check(h5py.check_enum_dtype(truth.dtype) == table, "the radar map's origin codes")
-        rows, columns = truth.shape[2:]
-        bin_m, velocity_bin = truth.attrs["range_bin_m"], truth.attrs["velocity_bin_m_per_s"]
-        coupling = truth.attrs["range_coupling_s"]
-        radar_seen = 0
-        layers = f["/radar/origin_layers"]
-        check(layers.dtype == np.int16 and layers.shape == truth.shape, "the radar's layer map")
-        for d in f["/radar/detections"][:]:
-            s, i = list(f["/radar/active_layers"][:]).index(d["active_layers"]), d["item"]
-            row, column = d["doppler_cell"], d["range_cell"]
-            check(truth[s, i, row, column] == d["origin"], f"radar truth at {d}")
-            check(layers[s, i, row, column] == d["layer"], f"radar layer at {d}")
-            check((d["layer"] >= 0) == (d["origin"] == table["fog"]), f"radar layer of {d}")
-            # From range and velocity alone: the peak cell to within one (the estimate's offset).
-            near_column = (d["range_m"] + coupling * d["velocity_m_per_s"]) / bin_m
-            near_row = d["velocity_m_per_s"] / velocity_bin
-            check(abs(near_column - column) <= 1.0, f"radar range cell of {d}")
-            check(abs((near_row - row + rows / 2) % rows - rows / 2) <= 1.0,
-                  f"radar Doppler cell of {d}")
-            radar_seen += 1
-        check(radar_seen > 0, "radar detections with truth")
+        radar_seen = radar_truth_seen(f)
+        check(sum(radar_seen.values()) > 0, "radar detections with truth")
         stretches = f["/lidar/origins"][:]
         check(h5py.check_enum_dtype(stretches.dtype["origin"]) == table, "lidar truth codes")
         lidar_seen = Counter()
@@ -239,6 +248,21 @@ with tempfile.TemporaryDirectory() as work:
             lidar_seen[int(e["origin"])] += 1
         check(lidar_seen[table["background"]] > 0 and lidar_seen[table["target"]] > 0,
               f"lidar echoes with truth: {lidar_seen}")
+
+# The room's origins in the ground truth: examples/room_clutter.toml (a back wall behind the target,
+# two barrels in the beam) with the target at 2 Doppler bins, where every frame holds the target,
+# its ghost off the back wall (multipath) and the wall's and barrels' own echo (room).
+with tempfile.TemporaryDirectory() as work:
+    out, raw, scenario = (os.path.join(work, name) for name in ("out", "room.h5", "room.toml"))
+    with open(os.path.join(source, "examples/room_clutter.toml")) as base, open(scenario, "w") as s:
+        s.write(base.read() + "\n[target]\nradial_velocity_m_per_s = 1.188\n")
+    subprocess.run([fogradar, "run", "--scenario", scenario, "--out", out, "--raw", raw,
+                    "--raw-select", "radar.detections,radar.origins,radar.origin_layers",
+                    "--raw-items", "0-3"], check=True, stdout=subprocess.DEVNULL)
+    with h5py.File(raw) as f:
+        seen = radar_truth_seen(f)
+        check(seen[table["multipath"]] >= 4 and seen[table["room"]] >= 4
+              and seen[table["target"]] >= 4, f"the room's origins with truth: {seen}")
 
 print(f"{len(failures)} failures")
 sys.exit(1 if failures else 0)
