@@ -321,5 +321,21 @@ TEST(OriginsPlot, LinesForDetectedOriginsAndTheRoomInTheCaption) {
       << walled_caption;
 }
 
+// A 41-step chamber (40 layers): one marker per step on the one line drawn (the target's, the
+// others never detected), and the caption's 40 layers.
+TEST(OriginsPlot, LongChamberHasAMarkerPerStep) {
+  const RadarSummary summary = summary_of(41, [](std::size_t k) { return k < 20 ? 20u : 0u; });
+  Scenario s = paper_scenario();
+  s.chamber.layer_count = 40;
+  s.experiment.max_active_layers = 40;
+  const std::string svg = radar::origins_svg(radar_of(s), s.context(), summary);
+  EXPECT_EQ(test_support::xml_error(svg), "");
+  EXPECT_EQ(count(svg, "class=\"series\""), 1u);
+  EXPECT_EQ(count(svg, "class=\"point-"), 41u);
+  std::string caption;
+  for (const auto& line : texts_of_class(svg, "caption")) caption += line.content + " ";
+  EXPECT_NE(caption.find("40 \u00d7 1 m fog layers"), std::string::npos) << caption;
+}
+
 }  // namespace
 }  // namespace fogradar::experiment
